@@ -1,0 +1,1 @@
+"""contactlab: grain impact on force sensors."""

@@ -1,0 +1,36 @@
+"""Exception and warning family of contactlab.
+
+All errors derive from standard bases so callers can catch them generically
+(python-control's ``ControlDimension(ValueError)`` pattern).
+"""
+
+__all__ = [
+    "ContactlabWarning",
+    "ParameterError",
+    "ResolutionWarning",
+    "TraceFormatError",
+    "WindowWarning",
+]
+
+
+class ParameterError(ValueError):
+    """A physical or numerical parameter is invalid.
+
+    The message names the parameter, the value received and the allowed range.
+    """
+
+
+class TraceFormatError(ValueError):
+    """A trace file cannot be read as claimed; the message names the file and line."""
+
+
+class ContactlabWarning(UserWarning):
+    """Base class of the warnings this toolkit issues."""
+
+
+class WindowWarning(ContactlabWarning):
+    """The simulated time window is too short for what was asked; the message says how long."""
+
+
+class ResolutionWarning(ContactlabWarning):
+    """The output sample rate cannot resolve the signal; the message gives the minimum rate."""

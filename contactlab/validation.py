@@ -1,0 +1,98 @@
+"""Checks at the public entry points: each names the culprit and the allowed range.
+
+Every public constructor and function calls these before doing any work, so that a
+bad value fails where it enters, with a message such as::
+
+    ParameterError: stiffness must be a finite number > 0 [N/m]; got -3.0
+"""
+
+import math
+import numbers
+
+from contactlab.errors import ParameterError
+
+__all__ = ["check_choice", "check_number", "check_probability"]
+
+
+def _describe(low, high, low_open, high_open):
+    parts = []
+    if low is not None:
+        parts.append(f"{'>' if low_open else '>='} {low:g}")
+    if high is not None:
+        parts.append(f"{'<' if high_open else '<='} {high:g}")
+    return " and ".join(parts) if parts else "any finite value"
+
+
+def check_number(
+    name,
+    value,
+    *,
+    low=None,
+    high=None,
+    low_open=True,
+    high_open=False,
+    unit="",
+    allow_inf=False,
+):
+    """Return ``value`` as a float after checking it is a real number within a range.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : object
+        The value to check. ``bool`` is rejected (it is an ``int`` subclass but never a
+        physical quantity).
+    low, high : float or None
+        Bounds of the allowed range; ``None`` means unbounded.
+    low_open, high_open : bool
+        Whether the bounds are excluded (default: ``value > low`` and ``value <= high``).
+    unit : str
+        Unit shown in the message, e.g. ``"N/m"``.
+    allow_inf : bool
+        Accept ``+inf`` (e.g. an immovable wall's mass).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ParameterError
+        If the value is not a real number, is NaN, infinite (unless allowed), or out of range.
+    """
+    unit_text = f" [{unit}]" if unit else ""
+    rng = _describe(low, high, low_open, high_open)
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ParameterError(
+            f"{name} must be a real number {rng}{unit_text}; got {value!r} "
+            f"of type {type(value).__name__}"
+        )
+    x = float(value)
+    if math.isnan(x) or (math.isinf(x) and not (allow_inf and x > 0)):
+        raise ParameterError(f"{name} must be a finite number {rng}{unit_text}; got {x!r}")
+    bad_low = low is not None and (x <= low if low_open else x < low)
+    bad_high = high is not None and (x >= high if high_open else x > high)
+    if bad_low or bad_high:
+        raise ParameterError(f"{name} must be a finite number {rng}{unit_text}; got {x!r}")
+    return x
+
+
+def check_probability(name, value, *, low_open=False, high_open=False):
+    """Check a dimensionless fraction in [0, 1] (open ends as requested); return it as float."""
+    return check_number(name, value, low=0.0, high=1.0, low_open=low_open, high_open=high_open)
+
+
+def check_choice(name, value, choices):
+    """Check that ``value`` is one of ``choices``; the message lists the valid ones.
+
+    Near matches are suggested (PyBaMM habit) through :mod:`difflib`.
+    """
+    if value in choices:
+        return value
+    import difflib
+
+    close = difflib.get_close_matches(str(value), [str(c) for c in choices], n=1)
+    hint = f" Did you mean {close[0]!r}?" if close else ""
+    valid = ", ".join(repr(c) for c in choices)
+    raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")

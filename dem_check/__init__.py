@@ -1,0 +1,1 @@
+"""dem_check: cross-checks of contactlab against a rigid-body engine and measured traces."""
