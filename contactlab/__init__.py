@@ -1,1 +1,38 @@
-"""contactlab: grain impact on force sensors."""
+"""contactlab: grain impacts on force sensors, exactly.
+
+A grain (mass ``m2``) strikes a force sensor's moving mass ``m1`` through a contact law;
+the sensor's measuring element (``k1``, ``c1``) reports ``S1 = k1 x1 + c1 v1``, which is
+not the true contact force ``S2``. This package gives the contact laws DEM codes use, an
+exact two-mass solver, pulse metrics, and the error study of Keska et al. (2021).
+
+SI units everywhere. Overlap ``d = x2 - x1 > 0`` in compression; ``S2 >= 0``.
+"""
+
+from contactlab import analytic, laws, metrics
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import (
+    ParameterError,
+    ResolutionWarning,
+    TraceFormatError,
+    UnknownParameterError,
+    WindowWarning,
+)
+from contactlab.impact import simulate_impact
+from contactlab.result import ImpactResult
+
+__all__ = [
+    "Grain",
+    "ImpactResult",
+    "ParameterError",
+    "ResolutionWarning",
+    "Sensor",
+    "TraceFormatError",
+    "UnknownParameterError",
+    "WindowWarning",
+    "analytic",
+    "laws",
+    "metrics",
+    "simulate_impact",
+]
+
+__version__ = "0.1.0"

@@ -9,6 +9,7 @@ __all__ = [
     "ParameterError",
     "ResolutionWarning",
     "TraceFormatError",
+    "UnknownParameterError",
     "WindowWarning",
 ]
 
@@ -18,6 +19,10 @@ class ParameterError(ValueError):
 
     The message names the parameter, the value received and the allowed range.
     """
+
+
+class UnknownParameterError(ParameterError, TypeError):
+    """An unknown keyword argument, or a missing required one; the message lists valid names."""
 
 
 class TraceFormatError(ValueError):

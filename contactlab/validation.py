@@ -6,12 +6,14 @@ bad value fails where it enters, with a message such as::
     ParameterError: stiffness must be a finite number > 0 [N/m]; got -3.0
 """
 
+import functools
+import inspect
 import math
 import numbers
 
-from contactlab.errors import ParameterError
+from contactlab.errors import ParameterError, UnknownParameterError
 
-__all__ = ["check_choice", "check_number", "check_probability"]
+__all__ = ["KeywordChecked", "check_choice", "check_number", "check_probability"]
 
 
 def _describe(low, high, low_open, high_open):
@@ -96,3 +98,33 @@ def check_choice(name, value, choices):
     hint = f" Did you mean {close[0]!r}?" if close else ""
     valid = ", ".join(repr(c) for c in choices)
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
+
+
+class KeywordChecked:
+    """Mixin: unknown or missing constructor arguments raise :class:`UnknownParameterError`.
+
+    The error is both a :class:`~contactlab.errors.ParameterError` (a ``ValueError``, as the
+    project's contract asks) and a ``TypeError`` (what Python raises for a bad keyword and
+    what python-control's ``kwargs_test`` expects), and it lists the valid names.
+    """
+
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        init = cls.__dict__.get("__init__")
+        if init is None or getattr(init, "_keyword_checked", False):
+            return
+        signature = inspect.signature(init)
+
+        @functools.wraps(init)
+        def checked_init(self, *args, **kw):
+            try:
+                signature.bind(self, *args, **kw)
+            except TypeError as exc:
+                names = [p for p in signature.parameters if p != "self"]
+                raise UnknownParameterError(
+                    f"{cls.__name__}: {exc}; valid parameters are {', '.join(names)}"
+                ) from None
+            init(self, *args, **kw)
+
+        checked_init._keyword_checked = True
+        cls.__init__ = checked_init

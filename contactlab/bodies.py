@@ -1,0 +1,285 @@
+"""The two bodies of an impact: the grain and the force sensor.
+
+The sensor is the paper's reduced model (Figure 3b): a moving mass ``m1`` on the
+measuring element, a spring ``k1`` with a damper ``c1``. Its signal is the force carried
+by the element, ``S1 = k1 x1 + c1 v1`` [N].
+"""
+
+import math
+
+from contactlab import analytic
+from contactlab.errors import ParameterError
+from contactlab.validation import KeywordChecked, check_number
+
+__all__ = ["STEEL_DENSITY", "Grain", "Sensor"]
+
+STEEL_DENSITY = 7850.0
+"""Density of steel [kg/m**3], the default for sensor discs."""
+
+
+def _optional(name, value, **limits):
+    return None if value is None else check_number(name, value, **limits)
+
+
+class Grain(KeywordChecked):
+    """A spherical grain.
+
+    Give the diameter and either the density or the mass; material data are optional and
+    let Hertz-family laws be built from the grain.
+
+    Parameters
+    ----------
+    diameter : float
+        Diameter [m].
+    density : float, optional
+        Density [kg/m**3]; the mass follows as ``density * pi d**3 / 6``.
+    mass : float, optional
+        Mass [kg] (instead of the density).
+    youngs_modulus : float, optional
+        Young's modulus [Pa].
+    shear_modulus : float, optional
+        Shear (Kirchhoff) modulus [Pa]; with the Poisson ratio it gives
+        ``E = 2 G (1 + nu)``. Give at most one of the two moduli.
+    poisson_ratio : float, optional
+        Poisson ratio [-] in (-1, 0.5].
+
+    Examples
+    --------
+    The paper's grain (Keska et al. 2021, Section 2.2):
+
+    >>> g = Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
+    >>> round(g.mass * 1e5, 3)
+    5.007
+    """
+
+    def __init__(
+        self,
+        diameter,
+        density=None,
+        mass=None,
+        youngs_modulus=None,
+        shear_modulus=None,
+        poisson_ratio=None,
+    ):
+        self.diameter = check_number("diameter", diameter, low=0.0, unit="m")
+        if (density is None) == (mass is None):
+            raise ParameterError(
+                f"Grain needs exactly one of density [kg/m**3] or mass [kg]; "
+                f"got density={density!r}, mass={mass!r}"
+            )
+        volume = math.pi * self.diameter**3 / 6.0
+        if density is not None:
+            self.density = check_number("density", density, low=0.0, unit="kg/m**3")
+            self.mass = self.density * volume
+        else:
+            self.mass = check_number("mass", mass, low=0.0, unit="kg")
+            self.density = self.mass / volume
+        self.poisson_ratio = _optional(
+            "poisson_ratio", poisson_ratio, low=-1.0, high=0.5, high_open=False
+        )
+        if youngs_modulus is not None and shear_modulus is not None:
+            raise ParameterError("give youngs_modulus or shear_modulus, not both")
+        if shear_modulus is not None:
+            if self.poisson_ratio is None:
+                raise ParameterError("shear_modulus needs poisson_ratio to give Young's modulus")
+            g = check_number("shear_modulus", shear_modulus, low=0.0, unit="Pa")
+            self.youngs_modulus = analytic.youngs_from_shear(g, self.poisson_ratio)
+        else:
+            self.youngs_modulus = _optional("youngs_modulus", youngs_modulus, low=0.0, unit="Pa")
+
+    @classmethod
+    def from_mass(cls, mass, diameter=1e-3):
+        """A grain known only by its mass [kg] (the diameter [m] only sizes drawings)."""
+        return cls(diameter=diameter, mass=mass)
+
+    @property
+    def radius(self):
+        """Radius [m]."""
+        return 0.5 * self.diameter
+
+    @property
+    def shear_modulus(self):
+        """Shear modulus ``E / (2 (1 + nu))`` [Pa], or None without material data."""
+        if self.youngs_modulus is None or self.poisson_ratio is None:
+            return None
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+    def material(self):
+        """``(youngs_modulus, poisson_ratio, radius)`` for the laws' ``from_material``.
+
+        Raises
+        ------
+        ParameterError
+            If the grain was built without Young's (or shear) modulus and Poisson ratio.
+        """
+        if self.youngs_modulus is None or self.poisson_ratio is None:
+            raise ParameterError(
+                "this grain has no material data: give youngs_modulus (or shear_modulus) "
+                "and poisson_ratio to build a Hertz-family law from it"
+            )
+        return self.youngs_modulus, self.poisson_ratio, self.radius
+
+    def to_dict(self):
+        """Grain data with unit-bearing keys."""
+        return {
+            "diameter [m]": self.diameter,
+            "density [kg/m^3]": self.density,
+            "mass [kg]": self.mass,
+            "youngs_modulus [Pa]": self.youngs_modulus,
+            "poisson_ratio [-]": self.poisson_ratio,
+        }
+
+    def __repr__(self):
+        extra = ""
+        if self.youngs_modulus is not None:
+            extra = (
+                f", youngs_modulus={self.youngs_modulus:.4g}, poisson_ratio={self.poisson_ratio}"
+            )
+        return f"Grain(diameter={self.diameter:.4g}, mass={self.mass:.4g}{extra})"
+
+
+class Sensor(KeywordChecked):
+    """A force sensor: moving mass ``m1`` on a measuring element ``k1, c1``.
+
+    Parameters
+    ----------
+    mass : float
+        Moving (parasitic) mass ``m1`` [kg].
+    stiffness : float
+        Stiffness of the measuring element ``k1`` [N/m].
+    damping : float, default 0
+        Damping of the measuring element ``c1`` [N*s/m].
+
+    Notes
+    -----
+    The signal is ``S1 = k1 x1 + c1 v1`` [N]; the transfer function from contact force
+    to signal is ``(c1 s + k1) / (m1 s**2 + c1 s + k1)``. The paper leaves the damping
+    open; quartz sensors have damping ratios of about 0.01-0.05. (The paper's software
+    screen shows "Damp. const. 500 N*s/m", a damping ratio of 0.8 with the paper's disc.)
+    """
+
+    def __init__(self, mass, stiffness, damping=0.0):
+        self.mass = check_number("mass", mass, low=0.0, unit="kg", allow_inf=True)
+        self.stiffness = check_number("stiffness", stiffness, low=0.0, unit="N/m", allow_inf=True)
+        self.damping = check_number(
+            "damping", damping, low=0.0, low_open=False, unit="N*s/m", allow_inf=True
+        )
+        if math.isinf(self.mass) != math.isinf(self.stiffness):
+            raise ParameterError(
+                "an immovable sensor needs mass = stiffness = inf (use Sensor.rigid()); "
+                f"got mass={self.mass}, stiffness={self.stiffness}"
+            )
+        if math.isinf(self.damping) and not self.is_rigid:
+            raise ParameterError("damping must be finite for a moving sensor")
+
+    @classmethod
+    def rigid(cls):
+        """An immovable wall: the signal equals the contact force (S1 == S2)."""
+        return cls(mass=math.inf, stiffness=math.inf, damping=0.0)
+
+    @classmethod
+    def from_resonance(cls, resonance, mass, damping_ratio=None, damping=None):
+        """Sensor with a given undamped resonance frequency.
+
+        Parameters
+        ----------
+        resonance : float
+            Undamped natural frequency ``f1 = sqrt(k1/m1) / (2 pi)`` [Hz].
+        mass : float
+            Moving mass ``m1`` [kg].
+        damping_ratio : float, optional
+            ``zeta1 = c1 / (2 sqrt(k1 m1))`` [-] (default 0 when ``damping`` is not given).
+        damping : float, optional
+            ``c1`` [N*s/m] instead of the ratio.
+        """
+        f1 = check_number("resonance", resonance, low=0.0, unit="Hz")
+        m1 = check_number("mass", mass, low=0.0, unit="kg")
+        k1 = m1 * (2.0 * math.pi * f1) ** 2
+        if damping_ratio is not None and damping is not None:
+            raise ParameterError("give damping_ratio or damping, not both")
+        if damping is None:
+            zeta = check_number(
+                "damping_ratio",
+                0.0 if damping_ratio is None else damping_ratio,
+                low=0.0,
+                low_open=False,
+            )
+            damping = 2.0 * zeta * math.sqrt(k1 * m1)
+        return cls(mass=m1, stiffness=k1, damping=damping)
+
+    @classmethod
+    def from_disc(cls, diameter, thickness, resonance, damping_ratio=0.0, density=STEEL_DENSITY):
+        """Sensor whose moving mass is a disc, as the paper's software sized it.
+
+        Parameters
+        ----------
+        diameter : float
+            Disc diameter [m] (paper: 10 mm).
+        thickness : float
+            Disc thickness [m] (paper: 2 mm).
+        resonance : float
+            Resonance frequency [Hz].
+        damping_ratio : float, default 0
+            Damping ratio [-].
+        density : float, default 7850
+            Disc density [kg/m**3] (steel: a 10 mm x 2 mm disc weighs 1.233 g).
+        """
+        dia = check_number("diameter", diameter, low=0.0, unit="m")
+        thick = check_number("thickness", thickness, low=0.0, unit="m")
+        rho = check_number("density", density, low=0.0, unit="kg/m**3")
+        sensor = cls.from_resonance(
+            resonance, mass=rho * math.pi * dia**2 / 4.0 * thick, damping_ratio=damping_ratio
+        )
+        sensor.diameter, sensor.thickness = dia, thick
+        return sensor
+
+    diameter = None
+    """Plate diameter [m] when known (disc sensors), used by the engine bench."""
+    thickness = None
+    """Plate thickness [m] when known."""
+
+    @property
+    def is_rigid(self):
+        """Whether this is an immovable wall."""
+        return math.isinf(self.mass)
+
+    @property
+    def angular_frequency(self):
+        """Undamped natural angular frequency ``w1 = sqrt(k1/m1)`` [rad/s] (inf if rigid)."""
+        return math.inf if self.is_rigid else math.sqrt(self.stiffness / self.mass)
+
+    @property
+    def resonance(self):
+        """Undamped resonance frequency [Hz] (inf if rigid)."""
+        return self.angular_frequency / (2.0 * math.pi)
+
+    @property
+    def period(self):
+        """Undamped natural period [s] (0 if rigid)."""
+        return 0.0 if self.is_rigid else 1.0 / self.resonance
+
+    @property
+    def damping_ratio(self):
+        """``zeta1 = c1 / (2 sqrt(k1 m1))`` [-] (0 if rigid)."""
+        if self.is_rigid:
+            return 0.0
+        return self.damping / (2.0 * math.sqrt(self.stiffness * self.mass))
+
+    def to_dict(self):
+        """Sensor data with unit-bearing keys."""
+        return {
+            "mass [kg]": self.mass,
+            "stiffness [N/m]": self.stiffness,
+            "damping [N*s/m]": self.damping,
+            "resonance [Hz]": self.resonance,
+            "damping_ratio [-]": self.damping_ratio,
+        }
+
+    def __repr__(self):
+        if self.is_rigid:
+            return "Sensor.rigid()"
+        return (
+            f"Sensor(mass={self.mass:.4g}, stiffness={self.stiffness:.4g}, "
+            f"damping={self.damping:.4g})  # {self.resonance / 1e3:.4g} kHz, "
+            f"zeta={self.damping_ratio:.3g}"
+        )

@@ -1,0 +1,42 @@
+"""Plots of impacts and studies. matplotlib is imported only here, only when plotting."""
+
+__all__ = ["plot_impact"]
+
+
+def _axes(ax):
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        fig, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
+        return fig, ax
+    return ax.figure, ax
+
+
+def plot_impact(result, ax=None, title=None):
+    """Contact force S2 (thick line) and sensor signal S1 (thin line) against time.
+
+    Parameters
+    ----------
+    result : ImpactResult or any object with ``t``, ``contact_force``, ``sensor_force``
+        The impact to draw; time is shown in microseconds, forces in newtons.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; a new figure is made when None.
+    title : str, optional
+        Axes title.
+
+    Returns
+    -------
+    (matplotlib.figure.Figure, matplotlib.axes.Axes)
+    """
+    fig, ax = _axes(ax)
+    t_us = result.t * 1e6
+    ax.plot(t_us, result.contact_force, lw=2.6, color="black", label="contact force $S_2$")
+    ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    ax.set_xlabel("time [µs]")
+    ax.set_ylabel("force [N]")
+    ax.set_xlim(t_us[0], t_us[-1])
+    if title:
+        ax.set_title(title)
+    ax.legend(loc="upper right", frameon=False)
+    return fig, ax

@@ -1,0 +1,328 @@
+"""The result of one impact: signals on a uniform grid, exact events, and pulse metrics."""
+
+import math
+from functools import cached_property
+
+import numpy as np
+from scipy.optimize import minimize_scalar
+
+from contactlab import metrics
+
+__all__ = ["ImpactResult"]
+
+_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
+"""Gauss-Legendre rule for impulse, work and energy integrals over each smooth piece."""
+
+
+def _boundary(predicate, lo, hi):
+    """Where ``predicate`` changes value on [lo, hi] [s], by bisection to machine precision.
+
+    Bisection rather than a root finder because a clipped signal (a contact force that
+    stays at zero after separation) has no sign change to find, only a boundary.
+    """
+    inside = predicate(lo)
+    if predicate(hi) == inside:
+        return 0.5 * (lo + hi)
+    while hi - lo > 4 * np.finfo(float).eps * max(abs(hi), 1e-300):
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            break
+        if predicate(mid) == inside:
+            lo = mid
+        else:
+            hi = mid
+    return hi if inside else lo
+
+
+class ImpactResult:
+    """One simulated impact (see :func:`contactlab.simulate_impact`).
+
+    Signals on the output grid (numpy arrays): ``t`` [s], ``contact_force`` (S2) [N],
+    ``sensor_force`` (S1) [N], ``x1``, ``x2`` [m], ``v1``, ``v2`` [m/s].
+
+    Headline numbers are computed from the exact (or dense) solution, not from the grid:
+    ``contact_time`` [s], ``peak_contact_force`` [N], ``sensor_response_time`` [s],
+    ``peak_sensor_force`` [N], ``impulse`` [N*s], ``restitution`` [-],
+    ``rebound_velocity`` [m/s], ``contact_intervals`` [(start, end) s] and
+    ``energy_balance`` [J].
+    """
+
+    def __init__(
+        self,
+        *,
+        grain,
+        sensor,
+        law,
+        velocity,
+        duration,
+        sample_rate,
+        method,
+        segments,
+        contact_intervals,
+        events,
+        system,
+        threshold=0.0,
+    ):
+        self.grain, self.sensor, self.law = grain, sensor, law
+        self.velocity, self.duration, self.sample_rate = velocity, duration, sample_rate
+        self.method, self.threshold = method, threshold
+        self.segments = segments
+        self.contact_intervals = list(contact_intervals)
+        self.events = list(events)
+        self.verification = None
+        self._system = system
+        self._starts = np.array([s.t0 for s in segments])
+        n = int(math.floor(duration * sample_rate * (1 + 1e-12))) + 1
+        self.t = np.arange(n) / sample_rate
+        states, self.contact_force = self._evaluate(self.t)
+        self.x1, self.v1, self.x2, self.v2 = states.T
+        self.sensor_force = system.signal(states, self.contact_force)
+
+    # -- dense evaluation ----------------------------------------------------
+    def _evaluate(self, times):
+        """States (n, 4) and contact force (n,) at arbitrary times [s] inside the solution."""
+        times = np.atleast_1d(np.asarray(times, dtype=float))
+        states = np.empty((times.size, 4))
+        force = np.empty(times.size)
+        which = np.clip(np.searchsorted(self._starts, times, side="right") - 1, 0, None)
+        for i in np.unique(which):
+            seg = self.segments[i]
+            mask = which == i
+            tau = times[mask] - seg.t0
+            st = seg.states(tau)
+            states[mask] = st
+            force[mask] = seg.force(tau, st)
+        return states, force
+
+    def _signal_at(self, t):
+        states, force = self._evaluate([t])
+        return float(self._system.signal(states, force)[0])
+
+    def _force_at(self, t):
+        return float(self._evaluate([t])[1][0])
+
+    def _integrate(self, integrand, start, end):
+        """Gauss-Legendre integral of ``integrand(states, force)`` over [start, end] [s]."""
+        total = 0.0
+        for seg in self.segments:
+            lo, hi = max(seg.t0, start), min(seg.t1, end)
+            if hi <= lo:
+                continue
+            half, mid = 0.5 * (hi - lo), 0.5 * (hi + lo)
+            tau = mid + half * _GAUSS_NODES - seg.t0
+            st = seg.states(tau)
+            total += half * float(_GAUSS_WEIGHTS @ integrand(st, seg.force(tau, st)))
+        return total
+
+    # -- events --------------------------------------------------------------
+    @property
+    def contact_time(self):
+        """Duration of the first contact [s], from exact event times."""
+        start, end = self.contact_intervals[0]
+        return end - start
+
+    @property
+    def separation_time(self):
+        """Time of the first separation [s]."""
+        return self.contact_intervals[0][1]
+
+    @cached_property
+    def rebound_velocity(self):
+        """Grain speed away from the sensor after its last contact in the window [m/s]."""
+        end = self.contact_intervals[-1][1]
+        return -float(self._evaluate([end])[0][0, 3])
+
+    @property
+    def restitution(self):
+        """Rebound speed over impact speed [-]."""
+        return self.rebound_velocity / self.velocity
+
+    # -- pulse metrics -------------------------------------------------------
+    def _refined_max(self, values_fn, grid_values, start, end):
+        """Largest value of a dense signal on [start, end], refined from the grid maximum."""
+        inside = (self.t >= start) & (self.t <= end)
+        candidates = [start, end]
+        if inside.any():
+            idx = np.flatnonzero(inside)
+            candidates.append(self.t[idx[np.argmax(grid_values[idx])]])
+        t_best = max(candidates, key=values_fn)
+        h = 1.0 / self.sample_rate
+        lo, hi = max(start, t_best - h), min(end, t_best + h)
+        if hi > lo:
+            res = minimize_scalar(
+                lambda s: -values_fn(s),
+                bounds=(lo, hi),
+                method="bounded",
+                options={"xatol": 1e-9 * (hi - lo)},
+            )
+            if -res.fun > values_fn(t_best):
+                t_best = float(res.x)
+        return t_best, values_fn(t_best)
+
+    @cached_property
+    def _contact_peak(self):
+        start, end = self.contact_intervals[0]
+        return self._refined_max(self._force_at, self.contact_force, start, end)
+
+    @property
+    def peak_contact_force(self):
+        """Largest contact force S2 during the first contact [N]."""
+        return self._contact_peak[1]
+
+    @property
+    def peak_contact_time(self):
+        """Time of the largest contact force [s]."""
+        return self._contact_peak[0]
+
+    @cached_property
+    def sensor_lobe(self):
+        """(start, end) [s] of the sensor signal's first main lobe above ``threshold``.
+
+        Read as an experimenter would, from the first rise above the threshold to the first
+        return to it, with the crossings located on the dense solution.
+        """
+        start, end = metrics.first_lobe(self.t, self.sensor_force, self.threshold)
+        h = 1.0 / self.sample_rate
+
+        def above(s):
+            return self._signal_at(s) > self.threshold
+
+        if np.isfinite(start) and start > self.t[0]:
+            start = _boundary(above, max(start - h, 0.0), min(start + h, self.duration))
+        if np.isfinite(end):
+            end = _boundary(above, max(end - h, 0.0), min(end + h, self.duration))
+        return float(start), float(end)
+
+    @property
+    def sensor_response_time(self):
+        """Duration of the sensor signal's first main lobe [s] (nan if it does not end)."""
+        start, end = self.sensor_lobe
+        return end - start
+
+    @cached_property
+    def _sensor_peak(self):
+        start, end = self.sensor_lobe
+        if not np.isfinite(start):
+            return math.nan, math.nan
+        end = self.duration if not np.isfinite(end) else end
+        return self._refined_max(self._signal_at, self.sensor_force, start, end)
+
+    @property
+    def peak_sensor_force(self):
+        """Largest sensor signal S1 in its first main lobe [N]."""
+        return self._sensor_peak[1]
+
+    @cached_property
+    def impulse(self):
+        """Integral of the contact force S2 over all contacts [N*s] (Gauss-Legendre)."""
+        return sum(
+            self._integrate(lambda st, f: f, start, end) for start, end in self.contact_intervals
+        )
+
+    @cached_property
+    def sensor_impulse(self):
+        """Integral of the sensor signal S1 over the window [N*s]."""
+        return self._integrate(lambda st, f: self._system.signal(st, f), 0.0, self.duration)
+
+    @cached_property
+    def energy_balance(self):
+        """Where the grain's kinetic energy went by the end of the window [J].
+
+        Keys: ``kinetic_in``, ``grain_kinetic_out``, ``sensor_energy_out`` (kinetic and
+        elastic), ``sensor_damping_loss`` (``integral c1 v1**2``), ``contact_loss``
+        (``integral S2 d'``, the work the contact absorbed), and ``residual`` (in minus
+        the rest; zero up to the solver's accuracy). Integrals are Gauss-Legendre on the
+        dense solution, independent of the solver's own bookkeeping.
+        """
+        sys_ = self._system
+        m2, t_end = sys_.m2, self.duration
+        final = self._evaluate([t_end])[0][0]
+        out = {"kinetic_in": 0.5 * m2 * self.velocity**2}
+        out["grain_kinetic_out"] = 0.5 * m2 * final[3] ** 2
+        contact_loss = self._integrate(lambda st, f: f * (st[:, 3] - st[:, 1]), 0.0, t_end)
+        if sys_.rigid:
+            out["sensor_energy_out"] = out["sensor_damping_loss"] = 0.0
+        else:
+            out["sensor_energy_out"] = 0.5 * sys_.m1 * final[1] ** 2 + 0.5 * sys_.k1 * final[0] ** 2
+            out["sensor_damping_loss"] = self._integrate(
+                lambda st, f: sys_.c1 * st[:, 1] ** 2, 0.0, t_end
+            )
+        out["contact_loss"] = contact_loss
+        out["residual"] = out["kinetic_in"] - sum(
+            out[k]
+            for k in (
+                "grain_kinetic_out",
+                "sensor_energy_out",
+                "sensor_damping_loss",
+                "contact_loss",
+            )
+        )
+        return out
+
+    @cached_property
+    def grain_work(self):
+        """Work done by the contact force on the grain, ``-integral S2 v2 dt`` [J]."""
+        return self._integrate(lambda st, f: -f * st[:, 3], 0.0, self.duration)
+
+    # -- output ----------------------------------------------------------------
+    def summary(self):
+        """Headline numbers as a dict with unit-bearing keys (JSON-ready)."""
+        out = {
+            "method": self.method,
+            "law": type(self.law).__name__,
+            "law_parameters": self.law.parameters(),
+            "grain": self.grain.to_dict(),
+            "sensor": self.sensor.to_dict(),
+            "velocity [m/s]": self.velocity,
+            "duration [s]": self.duration,
+            "sample_rate [Hz]": self.sample_rate,
+            "contact_time [s]": self.contact_time,
+            "peak_contact_force [N]": self.peak_contact_force,
+            "sensor_response_time [s]": self.sensor_response_time,
+            "peak_sensor_force [N]": self.peak_sensor_force,
+            "impulse [N*s]": self.impulse,
+            "restitution [-]": self.restitution,
+            "rebound_velocity [m/s]": self.rebound_velocity,
+            "contact_intervals [s]": [list(iv) for iv in self.contact_intervals],
+            "energy_balance [J]": self.energy_balance,
+        }
+        if self.verification is not None:
+            out["verification [relative]"] = self.verification
+        return out
+
+    def to_frame(self):
+        """Signals as a pandas DataFrame with unit-bearing column names."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            {
+                "t [s]": self.t,
+                "contact_force [N]": self.contact_force,
+                "sensor_force [N]": self.sensor_force,
+                "x1 [m]": self.x1,
+                "v1 [m/s]": self.v1,
+                "x2 [m]": self.x2,
+                "v2 [m/s]": self.v2,
+            }
+        )
+
+    def plot(self, ax=None, **kwargs):
+        """Contact force (thick) and sensor signal (thin), as in the paper's Figures 5-9.
+
+        Returns
+        -------
+        (matplotlib.figure.Figure, matplotlib.axes.Axes)
+        """
+        from contactlab.plotting import plot_impact
+
+        return plot_impact(self, ax=ax, **kwargs)
+
+    def __repr__(self):
+        return (
+            f"ImpactResult({type(self.law).__name__}, method={self.method!r}, "
+            f"contact_time={self.contact_time * 1e6:.4g} us, "
+            f"peak_contact_force={self.peak_contact_force:.4g} N, "
+            f"sensor_response_time={self.sensor_response_time * 1e6:.4g} us, "
+            f"peak_sensor_force={self.peak_sensor_force:.4g} N, "
+            f"restitution={self.restitution:.4g}, contacts={len(self.contact_intervals)})"
+        )
