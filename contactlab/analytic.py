@@ -790,8 +790,8 @@ def hunt_crossley_restitution(damping, velocity):
     -----
     With lam = (3/2) chi, m v dv/dx = -k x^n (1 + lam v) separates; the first integral
     G(v) = v/lam - ln(1 + lam v)/lam^2 gives G(v_in) = G(-v_out) exactly, i.e. with
-    y = lam v_in and z = lam v_out: y - ln(1 + y) = -z - ln(1 - z), solved for z in (0, 1)
-    by Brent's method. Since lam |d'| <= z < 1 throughout, the force is positive until
+    y = lam v_in and z = lam v_out: y - ln(1 + y) = -z - ln(1 - z), solved by Brent's
+    method for s = -ln(1 - z) (so that z -> 1 stays resolved). Since lam |d'| <= z < 1 throughout, the force is positive until
     d = 0: both contact-end conventions give this result. For y >~ 40, z = 1 to double
     precision and e = 1/y. For small y, e = 1 - chi v + O((chi v)^2)
     (:func:`hunt_crossley_restitution_linearised`).
@@ -807,11 +807,13 @@ def hunt_crossley_restitution(damping, velocity):
     if y == 0.0:
         return 1.0
     target = _x_minus_log1p(y)
-    upper = -math.expm1(-(target + 1.0))  # -z - ln(1 - z) > target here
-    if upper == 1.0:
-        return 1.0 / y
-    z = brentq(lambda z: _x_minus_log1p(-z) - target, 0.0, upper, xtol=1e-300)
-    return z / y
+
+    def excess(s):
+        z = -math.expm1(-s)  # z = 1 - exp(-s); then -z - ln(1 - z) = s - z
+        return (s - z if z > 0.25 else _x_minus_log1p(-z)) - target
+
+    s = brentq(excess, 0.0, target + 1.0, xtol=1e-300)
+    return -math.expm1(-s) / y
 
 
 def hunt_crossley_restitution_linearised(damping, velocity):

@@ -56,7 +56,7 @@ def solve_euler(system, law, velocity, window, time_step):
     max_overlap, in_contact, start = 0.0, True, 0.0
     previous_exit = [e.value(0.0, velocity) for e in exits]
     intervals, log = [], []
-    n_max = math.inf if window is None else int(round(window / time_step))
+    n_max = math.inf if window is None else round(window / time_step)
     stride = 1 if window is None else max(1, n_max // _MAX_RECORDS)
     rec_t, rec_y, rec_f = [], [], []
     n = 0

@@ -25,6 +25,7 @@ strikes the grain again), each solved by the best method for it:
 
 import math
 import warnings
+
 import numpy as np
 from scipy.integrate import solve_ivp
 
@@ -312,8 +313,9 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
 
 
 def _contact_horizon(system, limit):
-    """How far to follow the first contact when looking for its end [s]."""
-    return math.inf if math.isinf(limit) else max(100.0 * limit, 1.0)
+    """How far to follow the first contact when looking for its end [s]: a contact longer
+    than a second (or 100 windows) is not an impact."""
+    return 1.0 if math.isinf(limit) else max(100.0 * limit, 1.0)
 
 
 def _auto_window(system, contact_end):

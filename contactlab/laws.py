@@ -21,8 +21,9 @@ on an immovable wall, and the work done along any overlap path.
 
 import math
 from abc import ABC, abstractmethod
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable, ClassVar
+from typing import ClassVar
 
 import numpy as np
 
@@ -307,9 +308,8 @@ def _thornton_unloading(d_max, modulus, radius, yield_pressure):
     f_y = analytic.thornton_yield_force(modulus, radius, yield_pressure)
     f_max = np.asarray(_thornton_loading(d_max, modulus, radius, yield_pressure))
     with np.errstate(divide="ignore", invalid="ignore"):
-        r_p = (
-            4.0 * modulus / (3.0 * f_max) * ((2.0 * f_max + f_y) / (2.0 * math.pi * yield_pressure))
-        ) ** 1.5
+        contact_radius_cubed = ((2.0 * f_max + f_y) / (2.0 * math.pi * yield_pressure)) ** 1.5
+        r_p = 4.0 * modulus * contact_radius_cubed / (3.0 * f_max)
         k_p = 4.0 / 3.0 * modulus * np.sqrt(np.where(d_max > d_y, r_p, radius))
         d_p = np.where(d_max > d_y, d_max - (f_max / k_p) ** (2.0 / 3.0), 0.0)
     return k_p, d_p
@@ -667,7 +667,7 @@ class Hertz(ContactLaw):
 
 
 class HertzDamped(ContactLaw):
-    """Damped Hertz contact of Tsuji et al. (EDEM, LIGGGHTS, Chrono): ``kH d**1.5 + eta d**0.25 d'``.
+    """Damped Hertz contact of Tsuji et al. (EDEM, LIGGGHTS): ``kH d**1.5 + eta d**0.25 d'``.
 
     Parameters
     ----------
@@ -1066,6 +1066,7 @@ class PlasticTrapezoid(KeywordChecked):
     __repr__ = ContactLaw.__repr__
     __eq__ = ContactLaw.__eq__
     __hash__ = ContactLaw.__hash__
+    impact = ContactLaw.impact
 
     def amplitude(self, mass, velocity):
         """Plateau force [N] for a grain of ``mass`` [kg] at ``velocity`` [m/s]."""

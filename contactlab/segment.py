@@ -1,7 +1,7 @@
 """A piece of an impact solution between two events."""
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Callable
 
 __all__ = ["Segment"]
 
