@@ -791,8 +791,9 @@ def hunt_crossley_restitution(damping, velocity):
     With lam = (3/2) chi, m v dv/dx = -k x^n (1 + lam v) separates; the first integral
     G(v) = v/lam - ln(1 + lam v)/lam^2 gives G(v_in) = G(-v_out) exactly, i.e. with
     y = lam v_in and z = lam v_out: y - ln(1 + y) = -z - ln(1 - z), solved by Brent's
-    method for s = -ln(1 - z) (so that z -> 1 stays resolved). Since lam |d'| <= z < 1 throughout, the force is positive until
-    d = 0: both contact-end conventions give this result. For y >~ 40, z = 1 to double
+    method for s = -ln(1 - z) (so that z -> 1 stays resolved). Since lam |d'| <= z < 1
+    throughout, the force is positive until d = 0: both contact-end conventions give this
+    result. For y >~ 40, z = 1 to double
     precision and e = 1/y. For small y, e = 1 - chi v + O((chi v)^2)
     (:func:`hunt_crossley_restitution_linearised`).
 

@@ -1,5 +1,6 @@
 """The result of one impact: signals on a uniform grid, exact events, and pulse metrics."""
 
+import itertools
 import math
 from functools import cached_property
 
@@ -128,7 +129,7 @@ class ImpactResult:
             if hi <= lo:
                 continue
             edges = lo + (hi - lo) * _panel_edges(hi - lo, period, seg.kind == "contact")
-            for a, b in zip(edges[:-1], edges[1:], strict=True):
+            for a, b in itertools.pairwise(edges):
                 half, mid = 0.5 * (b - a), 0.5 * (b + a)
                 tau = mid + half * _GAUSS_NODES - seg.t0
                 st = seg.states(tau)

@@ -100,7 +100,7 @@ def test_hertz_second_body_softens_contact():
 def test_hertz_damped_restitution_is_velocity_independent(velocity):
     law = HertzDamped.from_material(E_GRAIN, NU, R, 0.5, M)
     e_ref = wall(law, 1.0).restitution
-    # Tsuji's scaling: e depends only on alpha; both solves are accurate to ~1e-9
+    # Tsuji scaling: e depends only on alpha; both solves are accurate to ~1e-9
     assert wall(law, velocity).restitution == pytest.approx(e_ref, rel=EXACT)
 
 
