@@ -218,6 +218,6 @@ def test_result_outputs(paper_grain, paper_sensor):
     frame = res.to_frame()
     assert list(frame.columns[:3]) == ["t [s]", "contact_force [N]", "sensor_force [N]"]
     assert len(frame) == 20001
-    fig, ax = res.plot()
+    _, ax = res.plot()
     assert ax.get_xlabel() == "time [µs]"
     assert "contact_time" in repr(res)

@@ -1,0 +1,94 @@
+"""Command line: help, presets, TOML configs and clear errors."""
+
+import json
+
+import pytest
+
+import contactlab as cl
+from contactlab.cli import main as contactlab_main
+from contactlab.config import list_presets, load_config
+from dem_check.cli import main as dem_check_main
+
+GOOD = """
+[grain]
+diameter = 5.0e-3
+density = 765.0
+[contact]
+law = "linear"
+stiffness = 1.0e5
+damping = 1.0
+[sensor]
+resonance = 40.0e3
+mass = 1.233e-3
+damping_ratio = 0.02
+[simulation]
+velocity = 2.0
+duration = 500.0e-6
+"""
+
+
+@pytest.mark.parametrize("main", [contactlab_main, dem_check_main])
+def test_help(main, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["--help"])
+    assert info.value.code == 0
+    assert "usage:" in capsys.readouterr().out
+
+
+def test_simulate_config_json(tmp_path, capsys):
+    path = tmp_path / "case.toml"
+    path.write_text(GOOD)
+    assert (
+        contactlab_main(["simulate", str(path), "--json", "--plot", str(tmp_path / "f.png")]) == 0
+    )
+    summary = json.loads(capsys.readouterr().out)
+    grain = cl.Grain(diameter=5e-3, density=765.0)
+    sensor = cl.Sensor.from_resonance(40e3, mass=1.233e-3, damping_ratio=0.02)
+    direct = cl.simulate_impact(grain, sensor, cl.laws.LinearViscoelastic(1e5, 1.0), 2.0, 500e-6)
+    # the same deterministic computation through TOML and through Python
+    assert summary["contact_time [s]"] == pytest.approx(direct.contact_time, rel=1e-14)
+    assert (tmp_path / "f.png").stat().st_size > 0
+
+
+@pytest.mark.parametrize("name", list_presets())
+def test_presets_run(name, capsys):
+    assert contactlab_main(["simulate", "--preset", name]) == 0
+    assert "ImpactResult" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "dampin"),
+        (GOOD.replace("[simulation]", "[simulaton]"), "simulaton"),
+        (GOOD.replace('law = "linear"', 'law = "lineer"'), "Did you mean 'linear'"),
+        (GOOD.replace("velocity = 2.0", "velocity = -2.0"), "velocity"),
+        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "durration"),
+    ],
+)
+def test_config_errors_name_the_key(tmp_path, capsys, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    assert contactlab_main(["simulate", str(path)]) == 2
+    assert message in capsys.readouterr().err
+
+
+def test_config_from_material(tmp_path):
+    path = tmp_path / "hertz.toml"
+    path.write_text(
+        GOOD.replace(
+            "density = 765.0", "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
+        ).replace(
+            'law = "linear"\nstiffness = 1.0e5\ndamping = 1.0',
+            'law = "hertz"\nfrom_material = true',
+        )
+    )
+    config = load_config(path)
+    assert type(config.law).__name__ == "Hertz"
+
+
+def test_demo_writes_figure_and_summary(tmp_path, capsys):
+    assert contactlab_main(["demo", "--out", str(tmp_path)]) == 0
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["base_case_rigid_wall"]["contact_time [s]"] > 0
+    assert (tmp_path / "base_case.png").stat().st_size > 10_000
