@@ -1,0 +1,213 @@
+"""Preparing a measured trace: baseline, noise, onset, alignment, low-pass, force units.
+
+Every function that changes a trace returns a new :class:`~dem_check.traces.trace.Trace`
+and appends a record of itself (name and parameters) to ``metadata["history"]``.
+
+The baseline is the pre-trigger part of the trace: by default the samples before
+``metadata["trigger_time"]``, or before t = 0 when the file does not give a trigger time
+(oscilloscopes write time relative to the trigger, so both usually mean the same). Pass
+``pre_trigger=(start, end)`` [s] to choose the window explicitly, e.g. to exclude the
+first rise of a pulse that starts before the trigger.
+"""
+
+import numpy as np
+from scipy import signal
+
+from contactlab.errors import ParameterError
+from contactlab.validation import check_number
+from dem_check.traces.checks import uniform_interval
+
+__all__ = ["align", "detect_onset", "lowpass", "noise_level", "remove_baseline", "to_force"]
+
+
+def _baseline(trace, pre_trigger):
+    """Mean, standard deviation, window [s] and sample count of the baseline."""
+    t = trace.t
+    if pre_trigger is None:
+        trigger = trace.metadata.get("trigger_time")
+        end = 0.0 if trigger is None else float(trigger)
+        window = (float(t[0]), end)
+        mask = t < end
+    else:
+        if len(pre_trigger) != 2:
+            raise ParameterError(f"pre_trigger must be (start, end) [s]; got {pre_trigger!r}")
+        start = check_number("pre_trigger start", pre_trigger[0], unit="s")
+        end = check_number("pre_trigger end", pre_trigger[1], low=start, unit="s")
+        window = (start, end)
+        mask = (t >= start) & (t < end)
+    samples = trace.values[mask]
+    if samples.size < 2:
+        raise ParameterError(
+            f"the baseline window {window} s holds {samples.size} samples; need at least 2 "
+            "(pass pre_trigger=(start, end) [s])"
+        )
+    if not np.isfinite(samples).all():
+        raise ParameterError(f"the baseline window {window} s holds overrange samples")
+    return float(samples.mean()), float(samples.std(ddof=1)), window, int(samples.size)
+
+
+def noise_level(trace, pre_trigger=None):
+    """Noise of a trace: standard deviation (ddof=1) of its baseline, in its unit.
+
+    Parameters
+    ----------
+    trace : Trace
+    pre_trigger : (float, float), optional
+        Baseline window ``[start, end)`` [s]; default: before the trigger (see module).
+
+    Returns
+    -------
+    float
+    """
+    return _baseline(trace, pre_trigger)[1]
+
+
+def remove_baseline(trace, pre_trigger=None):
+    """Subtract the mean of the baseline (the pre-trigger samples).
+
+    Parameters
+    ----------
+    trace : Trace
+    pre_trigger : (float, float), optional
+        Baseline window ``[start, end)`` [s]; default: before the trigger (see module).
+
+    Returns
+    -------
+    Trace
+    """
+    mean, _, window, samples = _baseline(trace, pre_trigger)
+    step = {"step": "remove_baseline", "window [s]": window, "baseline": mean, "samples": samples}
+    return trace.derive(step, values=trace.values - mean)
+
+
+def detect_onset(trace, k=5.0, pre_trigger=None):
+    """Time of the first crossing of ``k`` times the baseline noise [s].
+
+    The onset is where ``|value - baseline mean|`` first exceeds ``k * noise_level``,
+    interpolated linearly between samples. The search covers the whole trace, since a
+    pulse may start before the trigger; with Gaussian noise a baseline sample exceeds 5
+    sigma with probability 6e-7, so raise ``k`` for very long baselines.
+
+    Parameters
+    ----------
+    trace : Trace
+    k : float, default 5.0
+        Threshold in units of the baseline standard deviation [-].
+    pre_trigger : (float, float), optional
+        Baseline window ``[start, end)`` [s]; default: before the trigger (see module).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ParameterError
+        If no sample exceeds the threshold.
+    """
+    k = check_number("k", k, low=0.0)
+    mean, std, _, _ = _baseline(trace, pre_trigger)
+    level = k * std
+    deviation = np.abs(trace.values - mean)
+    above = deviation > level
+    if not above.any():
+        raise ParameterError(f"no sample deviates from the baseline by more than {k} sigma")
+    i = int(np.argmax(above))
+    if i == 0:
+        return float(trace.t[0])
+    t0, t1, d0, d1 = trace.t[i - 1], trace.t[i], deviation[i - 1], deviation[i]
+    if np.isinf(d1):
+        return float(t1)
+    return float(t0 + (level - d0) * (t1 - t0) / (d1 - d0))
+
+
+def align(trace, onset):
+    """Shift time so that ``onset`` [s] becomes t = 0.
+
+    Parameters
+    ----------
+    trace : Trace
+    onset : float
+        Time that becomes zero [s], e.g. from :func:`detect_onset`.
+
+    Returns
+    -------
+    Trace
+    """
+    onset = check_number("onset", onset, unit="s")
+    trigger = trace.metadata.get("trigger_time")
+    return trace.derive(
+        {"step": "align", "onset [s]": onset},
+        t=trace.t - onset,
+        metadata={"trigger_time": None if trigger is None else trigger - onset},
+    )
+
+
+def lowpass(trace, cutoff, order=4):
+    """Zero-phase Butterworth low-pass filter.
+
+    A Butterworth filter of ``order`` with -3 dB frequency ``cutoff`` is applied forward
+    and backward (``scipy.signal.sosfiltfilt``), so there is no phase shift (a pulse's
+    timing is kept) and the magnitude response is squared:
+    ``|H(f)|^2 = 1 / (1 + (f / cutoff)^(2 order))``, which is 1/2 (-6 dB) at the cutoff
+    and ``1 - (f / cutoff)^(2 order)`` to first order in the passband.
+
+    Parameters
+    ----------
+    trace : Trace
+        Uniformly sampled, without overrange samples.
+    cutoff : float
+        -3 dB frequency of the single pass [Hz], below the Nyquist frequency.
+    order : int, default 4
+        Butterworth order of the single pass.
+
+    Returns
+    -------
+    Trace
+    """
+    interval = uniform_interval(trace, "lowpass needs uniform sampling")
+    nyquist = 0.5 / interval
+    cutoff = check_number("cutoff", cutoff, low=0.0, high=nyquist, high_open=True, unit="Hz")
+    if isinstance(order, bool) or not isinstance(order, int | np.integer) or order < 1:
+        raise ParameterError(f"order must be an integer >= 1; got {order!r}")
+    if not np.isfinite(trace.values).all():
+        raise ParameterError("lowpass needs finite samples; the trace holds overrange samples")
+    sos = signal.butter(order, cutoff, btype="low", output="sos", fs=1.0 / interval)
+    pad = 3 * (2 * len(sos) + 1)
+    if len(trace) <= pad:
+        raise ParameterError(f"lowpass of order {order} needs more than {pad} samples")
+    step = {
+        "step": "lowpass",
+        "cutoff [Hz]": cutoff,
+        "order": int(order),
+        "filter": "Butterworth, zero-phase (sosfiltfilt)",
+    }
+    return trace.derive(step, values=signal.sosfiltfilt(sos, trace.values))
+
+
+def to_force(trace, sensitivity):
+    """Convert a volt trace to newtons with the sensor's sensitivity.
+
+    Parameters
+    ----------
+    trace : Trace
+        In volts.
+    sensitivity : float
+        Sensor sensitivity [V/N] (e.g. 0.0225 for 22.5 mV/N), > 0.
+
+    Returns
+    -------
+    Trace
+        In newtons, with ``metadata["sensitivity [V/N]"]`` and a history entry.
+    """
+    sensitivity = check_number("sensitivity", sensitivity, low=0.0, unit="V/N")
+    if trace.unit != "V":
+        raise ParameterError(
+            f"sensitivity converts volts to newtons; the trace is in {trace.unit!r}, not 'V'"
+        )
+    return trace.derive(
+        {"step": "to_force", "sensitivity [V/N]": sensitivity},
+        values=trace.values / sensitivity,
+        unit="N",
+        metadata={"sensitivity [V/N]": sensitivity},
+    )

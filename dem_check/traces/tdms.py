@@ -1,0 +1,87 @@
+"""NI TDMS files through npTDMS (optional extra).
+
+Channels are named ``"group/channel"``. Time follows NI's waveform properties:
+``t = wf_start_offset + n * wf_increment`` [s] (``wf_start_offset`` defaults to 0 as NI
+defines it); a channel without ``wf_increment`` has no time axis and is an error. Units
+come from the ``unit_string`` property (``"V"``, ``"Volts"``, ``"mV"``, ``"N"``); a channel
+without one is an error.
+"""
+
+import numpy as np
+
+from dem_check.traces.binary import require
+from dem_check.traces.checks import check_samples, fail, select_channel, uniform_interval
+from dem_check.traces.trace import Trace
+from dem_check.traces.units import SI_VALUE_UNITS, parse_unit
+
+__all__ = ["read", "sniff", "write"]
+
+
+def sniff(head):
+    """The TDMS segment tag ``TDSm`` at the start of the file."""
+    return head.raw.startswith(b"TDSm")
+
+
+def _nptdms():
+    return require("nptdms", "NI TDMS files")
+
+
+def read(head, channel):
+    """Read one channel of a TDMS file.
+
+    Returns
+    -------
+    Trace
+    """
+    nptdms = _nptdms()
+    path = head.path
+    try:
+        tdms = nptdms.TdmsFile.read(path)
+        found = {f"{g.name}/{c.name}": c for g in tdms.groups() for c in g.channels()}
+        names = [n for n, c in found.items() if len(c) and np.asarray(c[:1]).dtype.kind in "iuf"]
+    except Exception as exc:  # npTDMS reports corrupt segments through several types
+        raise fail(path, "binary", f"not a readable TDMS file ({exc})") from exc
+    if not names:
+        raise fail(path, "binary", "no numeric channel")
+    name = names[select_channel(names, channel, path, "channel list")]
+    props = dict(found[name].properties)
+    where = f"channel {name!r}"
+    unit = parse_unit(str(props.get("unit_string", "")))
+    if unit is None or unit.si not in SI_VALUE_UNITS:
+        raise fail(path, where, f"unit_string {props.get('unit_string')!r} is not V, N or A")
+    if "wf_increment" not in props:
+        raise fail(path, where, "no wf_increment property: the time axis is unknown")
+    values = unit.to_si(np.asarray(found[name][:], dtype=np.float64))
+    interval = float(props["wf_increment"])
+    t = np.arange(values.size) * interval
+    t += float(props.get("wf_start_offset", 0.0))
+    metadata = {
+        "format": "tdms",
+        "source": path,
+        "instrument": props.get("instrument"),
+        "channel": name,
+        "channels": names,
+        "sample_interval": interval,
+        "sample_interval_source": "header",
+        "trigger_time": None,
+        "time_unit": "s",
+        "vertical_unit": unit.text,
+        "header": {k: str(v) for k, v in props.items()},
+        "overrange": check_samples(t, values, path, lambda i: f"sample {i}"),
+    }
+    return Trace(t, values, unit.si, metadata)
+
+
+def write(path, trace, *, group="trace", channel="value"):
+    """Write a uniformly sampled trace to TDMS with NI waveform properties."""
+    nptdms = _nptdms()
+    properties = {
+        "wf_increment": uniform_interval(trace),
+        "wf_start_offset": float(trace.t[0]),
+        "wf_samples": len(trace),
+        "unit_string": trace.unit,
+    }
+    with nptdms.TdmsWriter(path) as writer:
+        writer.write_segment(
+            [nptdms.ChannelObject(group, channel, np.asarray(trace.values), properties)]
+        )
