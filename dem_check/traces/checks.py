@@ -71,7 +71,8 @@ def select_channel(names, channel, path, where):
         matches = [i for i, name in enumerate(names) if _key(name) == _key(channel)]
         if len(matches) == 1:
             return matches[0]
-    raise fail(path, where, f"no channel {channel!r}; available: {listed} (or index 0..)")
+    indices = f"0..{len(names) - 1}" if len(names) > 1 else "0"
+    raise fail(path, where, f"no channel {channel!r}; available: {listed} (or index {indices})")
 
 
 def check_samples(t, values, path, where):

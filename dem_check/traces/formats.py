@@ -6,6 +6,7 @@ entries in order: binary signatures first, then the instrument text layouts, eac
 recognises its own header rows, and last ``generic``, the fallback for any text.
 """
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import partial
 
@@ -21,11 +22,11 @@ class Format:
     """One trace format."""
 
     description: str
-    sniff: object
+    sniff: Callable
     """``sniff(head) -> bool``: whether a file's head has this format's content."""
-    read: object
+    read: Callable
     """``read(head, channel) -> Trace``."""
-    write: object = None
+    write: Callable | None = None
     """``write(path, trace, **options)``, or ``None`` if this toolkit does not write it."""
 
 

@@ -46,14 +46,18 @@ def _time_row(head):
     return next((i for i, line in enumerate(head.lines) if line.startswith("TIME,")), None)
 
 
-def _fields(head, rows):
-    """Header ``{key: rest of line verbatim}`` and ``{key: 1-based line}`` of some rows."""
+def _fields(head, rows, value):
+    """Header ``{key: value}`` and ``{key: 1-based line}`` of some rows.
+
+    ``value(cells, rest)`` picks the value from the row's cells or the verbatim rest of
+    the line after the key.
+    """
     fields, lines = {}, {}
     for i in rows:
-        key, _, rest = head.lines[i].partition(",")
-        if key.strip():
-            fields[key.strip()] = rest
-            lines[key.strip()] = i + 1
+        cells = head.cells(i)
+        if cells[0]:
+            fields[cells[0]] = value(cells, head.lines[i].partition(",")[2])
+            lines[cells[0]] = i + 1
     return fields, lines
 
 
@@ -90,12 +94,7 @@ def parse_tds(head):
     Block
     """
     rows = range(min(TDS_HEADER_ROWS, len(head.lines)))
-    fields, lines = {}, {}
-    for i in rows:
-        cells = head.cells(i)
-        if cells[0]:
-            fields[cells[0]] = cells[1] if len(cells) > 1 else ""
-            lines[cells[0]] = i + 1
+    fields, lines = _fields(head, rows, lambda cells, rest: cells[1] if len(cells) > 1 else "")
     point_format = fields.get("Pt Fmt", "Y")
     if point_format != "Y":
         raise head.fail(
@@ -134,7 +133,7 @@ def parse_mso(head):
     index = _time_row(head)
     if index is None:
         raise head.fail(1, "no 'TIME,<channels>' row in the header")
-    fields, lines = _fields(head, range(index))
+    fields, lines = _fields(head, range(index), lambda cells, rest: rest)
     cells = head.cells(index)
     names = cells[1:-1] if cells[-1] == "" else cells[1:]
     if not names or "" in names:

@@ -78,7 +78,8 @@ class Trace:
             object.__setattr__(self, name, array)
         metadata = dict(self.metadata)
         metadata["history"] = list(metadata.get("history", ()))
-        metadata.setdefault("overrange", np.flatnonzero(np.isinf(values)))
+        if "overrange" not in metadata:
+            metadata["overrange"] = np.flatnonzero(np.isinf(values))
         object.__setattr__(self, "metadata", metadata)
 
     def __len__(self):
