@@ -59,8 +59,8 @@ def parse_header(head):
     comments = {}
     index = 0
     while index < len(head.lines) and head.lines[index].lstrip().startswith("#"):
-        key, sep, value = head.lines[index].lstrip()[1:].partition(":")
-        comments[key.strip() if sep else f"comment {index + 1}"] = value.strip() if sep else key
+        key, sep, value = (part.strip() for part in head.lines[index].lstrip()[1:].partition(":"))
+        comments[key if sep else f"comment {index + 1}"] = value if sep else key
         index += 1
     if index >= len(head.lines):
         raise head.fail(index + 1, "empty file" if index == 0 else "no header row after comments")
