@@ -456,8 +456,8 @@ def simulate_impact(
 
         segments, intervals, log, window = _solve_pieces(system, law, velocity, duration, solver)
     _warn_window(intervals, log, window, duration)
-    rate = DEFAULT_SAMPLES - 1 if sample_rate is None else None
-    sample_rate = (rate / window) if sample_rate is None else sample_rate
+    if sample_rate is None:
+        sample_rate = (DEFAULT_SAMPLES - 1) / window
     _warn_resolution(sensor, intervals, sample_rate)
     result = ImpactResult(
         grain=grain,
