@@ -33,6 +33,7 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.euler import solve_euler
 from contactlab.laws import ContactLaw, PlasticTrapezoid
+from contactlab.pieces import AffineForceStates, LinearContactStates
 from contactlab.propagators import LinearFlow, first_event
 from contactlab.segment import Segment
 from contactlab.validation import check_choice, check_number
@@ -61,6 +62,13 @@ class _System:
         self.m1, self.k1, self.c1 = sensor.mass, sensor.stiffness, sensor.damping
         if not self.rigid:
             self.sensor_flow = LinearFlow([[0.0, 1.0], [-self.k1 / self.m1, -self.c1 / self.m1]])
+        self._contact_flows = {}
+
+    def contact_flow(self, k, c):
+        """The :class:`LinearFlow` of a linear contact branch (computed once per branch)."""
+        if (k, c) not in self._contact_flows:
+            self._contact_flows[k, c] = LinearFlow(self.contact_matrix(k, c))
+        return self._contact_flows[k, c]
 
     def contact_matrix(self, k, c):
         """System matrix under a contact force ``k d + c d' + f0`` (rigid: grain only)."""
@@ -98,7 +106,9 @@ class _System:
         """Sensor signal S1 [N]: ``k1 x1 + c1 v1``, or S2 itself on an immovable wall."""
         if self.rigid:
             return np.asarray(contact_force, dtype=float)
-        return self.k1 * states[:, 0] + self.c1 * states[:, 1]
+        signal = states[:, 0] * self.k1
+        signal += states[:, 1] * self.c1
+        return signal
 
 
 def _overlap_rate(states):
@@ -117,52 +127,6 @@ def _scan_step(rate, tau_max):
 # ---------------------------------------------------------------------------
 # Exactly solvable pieces
 # ---------------------------------------------------------------------------
-def _linear_contact_states(system, k, c, f0, y0):
-    """Exact states under ``S2 = k d + c d' + f0`` (k > 0): flow about the equilibrium."""
-    flow = LinearFlow(system.contact_matrix(k, c))
-    if system.rigid:
-        eq = np.array([-f0 / k, 0.0])
-        z0 = np.asarray(y0)[2:] - eq
-
-        def states(tau):
-            out = np.zeros((np.size(tau), 4))
-            out[:, 2:] = flow(z0, tau) + eq
-            return out
-
-    else:
-        eq = np.array([0.0, 0.0, -f0 / k, 0.0])
-        z0 = np.asarray(y0) - eq
-
-        def states(tau):
-            return flow(z0, tau) + eq
-
-    return states, flow.fastest_rate
-
-
-def _affine_force_states(system, a, b, y0):
-    """Exact states under a prescribed force ``S2 = a + b tau`` [N] (free: a = b = 0)."""
-    x10, v10, x20, v20 = (float(v) for v in y0)
-    m2 = system.m2
-    if not system.rigid:
-        q = b / system.k1
-        p = a / system.k1 - system.c1 * b / system.k1**2
-        z0 = np.array([x10 - p, v10 - q])
-
-    def states(tau):
-        tau = np.atleast_1d(np.asarray(tau, dtype=float))
-        out = np.zeros((tau.size, 4))
-        out[:, 2] = x20 + v20 * tau - (a * tau**2 / 2 + b * tau**3 / 6) / m2
-        out[:, 3] = v20 - (a * tau + b * tau**2 / 2) / m2
-        if not system.rigid:
-            out[:, :2] = system.sensor_flow(z0, tau)
-            out[:, 0] += p + q * tau
-            out[:, 1] += q
-        return out
-
-    rate = 0.0 if system.rigid else system.sensor_flow.fastest_rate
-    return states, rate
-
-
 def _branch_events(branch, contact_force):
     """Event functions of a contact piece: contact end (force falls to 0) and exits."""
     directions = [-1] + [e.direction for e in branch.exits]
@@ -179,17 +143,17 @@ def _exact_contact(system, branch, t0, y0, tau_max):
     """Exact contact piece on a linear branch; returns (Segment, y_end, event or None)."""
     k, c, f0 = branch.linear
     if k == 0.0 and c == 0.0:
-        states, rate = _affine_force_states(system, f0, 0.0, y0)
+        states = AffineForceStates(system, f0, 0.0, y0)
     else:
-        states, rate = _linear_contact_states(system, k, c, f0, y0)
+        states = LinearContactStates(system, k, c, f0, y0)
     force = branch.force
     values, directions = _branch_events(branch, force)
     hit = first_event(
-        lambda tau: values(states(tau)), tau_max, _scan_step(rate, tau_max), directions
+        lambda tau: values(states(tau)), tau_max, _scan_step(states.rate, tau_max), directions
     )
     tau_end = tau_max if hit is None else hit[0]
     event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
-    seg = Segment(t0, t0 + tau_end, "contact", branch.name, states, _clipped(force))
+    seg = Segment(t0, t0 + tau_end, "contact", branch.name, states, _clipped(force), states.grid)
     return seg, states(tau_end)[0], event
 
 
@@ -203,10 +167,11 @@ def _clipped(force):
 
 def _free(system, law, max_overlap, t0, y0, tau_max):
     """Free flight until the plate and grain touch again; returns (Segment, y_end, hit)."""
-    states, rate = _affine_force_states(system, 0.0, 0.0, y0)
+    states = AffineForceStates(system, 0.0, 0.0, y0)
     seg_force = lambda tau, s: np.zeros(len(s))  # noqa: E731
     if law.prescribed or tau_max <= 0.0:
-        return Segment(t0, t0 + tau_max, "free", None, states, seg_force), None, None
+        seg = Segment(t0, t0 + tau_max, "free", None, states, seg_force, states.grid)
+        return seg, None, None
     threshold, entry = law.reentry(max_overlap)
     entry_force = law.branch(entry, max_overlap).force
 
@@ -214,10 +179,26 @@ def _free(system, law, max_overlap, t0, y0, tau_max):
         d, r = _overlap_rate(states(tau))
         return np.where(d > threshold, entry_force(d, r), d - threshold)[:, None]
 
-    hit = first_event(values, tau_max, _scan_step(rate, tau_max), [+1])
+    search = min(tau_max, _recontact_horizon(system, y0, threshold))
+    hit = first_event(values, search, _scan_step(states.rate, search), [+1])
     tau_end = tau_max if hit is None else hit[0]
-    seg = Segment(t0, t0 + tau_end, "free", None, states, seg_force)
+    seg = Segment(t0, t0 + tau_end, "free", None, states, seg_force, states.grid)
     return seg, states(tau_end)[0], None if hit is None else entry
+
+
+def _recontact_horizon(system, y0, threshold):
+    """Latest local time [s] at which a free grain can reach the plate again.
+
+    The free plate's displacement never exceeds ``sqrt(2 E / k1)``, ``E`` its energy at
+    the start (damping only removes energy), and a receding grain (``v2 < 0``) moves
+    away at constant speed: beyond the returned time the overlap cannot reach
+    ``threshold`` [m]. Infinite for a grain that is not receding.
+    """
+    x1, v1, x2, v2 = (float(v) for v in y0)
+    if v2 >= 0.0:
+        return math.inf
+    reach = 0.0 if system.rigid else math.sqrt(system.m1 * v1**2 / system.k1 + x1**2)
+    return max((x2 + reach - threshold) / -v2, 0.0)
 
 
 # ---------------------------------------------------------------------------
@@ -329,8 +310,10 @@ def _solve_pulse(system, law, velocity, window):
     segments, y, log = [], np.array([0.0, 0.0, 0.0, velocity]), []
     for ta, tb, fa, fb in law.pieces(system.m2, velocity):
         slope = (fb - fa) / (tb - ta)
-        states, _ = _affine_force_states(system, fa, slope, y)
-        segments.append(Segment(ta, tb, "pulse", None, states, _pulse_force(fa, slope)))
+        states = AffineForceStates(system, fa, slope, y)
+        segments.append(
+            Segment(ta, tb, "pulse", None, states, _pulse_force(fa, slope), states.grid)
+        )
         y = states(tb - ta)[0]
     end = law.contact_time
     log.append((end, "separation"))

@@ -10,11 +10,13 @@ State vector everywhere: ``y = [x1, v1, x2, v2]`` (sensor displacement [m] and v
 [m/s], grain displacement [m] and velocity [m/s]), axis along the grain's travel.
 """
 
+import math
+
 import numpy as np
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-__all__ = ["LinearFlow", "first_event"]
+__all__ = ["LinearFlow", "Trajectory", "first_event"]
 
 _RTOL = 4 * np.finfo(float).eps
 """Relative tolerance of event roots: the smallest brentq accepts."""
@@ -52,12 +54,102 @@ class LinearFlow:
 
     def __call__(self, z0, tau):
         """States at local times ``tau`` [s] (array, shape (n,)) -> array (n, dim)."""
+        return self.trajectory(z0)(tau)
+
+    def trajectory(self, z0):
+        """The solution from ``z0``, with its modal coefficients computed once.
+
+        Parameters
+        ----------
+        z0 : array_like
+            Initial state (dim,).
+
+        Returns
+        -------
+        Trajectory
+        """
+        return Trajectory(self, z0)
+
+
+class Trajectory:
+    """``z(tau) = exp(A tau) z0`` for one initial state: at any times, or on a uniform grid.
+
+    Parameters
+    ----------
+    flow : LinearFlow
+        The flow.
+    z0 : array_like
+        Initial state (dim,).
+
+    Notes
+    -----
+    ``A`` is real, so its complex eigenvalues come in conjugate pairs whose terms are
+    complex conjugates: ``z(tau) = sum_k w_k Re(exp(lambda_k tau) u_k)`` over one
+    eigenvalue of each pair (``w = 2``) and the real ones (``w = 1``), with
+    ``u_k = c_k v_k`` (modal coefficient times eigenvector). The real and imaginary parts
+    of the exponentials form a real basis, and one real matrix product gives the states.
+    """
+
+    def __init__(self, flow, z0):
+        self._flow = flow
+        self._z0 = np.asarray(z0, dtype=float)
+        if flow.modal:
+            keep = flow.eigvals.imag >= 0.0
+            self._rates = flow.eigvals[keep].astype(complex)
+            weight = np.where(self._rates.imag > 0.0, 2.0, 1.0)
+            u = (flow._vecs * (flow._inv @ self._z0.astype(complex)))[:, keep] * weight
+            self._weights = np.empty((2 * self._rates.size, self._z0.size))
+            self._weights[0::2] = u.real.T
+            self._weights[1::2] = -u.imag.T
+
+    def __call__(self, tau):
+        """States at local times ``tau`` [s] (array, shape (n,)) -> array (n, dim)."""
         tau = np.atleast_1d(np.asarray(tau, dtype=float))
-        if self.modal:
-            coef = self._inv @ np.asarray(z0, dtype=complex)
-            modes = np.exp(np.multiply.outer(tau, self.eigvals)) * coef
-            return (modes @ self._vecs.T).real
-        return np.einsum("nij,j->ni", expm(np.multiply.outer(tau, self.matrix)), z0)
+        flow = self._flow
+        if flow.modal:
+            return self._combine(np.exp(np.multiply.outer(tau, self._rates)))
+        return np.einsum("nij,j->ni", expm(np.multiply.outer(tau, flow.matrix)), self._z0)
+
+    def grid(self, tau0, step, n, out=None):
+        """States at ``tau0 + j * step`` [s], ``j = 0 .. n-1`` -> array (n, dim).
+
+        The modal factors ``exp(lambda (tau0 + j step))`` come from two tables of about
+        ``sqrt(n)`` exponentials each (``j = q B + r``: one table over ``q``, one over
+        ``r``) and one product per sample, instead of ``n`` complex exponentials per
+        mode. Each table entry is an exponential of an exact argument, so the grid is as
+        accurate as evaluating every sample directly (one extra rounding).
+
+        Parameters
+        ----------
+        tau0, step : float
+            First local time and spacing [s].
+        n : int
+            Number of samples.
+        out : numpy.ndarray, optional
+            Array (n, dim) to write into (any strides), saving an allocation.
+        """
+        if not self._flow.modal or n < 64:
+            states = self(tau0 + step * np.arange(n))
+            if out is None:
+                return states
+            out[...] = states
+            return out
+        block = math.isqrt(n)
+        blocks = tau0 + step * block * np.arange(-(-n // block))
+        outer = np.exp(np.multiply.outer(blocks, self._rates))
+        inner = np.exp(np.multiply.outer(step * np.arange(block), self._rates))
+        if self._rates.size == 1:  # one oscillating mode (the free sensor): no copy
+            powers = np.multiply.outer(outer[:, 0], inner[:, 0]).reshape(-1, 1)[:n]
+        else:
+            powers = np.empty((n, self._rates.size), dtype=complex)
+            for k in range(self._rates.size):
+                powers[:, k] = np.multiply.outer(outer[:, k], inner[:, k]).ravel()[:n]
+        return self._combine(powers, out)
+
+    def _combine(self, powers, out=None):
+        """States from the modal factors ``exp(lambda_k tau)`` (n, modes)."""
+        basis = powers.view(float)  # columns Re, Im of each mode, interleaved
+        return np.matmul(basis, self._weights, out=out)
 
 
 def first_event(values, tau_max, step, directions, chunk=256):

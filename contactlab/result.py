@@ -1,11 +1,12 @@
 """The result of one impact: signals on a uniform grid, exact events, and pulse metrics."""
 
+import bisect
 import itertools
 import math
 from functools import cached_property
 
 import numpy as np
-from scipy.optimize import minimize_scalar
+from scipy.optimize import brentq, minimize_scalar
 
 from contactlab import metrics
 
@@ -14,6 +15,9 @@ __all__ = ["ImpactResult"]
 _GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
 """Gauss-Legendre rule for impulse, work and energy integrals over each smooth piece."""
 
+
+_RTOL = 4 * np.finfo(float).eps
+"""Relative tolerance of event and crossing times: the smallest brentq accepts."""
 
 _GRADING = np.array([0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2, 0.1, 0.4])
 """Relative panel edges near the start of a contact piece (geometric grading)."""
@@ -28,20 +32,25 @@ def _panel_edges(length, period, graded):
     return np.union1d(_GRADING, uniform)
 
 
-def _boundary(predicate, lo, hi):
-    """Where ``predicate`` changes value on [lo, hi] [s], by bisection to machine precision.
+def _crossing(signal, level, lo, hi):
+    """Where ``signal`` [N] crosses ``level`` [N] on [lo, hi] [s], to machine precision.
 
-    Bisection rather than a root finder because a clipped signal (a contact force that
-    stays at zero after separation) has no sign change to find, only a boundary.
+    A strict sign change of ``signal - level`` is a root of a continuous function
+    (:func:`scipy.optimize.brentq`). Otherwise one end sits exactly on the level, as a
+    clipped contact force does after separation (zero, and staying zero), and there is
+    no sign change to find, only the boundary of ``signal > level``: bisection.
     """
-    inside = predicate(lo)
-    if predicate(hi) == inside:
+    above_lo, above_hi = signal(lo) - level, signal(hi) - level
+    if above_lo * above_hi < 0.0:
+        return brentq(lambda s: signal(s) - level, lo, hi, xtol=1e-300, rtol=_RTOL)
+    inside = above_lo > 0.0
+    if (above_hi > 0.0) == inside:
         return 0.5 * (lo + hi)
-    while hi - lo > 4 * np.finfo(float).eps * max(abs(hi), 1e-300):
+    while hi - lo > _RTOL * max(abs(hi), 1e-300):
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):
             break
-        if predicate(mid) == inside:
+        if (signal(mid) > level) == inside:
             lo = mid
         else:
             hi = mid
@@ -87,8 +96,9 @@ class ImpactResult:
         self._system = system
         self._starts = np.array([s.t0 for s in segments])
         n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
-        self.t = np.arange(n) / sample_rate
-        states, self.contact_force = self._evaluate(self.t)
+        self.t = np.arange(n, dtype=float)
+        self.t /= sample_rate
+        states, self.contact_force = self._evaluate_grid()
         self.x1, self.v1, self.x2, self.v2 = states.T
         self.sensor_force = system.signal(states, self.contact_force)
 
@@ -108,12 +118,39 @@ class ImpactResult:
             force[mask] = seg.force(tau, st)
         return states, force
 
+    def _evaluate_grid(self):
+        """States (n, 4) and contact force (n,) on the output grid ``self.t``.
+
+        Same segment choice as :meth:`_evaluate` (a sample on a segment start belongs to
+        the segment that starts there), through each segment's uniform-grid path. The
+        states are stored column by column, so ``x1`` ... ``v2`` are contiguous.
+        """
+        n, step = self.t.size, 1.0 / self.sample_rate
+        states, force = np.empty((4, n)).T, np.empty(n)
+        edges = np.searchsorted(self.t, self._starts, side="left")
+        edges[0] = 0
+        for seg, lo, hi in zip(self.segments, edges, [*edges[1:], n], strict=True):
+            if hi > lo:
+                tau = self.t[lo:hi] - seg.t0
+                st = seg.states_on_grid(tau, step, states[lo:hi])
+                force[lo:hi] = seg.force(tau, st)
+        return states, force
+
+    def _at(self, t):
+        """State (1, 4) and contact force (1,) at one time [s]: the scalar fast path."""
+        seg = self.segments[max(bisect.bisect_right(self._starts, t) - 1, 0)]
+        tau = np.array([t - seg.t0])
+        states = seg.states(tau)
+        return states, seg.force(tau, states)
+
     def _signal_at(self, t):
-        states, force = self._evaluate([t])
-        return float(self._system.signal(states, force)[0])
+        if self._system.rigid:
+            return self._force_at(t)
+        seg = self.segments[max(bisect.bisect_right(self._starts, t) - 1, 0)]
+        return float(self._system.signal(seg.states(np.array([t - seg.t0])), None)[0])
 
     def _force_at(self, t):
-        return float(self._evaluate([t])[1][0])
+        return float(self._at(t)[1][0])
 
     def _integrate(self, integrand, start, end):
         """Gauss-Legendre integral of ``integrand(states, force)`` over [start, end] [s].
@@ -207,15 +244,13 @@ class ImpactResult:
         return to it, with the crossings located on the dense solution.
         """
         start, end = metrics.first_lobe(self.t, self.sensor_force, self.threshold)
-        h = 1.0 / self.sample_rate
-
-        def above(s):
-            return self._signal_at(s) > self.threshold
-
+        h, level = 1.0 / self.sample_rate, self.threshold
         if np.isfinite(start) and start > self.t[0]:
-            start = _boundary(above, max(start - h, 0.0), min(start + h, self.duration))
+            lo, hi = max(start - h, 0.0), min(start + h, self.duration)
+            start = _crossing(self._signal_at, level, lo, hi)
         if np.isfinite(end):
-            end = _boundary(above, max(end - h, 0.0), min(end + h, self.duration))
+            lo, hi = max(end - h, 0.0), min(end + h, self.duration)
+            end = _crossing(self._signal_at, level, lo, hi)
         return float(start), float(end)
 
     @property
