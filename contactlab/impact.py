@@ -28,13 +28,14 @@ import warnings
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.linalg.blas import daxpy
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.euler import solve_euler
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.pieces import AffineForceStates, LinearContactStates
-from contactlab.propagators import LinearFlow, first_event
+from contactlab.propagators import first_event, linear_flow
 from contactlab.segment import Segment
 from contactlab.validation import check_choice, check_number
 
@@ -61,14 +62,11 @@ class _System:
         self.rigid = sensor.is_rigid
         self.m1, self.k1, self.c1 = sensor.mass, sensor.stiffness, sensor.damping
         if not self.rigid:
-            self.sensor_flow = LinearFlow([[0.0, 1.0], [-self.k1 / self.m1, -self.c1 / self.m1]])
-        self._contact_flows = {}
+            self.sensor_flow = linear_flow([[0.0, 1.0], [-self.k1 / self.m1, -self.c1 / self.m1]])
 
     def contact_flow(self, k, c):
-        """The :class:`LinearFlow` of a linear contact branch (computed once per branch)."""
-        if (k, c) not in self._contact_flows:
-            self._contact_flows[k, c] = LinearFlow(self.contact_matrix(k, c))
-        return self._contact_flows[k, c]
+        """The :class:`~contactlab.propagators.LinearFlow` of a linear contact branch."""
+        return linear_flow(self.contact_matrix(k, c))
 
     def contact_matrix(self, k, c):
         """System matrix under a contact force ``k d + c d' + f0`` (rigid: grain only)."""
@@ -106,9 +104,8 @@ class _System:
         """Sensor signal S1 [N]: ``k1 x1 + c1 v1``, or S2 itself on an immovable wall."""
         if self.rigid:
             return np.asarray(contact_force, dtype=float)
-        signal = states[:, 0] * self.k1
-        signal += states[:, 1] * self.c1
-        return signal
+        signal = states[:, 1] * self.c1
+        return daxpy(states[:, 0], signal, a=self.k1)  # in place: no temporary array
 
 
 def _overlap_rate(states):

@@ -10,13 +10,14 @@ State vector everywhere: ``y = [x1, v1, x2, v2]`` (sensor displacement [m] and v
 [m/s], grain displacement [m] and velocity [m/s]), axis along the grain's travel.
 """
 
+import functools
 import math
 
 import numpy as np
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-__all__ = ["LinearFlow", "Trajectory", "first_event"]
+__all__ = ["LinearFlow", "Trajectory", "first_event", "linear_flow"]
 
 _RTOL = 4 * np.finfo(float).eps
 """Relative tolerance of event roots: the smallest brentq accepts."""
@@ -71,6 +72,22 @@ class LinearFlow:
         return Trajectory(self, z0)
 
 
+@functools.lru_cache(maxsize=1024)
+def _cached_flow(entries, dim):
+    return LinearFlow(np.reshape(entries, (dim, dim)))
+
+
+def linear_flow(matrix):
+    """The :class:`LinearFlow` of ``matrix``, shared between calls with equal matrices.
+
+    Studies solve thousands of impacts on the same sensor and a few contact stiffnesses;
+    the eigendecomposition of each system matrix is done once (least-recently-used
+    cache of 1024 matrices). Flows are never modified after construction.
+    """
+    matrix = np.asarray(matrix, dtype=float)
+    return _cached_flow(tuple(matrix.ravel().tolist()), matrix.shape[0])
+
+
 class Trajectory:
     """``z(tau) = exp(A tau) z0`` for one initial state: at any times, or on a uniform grid.
 
@@ -113,11 +130,12 @@ class Trajectory:
     def grid(self, tau0, step, n, out=None):
         """States at ``tau0 + j * step`` [s], ``j = 0 .. n-1`` -> array (n, dim).
 
-        The modal factors ``exp(lambda (tau0 + j step))`` come from two tables of about
-        ``sqrt(n)`` exponentials each (``j = q B + r``: one table over ``q``, one over
-        ``r``) and one product per sample, instead of ``n`` complex exponentials per
-        mode. Each table entry is an exponential of an exact argument, so the grid is as
-        accurate as evaluating every sample directly (one extra rounding).
+        Write ``j = q B + r`` with ``B`` about ``sqrt(n)``. Then
+        ``exp(lambda tau_j) = exp(lambda (tau0 + q B step)) * exp(lambda r step)``: two
+        tables of about ``sqrt(n)`` exponentials, each of an exact argument, so the grid
+        is as accurate as evaluating every sample directly. Each state component, seen as
+        a ``(q, r)`` matrix, is then one real matrix product of the two tables (the real
+        and imaginary parts of each mode), written straight into ``out``.
 
         Parameters
         ----------
@@ -126,30 +144,33 @@ class Trajectory:
         n : int
             Number of samples.
         out : numpy.ndarray, optional
-            Array (n, dim) to write into (any strides), saving an allocation.
+            Array (n, dim) to write into (any strides; contiguous columns are fastest).
         """
-        if not self._flow.modal or n < 64:
-            states = self(tau0 + step * np.arange(n))
-            if out is None:
-                return states
-            out[...] = states
-            return out
+        out = np.empty((n, self._z0.size)) if out is None else out
         block = math.isqrt(n)
-        blocks = tau0 + step * block * np.arange(-(-n // block))
-        outer = np.exp(np.multiply.outer(blocks, self._rates))
-        inner = np.exp(np.multiply.outer(step * np.arange(block), self._rates))
-        if self._rates.size == 1:  # one oscillating mode (the free sensor): no copy
-            powers = np.multiply.outer(outer[:, 0], inner[:, 0]).reshape(-1, 1)[:n]
-        else:
-            powers = np.empty((n, self._rates.size), dtype=complex)
-            for k in range(self._rates.size):
-                powers[:, k] = np.multiply.outer(outer[:, k], inner[:, k]).ravel()[:n]
-        return self._combine(powers, out)
+        rows = n // block
+        if not self._flow.modal or rows < 8:
+            out[...] = self(tau0 + step * np.arange(n))
+            return out
+        heads = np.exp(np.multiply.outer(tau0 + step * block * np.arange(rows), self._rates))
+        cells = np.exp(np.multiply.outer(step * np.arange(block), self._rates))
+        left = np.concatenate([heads.real, -heads.imag], axis=1)  # Re(a g) = ar gr - ai gi
+        split = rows * block
+        for d in range(out.shape[1]):
+            g = cells * (self._weights[0::2, d] - 1j * self._weights[1::2, d])
+            right = np.concatenate([g.real.T, g.imag.T], axis=0)
+            column = out[:split, d]
+            if column.flags.c_contiguous:
+                np.matmul(left, right, out=column.reshape(rows, block))
+            else:
+                column[...] = (left @ right).ravel()
+        if split < n:
+            out[split:] = self(tau0 + step * np.arange(split, n))
+        return out
 
-    def _combine(self, powers, out=None):
+    def _combine(self, powers):
         """States from the modal factors ``exp(lambda_k tau)`` (n, modes)."""
-        basis = powers.view(float)  # columns Re, Im of each mode, interleaved
-        return np.matmul(basis, self._weights, out=out)
+        return powers.view(float) @ self._weights  # columns Re, Im of each mode, interleaved
 
 
 def first_event(values, tau_max, step, directions, chunk=256):

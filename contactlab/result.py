@@ -133,7 +133,10 @@ class ImpactResult:
             if hi > lo:
                 tau = self.t[lo:hi] - seg.t0
                 st = seg.states_on_grid(tau, step, states[lo:hi])
-                force[lo:hi] = seg.force(tau, st)
+                if seg.kind == "free":  # no force between contacts: skip a zero array
+                    force[lo:hi] = 0.0
+                else:
+                    force[lo:hi] = seg.force(tau, st)
         return states, force
 
     def _at(self, t):
