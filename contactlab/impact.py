@@ -174,7 +174,10 @@ def _free(system, law, max_overlap, t0, y0, tau_max):
 
     def values(tau):
         d, r = _overlap_rate(states(tau))
-        return np.where(d > threshold, entry_force(d, r), d - threshold)[:, None]
+        # below the threshold: its distance, kept negative at the threshold itself, where
+        # grain and plate touch without contact (so a receding grain is no crossing)
+        below = np.minimum(d - threshold, -np.finfo(float).tiny)
+        return np.where(d > threshold, entry_force(d, r), below)[:, None]
 
     search = min(tau_max, _recontact_horizon(system, y0, threshold))
     hit = first_event(values, search, _scan_step(states.rate, search), [+1])
