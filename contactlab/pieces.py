@@ -8,14 +8,18 @@ Two kinds of piece are linear time-invariant and solved in closed form:
   ``S2 = a + b tau`` (the paper's trapezoid, a force cap, or no force at all), with the
   grain moving under the same force.
 
-Both give ``states(tau) -> (n, 4)`` at local times ``tau`` [s] and a faster
+An adaptive piece (:class:`DenseStates`) is the chain of its integrator's per-step
+dense outputs.
+
+All give ``states(tau) -> (n, 4)`` at local times ``tau`` [s] and a faster
 ``grid(tau, step, out)`` for the uniform output grid. State vector: ``[x1, v1, x2, v2]``
 (sensor displacement [m] and velocity [m/s], grain displacement [m] and velocity [m/s]).
 """
 
 import numpy as np
+from scipy.integrate import OdeSolution
 
-__all__ = ["AffineForceStates", "LinearContactStates"]
+__all__ = ["AffineForceStates", "DenseStates", "LinearContactStates"]
 
 
 class LinearContactStates:
@@ -129,3 +133,40 @@ class AffineForceStates:
         if not self._rigid:
             self._sensor.grid(tau[0], step, tau.size, out=out[:, :2])
         return self._fill(tau, out)
+
+
+class DenseStates:
+    """States of an adaptive piece from its integrator's per-step dense outputs.
+
+    Parameters
+    ----------
+    t0 : float
+        Start of the piece [s] (local time 0).
+    times : array_like
+        Step boundaries [s], increasing, ``len(pieces) + 1`` of them.
+    pieces : list of scipy.integrate.DenseOutput
+        Interpolant of each step (absolute time).
+    """
+
+    def __init__(self, t0, times, pieces):
+        self._t0 = t0
+        self._times = np.asarray(times, dtype=float)
+        self._pieces = pieces
+        self._solution = OdeSolution(self._times, pieces)
+
+    def __call__(self, tau):
+        """States (n, 4) at local times ``tau`` [s] (any order)."""
+        return self._solution(self._t0 + np.atleast_1d(tau)).T
+
+    def grid(self, tau, step, out):
+        """Write the states at increasing local times ``tau`` [s] into ``out`` (n, 4).
+
+        Sorted times fall into contiguous runs per step: one interpolant call per step
+        instead of a search and a mask over every sample for each step.
+        """
+        t = self._t0 + tau
+        edges = np.searchsorted(t, self._times[1:-1], side="left")
+        for piece, lo, hi in zip(self._pieces, [0, *edges], [*edges, t.size], strict=True):
+            if hi > lo:
+                out[lo:hi] = piece(t[lo:hi]).T
+        return out
