@@ -1,17 +1,8 @@
-"""Time each law's impact on an immovable wall and the two-mass linear impact.
-
-Prints the median of several runs (this machine is shared: medians, not minima) and, for
-the linear two-mass case of the solver issue, ratios against scipy's solve_ivp DOP853 at
-rtol 1e-10 and against the paper's explicit Euler at dt = 1e-10 s (a shortened Euler run,
-extrapolated linearly in the number of steps, as stated in the output).
-"""
+"""Time each law's impact on an immovable wall (median of several runs: the machine is
+shared, medians rather than minima). The two-mass targets are in ``bench_solver.py``."""
 
 import statistics
 import time
-import warnings
-
-import numpy as np
-from scipy.integrate import solve_ivp
 
 import contactlab as cl
 from contactlab import laws
@@ -48,42 +39,6 @@ def main():
     for name, law in cases.items():
         t = median_time(lambda law=law: cl.simulate_impact(grain, cl.Sensor.rigid(), law, 2.0))
         print(f"  {name:18s} {t * 1e3:8.2f} ms")
-
-    sensor = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
-    law = cases["linear"]
-    ours = median_time(lambda: cl.simulate_impact(grain, sensor, law, 2.0, 500e-6))
-    hertz = cases["hertz_damped"]
-    ours_hertz = median_time(lambda: cl.simulate_impact(grain, sensor, hertz, 2.0, 500e-6))
-
-    m1, k1, c1 = sensor.mass, sensor.stiffness, sensor.damping
-    t_eval = np.linspace(0.0, 500e-6, 20001)
-
-    def rhs(t, y):
-        s2 = max(1e5 * (y[2] - y[0]) + 1.0 * (y[3] - y[1]), 0.0) if y[2] > y[0] else 0.0
-        return [y[1], (s2 - k1 * y[0] - c1 * y[1]) / m1, y[3], -s2 / mass]
-
-    def scipy_run():
-        solve_ivp(rhs, (0, 500e-6), [0, 0, 0, 2.0], "DOP853", t_eval=t_eval, rtol=1e-10, atol=1e-16)
-
-    scipy_t = median_time(scipy_run, repeats=3)
-    euler_window = 5e-6
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        euler_short = median_time(
-            lambda: cl.simulate_impact(
-                grain, sensor, law, 2.0, euler_window, method="euler", time_step=1e-10
-            ),
-            repeats=1,
-        )
-    euler_t = euler_short * 500e-6 / euler_window
-    print("\nTwo-mass linear impact, 40 kHz sensor, 500 us window, 20 001 samples:")
-    print(f"  contactlab exact           {ours * 1e3:10.2f} ms")
-    print(f"  scipy DOP853 rtol 1e-10    {scipy_t * 1e3:10.2f} ms   ratio {scipy_t / ours:8.1f}x")
-    print(
-        f"  paper's Euler dt 1e-10     {euler_t:10.2f} s    ratio {euler_t / ours:8.0f}x "
-        f"(extrapolated from a {euler_window * 1e6:g} us run of {euler_short:.2f} s)"
-    )
-    print(f"Two-mass damped Hertz impact, same sensor: {ours_hertz * 1e3:.2f} ms")
 
 
 if __name__ == "__main__":

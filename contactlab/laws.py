@@ -137,7 +137,8 @@ def hertz_force(overlap, k_hertz):
 
 
 def _hertz_damped_raw(overlap, rate, k_hertz, damping):
-    return _hertz_raw(overlap, k_hertz) + damping * abs(overlap) ** 0.25 * rate
+    root = abs(overlap) ** 0.25  # one power serves both terms: d**1.5 = d |d|**0.5
+    return (k_hertz * overlap * root + damping * rate) * root
 
 
 def hertz_damped_force(overlap, rate, k_hertz, damping):
