@@ -149,13 +149,21 @@ class Trajectory:
         out = np.empty((n, self._z0.size)) if out is None else out
         block = math.isqrt(n)
         rows = n // block
-        if not self._flow.modal or rows < 8:
+        split = rows * block
+        if rows < 8:
             out[...] = self(tau0 + step * np.arange(n))
             return out
-        heads = np.exp(np.multiply.outer(tau0 + step * block * np.arange(rows), self._rates))
+        starts = tau0 + step * block * np.arange(rows)
+        if not self._flow.modal:  # the same two tables, of matrix exponentials
+            matrix = self._flow.matrix
+            heads = np.einsum("qij,j->qi", expm(np.multiply.outer(starts, matrix)), self._z0)
+            cells = expm(np.multiply.outer(step * np.arange(block), matrix))
+            out[:split] = np.einsum("rij,qj->qri", cells, heads).reshape(split, -1)
+            out[split:] = self(tau0 + step * np.arange(split, n))
+            return out
+        heads = np.exp(np.multiply.outer(starts, self._rates))
         cells = np.exp(np.multiply.outer(step * np.arange(block), self._rates))
         left = np.concatenate([heads.real, -heads.imag], axis=1)  # Re(a g) = ar gr - ai gi
-        split = rows * block
         for d in range(out.shape[1]):
             g = cells * (self._weights[0::2, d] - 1j * self._weights[1::2, d])
             right = np.concatenate([g.real.T, g.imag.T], axis=0)

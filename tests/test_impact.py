@@ -221,3 +221,31 @@ def test_result_outputs(paper_grain, paper_sensor):
     _, ax = res.plot()
     assert ax.get_xlabel() == "time [µs]"
     assert "contact_time" in repr(res)
+
+
+@pytest.mark.parametrize(
+    "law",
+    [LinearViscoelastic(1e5, 1.0), HertzDamped(1.5e6, 0.2), PlasticTrapezoid(70e-6, 7e-6)],
+)
+@pytest.mark.parametrize("sensor_hz", [None, 40e3])
+def test_grid_matches_dense_evaluation(paper_grain, law, sensor_hz):
+    """The fast uniform-grid paths equal pointwise evaluation of the same solution."""
+    sensor = cl.Sensor.rigid() if sensor_hz is None else cl.Sensor.from_disc(10e-3, 2e-3, sensor_hz)
+    res = cl.simulate_impact(paper_grain, sensor, law, 2.0, 300e-6)
+    states, force = res._evaluate(res.t)
+    grid = np.column_stack([res.x1, res.v1, res.x2, res.v2])
+    scale = np.max(np.abs(states), axis=0) + 1e-300
+    # the grid multiplies two tables of exponentials where pointwise evaluation takes one
+    # exponential: a few roundings apart, so 1e-12 of each signal's range
+    assert np.max(np.abs(grid - states) / scale) < 1e-12
+    assert np.max(np.abs(res.contact_force - force)) <= 1e-12 * np.max(force)
+
+
+def test_receding_grain_touching_at_zero_overlap_is_not_a_contact():
+    """Regression: a grain leaving a damped linear contact reaches zero overlap exactly on
+    an event-scan point; touching is not contact (found by the invariant property test)."""
+    res = LinearViscoelastic(1000.0, 0.125).impact(5.0e-5, 1.0)
+    assert len(res.contact_intervals) == 1
+    # grain work equals the kinetic energy change (Gauss-Legendre on straight pieces)
+    kinetic_change = 0.5 * 5.0e-5 * (res.v2[-1] ** 2 - 1.0)
+    assert res.grain_work == pytest.approx(kinetic_change, rel=1e-9)
