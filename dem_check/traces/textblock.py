@@ -17,9 +17,17 @@ in what units. :func:`read_block` then does the rest for every layout alike:
 
 Rows map one to one to lines (no quoting, ``\\n`` line ends, blank lines kept), so a
 sample index ``i`` is line ``first_line + i``.
+
+Files are read as UTF-8, falling back to Latin-1 (which decodes any byte). A file that
+starts with a UTF-16 or UTF-32 byte-order mark (as some Windows instrument software writes
+it) is decoded whole and re-encoded as UTF-8 in memory, and both the header and the data
+are read from that copy; such files are small, and without the mark the encoding would be
+a guess.
 """
 
+import codecs
 import csv
+import io
 import math
 import re
 from dataclasses import dataclass, field
@@ -48,6 +56,14 @@ __all__ = [
 HEAD_BYTES = 1 << 16
 """Bytes read for detection and headers [B]; every supported header is far shorter."""
 
+_WIDE_BOMS = (
+    (codecs.BOM_UTF32_LE, "utf-32"),  # before UTF-16 LE, whose mark it starts with
+    (codecs.BOM_UTF32_BE, "utf-32"),
+    (codecs.BOM_UTF16_LE, "utf-16"),
+    (codecs.BOM_UTF16_BE, "utf-16"),
+)
+"""Byte-order marks of the wide Unicode encodings, and the codec that reads each."""
+
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _WITH_UNIT = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*[A-Za-zµμ]+")
 _INFINITIES = {
@@ -71,8 +87,21 @@ class Head:
     offsets: tuple
     """Byte offset where each line starts, plus one entry past the last line."""
     encoding: str
+    """Encoding of the file (``"utf-8"``, ``"latin-1"``, ``"utf-16"`` or ``"utf-32"``)."""
     at_eof: bool
     """Whether the head holds the whole file."""
+    transcoded: bytes | None = None
+    """The whole file re-encoded as UTF-8 when it is UTF-16 or UTF-32 (``raw``, ``lines``
+    and ``offsets`` then describe this copy); ``None`` for files read as they are."""
+
+    @property
+    def data_encoding(self):
+        """Encoding of the bytes :meth:`open_data` returns."""
+        return self.encoding if self.transcoded is None else "utf-8"
+
+    def open_data(self):
+        """A binary file object over the content: the file, or its UTF-8 copy."""
+        return open(self.path, "rb") if self.transcoded is None else io.BytesIO(self.transcoded)
 
     @property
     def is_text(self):
@@ -91,9 +120,33 @@ class Head:
 
 
 def read_head(path):
-    """Read a file's head: its first 64 KiB as complete lines, with byte offsets."""
+    """Read a file's head: its first 64 KiB as complete lines, with byte offsets.
+
+    A UTF-16 or UTF-32 file (recognised by its byte-order mark) is read whole and
+    re-encoded as UTF-8 (:attr:`Head.transcoded`); the head is then that copy's.
+
+    Raises
+    ------
+    TraceFormatError
+        A byte-order mark followed by bytes that are not valid in its encoding.
+    """
     with open(path, "rb") as fh:
         raw = fh.read(HEAD_BYTES + 1)
+        wide = next((codec for bom, codec in _WIDE_BOMS if raw.startswith(bom)), None)
+        if wide is not None:
+            raw += fh.read()
+    transcoded = None
+    if wide is not None:
+        try:
+            transcoded = raw.decode(wide).encode("utf-8")
+        except UnicodeDecodeError as exc:
+            raise fail(
+                path,
+                f"byte {exc.start}",
+                f"starts with a {wide.upper()} byte-order mark but "
+                f"is not valid {wide.upper()} ({exc.reason})",
+            ) from None
+        raw = transcoded[: HEAD_BYTES + 1]
     at_eof = len(raw) <= HEAD_BYTES
     raw = raw[:HEAD_BYTES]
     pieces = raw.split(b"\n")
@@ -108,7 +161,7 @@ def read_head(path):
     lines = [p.rstrip(b"\r").decode(encoding) for p in pieces]
     if lines and lines[0].startswith("\ufeff"):
         lines[0] = lines[0][1:]
-    return Head(str(path), raw, tuple(lines), tuple(offsets), encoding, at_eof)
+    return Head(str(path), raw, tuple(lines), tuple(offsets), wide or encoding, at_eof, transcoded)
 
 
 @dataclass(frozen=True)
@@ -272,12 +325,12 @@ def _parse(head, block, offset, used):
         "keep_default_na": False,
         "na_values": [""],
         "lineterminator": "\n",
-        "encoding": head.encoding,
+        "encoding": head.data_encoding,
     }
     if block.n_fields is None:
         options["usecols"] = sorted(set(indices))
     try:
-        with open(head.path, "rb") as fh:
+        with head.open_data() as fh:
             fh.seek(offset)
             frame = pd.read_csv(fh, **options)
     except ValueError:  # pandas' ParserError, EmptyDataError and UnicodeDecodeError too
@@ -309,10 +362,10 @@ def _parse_lines(head, block, offset, used):
     """Parse the block line by line: slow, exact about where a fault lies."""
     columns = [[] for _ in used]
     blank = None
-    with open(head.path, "rb") as fh:
+    with head.open_data() as fh:
         fh.seek(offset)
         for number, raw in enumerate(fh, start=block.first_line):
-            text = raw.rstrip(b"\r\n").decode(head.encoding, errors="replace")
+            text = raw.rstrip(b"\r\n").decode(head.data_encoding, errors="replace")
             if not text.strip():
                 blank = blank or number
                 continue
