@@ -159,23 +159,27 @@ class PulseMetrics:
     rise_time: float
     """10-90 % rise time of the first lobe [s]."""
     impulse: float
-    """Integral of the first lobe [N*s]."""
+    """Integral of the first lobe [signal unit * s, N*s for a force]."""
+    unit: str = "N"
+    """Unit of the signal (``"N"``, or ``"V"`` for a trace not yet converted)."""
 
     def to_dict(self):
-        """Metrics as a dict with unit-bearing keys."""
+        """Metrics as a dict with unit-bearing keys (``peak [V]`` for a volt signal)."""
         units = {
             "start": "s",
             "end": "s",
             "duration": "s",
             "peak_time": "s",
-            "peak": "N",
+            "peak": self.unit,
             "rise_time": "s",
-            "impulse": "N*s",
+            "impulse": f"{self.unit}*s",
         }
-        return {f"{k} [{units[k]}]": v for k, v in asdict(self).items()}
+        values = asdict(self)
+        del values["unit"]
+        return {f"{k} [{units[k]}]": v for k, v in values.items()}
 
 
-def pulse_metrics(t, y, threshold=0.0):
+def pulse_metrics(t, y, threshold=0.0, unit="N"):
     """All pulse metrics of the first lobe of a signal.
 
     Parameters
@@ -186,6 +190,8 @@ def pulse_metrics(t, y, threshold=0.0):
         Signal, a force [N] (baseline removed for a measured trace).
     threshold : float, default 0.0
         Level that defines the lobe (see :func:`first_lobe`).
+    unit : str, default "N"
+        Unit of ``y``, carried into :meth:`PulseMetrics.to_dict` keys.
 
     Returns
     -------
@@ -194,7 +200,7 @@ def pulse_metrics(t, y, threshold=0.0):
     t, y = _as_signal(t, y)
     start, end = first_lobe(t, y, threshold)
     if np.isnan(start):
-        return PulseMetrics(*(np.nan,) * 7)
+        return PulseMetrics(*(np.nan,) * 7, unit=unit)
     stop = t[-1] if np.isnan(end) else end
     t_peak, y_peak = peak(t, y, start, stop)
     in_lobe = (t >= start) & (t <= stop)
@@ -206,6 +212,7 @@ def pulse_metrics(t, y, threshold=0.0):
         peak=y_peak,
         rise_time=rise_time(t[in_lobe], y[in_lobe]) if in_lobe.sum() >= 2 else np.nan,
         impulse=impulse(t, y, start, stop),
+        unit=unit,
     )
 
 

@@ -173,3 +173,13 @@ def test_baseline_window_needs_samples():
         remove_baseline(trace)
     with pytest.raises(ParameterError, match="pre_trigger end"):
         noise_level(trace, pre_trigger=(5e-5, 1e-5))
+
+
+def test_metrics_keys_carry_the_trace_unit():
+    """A volt trace reports its peak in V and impulse in V*s; converted, in N and N*s."""
+    volts = _trace(0.01 * _pulse_on_offset(offset=0.0).values)
+    keys = volts.metrics().to_dict()
+    assert "peak [V]" in keys and "impulse [V*s]" in keys and "peak [N]" not in keys
+    newtons = to_force(volts, 0.01).metrics().to_dict()
+    assert newtons["peak [N]"] == pytest.approx(keys["peak [V]"] / 0.01, rel=1e-12)
+    assert "impulse [N*s]" in newtons

@@ -157,4 +157,4 @@ class Trace:
                 f"the trace has {len(overrange)} overrange samples (first at index "
                 f"{overrange[0]}); their true values are unknown, so no pulse metrics"
             )
-        return pulse_metrics(self.t, self.values, threshold)
+        return pulse_metrics(self.t, self.values, threshold, unit=self.unit)
