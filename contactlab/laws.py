@@ -43,6 +43,7 @@ __all__ = [
     "LinearPlastic",
     "LinearViscoelastic",
     "PlasticTrapezoid",
+    "SmoothLaw",
     "Thornton",
     "WaltonBraun",
     "get_law",
@@ -548,7 +549,30 @@ def _non_negative(name, value, unit):
     return check_number(name, value, low=0.0, low_open=False, unit=unit)
 
 
-class LinearViscoelastic(ContactLaw):
+class SmoothLaw(ContactLaw):
+    """A law of one smooth branch without history: subclasses define :meth:`_raw`.
+
+    The solvers see the single branch ``"load"``, whose force is the raw formula (it may
+    turn negative, which marks the end of contact); a branch linear in overlap and rate
+    also gives its coefficients (:meth:`_linear`) so the exact solver applies.
+    """
+
+    @abstractmethod
+    def _raw(self, overlap, rate):
+        """Force formula [N] for overlap [m] and rate [m/s] (floats or arrays)."""
+
+    def _linear(self):
+        """``(k, c, f0)`` if the formula is ``k d + c d' + f0``, else None."""
+        return None
+
+    def _force(self, overlap, rate, max_overlap):
+        return self._raw(overlap, rate)
+
+    def branch(self, name, max_overlap=0.0):
+        return Branch("load", self._raw, linear=self._linear(), loading=False)
+
+
+class LinearViscoelastic(SmoothLaw):
     """Linear spring-dashpot (Kelvin-Voigt) contact, one-sided: ``max(k d + c d', 0)``.
 
     Parameters
@@ -601,16 +625,11 @@ class LinearViscoelastic(ContactLaw):
         )
         return cls(stiffness=stiffness, damping=damping)
 
-    def _force(self, overlap, rate, max_overlap):
+    def _raw(self, overlap, rate):
         return _linear_raw(overlap, rate, self.stiffness, self.damping)
 
-    def branch(self, name, max_overlap=0.0):
-        return Branch(
-            "load",
-            lambda d, r: _linear_raw(d, r, self.stiffness, self.damping),
-            linear=(self.stiffness, self.damping, 0.0),
-            loading=False,
-        )
+    def _linear(self):
+        return (self.stiffness, self.damping, 0.0)
 
 
 def _modulus_radius(youngs_modulus, poisson_ratio, radius, other):
@@ -625,7 +644,7 @@ def _modulus_radius(youngs_modulus, poisson_ratio, radius, other):
     return modulus, analytic.effective_radius(r1, r2)
 
 
-class Hertz(ContactLaw):
+class Hertz(SmoothLaw):
     """Hertz elastic contact ``kH d**1.5``.
 
     Parameters
@@ -667,14 +686,11 @@ class Hertz(ContactLaw):
         )
         return cls(k_hertz=analytic.hertz_stiffness(modulus, radius_eff))
 
-    def _force(self, overlap, rate, max_overlap):
+    def _raw(self, overlap, rate):
         return _hertz_raw(overlap, self.k_hertz)
 
-    def branch(self, name, max_overlap=0.0):
-        return Branch("load", lambda d, r: _hertz_raw(d, self.k_hertz), loading=False)
 
-
-class HertzDamped(ContactLaw):
+class HertzDamped(SmoothLaw):
     """Damped Hertz contact of Tsuji et al. (EDEM, LIGGGHTS): ``kH d**1.5 + eta d**0.25 d'``.
 
     Parameters
@@ -730,27 +746,21 @@ class HertzDamped(ContactLaw):
         """
         check_probability("restitution", restitution, low_open=True)
         mass = _positive("mass", mass, "kg")
-        modulus, radius_eff = _modulus_radius(
+        k_hertz = Hertz.from_material(
             youngs_modulus,
             poisson_ratio,
             radius,
-            (other_youngs_modulus, other_poisson_ratio, other_radius),
-        )
-        k_hertz = analytic.hertz_stiffness(modulus, radius_eff)
+            other_youngs_modulus,
+            other_poisson_ratio,
+            other_radius,
+        ).k_hertz
         return cls(k_hertz, analytic.tsuji_damping_coefficient(k_hertz, mass, restitution))
 
-    def _force(self, overlap, rate, max_overlap):
+    def _raw(self, overlap, rate):
         return _hertz_damped_raw(overlap, rate, self.k_hertz, self.damping)
 
-    def branch(self, name, max_overlap=0.0):
-        return Branch(
-            "load",
-            lambda d, r: _hertz_damped_raw(d, r, self.k_hertz, self.damping),
-            loading=False,
-        )
 
-
-class KuwabaraKono(ContactLaw):
+class KuwabaraKono(SmoothLaw):
     """Viscoelastic Hertz contact (Kuwabara-Kono, Brilliantov): ``kH (d**1.5 + 1.5 A d**0.5 d')``.
 
     Parameters
@@ -772,18 +782,11 @@ class KuwabaraKono(ContactLaw):
         self.dissipation = _non_negative("dissipation", dissipation, "s")
         self._params = {"k_hertz": self.k_hertz, "dissipation": self.dissipation}
 
-    def _force(self, overlap, rate, max_overlap):
+    def _raw(self, overlap, rate):
         return _kuwabara_kono_raw(overlap, rate, self.k_hertz, self.dissipation)
 
-    def branch(self, name, max_overlap=0.0):
-        return Branch(
-            "load",
-            lambda d, r: _kuwabara_kono_raw(d, r, self.k_hertz, self.dissipation),
-            loading=False,
-        )
 
-
-class HuntCrossley(ContactLaw):
+class HuntCrossley(SmoothLaw):
     """Hunt-Crossley contact ``k d**n (1 + 1.5 chi d')``.
 
     Parameters
@@ -812,15 +815,8 @@ class HuntCrossley(ContactLaw):
             "damping": self.damping,
         }
 
-    def _force(self, overlap, rate, max_overlap):
+    def _raw(self, overlap, rate):
         return _hunt_crossley_raw(overlap, rate, self.stiffness, self.exponent, self.damping)
-
-    def branch(self, name, max_overlap=0.0):
-        return Branch(
-            "load",
-            lambda d, r: _hunt_crossley_raw(d, r, self.stiffness, self.exponent, self.damping),
-            loading=False,
-        )
 
 
 class WaltonBraun(ContactLaw):
