@@ -136,7 +136,7 @@ class AffineForceStates:
 
 
 class DenseStates:
-    """States of an adaptive piece from its integrator's per-step dense outputs.
+    """States of an adaptive piece from its DOP853 per-step dense outputs.
 
     Parameters
     ----------
@@ -145,28 +145,43 @@ class DenseStates:
     times : array_like
         Step boundaries [s], increasing, ``len(pieces) + 1`` of them.
     pieces : list of scipy.integrate.DenseOutput
-        Interpolant of each step (absolute time).
+        Each step's 7th-order interpolant, as :meth:`scipy.integrate.DOP853.dense_output`
+        returns it (absolute time).
+
+    Notes
+    -----
+    :meth:`grid` evaluates every step's interpolant at once from their coefficients
+    (the ``F``, ``y_old``, ``t_old`` and ``h`` of scipy's DOP853 dense output, in its
+    nested form ``y_old + x (F0 + (1 - x) (F1 + x (F2 + ...))))`` with
+    ``x = (t - t_old) / h``) instead of one call per step; ``tests/test_impact.py``
+    checks it against the interpolants themselves.
     """
 
     def __init__(self, t0, times, pieces):
         self._t0 = t0
         self._times = np.asarray(times, dtype=float)
-        self._pieces = pieces
         self._solution = OdeSolution(self._times, pieces)
+        # (7, steps, dim): one contiguous table per coefficient, gathered per sample
+        self._coefficients = np.ascontiguousarray(np.stack([p.F for p in pieces], axis=1))
+        self._y_old = np.stack([p.y_old for p in pieces])
+        self._steps = np.array([p.h for p in pieces])
 
     def __call__(self, tau):
         """States (n, 4) at local times ``tau`` [s] (any order)."""
         return self._solution(self._t0 + np.atleast_1d(tau)).T
 
     def grid(self, tau, step, out):
-        """Write the states at increasing local times ``tau`` [s] into ``out`` (n, 4).
-
-        Sorted times fall into contiguous runs per step: one interpolant call per step
-        instead of a search and a mask over every sample for each step.
-        """
+        """Write the states at local times ``tau`` [s] into ``out`` (n, 4)."""
         t = self._t0 + tau
-        edges = np.searchsorted(t, self._times[1:-1], side="left")
-        for piece, lo, hi in zip(self._pieces, [0, *edges], [*edges, t.size], strict=True):
-            if hi > lo:
-                out[lo:hi] = piece(t[lo:hi]).T
+        which = np.searchsorted(self._times, t, side="right") - 1
+        np.clip(which, 0, self._steps.size - 1, out=which)
+        x = ((t - self._times[which]) / self._steps[which])[:, None]
+        factors = (x, 1.0 - x)
+        y = np.zeros((t.size, self._y_old.shape[1]))  # row-major like the gathered rows
+        rows = np.empty_like(y)
+        for i, table in enumerate(self._coefficients[::-1]):
+            y += np.take(table, which, axis=0, out=rows)
+            y *= factors[i % 2]
+        y += np.take(self._y_old, which, axis=0, out=rows)
+        out[...] = y
         return out
