@@ -1,28 +1,156 @@
-"""The ``dem-check`` command line: cross-checks of the reduced model."""
+"""The ``dem-check`` command line: each command parses, calls one library function, reports.
+
+Exit codes: 0 when every available quantity is within its tolerance, 1 when one is not,
+2 on bad input (the message goes to stderr).
+"""
 
 import argparse
+import json
 import sys
 
+from contactlab.errors import ParameterError, TraceFormatError
+
 __all__ = ["main"]
+
+
+def _load(config, preset):
+    from contactlab.config import load_config, load_preset
+
+    if (config is None) == (preset is None):
+        raise ParameterError("give a CONFIG.toml file or --preset NAME (not both)")
+    return load_preset(preset) if preset else load_config(config)
+
+
+def _tolerances(pairs):
+    tolerances = {}
+    for pair in pairs or ():
+        name, _, value = pair.partition("=")
+        try:
+            tolerances[name.strip()] = float(value)
+        except ValueError:
+            raise ParameterError(
+                f"--tolerance takes NAME=VALUE (e.g. contact_time=0.01); got {pair!r}"
+            ) from None
+    return tolerances
+
+
+def _report(comparison, args):
+    if args.plot:
+        import matplotlib.pyplot as plt
+
+        fig, _ = comparison.plot()
+        fig.savefig(args.plot, dpi=150)
+        plt.close(fig)
+    print(json.dumps(comparison.to_dict(), indent=2) if args.json else comparison)
+    return 0 if comparison.passed else 1
+
+
+def _bullet(args):
+    from dem_check.bullet import engine_check
+
+    config = _load(args.config, args.preset)
+    comparison = engine_check(
+        config.grain,
+        config.sensor,
+        config.law,
+        config.simulation["velocity"],
+        args.time_step,
+        compensate_damping=args.compensate,
+        tolerances=_tolerances(args.tolerance),
+    )
+    return _report(comparison, args)
+
+
+def _compare(args):
+    from dem_check.compare import compare_trace
+    from dem_check.traces import read_trace
+
+    config = _load(args.model, args.preset)
+    trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)
+    align = None if args.align == "none" else args.align
+    comparison = compare_trace(
+        trace, config, _tolerances(args.tolerance), align, threshold=args.threshold
+    )
+    return _report(comparison, args)
+
+
+def _common(parser):
+    parser.add_argument("--preset", help="a named preset instead of a TOML file")
+    parser.add_argument(
+        "--tolerance",
+        action="append",
+        metavar="NAME=VALUE",
+        help="replace a default tolerance (repeatable), e.g. contact_time=0.01",
+    )
+    parser.add_argument("--json", action="store_true", help="print the comparison as JSON")
+    parser.add_argument("--plot", metavar="PNG", help="write the overlay plot to this file")
 
 
 def _build_parser():
     parser = argparse.ArgumentParser(
         prog="dem-check",
         description="Cross-check contactlab's reduced grain/sensor model against a rigid-body "
-        "engine (pybullet) and against measured oscilloscope traces. SI units throughout.",
+        "engine (pybullet) and against measured oscilloscope traces. SI units throughout. "
+        "Exit code 0: all quantities within tolerance; 1: some are not; 2: bad input.",
     )
-    parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+
+    p = sub.add_parser(
+        "bullet",
+        help="drop the grain in pybullet and compare with the reduced model",
+        description="Run the impact of a TOML set-up (as for 'contactlab simulate') in "
+        "pybullet and in the exact reduced model; print the comparison table.",
+    )
+    p.add_argument("config", nargs="?", help="TOML file with [grain] [contact] [sensor] tables")
+    p.add_argument(
+        "--time-step",
+        type=float,
+        metavar="DT",
+        help="engine step [s] (default: min(1e-7, t_c/500, T1/100))",
+    )
+    p.add_argument(
+        "--compensate",
+        action="store_true",
+        help="cancel the engine's numerical contact damping k2*dt (needs c2 >= k2*dt)",
+    )
+    _common(p)
+    p.set_defaults(func=_bullet)
+
+    p = sub.add_parser(
+        "compare",
+        help="compare a measured sensor trace with the model",
+        description="Read an oscilloscope/DAQ export, simulate the model of a TOML set-up, "
+        "align the sensor signals and print the comparison table.",
+    )
+    p.add_argument("trace", help="trace file (CSV and oscilloscope formats, see dem_check)")
+    p.add_argument("--model", metavar="CONFIG.toml", help="TOML set-up of the model")
+    p.add_argument("--sensitivity", type=float, metavar="V_PER_N", help="sensor sensitivity [V/N]")
+    p.add_argument("--channel", help="channel name, needed when the file holds several")
+    p.add_argument(
+        "--align",
+        choices=("onset", "xcorr", "none"),
+        default="onset",
+        help="time alignment of the signals (default: onset)",
+    )
+    p.add_argument(
+        "--threshold",
+        type=float,
+        metavar="N",
+        help="level [N] at which both first lobes are read (default: 5 x the trace's noise)",
+    )
+    _common(p)
+    p.set_defaults(func=_compare)
     return parser
 
 
 def main(argv=None):
-    """Entry point of the ``dem-check`` console script."""
-    parser = _build_parser()
-    args = parser.parse_args(argv)
-    if args.command is None:
-        parser.print_help()
-    return 0
+    """Entry point of the ``dem-check`` console script; returns the exit code."""
+    args = _build_parser().parse_args(argv)
+    try:
+        return args.func(args)
+    except (ParameterError, TraceFormatError) as exc:
+        print(f"dem-check: error: {exc}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":

@@ -1,0 +1,144 @@
+"""The dem-check command line: exit codes 0 (agree), 1 (disagree), 2 (bad input)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from contactlab.config import load_config
+from dem_check import Trace, write_trace
+from dem_check.cli import main
+
+SENSITIVITY = 0.0112  # [V/N]
+
+CONFIG = """
+[grain]
+diameter = 5.0e-3
+density = 765.0
+[contact]
+law = "linear"
+stiffness = {stiffness}
+damping = 1.0
+[sensor]
+resonance = 40.0e3
+mass = 1.233e-3
+damping_ratio = 0.02
+[simulation]
+velocity = 2.0
+duration = 500.0e-6
+"""
+
+
+@pytest.fixture
+def config(tmp_path):
+    """The paper's base case on the 40 kHz sensor as a TOML file."""
+    path = tmp_path / "case.toml"
+    path.write_text(CONFIG.format(stiffness=1.0e5))
+    return path
+
+
+@pytest.fixture
+def trace_file(tmp_path, config):
+    """A scope-like recording of the config's model: 2e-7 s sampling, 20 us of pre-trigger,
+    a DC offset and 0.03 % noise (seeded), in volts, written as generic CSV."""
+    result = load_config(config).simulate()
+    interval = 8 * (result.t[1] - result.t[0])  # 2e-7 s
+    pre = np.arange(-100, 0) * interval
+    t = np.concatenate((pre, result.t[::8] + 1.3e-6))  # the pulse a bit after the trigger
+    force = np.concatenate((np.zeros(pre.size), result.sensor_force[::8]))
+    rng = np.random.default_rng(11)
+    volts = SENSITIVITY * (force + 0.02 + 0.002 * rng.standard_normal(t.size))
+    path = tmp_path / "impact.csv"
+    write_trace(path, Trace(t, volts, "V"), format="generic")
+    return path
+
+
+@pytest.mark.bullet
+def test_bullet_preset_passes(capsys):
+    assert main(["bullet", "--preset", "fig6"]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("pybullet vs model: PASSED")
+    assert "numerical_damping [N*s/m]: 0.01" in out
+
+
+@pytest.mark.bullet
+def test_bullet_config_json_plot_compensated(config, tmp_path, capsys):
+    png = tmp_path / "overlay.png"
+    code = main(["bullet", str(config), "--compensate", "--json", "--plot", str(png)])
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert data["passed"] is True
+    assert data["notes"]["compensate_damping"] is True
+    assert data["notes"]["contact_damping_passed [N*s/m]"] == pytest.approx(1.0 - 1e5 * 1e-7)
+    assert png.stat().st_size > 0
+
+
+@pytest.mark.bullet
+def test_bullet_fails_on_an_impossible_tolerance(config, capsys):
+    # the engine's contact time is 0.1 % off at 1e-7 s: a 1e-6 tolerance must fail
+    assert main(["bullet", str(config), "--tolerance", "contact_time=1e-6"]) == 1
+    assert "FAILED contact_time" in capsys.readouterr().out
+
+
+def test_bullet_bad_input_exits_2(tmp_path, config, capsys):
+    hertz = tmp_path / "hertz.toml"
+    hertz.write_text(
+        CONFIG.format(stiffness=1e5)
+        .replace('law = "linear"', 'law = "hertz"')
+        .replace("stiffness = 100000.0\ndamping = 1.0", "k_hertz = 1e8")
+    )
+    cases = [
+        (["bullet", str(hertz)], "law Hertz cannot be represented"),
+        (["bullet", str(config), "--preset", "fig6"], "not both"),
+        (["bullet", str(config), "--tolerance", "contact_time"], "NAME=VALUE"),
+        (["bullet", str(config), "--tolerance", "peak=0.1"], "unknown tolerance 'peak'"),
+        (["bullet", str(config), "--time-step", "1e-5"], "time_step"),
+    ]
+    for argv, message in cases:
+        assert main(argv) == 2, argv
+        assert message in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("align", ["onset", "xcorr"])
+def test_compare_trace_with_its_model_passes(trace_file, config, tmp_path, capsys, align):
+    png = tmp_path / "compare.png"
+    argv = ["compare", str(trace_file), "--model", str(config), "--sensitivity",
+            str(SENSITIVITY), "--align", align, "--json", "--plot", str(png)]  # fmt: skip
+    code = main(argv)
+    data = json.loads(capsys.readouterr().out)
+    assert code == 0, data
+    rows = {row["quantity"]: row for row in data["quantities"]}
+    # a sensor signal only: no contact time, contact force or restitution, not failed
+    for name in ("contact_time", "peak_contact_force", "restitution"):
+        assert rows[name]["passed"] is None and rows[name]["a"] is None
+    assert rows["peak_sensor_force"]["passed"] is True
+    # the 1.3 us delay of the recording is undone to a fraction of the 2e-7 s interval
+    assert data["shift [s]"] == pytest.approx(-1.3e-6, abs=0.1 * 2e-7)
+    assert data["notes"]["baseline"].startswith("removed")
+    assert png.stat().st_size > 0
+
+
+def test_compare_against_another_model_fails(trace_file, tmp_path, capsys):
+    stiffer = tmp_path / "stiffer.toml"
+    stiffer.write_text(CONFIG.format(stiffness=1.3e5))  # 30 % stiffer contact
+    argv = ["compare", str(trace_file), "--model", str(stiffer), "--sensitivity",
+            str(SENSITIVITY)]  # fmt: skip
+    assert main(argv) == 1
+    assert "measured vs model: FAILED" in capsys.readouterr().out
+
+
+def test_compare_bad_input_exits_2(trace_file, config, tmp_path, capsys):
+    garbage = tmp_path / "garbage.csv"
+    garbage.write_text("t [s],force [N]\n0.0,1.0\nabc,2.0\n")
+    cases = [
+        (["compare", str(garbage), "--model", str(config)], "garbage.csv, line 3"),
+        (["compare", str(trace_file), "--model", str(config)], "newtons"),  # no sensitivity
+        (["compare", str(trace_file), "--sensitivity", "0.01"], "CONFIG.toml"),
+        (
+            ["compare", str(trace_file), "--model", str(config), "--sensitivity", "-1"],
+            "sensitivity",
+        ),
+    ]
+    for argv, message in cases:
+        assert main(argv) == 2, argv
+        assert message in capsys.readouterr().err
