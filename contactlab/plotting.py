@@ -1,13 +1,21 @@
 """Plots of impacts and studies. matplotlib is imported only here, only when plotting."""
 
-__all__ = ["plot_impact"]
+__all__ = ["axes_or_new", "plot_impact"]
 
 
-def _axes(ax):
+def axes_or_new(ax, figsize=(7.0, 4.0)):
+    """``(figure, ax)`` for the given axes, or for new axes in a new figure when None.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes or None
+    figsize : (float, float)
+        Size of a new figure [inch].
+    """
     if ax is None:
         import matplotlib.pyplot as plt
 
-        fig, ax = plt.subplots(figsize=(7.0, 4.0), layout="constrained")
+        fig, ax = plt.subplots(figsize=figsize, layout="constrained")
         return fig, ax
     return ax.figure, ax
 
@@ -28,7 +36,7 @@ def plot_impact(result, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax)
     t_us = result.t * 1e6
     ax.plot(t_us, result.contact_force, lw=2.6, color="black", label="contact force $S_2$")
     ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")

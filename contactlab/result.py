@@ -10,7 +10,7 @@ from scipy.optimize import brentq, minimize_scalar
 
 from contactlab import metrics
 
-__all__ = ["ImpactResult"]
+__all__ = ["ImpactResult", "ImpactSignals"]
 
 _GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
 """Gauss-Legendre rule for impulse, work and energy integrals over each smooth piece."""
@@ -57,7 +57,43 @@ def _crossing(signal, level, lo, hi):
     return hi if inside else lo
 
 
-class ImpactResult:
+class ImpactSignals:
+    """Table and plot of an impact's signals, shared by every result with the same names.
+
+    A subclass provides the arrays ``t`` [s], ``contact_force`` and ``sensor_force`` [N],
+    ``x1``, ``x2`` [m] and ``v1``, ``v2`` [m/s]: :class:`ImpactResult` (exact solution)
+    and :class:`dem_check.bullet.EngineResult` (rigid-body engine) both do.
+    """
+
+    def to_frame(self):
+        """Signals as a pandas DataFrame with unit-bearing column names."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            {
+                "t [s]": self.t,
+                "contact_force [N]": self.contact_force,
+                "sensor_force [N]": self.sensor_force,
+                "x1 [m]": self.x1,
+                "v1 [m/s]": self.v1,
+                "x2 [m]": self.x2,
+                "v2 [m/s]": self.v2,
+            }
+        )
+
+    def plot(self, ax=None, **kwargs):
+        """Contact force (thick) and sensor signal (thin), as in the paper's Figures 5-9.
+
+        Returns
+        -------
+        (matplotlib.figure.Figure, matplotlib.axes.Axes)
+        """
+        from contactlab.plotting import plot_impact
+
+        return plot_impact(self, ax=ax, **kwargs)
+
+
+class ImpactResult(ImpactSignals):
     """One simulated impact (see :func:`contactlab.simulate_impact`).
 
     Signals on the output grid (numpy arrays): ``t`` [s], ``contact_force`` (S2) [N],
@@ -352,33 +388,6 @@ class ImpactResult:
         if self.verification is not None:
             out["verification [relative]"] = self.verification
         return out
-
-    def to_frame(self):
-        """Signals as a pandas DataFrame with unit-bearing column names."""
-        import pandas as pd
-
-        return pd.DataFrame(
-            {
-                "t [s]": self.t,
-                "contact_force [N]": self.contact_force,
-                "sensor_force [N]": self.sensor_force,
-                "x1 [m]": self.x1,
-                "v1 [m/s]": self.v1,
-                "x2 [m]": self.x2,
-                "v2 [m/s]": self.v2,
-            }
-        )
-
-    def plot(self, ax=None, **kwargs):
-        """Contact force (thick) and sensor signal (thin), as in the paper's Figures 5-9.
-
-        Returns
-        -------
-        (matplotlib.figure.Figure, matplotlib.axes.Axes)
-        """
-        from contactlab.plotting import plot_impact
-
-        return plot_impact(self, ax=ax, **kwargs)
 
     def __repr__(self):
         return (

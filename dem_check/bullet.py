@@ -47,7 +47,7 @@ from contactlab import analytic, metrics
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, WindowWarning
 from contactlab.laws import LinearViscoelastic
-from contactlab.result import ImpactResult
+from contactlab.result import ImpactSignals
 from contactlab.validation import check_number
 
 __all__ = [
@@ -153,7 +153,7 @@ def _check_time_step(time_step, grain, sensor, law):
     )
 
 
-class EngineResult:
+class EngineResult(ImpactSignals):
     """One impact run in the engine (see :func:`drop_test`).
 
     The same signals and headline numbers as :class:`contactlab.ImpactResult`, read from
@@ -192,10 +192,6 @@ class EngineResult:
 
     method = "pybullet"
     """Where the result comes from (as :attr:`contactlab.ImpactResult.method`)."""
-
-    # the same signals under the same names: ImpactResult's table and plot serve as they are
-    to_frame = ImpactResult.to_frame
-    plot = ImpactResult.plot
 
     @property
     def time_step(self):

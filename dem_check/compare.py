@@ -466,9 +466,9 @@ class Comparison:
         -------
         (matplotlib.figure.Figure, matplotlib.axes.Axes)
         """
-        from contactlab.plotting import _axes
+        from contactlab.plotting import axes_or_new
 
-        fig, ax = _axes(ax)
+        fig, ax = axes_or_new(ax)
         styles = (("tab:red", self.shift), ("black", 0.0))
         for obj, label, (color, shift) in zip((self.a, self.b), self.labels, styles, strict=True):
             t, y = _signal(obj, label)
