@@ -25,7 +25,7 @@ from contactlab.errors import ParameterError
 from contactlab.laws import LAWS, get_law
 from contactlab.validation import check_choice
 
-__all__ = ["PRESET_DIR", "ImpactConfig", "list_presets", "load_config", "load_preset"]
+__all__ = ["PRESET_DIR", "ImpactConfig", "list_presets", "load", "load_config", "load_preset"]
 
 PRESET_DIR = Path(__file__).resolve().parent.parent / "data" / "presets"
 """Folder of the named impact presets (the paper's Figures 5-9)."""
@@ -124,3 +124,24 @@ def load_preset(name):
     """Load a named preset, e.g. ``load_preset("fig6")``."""
     check_choice("preset", name, tuple(list_presets()))
     return load_config(PRESET_DIR / f"{name}.toml")
+
+
+def load(config=None, preset=None):
+    """An impact set-up from a TOML file or a named preset: exactly one of the two.
+
+    The command lines' ``CONFIG.toml | --preset NAME`` choice in one place.
+
+    Parameters
+    ----------
+    config : str or os.PathLike, optional
+        TOML file (see the module docstring).
+    preset : str, optional
+        Preset name (:func:`list_presets`).
+
+    Returns
+    -------
+    ImpactConfig
+    """
+    if (config is None) == (preset is None):
+        raise ParameterError("give a CONFIG.toml file or --preset NAME (not both)")
+    return load_preset(preset) if preset is not None else load_config(config)

@@ -8,17 +8,10 @@ import argparse
 import json
 import sys
 
+from contactlab.config import load
 from contactlab.errors import ParameterError, TraceFormatError
 
 __all__ = ["main"]
-
-
-def _load(config, preset):
-    from contactlab.config import load_config, load_preset
-
-    if (config is None) == (preset is None):
-        raise ParameterError("give a CONFIG.toml file or --preset NAME (not both)")
-    return load_preset(preset) if preset else load_config(config)
 
 
 def _tolerances(pairs):
@@ -48,7 +41,7 @@ def _report(comparison, args):
 def _bullet(args):
     from dem_check.bullet import engine_check
 
-    config = _load(args.config, args.preset)
+    config = load(args.config, args.preset)
     comparison = engine_check(
         config.grain,
         config.sensor,
@@ -65,7 +58,7 @@ def _compare(args):
     from dem_check.compare import compare_trace
     from dem_check.traces import read_trace
 
-    config = _load(args.model, args.preset)
+    config = load(args.model, args.preset)
     trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)
     align = None if args.align == "none" else args.align
     comparison = compare_trace(
