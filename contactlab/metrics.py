@@ -13,6 +13,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from contactlab.errors import ParameterError
+from contactlab.validation import check_number
 
 __all__ = [
     "PulseMetrics",
@@ -49,7 +50,7 @@ def _crossing_time(t, y, i, level):
     return t[i - 1] + (level - y0) * (t[i] - t[i - 1]) / (y1 - y0)
 
 
-def first_lobe(t, y, threshold=0.0):
+def first_lobe(t, y, threshold=0.0, hysteresis=0.0):
     """Start and end of the first main lobe of a pulse: first rise above a threshold to the
     first return to it.
 
@@ -64,6 +65,11 @@ def first_lobe(t, y, threshold=0.0):
     threshold : float, default 0.0
         Level in the signal's unit. With 0 the lobe starts at the first sample above zero
         (or at the first sample when the signal starts at zero and rises).
+    hysteresis : float, default 0.0
+        For noisy signals, in the signal's unit (>= 0): the lobe is over only once the
+        signal falls to ``threshold - hysteresis``, and it ends at its last downward
+        crossing of ``threshold`` before that (a Schmitt trigger read at one level).
+        Noise that dips under the threshold on a slow rise then does not end the lobe.
 
     Returns
     -------
@@ -73,15 +79,18 @@ def first_lobe(t, y, threshold=0.0):
         when the signal never exceeds it.
     """
     t, y = _as_signal(t, y)
+    hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False)
     above = y > threshold
     if not above.any():
         return np.nan, np.nan
     i_up = int(np.argmax(above))
     start = t[0] if i_up == 0 else _crossing_time(t, y, i_up, threshold)
-    below_after = ~above[i_up:]
-    if not below_after.any():
+    dropped = y[i_up:] <= threshold - hysteresis
+    if not dropped.any():
         return start, np.nan
-    i_down = i_up + int(np.argmax(below_after))
+    i_drop = i_up + int(np.argmax(dropped))
+    falls = np.flatnonzero(above[i_up:i_drop] & ~above[i_up + 1 : i_drop + 1])
+    i_down = i_up + 1 + int(falls[-1])
     return start, _crossing_time(t, y, i_down, threshold)
 
 
@@ -179,7 +188,7 @@ class PulseMetrics:
         return {f"{k} [{units[k]}]": v for k, v in values.items()}
 
 
-def pulse_metrics(t, y, threshold=0.0, unit="N"):
+def pulse_metrics(t, y, threshold=0.0, unit="N", hysteresis=0.0):
     """All pulse metrics of the first lobe of a signal.
 
     Parameters
@@ -192,13 +201,15 @@ def pulse_metrics(t, y, threshold=0.0, unit="N"):
         Level that defines the lobe (see :func:`first_lobe`).
     unit : str, default "N"
         Unit of ``y``, carried into :meth:`PulseMetrics.to_dict` keys.
+    hysteresis : float, default 0.0
+        See :func:`first_lobe`.
 
     Returns
     -------
     PulseMetrics
     """
     t, y = _as_signal(t, y)
-    start, end = first_lobe(t, y, threshold)
+    start, end = first_lobe(t, y, threshold, hysteresis)
     if np.isnan(start):
         return PulseMetrics(*(np.nan,) * 7, unit=unit)
     stop = t[-1] if np.isnan(end) else end

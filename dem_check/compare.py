@@ -61,6 +61,7 @@ __all__ = [
     "Quantity",
     "compare",
     "compare_trace",
+    "noise_tolerances",
 ]
 
 ALIGNMENTS = ("onset", "xcorr", None)
@@ -174,14 +175,14 @@ def _signal(obj, label):
     return obj.t, obj.sensor_force
 
 
-def _scalar(obj, name, threshold):
+def _scalar(obj, name, threshold, hysteresis):
     """Value of a scalar quantity, or None when the object does not have it."""
     if name not in _SENSOR_SCALARS:
         return getattr(obj, name, None)  # a trace has no contact force or grain velocity
     if isinstance(obj, Trace):
-        pulse = obj.metrics(threshold or 0.0)
+        pulse = obj.metrics(threshold or 0.0, hysteresis)
     elif threshold is not None:
-        pulse = metrics.pulse_metrics(obj.t, obj.sensor_force, threshold)
+        pulse = metrics.pulse_metrics(obj.t, obj.sensor_force, threshold, hysteresis=hysteresis)
     else:
         return getattr(obj, name)
     return getattr(pulse, _SENSOR_SCALARS[name])
@@ -281,7 +282,7 @@ def _label(obj):
     return str(getattr(obj, "method", type(obj).__name__))
 
 
-def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None):
+def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, hysteresis=0.0):
     """Compare two impacts quantity by quantity.
 
     Parameters
@@ -303,6 +304,9 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None):
         reading (exact for :class:`~contactlab.ImpactResult`), and 0 for a trace.
     labels : (str, str), optional
         Names of a and b in the table and plot; default from their types.
+    hysteresis : float, default 0
+        With ``threshold``: how far below it a signal must fall to end its lobe [N] (see
+        :func:`contactlab.metrics.first_lobe`).
 
     Returns
     -------
@@ -327,7 +331,8 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None):
     sig_a, sig_b = _signal(a, labels[0]), _signal(b, labels[1])
     rows = []
     for name in _SCALARS:
-        va, vb = _scalar(a, name, threshold), _scalar(b, name, threshold)
+        va = _scalar(a, name, threshold, hysteresis)
+        vb = _scalar(b, name, threshold, hysteresis)
         missing = [lab for lab, v in zip(labels, (va, vb), strict=True) if v is None]
         note = f"not available: {' and '.join(missing)} has no {name}" if missing else ""
         rows.append(_row(name, va, vb, tolerances[name], note))
@@ -487,13 +492,46 @@ class Comparison:
         return fig, ax
 
 
+def noise_tolerances(noise, peak):
+    """Default tolerances widened for a measured signal with baseline noise.
+
+    The largest sample near a noisy peak overshoots the true peak by about two to three
+    standard deviations, and the largest of thousands of noisy differences reaches four
+    to five; the RMS difference contains the noise itself. So, on the bases of
+    :data:`QUANTITIES`: ``peak_sensor_force`` gets ``+ 4 noise / peak``,
+    ``waveform_max_error`` ``+ 5 noise / peak`` and ``waveform_rms_error``
+    ``+ 2 noise / peak``; the others keep their defaults.
+
+    Parameters
+    ----------
+    noise : float
+        Standard deviation of the trace's baseline [N].
+    peak : float
+        Peak of the reference sensor signal [N], > 0.
+
+    Returns
+    -------
+    dict
+        Tolerance by quantity name.
+    """
+    noise = check_number("noise", noise, low=0.0, low_open=False, unit="N")
+    peak = check_number("peak", peak, low=0.0, unit="N")
+    widen = {"peak_sensor_force": 4.0, "waveform_max_error": 5.0, "waveform_rms_error": 2.0}
+    return {
+        name: tolerance + widen.get(name, 0.0) * noise / peak
+        for name, tolerance in DEFAULT_TOLERANCES.items()
+    }
+
+
 def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshold=None):
     """Compare a measured sensor trace with the model of an impact set-up.
 
     The trace's baseline (its samples before the trigger) is removed when it has one, and
     both sensor signals are then read at ``k`` times the trace's noise, so the
-    measurement and the model are read alike. Without a baseline the trace is used as is
-    and read at 0 N; :attr:`Comparison.notes` says which was done.
+    measurement and the model are read alike. A lobe ends at its last crossing of that
+    level before the signal is back at the baseline (hysteresis equal to the threshold),
+    so noise on a slow rise or fall cannot cut it short. Without a baseline the trace is
+    used as is and read at 0 N; :attr:`Comparison.notes` says which was done.
 
     Parameters
     ----------
@@ -503,14 +541,13 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
         The impact set-up (:func:`contactlab.config.load_config`); simulated with its
         ``[simulation]`` settings.
     tolerances : dict, optional
-        See :func:`compare`.
+        See :func:`compare`; by default the engine tolerances widened by the trace's
+        noise (:func:`noise_tolerances`), and any given here replace those.
     align : {"onset", "xcorr", None}, default "onset"
     k : float, default 5
         Lobe threshold in units of the baseline noise [-].
     threshold : float, optional
-        Lobe threshold [N] instead of ``k`` times the noise. A slowly rising signal
-        sampled densely can re-cross ``5 sigma`` in its noise and end its first lobe
-        early; a level on the steep part of the rise (e.g. 10 % of the peak) cannot.
+        Lobe threshold [N] instead of ``k`` times the noise.
 
     Returns
     -------
@@ -532,6 +569,9 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
     if threshold is None:
         threshold = k * noise
     model = config.simulate()
-    result = compare(trace, model, tolerances, align, threshold, labels=("measured", "model"))
+    tolerances = {**noise_tolerances(noise, model.peak_sensor_force), **(tolerances or {})}
+    result = compare(
+        trace, model, tolerances, align, threshold, ("measured", "model"), hysteresis=threshold
+    )
     result.notes.update({"baseline": baseline, "lobe threshold [N]": threshold})
     return result

@@ -1,6 +1,7 @@
 """The dem-check command line: exit codes 0 (agree), 1 (disagree), 2 (bad input)."""
 
 import json
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -142,3 +143,22 @@ def test_compare_bad_input_exits_2(trace_file, config, tmp_path, capsys):
     for argv, message in cases:
         assert main(argv) == 2, argv
         assert message in capsys.readouterr().err
+
+
+SAMPLES = sorted(
+    p for p in (Path(__file__).parent.parent / "data" / "traces").iterdir() if p.suffix == ".json"
+)
+
+
+@pytest.mark.parametrize("sidecar", SAMPLES, ids=lambda p: p.stem)
+def test_compare_passes_on_every_sample_trace(sidecar, capsys):
+    """The shipped synthetic traces agree with the models that made them, read with the
+    noise-widened tolerances; against the other stiffness they do not."""
+    meta = json.loads(sidecar.read_text())
+    trace = sidecar.with_suffix("")
+    args = [str(trace), "--sensitivity", str(meta["sensitivity [V/N]"]), "--json"]
+    model = sidecar.parent / meta["model"]
+    assert main(["compare", *args, "--model", str(model)]) == 0
+    other = "model_soft.toml" if meta["model"] == "model_hard.toml" else "model_hard.toml"
+    assert main(["compare", *args, "--model", str(sidecar.parent / other)]) == 1
+    capsys.readouterr()

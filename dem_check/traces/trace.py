@@ -129,7 +129,7 @@ class Trace:
         fields = {"t": self.t, "values": self.values, "unit": self.unit, **changes}
         return Trace(metadata=metadata, **fields)
 
-    def metrics(self, threshold=0.0):
+    def metrics(self, threshold=0.0, hysteresis=0.0):
         """Pulse metrics of the first lobe, read as for a simulation.
 
         Uses :func:`contactlab.metrics.pulse_metrics` on ``(t, values)``, so a measured
@@ -141,6 +141,10 @@ class Trace:
         ----------
         threshold : float, default 0.0
             Level defining the lobe, in the trace's unit, e.g. ``5 * noise_level(trace)``.
+        hysteresis : float, default 0.0
+            How far below the threshold the signal must fall to end the lobe, in the
+            trace's unit (see :func:`contactlab.metrics.first_lobe`); e.g. the threshold
+            itself, so that only a return to the baseline ends it.
 
         Returns
         -------
@@ -157,4 +161,4 @@ class Trace:
                 f"the trace has {len(overrange)} overrange samples (first at index "
                 f"{overrange[0]}); their true values are unknown, so no pulse metrics"
             )
-        return pulse_metrics(self.t, self.values, threshold, unit=self.unit)
+        return pulse_metrics(self.t, self.values, threshold, self.unit, hysteresis)
