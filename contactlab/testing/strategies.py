@@ -1,0 +1,257 @@
+"""Hypothesis strategies for contact-law tests: grains, sensors, laws and impact speeds.
+
+Ranges are physically sensible for seeds and grains striking force sensors; quantities
+spanning decades are drawn evenly in log scale. Needs ``hypothesis`` (the ``test`` extra)::
+
+    from hypothesis import given
+    from contactlab.testing.strategies import grains, impact_velocities, laws
+
+    @given(grain=grains(), law=laws(), velocity=impact_velocities())
+    def test_restitution_is_a_fraction(grain, law, velocity):
+        assert 0.0 <= law.restitution(grain.mass, velocity) <= 1.0 + 1e-9
+"""
+
+import math
+
+from hypothesis import strategies as st
+
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ParameterError
+from contactlab.laws import (
+    Hertz,
+    HertzDamped,
+    HuntCrossley,
+    KuwabaraKono,
+    LinearPlastic,
+    LinearViscoelastic,
+    PlasticTrapezoid,
+    Thornton,
+    WaltonBraun,
+)
+from contactlab.validation import check_choice, check_number
+
+__all__ = [
+    "LAW_STRATEGIES",
+    "grains",
+    "hertz_damped_laws",
+    "hertz_laws",
+    "hunt_crossley_laws",
+    "impact_velocities",
+    "kuwabara_kono_laws",
+    "laws",
+    "linear_laws",
+    "linear_plastic_laws",
+    "plastic_trapezoid_laws",
+    "sensors",
+    "thornton_laws",
+    "walton_braun_laws",
+]
+
+
+def _bounds(name, bounds, unit, low=0.0, low_open=True):
+    """Check a ``(low, high)`` pair of bounds; return it as floats."""
+    if not isinstance(bounds, tuple) or len(bounds) != 2:
+        raise ParameterError(f"{name} must be a (low, high) tuple [{unit}]; got {bounds!r}")
+    lo = check_number(f"{name}[0]", bounds[0], low=low, low_open=low_open, unit=unit)
+    hi = check_number(f"{name}[1]", bounds[1], low=lo, low_open=False, unit=unit)
+    return lo, hi
+
+
+def _log_floats(low, high):
+    """Floats spread evenly in log scale over ``[low, high]`` (both > 0)."""
+    return st.floats(math.log10(low), math.log10(high)).map(lambda x: min(max(10.0**x, low), high))
+
+
+def grains(
+    diameter=(0.5e-3, 20e-3),
+    density=(300.0, 3000.0),
+    youngs_modulus=(1e6, 1e10),
+    poisson_ratio=(0.1, 0.45),
+):
+    """Spherical grains with material data (so Hertz-family laws can be built from them).
+
+    Parameters
+    ----------
+    diameter : (float, float), default (0.5 mm, 20 mm)
+        Range of the diameter [m]: poppy seed and sand to beans.
+    density : (float, float), default (300, 3000)
+        Range of the density [kg/m**3]: light oilseeds and hulled seeds to mineral grains
+        (quartz 2650); the paper's grain has 765.
+    youngs_modulus : (float, float), default (1 MPa, 10 GPa)
+        Range of Young's modulus [Pa], drawn in log scale: moist soft kernels (the
+        paper's grain: 21.6 MPa) to dry hard grains.
+    poisson_ratio : (float, float), default (0.1, 0.45)
+        Range of the Poisson ratio [-].
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of :class:`contactlab.Grain`.
+    """
+    return st.builds(
+        Grain,
+        diameter=st.floats(*_bounds("diameter", diameter, "m")),
+        density=st.floats(*_bounds("density", density, "kg/m**3")),
+        youngs_modulus=_log_floats(*_bounds("youngs_modulus", youngs_modulus, "Pa")),
+        poisson_ratio=st.floats(*_bounds("poisson_ratio", poisson_ratio, "-", low=-1.0)),
+    )
+
+
+def sensors(
+    resonance=(10e3, 300e3),
+    mass=(0.1e-3, 10e-3),
+    damping_ratio=(0.0, 0.1),
+    rigid=False,
+):
+    """Force sensors (moving mass on a spring and damper), optionally an immovable wall.
+
+    Parameters
+    ----------
+    resonance : (float, float), default (10 kHz, 300 kHz)
+        Range of the undamped resonance [Hz], log scale: the paper studies 20-200 kHz,
+        commercial piezoelectric sensors have 20-70 kHz.
+    mass : (float, float), default (0.1 g, 10 g)
+        Range of the moving mass [kg], log scale (the paper's steel disc: 1.233 g).
+    damping_ratio : (float, float), default (0, 0.1)
+        Range of the damping ratio [-] (quartz sensors: 0.01-0.05).
+    rigid : bool, default False
+        Whether :meth:`contactlab.Sensor.rigid` may be drawn too.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of :class:`contactlab.Sensor`.
+    """
+    moving = st.builds(
+        Sensor.from_resonance,
+        resonance=_log_floats(*_bounds("resonance", resonance, "Hz")),
+        mass=_log_floats(*_bounds("mass", mass, "kg")),
+        damping_ratio=st.floats(*_bounds("damping_ratio", damping_ratio, "-", low_open=False)),
+    )
+    return st.one_of(moving, st.builds(Sensor.rigid)) if rigid else moving
+
+
+def impact_velocities(low=0.1, high=10.0):
+    """Impact speeds [m/s]: drops of 0.5 mm to 5 m, and throwers (up to 10 m/s in the paper).
+
+    Parameters
+    ----------
+    low, high : float, default 0.1, 10
+        Range of the speed [m/s].
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of float.
+    """
+    return st.floats(*_bounds("impact speed", (low, high), "m/s"))
+
+
+_STIFFNESS = (1e3, 1e7)
+"""Linear contact stiffness [N/m]: DEM practice; the paper's soft and hard grains have
+1e4 and 1e5."""
+
+_HERTZ_STIFFNESS = (1e6, 1e9)
+"""Hertz stiffness kH = 4/3 E* sqrt(R*) [N/m**1.5]: the paper's 5 mm grain has 1.5e6;
+dry hard grains reach 1e9."""
+
+
+def linear_laws():
+    """:class:`~contactlab.laws.LinearViscoelastic`: stiffness 1e3-1e7 N/m (log scale),
+    damping 0-5 N*s/m (the paper's grain: 1)."""
+    return st.builds(LinearViscoelastic, _log_floats(*_STIFFNESS), st.floats(0.0, 5.0))
+
+
+def hertz_laws():
+    """:class:`~contactlab.laws.Hertz`: kH 1e6-1e9 N/m**1.5 (log scale)."""
+    return st.builds(Hertz, _log_floats(*_HERTZ_STIFFNESS))
+
+
+def hertz_damped_laws():
+    """:class:`~contactlab.laws.HertzDamped`: kH 1e6-1e9 N/m**1.5, damping eta 0-2
+    N*s/m**1.25 (damping factor alpha up to about 0.3 for the paper's grain)."""
+    return st.builds(HertzDamped, _log_floats(*_HERTZ_STIFFNESS), st.floats(0.0, 2.0))
+
+
+def kuwabara_kono_laws():
+    """:class:`~contactlab.laws.KuwabaraKono`: kH 1e6-1e9 N/m**1.5, dissipation
+    constant A 0-10 us."""
+    return st.builds(KuwabaraKono, _log_floats(*_HERTZ_STIFFNESS), st.floats(0.0, 1e-5))
+
+
+def hunt_crossley_laws():
+    """:class:`~contactlab.laws.HuntCrossley`: Hertzian exponent 1.5, k 1e6-1e9 N/m**1.5,
+    damping chi 0-0.5 s/m (restitution 1 - chi v for small chi v)."""
+    return st.builds(
+        HuntCrossley, _log_floats(*_HERTZ_STIFFNESS), st.just(1.5), st.floats(0.0, 0.5)
+    )
+
+
+def walton_braun_laws():
+    """:class:`~contactlab.laws.WaltonBraun`: loading stiffness 1e3-1e7 N/m, unloading
+    stiffness larger by 1-20 (restitution sqrt(k1/k2) from 1 down to 0.22)."""
+    return st.builds(
+        lambda k1, ratio: WaltonBraun(k1, k1 / ratio),
+        _log_floats(*_STIFFNESS),
+        st.floats(0.05, 1.0),
+    )
+
+
+def linear_plastic_laws():
+    """:class:`~contactlab.laws.LinearPlastic`: stiffness 1e3-1e7 N/m, force cap
+    0.05-20 N (the paper's impacts peak at a few N)."""
+    return st.builds(LinearPlastic, _log_floats(*_STIFFNESS), st.floats(0.05, 20.0))
+
+
+def thornton_laws():
+    """:class:`~contactlab.laws.Thornton`: E* 1-100 MPa, R* 0.5-5 mm, yield pressure
+    0.1-10 MPa (log scales)."""
+    return st.builds(
+        Thornton, _log_floats(1e6, 1e8), _log_floats(5e-4, 5e-3), _log_floats(1e5, 1e7)
+    )
+
+
+def plastic_trapezoid_laws():
+    """:class:`~contactlab.laws.PlasticTrapezoid`: pulse 10-500 us (log scale), ramps
+    0-50 % of it."""
+    return st.builds(
+        lambda duration, fraction: PlasticTrapezoid(duration, fraction * 0.5 * duration),
+        _log_floats(10e-6, 500e-6),
+        st.floats(0.0, 1.0),
+    )
+
+
+LAW_STRATEGIES = {
+    "linear": linear_laws,
+    "hertz": hertz_laws,
+    "hertz_damped": hertz_damped_laws,
+    "kuwabara_kono": kuwabara_kono_laws,
+    "hunt_crossley": hunt_crossley_laws,
+    "walton_braun": walton_braun_laws,
+    "linear_plastic": linear_plastic_laws,
+    "thornton": thornton_laws,
+    "plastic_trapezoid": plastic_trapezoid_laws,
+}
+"""Registry: law name (as in :data:`contactlab.laws.LAWS`) -> strategy function."""
+
+
+def laws(name=None):
+    """Contact laws with valid, physically sensible parameters.
+
+    Parameters
+    ----------
+    name : str, optional
+        A law name from :data:`contactlab.laws.LAWS` for that law only. Default: any law
+        that is a force of overlap (every law but the prescribed ``plastic_trapezoid``
+        pulse, which has no force-overlap relation to check).
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of contact laws.
+    """
+    if name is not None:
+        return LAW_STRATEGIES[check_choice("law", name, tuple(LAW_STRATEGIES))]()
+    return st.one_of(
+        *(strategy() for key, strategy in LAW_STRATEGIES.items() if key != "plastic_trapezoid")
+    )
