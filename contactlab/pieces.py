@@ -16,6 +16,8 @@ All give ``states(tau) -> (n, 4)`` at local times ``tau`` [s] and a faster
 (sensor displacement [m] and velocity [m/s], grain displacement [m] and velocity [m/s]).
 """
 
+import bisect
+
 import numpy as np
 from scipy.integrate import OdeSolution
 
@@ -161,6 +163,7 @@ class DenseStates:
         self._t0 = t0
         self._times = np.asarray(times, dtype=float)
         self._solution = OdeSolution(self._times, pieces)
+        self._pieces, self._bounds = pieces, self._times.tolist()
         # (7, steps, dim): one contiguous table per coefficient, gathered per sample
         self._coefficients = np.ascontiguousarray(np.stack([p.F for p in pieces], axis=1))
         self._y_old = np.stack([p.y_old for p in pieces])
@@ -168,7 +171,12 @@ class DenseStates:
 
     def __call__(self, tau):
         """States (n, 4) at local times ``tau`` [s] (any order)."""
-        return self._solution(self._t0 + np.atleast_1d(tau)).T
+        tau = np.atleast_1d(tau)
+        if tau.size == 1:  # the metrics' root finders ask one time at a time
+            t = self._t0 + float(tau[0])
+            i = min(max(bisect.bisect_right(self._bounds, t) - 1, 0), len(self._pieces) - 1)
+            return self._pieces[i](t)[None, :]
+        return self._solution(self._t0 + tau).T
 
     def grid(self, tau, step, out):
         """Write the states at local times ``tau`` [s] into ``out`` (n, 4)."""
