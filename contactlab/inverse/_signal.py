@@ -1,0 +1,118 @@
+"""Shared handling of a sampled signal for the inverse methods.
+
+A signal is a pair ``(t, y)`` of 1-D arrays: time [s], strictly increasing and uniformly
+sampled, and the sensor's output (force [N] after the sensitivity conversion). Baseline,
+noise and onset are read as :mod:`dem_check.traces.prepare` reads them (imported lazily:
+``dem_check`` builds on ``contactlab``), so a trace and an array give the same answer.
+"""
+
+import numpy as np
+
+from contactlab.errors import ParameterError
+from contactlab.metrics import _as_signal
+
+__all__ = ["BASELINE_MIN_SAMPLES", "baseline", "lobe_around_peak", "uniform_signal"]
+
+UNIFORM_RTOL = 1e-4
+"""Largest deviation of a time step from the mean interval, relative to it (the rule of
+:mod:`dem_check.traces.checks`)."""
+
+BASELINE_MIN_SAMPLES = 16
+"""Fewest pre-trigger samples that give a usable noise estimate (standard deviation known
+to about 1/sqrt(2*16) = 18 %)."""
+
+
+def uniform_signal(t, y, name="signal"):
+    """Check ``(t, y)`` and return them as float arrays with the sample interval [s].
+
+    Raises
+    ------
+    ParameterError
+        Not 1-D and of equal length, not finite, not strictly increasing, or not
+        uniformly sampled (the inverse methods discretise the sensor on one step).
+    """
+    try:
+        t, y = _as_signal(t, y)
+    except ParameterError as exc:
+        raise ParameterError(f"t and {name}: {exc}") from None
+    dt = (t[-1] - t[0]) / (t.size - 1)
+    deviation = float(np.max(np.abs(np.diff(t) - dt)))
+    if deviation > UNIFORM_RTOL * dt:
+        raise ParameterError(
+            f"t must be uniformly sampled; its steps deviate from {dt:.6g} s by up to "
+            f"{deviation:.3g} s"
+        )
+    return t, y, dt
+
+
+def baseline(t, y, window=None, k=5.0):
+    """Baseline mean, noise and onset of a pulse, as :mod:`dem_check.traces.prepare` reads them.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        The signal.
+    window : (float, float), optional
+        Pre-trigger window ``[start, end)`` [s]. Default: the samples before ``t = 0``
+        (oscilloscopes write time relative to the trigger).
+    k : float, default 5
+        Onset threshold in baseline standard deviations [-].
+
+    Returns
+    -------
+    mean : float
+        Baseline mean (signal unit).
+    noise : float
+        Baseline standard deviation (signal unit).
+    onset : float
+        First time [s] where ``|y - mean|`` exceeds ``k * noise``.
+    window : (float, float)
+        The window used [s].
+
+    Raises
+    ------
+    ParameterError
+        Fewer than :data:`BASELINE_MIN_SAMPLES` samples in the window, or no sample
+        above the threshold.
+    """
+    from dem_check.traces import Trace, detect_onset, noise_level
+
+    window = (float(t[0]), 0.0) if window is None else tuple(float(v) for v in window)
+    if len(window) != 2:
+        raise ParameterError(f"baseline must be (start, end) [s]; got {window!r}")
+    mask = (t >= window[0]) & (t < window[1])
+    if mask.sum() < BASELINE_MIN_SAMPLES:
+        raise ParameterError(
+            f"baseline window {window} s holds {int(mask.sum())} samples; need at least "
+            f"{BASELINE_MIN_SAMPLES} pre-trigger samples (record a pre-trigger, pass "
+            "baseline=(start, end) [s], or give noise=)"
+        )
+    trace = Trace(t, y, "N", {"trigger_time": None})
+    noise = noise_level(trace, window)
+    if noise == 0.0:
+        raise ParameterError(f"the baseline window {window} s is exactly constant (no noise)")
+    onset = detect_onset(trace, k, window)
+    return float(np.mean(y[mask])), noise, onset, window
+
+
+def lobe_around_peak(t, y, reference=0.0):
+    """The lobe holding the largest deviation from ``reference``: its start and end [s].
+
+    A lobe is a run of samples on one side of ``reference``; its ends are the crossings,
+    interpolated linearly (the first or last sample where the run meets the record's end).
+    """
+    d = y - reference
+    i = int(np.argmax(np.abs(d)))
+    side = np.sign(d[i])
+    other = np.flatnonzero(np.sign(d) != side)
+    before, after = other[other < i], other[other > i]
+    start = t[0] if before.size == 0 else _crossing(t, d, before[-1], before[-1] + 1)
+    end = t[-1] if after.size == 0 else _crossing(t, d, after[0] - 1, after[0])
+    return float(start), float(end)
+
+
+def _crossing(t, d, i, j):
+    """Zero crossing of ``d`` between samples i and j = i + 1 (linear)."""
+    if d[j] == d[i]:
+        return t[j]
+    return t[i] - d[i] * (t[j] - t[i]) / (d[j] - d[i])

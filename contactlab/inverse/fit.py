@@ -1,0 +1,598 @@
+"""Fit a contact law to a sensor signal through the two-mass model.
+
+The model is :func:`contactlab.simulate_impact` itself: grain and sensor are known (the
+sensor from :func:`contactlab.inverse.identify_sensor`), the law's parameters, the impact
+velocity (unless measured) and the onset time are adjusted until the simulated signal
+S1 matches the trace in the least-squares sense (``scipy.optimize.least_squares``,
+trust-region reflective with bounds). Parameters are fitted as transformed values
+(``ln p`` for positive quantities, ``logit e`` for a restitution coefficient, the onset
+in units of the contact time) around a starting guess read from a Tikhonov
+reconstruction of the force, so every fitted coordinate is of order one.
+"""
+
+import json
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.special import expit, logit
+
+from contactlab import analytic
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
+from contactlab.impact import simulate_impact
+from contactlab.inverse._signal import baseline, uniform_signal
+from contactlab.inverse.reconstruct import reconstruct_force
+from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic, WaltonBraun
+from contactlab.validation import check_choice, check_number
+
+__all__ = [
+    "FIT_MODELS",
+    "ContactFit",
+    "FitModel",
+    "FittedParameter",
+    "IdentifiabilityWarning",
+    "fit_contact",
+]
+
+FORMAT = "contactlab-fit-1"
+"""Tag of the JSON layout written by :meth:`ContactFit.to_dict` (read by the exporter)."""
+
+MAX_TRANSFORMED_STDERR = 0.25
+"""Identifiability criterion: largest standard error of a transformed parameter (ln p,
+logit e, onset / contact time). For ln p that is a relative error of about 25 %, a 95 %
+confidence interval wider than a factor 2.7; well-determined parameters of a 1 % noise
+trace have relative errors of 0.1-1 %, undetermined ones (the damping of a nearly
+elastic contact) of 45 % and more."""
+
+SINGULAR_RCOND = 1e-10
+"""Singular values of the Jacobian (columns in transformed units) below this fraction of
+the largest are treated as zero: their directions have unbounded variance."""
+
+OVERSAMPLE = 4
+"""The model is simulated at this multiple of the trace's sample rate and interpolated
+linearly to the sample times (interpolation error ~ (w dt / 4)**2 / 8, below 1e-4 for
+20 samples per period)."""
+
+BOUND = math.log(100.0)
+"""Fitted coordinates stay within +-ln(100) of the guess (a factor 100 for ln p)."""
+
+
+class IdentifiabilityWarning(ContactlabWarning):
+    """The trace does not determine a fitted parameter (or the optimiser did not
+    converge); the message names the parameters and the fix."""
+
+
+# ---------------------------------------------------------------------------
+# Transforms of the fitted coordinates
+# ---------------------------------------------------------------------------
+def _log_slope(x):
+    return np.exp(x)
+
+
+_TRANSFORMS = {
+    # name: (to coordinate, from coordinate, d value / d coordinate); numpy functions so
+    # that an unbounded confidence limit maps to 0 or inf instead of overflowing
+    "log": (np.log, np.exp, _log_slope),
+    "logit": (logit, expit, lambda x: expit(x) * (1.0 - expit(x))),
+}
+
+
+@dataclass(frozen=True)
+class FitModel:
+    """How one contact law is fitted: its parameters, transforms, guess and law object.
+
+    ``guess(grain, velocity, contact_time, restitution)`` gives starting values from a
+    reconstructed pulse; ``build(values, grain)`` makes the law from fitted values.
+    """
+
+    law: str
+    parameters: tuple
+    units: tuple
+    transforms: tuple
+    guess: object
+    build: object
+
+
+def _hertz_stiffness(modulus, grain):
+    return analytic.hertz_stiffness(modulus, grain.radius)
+
+
+def _hertz_modulus_guess(grain, velocity, contact_time):
+    """E* [Pa] of an elastic Hertz impact on a flat lasting ``contact_time`` [s].
+
+    The Hertz contact time scales as ``E***(-2/5)``: invert it from a reference modulus.
+    """
+    reference = 1e6
+    k_hertz = _hertz_stiffness(reference, grain)
+    t_ref = analytic.hertz_contact_time(k_hertz, grain.mass, velocity)
+    return reference * (t_ref / contact_time) ** 2.5
+
+
+def _linear_guess(grain, velocity, contact_time, restitution):
+    k = grain.mass * (math.pi / contact_time) ** 2
+    c = analytic.linear_damping_from_restitution(k, restitution, grain.mass, convention="force")
+    return {"stiffness": k, "damping": c}
+
+
+def _hertz_damped_build(values, grain):
+    k_hertz = _hertz_stiffness(values["effective_modulus"], grain)
+    damping = analytic.tsuji_damping_coefficient(k_hertz, grain.mass, values["restitution"])
+    return HertzDamped(k_hertz, damping)
+
+
+def _walton_braun_guess(grain, velocity, contact_time, restitution):
+    # t_c = (pi/2) sqrt(m/k1) (1 + e) with e = sqrt(k1/k2)
+    k1 = grain.mass * (math.pi * (1.0 + restitution) / (2.0 * contact_time)) ** 2
+    return {"loading_stiffness": k1, "restitution": restitution}
+
+
+FIT_MODELS = {
+    "linear": FitModel(
+        "linear",
+        ("stiffness", "damping"),
+        ("N/m", "N*s/m"),
+        ("log", "log"),
+        _linear_guess,
+        lambda v, grain: LinearViscoelastic(v["stiffness"], v["damping"]),
+    ),
+    "hertz": FitModel(
+        "hertz",
+        ("effective_modulus",),
+        ("Pa",),
+        ("log",),
+        lambda grain, v, tc, e: {"effective_modulus": _hertz_modulus_guess(grain, v, tc)},
+        lambda v, grain: Hertz(_hertz_stiffness(v["effective_modulus"], grain)),
+    ),
+    "hertz_damped": FitModel(
+        "hertz_damped",
+        ("effective_modulus", "restitution"),
+        ("Pa", "-"),
+        ("log", "logit"),
+        lambda grain, v, tc, e: {
+            "effective_modulus": _hertz_modulus_guess(grain, v, tc),
+            "restitution": e,
+        },
+        _hertz_damped_build,
+    ),
+    "walton_braun": FitModel(
+        "walton_braun",
+        ("loading_stiffness", "restitution"),
+        ("N/m", "-"),
+        ("log", "logit"),
+        _walton_braun_guess,
+        lambda v, grain: WaltonBraun(
+            v["loading_stiffness"], v["loading_stiffness"] / v["restitution"] ** 2
+        ),
+    ),
+}
+"""Fittable laws: registry name -> :class:`FitModel`.
+
+``hertz_damped`` is fitted in the parameters the DEM codes take: the effective modulus
+``E*`` [Pa] (Hertz stiffness ``4/3 E* sqrt(R)`` on the flat sensor) and the restitution
+``e`` that the Tsuji/EDEM/LIGGGHTS mapping turns into the damping (overlap convention),
+so the fitted pair goes into those codes unchanged. ``walton_braun`` is fitted as the
+loading stiffness and ``e = sqrt(k_load / k_unload)``.
+"""
+
+
+# ---------------------------------------------------------------------------
+# Result
+# ---------------------------------------------------------------------------
+def _finite_or_none(value):
+    """JSON has no infinity: an unbounded limit is written as null."""
+    return float(value) if math.isfinite(value) else None
+
+
+@dataclass(frozen=True)
+class FittedParameter:
+    """One fitted quantity with its uncertainty (SI units)."""
+
+    value: float
+    """Best-fit value."""
+    stderr: float
+    """Standard error (delta method from the transformed coordinate)."""
+    ci95: tuple
+    """95 % confidence interval ``(low, high)``: +-1.96 standard errors of the
+    transformed coordinate, mapped back (asymmetric for ln p and logit e)."""
+    unit: str
+    """Unit of ``value``."""
+    identifiable: bool
+    """False when the trace does not determine it (see :data:`MAX_TRANSFORMED_STDERR`)."""
+
+    def to_dict(self):
+        """As a JSON-ready dict."""
+        return {
+            "value": self.value,
+            "stderr": _finite_or_none(self.stderr),
+            "ci95": [_finite_or_none(v) for v in self.ci95],
+            "unit": self.unit,
+            "identifiable": self.identifiable,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class ContactFit:
+    """A contact law fitted to a sensor trace (see :func:`fit_contact`).
+
+    ``parameters`` maps each fitted name (the law's, ``velocity`` unless it was
+    measured, ``onset``) to a :class:`FittedParameter`; ``fixed`` holds the law
+    parameters that were given instead of fitted; ``law`` is the fitted law
+    object; ``simulation`` the model at the best fit (its ``contact_force`` is the
+    fitted S2). ``t``, ``signal``, ``model`` and ``residuals`` [N] are on the fitted
+    samples.
+    """
+
+    law: object
+    law_name: str
+    parameters: dict
+    fixed: dict
+    velocity: float
+    velocity_measured: bool
+    onset: float
+    grain: Grain
+    sensor: Sensor
+    t: np.ndarray
+    signal: np.ndarray
+    model: np.ndarray
+    goodness: dict
+    simulation: object = field(repr=False, default=None)
+
+    @property
+    def residuals(self):
+        """Model minus signal at the fitted samples [N]."""
+        return self.model - self.signal
+
+    @property
+    def not_identifiable(self):
+        """Names of the parameters the trace does not determine."""
+        return [name for name, p in self.parameters.items() if not p.identifiable]
+
+    def to_dict(self):
+        """Everything needed to reuse the fit (FIT.json layout, JSON-ready)."""
+        return {
+            "format": FORMAT,
+            "law": self.law_name,
+            "law_parameters": self.law.parameters(),
+            "parameters": {k: p.to_dict() for k, p in self.parameters.items()},
+            "fixed": dict(self.fixed),
+            "velocity [m/s]": self.velocity,
+            "velocity_measured": self.velocity_measured,
+            "onset [s]": self.onset,
+            "grain": self.grain.to_dict(),
+            "sensor": self.sensor.to_dict(),
+            "goodness_of_fit": dict(self.goodness),
+            "contact_time_on_sensor [s]": self.simulation.contact_time,
+            "restitution_on_sensor [-]": self.simulation.restitution,
+            "not_identifiable": self.not_identifiable,
+        }
+
+    def to_json(self, path=None):
+        """The :meth:`to_dict` layout as JSON text; also written to ``path`` if given."""
+        text = json.dumps(self.to_dict(), indent=2)
+        if path is not None:
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(text + "\n")
+        return text
+
+    def plot(self, ax=None):
+        """Trace, fitted signal and fitted contact force; returns (fig, ax).
+
+        See :func:`contactlab.inverse.plots.plot_fit`.
+        """
+        from contactlab.inverse.plots import plot_fit
+
+        return plot_fit(self, ax=ax)
+
+    def __repr__(self):
+        fitted = ", ".join(
+            f"{k}={p.value:.4g}{'' if p.identifiable else ' (not identifiable)'}"
+            for k, p in self.parameters.items()
+        )
+        chi2 = self.goodness["reduced_chi_squared [-]"]
+        return f"ContactFit({self.law_name}: {fitted}; reduced chi2={chi2:.3g})"
+
+
+# ---------------------------------------------------------------------------
+# The fit
+# ---------------------------------------------------------------------------
+class _Problem:
+    """Residual function of the fit in transformed coordinates ``x`` (0 at the guess).
+
+    ``fitted`` lists ``(name, transform)`` pairs; ``constants`` holds the values not
+    fitted (parameters given in ``fixed``, a measured velocity).
+    """
+
+    def __init__(self, spec, grain, sensor, data, fitted, constants, start):
+        self.spec, self.grain, self.sensor = spec, grain, sensor
+        self.t, self.y, self.noise, self.dt = data
+        self.names = [name for name, _ in fitted]
+        self.kinds = [kind for _, kind in fitted]
+        self.constants = constants
+        self.start = start  # guesses: dict name -> value
+        self.scale = start["contact_time"]  # onset coordinate unit [s]
+
+    def values(self, x):
+        """Natural values of every quantity (fitted and constant) at coordinate ``x``."""
+        out = dict(self.constants)
+        for name, kind, xi in zip(self.names, self.kinds, x, strict=True):
+            if kind == "onset":
+                out[name] = self.start["onset"] + xi * self.scale
+            else:
+                to, back, _ = _TRANSFORMS[kind]
+                out[name] = back(to(self.start[name]) + xi)
+        return out
+
+    def slope(self, i, x):
+        """d value / d coordinate of fitted quantity ``i`` at coordinate ``x``."""
+        kind = self.kinds[i]
+        if kind == "onset":
+            return self.scale
+        to, _, derivative = _TRANSFORMS[kind]
+        return derivative(to(self.start[self.names[i]]) + x)
+
+    def predict(self, values):
+        """Model signal at the fitted samples [N] and the simulation behind it."""
+        law = self.spec.build(values, self.grain)
+        # two model steps beyond the last sample, so interpolation always has a bracket
+        duration = max(self.t[-1] - values["onset"], 0.0) + 2.0 * self.dt / OVERSAMPLE
+        with warnings.catch_warnings():
+            # the model is read at the trace's sample times only: a window shorter than
+            # a (trial) contact, or a grid coarser than a (trial) contact, is harmless
+            warnings.simplefilter("ignore", WindowWarning)
+            warnings.simplefilter("ignore", ResolutionWarning)
+            sim = simulate_impact(
+                self.grain,
+                self.sensor,
+                law,
+                values["velocity"],
+                duration=duration,
+                sample_rate=OVERSAMPLE / self.dt,
+            )
+        return np.interp(self.t - values["onset"], sim.t, sim.sensor_force, left=0.0), sim
+
+    def residuals(self, x):
+        return (self.predict(self.values(x))[0] - self.y) / self.noise
+
+
+def _starting_values(spec, grain, t, y, sensor, velocity, window):
+    """Guesses from a Tikhonov reconstruction: onset, contact time, impulse."""
+    rec = reconstruct_force(t, y, sensor, baseline_window=window)
+    m = rec.metrics
+    if not (m.duration > 0.0 and m.impulse > 0.0):
+        raise ParameterError("no impact pulse found in the trace (the reconstruction is empty)")
+    if velocity is None:
+        restitution = 0.5
+        v = m.impulse / (grain.mass * (1.0 + restitution))
+    else:
+        v = velocity
+        restitution = min(max(m.impulse / (grain.mass * v) - 1.0, 0.05), 0.95)
+    start = spec.guess(grain, v, m.duration, restitution)
+    start.update({"velocity": v, "onset": m.start, "contact_time": m.duration})
+    return start
+
+
+def _covariance(jac, rss, dof):
+    """Standard errors of the coordinates: pseudo-inverse of J^T J scaled by RSS/dof.
+
+    A coordinate with weight above 1e-3 in a direction whose singular value is below
+    :data:`SINGULAR_RCOND` times the largest gets an infinite standard error.
+    """
+    _, s, vt = np.linalg.svd(jac, full_matrices=False)
+    keep = s > SINGULAR_RCOND * s[0]
+    inv = np.where(keep, 1.0 / np.where(keep, s, 1.0) ** 2, 0.0)
+    variance = np.diag((vt.T * inv) @ vt) * (rss / dof)
+    loose = (np.abs(vt[~keep]) > 1e-3).any(axis=0)
+    return np.where(loose, np.inf, np.sqrt(variance))
+
+
+def _fitted_parameters(problem, x, stderr, units):
+    """One :class:`FittedParameter` per fitted quantity."""
+    values = problem.values(x)
+    out = {}
+    for i, name in enumerate(problem.names):
+        se = stderr[i]
+        with np.errstate(over="ignore", invalid="ignore"):
+            low = problem.values(_shifted(x, i, -1.96 * se))[name]
+            high = problem.values(_shifted(x, i, 1.96 * se))[name]
+        out[name] = FittedParameter(
+            value=float(values[name]),
+            stderr=float(abs(problem.slope(i, x[i])) * se) if np.isfinite(se) else math.inf,
+            ci95=(float(low), float(high)),
+            unit=units[name],
+            identifiable=bool(se <= MAX_TRANSFORMED_STDERR),
+        )
+    return out
+
+
+def _shifted(x, i, delta):
+    out = np.array(x, dtype=float)
+    out[i] += delta
+    return out
+
+
+def _check_fixed(spec, fixed):
+    fixed = dict(fixed or {})
+    unknown = sorted(set(fixed) - set(spec.parameters))
+    if unknown:
+        raise ParameterError(
+            f"fixed: unknown parameter(s) {unknown} for law {spec.law!r}; its fitted "
+            f"parameters are {list(spec.parameters)}"
+        )
+    if len(fixed) == len(spec.parameters):
+        raise ParameterError(f"fixed: every parameter of {spec.law!r} is fixed; nothing to fit")
+    units = dict(zip(spec.parameters, spec.units, strict=True))
+    return {name: check_number(name, v, low=0.0, unit=units[name]) for name, v in fixed.items()}
+
+
+def fit_contact(
+    t,
+    signal,
+    grain,
+    sensor,
+    law="linear",
+    velocity=None,
+    *,
+    fixed=None,
+    baseline_window=None,
+    window=None,
+    max_nfev=200,
+):
+    """Fit a contact law (plus onset and, unless measured, impact velocity) to a trace.
+
+    Parameters
+    ----------
+    t : array_like
+        Time [s], uniformly sampled, with a pre-trigger baseline.
+    signal : array_like
+        Sensor signal [N] of one impact.
+    grain : Grain
+        The grain (its mass and radius enter).
+    sensor : Sensor
+        The sensor (e.g. ``identify_sensor(...).to_sensor(mass)``).
+    law : str, default "linear"
+        A key of :data:`FIT_MODELS`: ``"linear"`` (stiffness [N/m], damping [N*s/m]),
+        ``"hertz"`` (effective_modulus [Pa]), ``"hertz_damped"`` (effective_modulus
+        [Pa], restitution [-]), ``"walton_braun"`` (loading_stiffness [N/m],
+        restitution [-]).
+    velocity : float, optional
+        Measured impact velocity [m/s]; fixed when given, fitted otherwise.
+    fixed : dict, optional
+        Law parameters held at given values (SI units), e.g. ``{"damping": 1.0}``.
+    baseline_window : (float, float), optional
+        Pre-trigger window [s] (baseline mean, noise); default the samples before 0.
+    window : (float, float), optional
+        Samples fitted [s]. Default: from half a contact time before the
+        reconstructed onset to the end of the record.
+    max_nfev : int, default 200
+        Largest number of residual evaluations (each one simulation; the
+        finite-difference Jacobian costs one more per fitted quantity).
+
+    Returns
+    -------
+    ContactFit
+
+    Raises
+    ------
+    ParameterError
+        Bad arguments, no baseline, or no pulse in the trace.
+
+    Warns
+    -----
+    IdentifiabilityWarning
+        When a parameter is not identifiable (its flag in the result is False), or the
+        optimiser stopped at ``max_nfev`` before converging.
+
+    Notes
+    -----
+    Residuals are ``(S1_model - S1) / sigma`` with ``sigma`` the baseline noise, so
+    the reduced chi-squared is 1 for a correct model and white noise. The covariance of
+    the transformed coordinates is ``pinv(J^T J) * RSS / (n - p)`` (scaled by the
+    reduced chi-squared, as ``scipy.optimize.curve_fit`` does by default), with ``J``
+    the finite-difference Jacobian at the solution. A parameter is flagged not
+    identifiable when the standard error of its coordinate exceeds
+    :data:`MAX_TRANSFORMED_STDERR`, or when it lies along a direction in which the
+    Jacobian is singular (:data:`SINGULAR_RCOND`); the confidence interval of a
+    flagged parameter is not meaningful (the linearisation fails). Typical cases: the
+    damping of a nearly elastic contact, or stiffness and velocity together when the
+    sensor is much slower than the contact (its signal then measures the impulse only).
+
+    References
+    ----------
+    Branch M.A., Coleman T.F., Li Y. (1999) A subspace, interior, and conjugate gradient
+    method for large-scale bound-constrained minimization problems. SIAM J. Sci.
+    Comput. 21, 1-23. DOI 10.1137/S1064827595289108 (the ``trf`` method).
+    Bates D.M., Watts D.G. (1988) Nonlinear Regression Analysis and Its Applications.
+    Wiley. DOI 10.1002/9780470316757 (linearised confidence intervals).
+    """
+    spec = FIT_MODELS[check_choice("law", law, tuple(FIT_MODELS))]
+    if not isinstance(grain, Grain):
+        raise ParameterError(f"grain must be a contactlab.Grain; got {type(grain).__name__}")
+    if not isinstance(sensor, Sensor):
+        raise ParameterError(f"sensor must be a contactlab.Sensor; got {type(sensor).__name__}")
+    if velocity is not None:
+        velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    fixed = _check_fixed(spec, fixed)
+    max_nfev = int(check_number("max_nfev", max_nfev, low=0.0))
+    if window is not None and len(window) != 2:
+        raise ParameterError(f"window must be (t0, t1) [s]; got {window!r}")
+    t, y, dt = uniform_signal(t, signal)
+    mean, noise, _, _ = baseline(t, y, baseline_window)
+    y = y - mean
+    start = _starting_values(spec, grain, t, y, sensor, velocity, baseline_window)
+    start.update(fixed)
+    if window is None:
+        window = (start["onset"] - 0.5 * start["contact_time"], t[-1])
+    rows = (t >= window[0]) & (t <= window[1])
+    fitted = [
+        (name, kind)
+        for name, kind in zip(spec.parameters, spec.transforms, strict=True)
+        if name not in fixed
+    ]
+    fitted += [("velocity", "log")] if velocity is None else []
+    fitted += [("onset", "onset")]
+    constants = {**fixed, **({} if velocity is None else {"velocity": velocity})}
+    data = (t[rows], y[rows], noise, dt)
+    problem = _Problem(spec, grain, sensor, data, fitted, constants, start)
+    n_rows, n_par = int(rows.sum()), len(fitted)
+    if n_rows <= n_par:
+        raise ParameterError(f"window {tuple(window)} s holds {n_rows} samples")
+    solution = least_squares(
+        problem.residuals,
+        np.zeros(n_par),
+        bounds=(-BOUND, BOUND),
+        method="trf",
+        diff_step=1e-6,
+        max_nfev=max_nfev,
+    )
+    rss = float(solution.fun @ solution.fun)
+    stderr = _covariance(solution.jac, rss, n_rows - n_par)
+    units = {**dict(zip(spec.parameters, spec.units, strict=True)), "velocity": "m/s", "onset": "s"}
+    values = problem.values(solution.x)
+    model, simulation = problem.predict(values)
+    residual = model - problem.y
+    goodness = {
+        "rms_residual [N]": float(np.sqrt(np.mean(residual**2))),
+        "noise [N]": float(noise),
+        "r_squared [-]": float(
+            1.0 - residual @ residual / np.sum((problem.y - problem.y.mean()) ** 2)
+        ),
+        "reduced_chi_squared [-]": rss / (n_rows - n_par),
+        "samples": n_rows,
+        "function_evaluations": int(solution.nfev),
+        "converged": bool(solution.status > 0),
+    }
+    fit = ContactFit(
+        law=simulation.law,
+        law_name=spec.law,
+        parameters=_fitted_parameters(problem, solution.x, stderr, units),
+        fixed=fixed,
+        velocity=float(values["velocity"]),
+        velocity_measured=velocity is not None,
+        onset=float(values["onset"]),
+        grain=grain,
+        sensor=sensor,
+        t=problem.t,
+        signal=problem.y,
+        model=model,
+        goodness=goodness,
+        simulation=simulation,
+    )
+    _warn(fit, max_nfev)
+    return fit
+
+
+def _warn(fit, max_nfev):
+    problems = []
+    if fit.not_identifiable:
+        problems.append(
+            f"not identifiable from this trace: {', '.join(fit.not_identifiable)} (standard "
+            f"error of the fitted coordinate above {MAX_TRANSFORMED_STDERR}, or a singular "
+            "direction); fix them (fixed=, velocity=) from other data"
+        )
+    if not fit.goodness["converged"]:
+        problems.append(f"the optimiser stopped after max_nfev={max_nfev} evaluations")
+    if problems:
+        warnings.warn("; ".join(problems), IdentifiabilityWarning, stacklevel=3)

@@ -1,0 +1,481 @@
+"""Reconstruct the true contact force S2(t) from a sensor signal S1(t).
+
+The sensor is the linear filter ``S1/S2 = (c1 s + k1) / (m1 s**2 + c1 s + k1)``, which
+depends only on its resonance ``f1`` and damping ratio ``zeta1``. Two estimates of S2:
+
+``"tikhonov"`` (default)
+    Regularised deconvolution. The force is piecewise linear on a grid inside the
+    contact window and zero outside it; the signal is exactly (first-order hold) the
+    sensor's response to it, a Toeplitz matrix ``H``. The estimate minimises
+    ``||H f - s||**2 + lambda**2 ||D f||**2`` with ``D`` the first difference, subject to
+    ``f >= 0``. ``lambda`` is chosen on the unconstrained problem by generalised
+    cross-validation or by the discrepancy principle, then the non-negative problem is
+    solved once.
+``"inverse"``
+    Band-limited exact inverse: ``S2 = S1 + m1 x1''`` with ``x1 = S1 / (c1 s + k1)``,
+    after a zero-phase Butterworth low-pass of the signal.
+
+The contact window, the baseline and the noise are read from the signal (see
+:func:`reconstruct_force`).
+"""
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import linalg
+from scipy.optimize import brentq, minimize_scalar, nnls
+
+from contactlab.bodies import Sensor
+from contactlab.errors import ParameterError
+from contactlab.inverse._signal import baseline, lobe_around_peak, uniform_signal
+from contactlab.metrics import pulse_metrics
+from contactlab.validation import check_choice, check_number
+
+__all__ = ["CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
+
+DEFAULT_CUTOFF_FACTOR = 2.0
+"""Default cutoff of the inverse filter in units of the resonance. The inverse's gain
+grows as ``(f / f1)**2`` above resonance, so at ``2 f1`` white noise is amplified about
+four times; a contact long enough to be resolved has little content above it."""
+
+DEFAULT_MAX_UNKNOWNS = 400
+"""Default largest number of force values in the Tikhonov problem (sets the grid step)."""
+
+ROWS_AFTER_WINDOW = 3.0
+"""Sensor periods of free ringing after the window used as data. The ringing is fixed
+by the sensor state at the window's end (two numbers), so a few periods carry its
+information; more only enlarge the matrix."""
+
+ONSET_SIGMAS = 5.0
+"""Onset threshold in baseline standard deviations (a baseline sample exceeds 5 sigma
+with probability 6e-7)."""
+
+THRESHOLD_FRACTION = 0.02
+"""Default level of the contact-time reading, as a fraction of the reconstructed peak."""
+
+THRESHOLD_SIGMAS = 5.0
+"""...raised to this many standard deviations of the reconstruction's own baseline."""
+
+
+@dataclass(frozen=True, eq=False)
+class ForceReconstruction:
+    """An estimate of the contact force from a sensor signal (SI units).
+
+    ``t`` [s] is the input time axis, ``signal`` [N] the input with its baseline mean
+    removed, ``force`` [N] the reconstructed contact force on ``t``. ``parameters``
+    holds what was chosen (regularisation, cutoff, window, noise), ``metrics`` the
+    pulse metrics of ``force`` read at ``parameters["threshold [N]"]``.
+    """
+
+    t: np.ndarray
+    signal: np.ndarray
+    force: np.ndarray
+    method: str
+    parameters: dict = field(default_factory=dict)
+    metrics: object = None
+
+    def to_frame(self):
+        """Time, signal and reconstructed force as a DataFrame with unit-bearing columns."""
+        import pandas as pd
+
+        return pd.DataFrame(
+            {"t [s]": self.t, "sensor_force [N]": self.signal, "contact_force [N]": self.force}
+        )
+
+    def summary(self):
+        """Method, parameters and metrics as a dict with unit-bearing keys (JSON-ready)."""
+        return {
+            "method": self.method,
+            "parameters": dict(self.parameters),
+            "metrics": self.metrics.to_dict(),
+        }
+
+    def plot(self, ax=None, truth=None):
+        """Signal, reconstruction and (optionally) the true force; returns (fig, ax).
+
+        See :func:`contactlab.inverse.plots.plot_reconstruction`.
+        """
+        from contactlab.inverse.plots import plot_reconstruction
+
+        return plot_reconstruction(self, truth=truth, ax=ax)
+
+    def __repr__(self):
+        m = self.metrics
+        return (
+            f"ForceReconstruction(method={self.method!r}, peak={m.peak:.4g} N, "
+            f"duration={m.duration * 1e6:.4g} us, impulse={m.impulse:.4g} N*s)"
+        )
+
+
+# ---------------------------------------------------------------------------
+# The sensor as a discrete linear operator
+# ---------------------------------------------------------------------------
+def _state_space(sensor):
+    """Sensor in force units: state (k1 x1, k1 v1), input S2, output S1."""
+    w, zeta = sensor.angular_frequency, sensor.damping_ratio
+    a = np.array([[0.0, 1.0], [-(w**2), -2.0 * zeta * w]])
+    return a, np.array([[0.0], [w**2]]), np.array([[1.0, 2.0 * zeta / w]]), np.zeros((1, 1))
+
+
+def _powers(matrix, vector, count):
+    """``[matrix**k @ vector for k in range(count)]`` as rows, by doubling (vectorised)."""
+    out = vector[None, :]
+    power = matrix
+    while out.shape[0] < count:
+        out = np.vstack([out, out @ power.T])
+        power = power @ power
+    return out[:count]
+
+
+def _hat_response(sensor, dt, steps, count):
+    """Sensor signal [N] at ``dt`` spacing after a unit triangular force pulse.
+
+    The pulse rises linearly from 0 at ``-steps*dt`` to 1 N at 0 and falls back to 0 at
+    ``steps*dt`` (a hat basis function of a piecewise-linear force); the response is
+    exact (first-order-hold discretisation, scipy ``cont2discrete(method="foh")``).
+
+    Parameters
+    ----------
+    sensor : Sensor
+        A moving (not rigid) sensor; only its resonance and damping ratio matter.
+    dt : float
+        Sample interval [s].
+    steps : int
+        Half-width of the hat in samples.
+    count : int
+        Number of samples returned.
+
+    Returns
+    -------
+    numpy.ndarray
+        Response at offsets ``m = -steps, ..., count - steps - 1`` samples from the
+        hat's centre.
+    """
+    from scipy.signal import cont2discrete  # scipy.signal is slow to import: only here
+
+    ad, bd, cd, dd, _ = cont2discrete(_state_space(sensor), dt, method="foh")
+    states = _powers(ad, bd[:, 0], count)
+    # response to the one-sample hat: D at k = 0, C A^(k-1) B after
+    unit = np.concatenate([dd[0], states[:-1] @ cd[0]])
+    weights = 1.0 - np.abs(np.arange(-steps + 1, steps)) / steps
+    return np.concatenate([[0.0], np.convolve(unit, weights)[: count - 1]])
+
+
+def _toeplitz(sensor, dt, q, rows, columns):
+    """Block-mean signal of each hat: ``H[i, j]`` for blocks of q samples, knots q apart."""
+    g = _hat_response(sensor, dt, q, (rows + 2) * q)
+    sums = np.concatenate([[0.0], np.cumsum(g)])
+    # block k rows after the knot starts k*q samples after the hat centre, index k*q + q
+    lag = np.arange(-1, rows)
+    means = (sums[(lag + 2) * q] - sums[(lag + 1) * q]) / q
+    first_row = np.zeros(columns)
+    first_row[: min(2, columns)] = means[1::-1][: min(2, columns)]
+    return linalg.toeplitz(means[1:], first_row)
+
+
+# ---------------------------------------------------------------------------
+# Choosing lambda (standard form: f = f0 + cumulative sum of the penalised differences)
+# ---------------------------------------------------------------------------
+class _StandardForm:
+    """Tikhonov problem with a first-difference penalty, reduced by one SVD.
+
+    With ``f = f0 * 1 + C d`` (``C`` cumulative sums, ``d`` the differences) the
+    penalty is ``||d||**2`` and ``f0`` is free; projecting ``f0`` out (Elden 1977)
+    leaves a standard-form problem solved for every lambda by the SVD's filter factors.
+    """
+
+    def __init__(self, h, y):
+        self.y = y
+        self.ones = h.sum(axis=1)
+        self.hd = np.cumsum(h[:, ::-1], axis=1)[:, ::-1][:, 1:]
+        project = self._project
+        # QR first, then the SVD of the small triangular factor: the same singular
+        # values and vectors as the SVD of the tall matrix, at a fraction of its cost
+        q, r = np.linalg.qr(project(self.hd))
+        u, self.s, _ = np.linalg.svd(r)
+        yp = project(y)
+        self.beta = u.T @ (q.T @ yp)
+        self.outside = max(float(yp @ yp - self.beta @ self.beta), 0.0)
+
+    def _project(self, a):
+        scale = self.ones @ self.ones
+        if a.ndim == 1:
+            return a - self.ones * (self.ones @ a) / scale
+        return a - np.outer(self.ones, self.ones @ a) / scale
+
+    def residual2(self, lam):
+        """Squared residual norm of the unconstrained solution."""
+        filt = lam**2 / (self.s**2 + lam**2)
+        return float(np.sum((filt * self.beta) ** 2)) + self.outside
+
+    def dof(self, lam):
+        """Trace of the influence matrix (effective number of parameters)."""
+        return 1.0 + float(np.sum(self.s**2 / (self.s**2 + lam**2)))
+
+    def bracket(self):
+        """Range of log10(lambda) worth searching."""
+        top = math.log10(self.s[0])
+        return top - 8.0, top + 1.0
+
+
+def _gcv(problem, noise):
+    """Generalised cross-validation: minimise ``||r||**2 / (m - dof)**2``."""
+    rows = problem.y.size
+    lo, hi = problem.bracket()
+    grid = np.linspace(lo, hi, 91)
+
+    def score(loglam):
+        lam = 10.0**loglam
+        return problem.residual2(lam) / (rows - problem.dof(lam)) ** 2
+
+    best = int(np.argmin([score(v) for v in grid]))
+    left, right = grid[max(best - 1, 0)], grid[min(best + 1, grid.size - 1)]
+    return 10.0 ** minimize_scalar(score, bounds=(left, right), method="bounded").x
+
+
+def _discrepancy(problem, noise):
+    """Discrepancy principle: ``||r||**2 = m sigma**2`` (Morozov)."""
+    target = problem.y.size * noise**2
+    lo, hi = problem.bracket()
+
+    def excess(loglam):
+        return problem.residual2(10.0**loglam) - target
+
+    if excess(lo) > 0.0 or excess(hi) < 0.0:
+        raise ParameterError(
+            f"the discrepancy principle has no solution: the baseline noise "
+            f"({noise:.3g} per data block) is outside the range of residuals the model "
+            "allows (a wrong sensor model, a baseline window that is not noise, or a "
+            "drifting signal); use regularization='gcv'"
+        )
+    return 10.0 ** brentq(excess, lo, hi, xtol=1e-3)
+
+
+CRITERIA = {"gcv": _gcv, "discrepancy": _discrepancy}
+"""Regularisation-parameter choices: name -> function(problem, block noise) -> lambda."""
+
+
+# ---------------------------------------------------------------------------
+# The two methods
+# ---------------------------------------------------------------------------
+def _auto_window(t, y, onset, sensor):
+    """Contact window: a quarter sensor period before the onset to one lobe-length after
+    the largest lobe's end."""
+    start, end = lobe_around_peak(t, y)
+    return onset - 0.25 * sensor.period, end + (end - start)
+
+
+def _tikhonov(t, y, dt, sensor, noise, window, options):
+    max_unknowns = int(check_number("max_unknowns", options["max_unknowns"], low=2))
+    criterion = check_choice("regularization", options["regularization"], tuple(CRITERIA))
+    ta, tb = window
+    ia = max(int(np.searchsorted(t, ta)), 0)
+    span = (tb - t[ia]) / dt
+    q = max(1, math.ceil(span / (max_unknowns - 1)))
+    columns = int(span // q) + 1
+    last = min(t[-1], tb + ROWS_AFTER_WINDOW * sensor.period)
+    rows = int((last - t[ia]) / dt + 1) // q
+    if columns < 2 or rows <= columns:
+        raise ParameterError(
+            f"contact window ({ta:.6g}, {tb:.6g}) s leaves {columns} force values and "
+            f"{rows} data blocks; the record must extend past the window"
+        )
+    h = _toeplitz(sensor, dt, q, rows, columns)
+    data = y[ia : ia + rows * q].reshape(rows, q).mean(axis=1)
+    lam = CRITERIA[criterion](_StandardForm(h, data), noise / math.sqrt(q))
+    penalty = lam * np.diff(np.eye(columns), axis=0)
+    values, _ = nnls(np.vstack([h, penalty]), np.concatenate([data, np.zeros(columns - 1)]))
+    knots = t[ia] + np.arange(-1, columns + 1) * q * dt
+    force = np.interp(t, knots, np.concatenate([[0.0], values, [0.0]]))
+    params = {
+        "regularization": criterion,
+        "lambda": float(lam),
+        "grid_step [s]": q * dt,
+        "unknowns": columns,
+        "data_blocks": rows,
+    }
+    return force, params
+
+
+def _inverse(t, y, dt, sensor, noise, window, options):
+    from scipy.signal import cont2discrete, lfilter
+
+    from dem_check.traces import Trace, lowpass
+
+    cutoff = options["cutoff"]
+    if cutoff is None:
+        cutoff = DEFAULT_CUTOFF_FACTOR * sensor.resonance
+    smooth = lowpass(Trace(t, y, "N", {"sample_interval": dt}), cutoff).values
+    lag_time = 2.0 * sensor.damping_ratio / sensor.angular_frequency
+    if lag_time > 0.0:
+        # x1 = S1 / (c1 s + k1), up to the factor 1/k1: a first-order lag, exact for
+        # piecewise-linear input (first-order hold). It starts on the lag's steady
+        # response to the signal's initial ramp, u = S1 - tau S1': a cold start leaves a
+        # transient whose curvature the inverse amplifies by 1 / (4 zeta**2).
+        num, den, _ = cont2discrete(([1.0], [lag_time, 1.0]), dt, method="foh")
+        num = np.ravel(num)
+        ramp_output = smooth[0] - lag_time * (smooth[1] - smooth[0]) / dt
+        start = [ramp_output - num[0] * smooth[0]]
+        lagged = lfilter(num, den, smooth, zi=start)[0]
+    else:
+        lagged = smooth
+    curvature = np.empty_like(lagged)
+    curvature[1:-1] = (lagged[2:] - 2.0 * lagged[1:-1] + lagged[:-2]) / dt**2
+    # the 3-point stencil needs both neighbours: the end samples take their neighbour's
+    curvature[0], curvature[-1] = curvature[1], curvature[-2]
+    force = smooth + curvature / sensor.angular_frequency**2
+    return force, {"cutoff [Hz]": float(cutoff), "filter": "Butterworth order 4, zero-phase"}
+
+
+METHODS = {"tikhonov": _tikhonov, "inverse": _inverse}
+"""Reconstruction methods: name -> implementation."""
+
+
+def _check_sensor(sensor):
+    if not isinstance(sensor, Sensor):
+        raise ParameterError(f"sensor must be a contactlab.Sensor; got {type(sensor).__name__}")
+    if sensor.is_rigid:
+        raise ParameterError("sensor is rigid: its signal is the contact force (S1 == S2)")
+    return sensor
+
+
+def reconstruct_force(
+    t,
+    signal,
+    sensor,
+    method="tikhonov",
+    *,
+    baseline_window=None,
+    window=None,
+    regularization=None,
+    cutoff=None,
+    max_unknowns=DEFAULT_MAX_UNKNOWNS,
+    threshold=None,
+):
+    """Estimate the contact force S2(t) from the sensor signal S1(t).
+
+    Parameters
+    ----------
+    t : array_like
+        Time [s], uniformly sampled, with a pre-trigger baseline (see
+        ``baseline_window``).
+    signal : array_like
+        Sensor signal [N] (convert volts with the sensitivity first).
+    sensor : Sensor
+        The sensor; only its resonance and damping ratio enter (identify them with
+        :func:`contactlab.inverse.identify_sensor`).
+    method : {"tikhonov", "inverse"}, default "tikhonov"
+        Regularised deconvolution or band-limited inverse filter (module docstring).
+    baseline_window : (float, float), optional
+        Pre-trigger window ``[start, end)`` [s] giving the baseline mean (subtracted),
+        the noise and the onset. Default: the samples before ``t = 0``.
+    window : (float, float), optional
+        Contact window ``(ta, tb)`` [s] outside which the force is zero (Tikhonov).
+        Default: from a quarter sensor period before the onset (the first crossing of
+        5 baseline standard deviations, which the sensor's rise delays by less than a
+        quarter period) to one lobe-length after the end of the signal's largest lobe
+        (a contact cannot outlast that, see :func:`contactlab.inverse.identify_sensor`).
+    regularization : {"gcv", "discrepancy"}, optional
+        How lambda is chosen (Tikhonov only; default ``"gcv"``). ``"discrepancy"``
+        sets the residual to the baseline noise. GCV is the default because the
+        discrepancy principle is unstable for an impact: a smooth pulse has few
+        effective parameters compared with the random spread ``sqrt(2 m)`` of the noise
+        energy over ``m`` data, so a few per cent error in the noise moves lambda by
+        decades (measured on the hard grain of ``docs/inverse.md``: peak errors up to
+        62 % over 8 noise seeds, against at most 3.9 % with GCV).
+    cutoff : float, optional
+        Low-pass cutoff [Hz] of the inverse filter (inverse only); default twice the
+        resonance (:data:`DEFAULT_CUTOFF_FACTOR`). Zero-phase Butterworth of order 4.
+    max_unknowns : int, default 400
+        Largest number of force values (Tikhonov); the signal is averaged over blocks
+        of ``q`` samples and the force grid step is ``q`` samples.
+    threshold : float, optional
+        Level [N] at which the metrics read the pulse. Default: 2 % of the
+        reconstructed peak, or five standard deviations of the reconstruction over the
+        baseline window if that is larger.
+
+    Returns
+    -------
+    ForceReconstruction
+
+    Raises
+    ------
+    ParameterError
+        Bad arguments, a baseline with fewer than 16 samples or without noise, no
+        onset, a window the record does not extend past, or (discrepancy) a noise level
+        the model cannot match.
+
+    Notes
+    -----
+    Tikhonov: the force is ``sum_j f_j phi_j(t)`` with hat functions ``phi_j`` on a grid
+    of step ``q dt`` inside the window; each column of ``H`` is the exact block-mean
+    response to one hat. Lambda is chosen for the unconstrained problem (filter factors
+    of one SVD), then ``f >= 0`` is imposed by ``scipy.optimize.nnls`` on the stacked
+    system ``[H; lambda D] f = [s; 0]``.
+    Inverse: ``S2 = S1 + u'' / w1**2`` with ``u = S1 / (1 + 2 zeta1 s / w1)``; ``u''`` by
+    the 3-point stencil, accurate to ``(w dt)**2 / 12`` below the cutoff.
+
+    References
+    ----------
+    Hansen P.C. (1994) Regularization Tools. Numer. Algorithms 6, 1-35.
+    DOI 10.1007/BF02149761 (GCV, discrepancy principle, standard form).
+    Elden L. (1977) Algorithms for the regularization of ill-conditioned least squares
+    problems. BIT 17, 134-145. DOI 10.1007/BF01932285
+    Eichstaedt S., Elster C., Esward T.J., Hessling J.P. (2010) Deconvolution filters
+    for the analysis of dynamic measurement processes: a tutorial. Metrologia 47,
+    522-533. DOI 10.1088/0026-1394/47/5/003
+    """
+    t, y, dt = uniform_signal(t, signal)
+    sensor = _check_sensor(sensor)
+    method = check_choice("method", method, tuple(METHODS))
+    for name, value, owner in (
+        ("cutoff", cutoff, "inverse"),
+        ("regularization", regularization, "tikhonov"),
+    ):
+        if value is not None and method != owner:
+            raise ParameterError(f"{name} applies to method={owner!r}, not {method!r}")
+    if cutoff is not None:
+        cutoff = check_number("cutoff", cutoff, low=0.0, high=0.5 / dt, high_open=True, unit="Hz")
+    mean, noise, onset, base = baseline(t, y, baseline_window, ONSET_SIGMAS)
+    y = y - mean
+    if window is None:
+        window = _auto_window(t, y, onset, sensor)
+    elif len(window) != 2:
+        raise ParameterError(f"window must be (ta, tb) [s]; got {window!r}")
+    ta = check_number("window start", window[0], high=float(t[-1]), high_open=True, unit="s")
+    tb = check_number("window end", window[1], low=max(ta, float(t[0])), unit="s")
+    options = {
+        "regularization": regularization or "gcv",
+        "cutoff": cutoff,
+        "max_unknowns": max_unknowns,
+    }
+    force, params = METHODS[method](t, y, dt, sensor, noise, (ta, tb), options)
+    # the reconstruction's own noise, over the baseline before the contact window
+    in_base = (t >= base[0]) & (t < min(base[1], ta))
+    if threshold is None:
+        floor = (
+            THRESHOLD_SIGMAS * float(np.std(force[in_base], ddof=1)) if in_base.sum() > 1 else 0.0
+        )
+        threshold = max(THRESHOLD_FRACTION * float(force.max()), floor)
+    threshold = check_number("threshold", threshold, low=0.0, unit="N")
+    params.update(
+        {
+            "window [s]": [ta, tb],
+            "baseline_window [s]": list(base),
+            "baseline_mean [N]": mean,
+            "noise [N]": noise,
+            "onset [s]": onset,
+            "threshold [N]": threshold,
+            "sensor_resonance [Hz]": sensor.resonance,
+            "sensor_damping_ratio [-]": sensor.damping_ratio,
+        }
+    )
+    return ForceReconstruction(
+        t=t,
+        signal=y,
+        force=force,
+        method=method,
+        parameters=params,
+        metrics=pulse_metrics(t, force, threshold),
+    )
