@@ -28,14 +28,13 @@ import warnings
 
 import numpy as np
 from scipy.integrate import DOP853
-from scipy.optimize import brentq
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.euler import solve_euler
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.pieces import AffineForceStates, DenseStates, LinearContactStates
-from contactlab.propagators import first_event, linear_flow
+from contactlab.propagators import first_event, linear_flow, locate_root
 from contactlab.segment import Segment
 from contactlab.validation import check_choice, check_number
 
@@ -48,9 +47,6 @@ DEFAULT_SAMPLES = 20001
 
 MAX_CONTACTS = 200
 """Contact intervals after which the solver stops (a grain resting on a ringing plate)."""
-
-_RTOL = 4 * np.finfo(float).eps
-"""Relative tolerance of event times: the smallest brentq accepts."""
 
 _SCAN_STEPS_PER_RADIAN = 5.0
 """Event scan: about 31 points per period of the fastest mode, so no two crossings of an
@@ -265,13 +261,10 @@ def _first_crossing(dense, t_old, t_new, before, after, directions, event_values
     for j, (a, b, direction) in enumerate(zip(before, after, directions, strict=True)):
         if not ((a > 0 >= b) if direction < 0 else (a < 0 <= b)):
             continue
-        root = (
-            t_new
-            if b == 0
-            else brentq(
-                lambda t, j=j: event_values(dense(t))[j], t_old, t_new, xtol=1e-300, rtol=_RTOL
-            )
-        )
+        if b == 0:
+            root = t_new
+        else:
+            root = locate_root(lambda t, j=j: event_values(dense(t))[j], t_old, t_new)
         if best is None or root < best[0]:
             best = (root, j)
     return best

@@ -17,10 +17,16 @@ import numpy as np
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-__all__ = ["LinearFlow", "Trajectory", "first_event", "linear_flow"]
+__all__ = ["LinearFlow", "Trajectory", "first_event", "linear_flow", "locate_root"]
 
 _RTOL = 4 * np.finfo(float).eps
 """Relative tolerance of event roots: the smallest brentq accepts."""
+
+_ROOT_ITERATIONS = 1000
+"""Iteration cap of :func:`locate_root`: Brent's method needs at most about the square of
+the bisection count (here ~60**2) on functions that vanish like ``x**1.5`` at the root (a
+Hertz force at zero overlap), where its interpolation steps are slow; 100, scipy's
+default, is not always enough."""
 
 _COND_LIMIT = 1e8
 """Largest eigenvector condition number for which the modal solution is trusted
@@ -70,6 +76,23 @@ class LinearFlow:
         Trajectory
         """
         return Trajectory(self, z0)
+
+
+def locate_root(fn, lo, hi):
+    """Root of ``fn`` in the bracket [lo, hi] [s] to machine precision (brentq).
+
+    Parameters
+    ----------
+    fn : callable
+        Scalar function with a sign change (or a zero) on the bracket.
+    lo, hi : float
+        Bracket [s].
+
+    Returns
+    -------
+    float
+    """
+    return brentq(fn, lo, hi, xtol=1e-300, rtol=_RTOL, maxiter=_ROOT_ITERATIONS)
 
 
 @functools.lru_cache(maxsize=1024)
@@ -226,7 +249,7 @@ def first_event(values, tau_max, step, directions, chunk=256):
                 def g(s, j=j):
                     return values(np.array([s]))[0, j]
 
-                root = lo if g(lo) == 0 else brentq(g, lo, grid[i], xtol=1e-300, rtol=_RTOL)
+                root = lo if g(lo) == 0 else locate_root(g, lo, grid[i])
                 if best is None or root < best[0]:
                     best = (root, int(j))
             return best

@@ -6,9 +6,10 @@ import math
 from functools import cached_property
 
 import numpy as np
-from scipy.optimize import brentq, minimize_scalar
+from scipy.optimize import minimize_scalar
 
 from contactlab import metrics
+from contactlab.propagators import locate_root
 
 __all__ = ["ImpactResult", "ImpactSignals"]
 
@@ -17,7 +18,7 @@ _GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
 
 
 _RTOL = 4 * np.finfo(float).eps
-"""Relative tolerance of event and crossing times: the smallest brentq accepts."""
+"""Relative resolution of the bisection in :func:`_crossing` (as :func:`locate_root`)."""
 
 _GRADING = np.array([0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2, 0.1, 0.4])
 """Relative panel edges near the start of a contact piece (geometric grading)."""
@@ -42,7 +43,7 @@ def _crossing(signal, level, lo, hi):
     """
     above_lo, above_hi = signal(lo) - level, signal(hi) - level
     if above_lo * above_hi < 0.0:
-        return brentq(lambda s: signal(s) - level, lo, hi, xtol=1e-300, rtol=_RTOL)
+        return locate_root(lambda s: signal(s) - level, lo, hi)
     inside = above_lo > 0.0
     if (above_hi > 0.0) == inside:
         return 0.5 * (lo + hi)

@@ -249,3 +249,14 @@ def test_receding_grain_touching_at_zero_overlap_is_not_a_contact():
     # grain work equals the kinetic energy change (Gauss-Legendre on straight pieces)
     kinetic_change = 0.5 * 5.0e-5 * (res.v2[-1] ** 2 - 1.0)
     assert res.grain_work == pytest.approx(kinetic_change, rel=1e-9)
+
+
+def test_event_root_on_a_force_vanishing_like_a_power_1_5():
+    """Regression: Thornton's unloading force ``kp (d - dp)**1.5`` vanishes with zero slope,
+    where Brent's method needs more than scipy's default 100 iterations (found by the
+    invariant property test)."""
+    law = cl.laws.Thornton(20587035.16746306, 0.0005, 330998.08004019235)
+    res = law.impact(5.0e-5, 7.0)
+    assert 0.0 < res.restitution < 1.0
+    # momentum balance on the dense solution, as in the law invariants (quadrature 1e-6)
+    assert res.impulse == pytest.approx(5.0e-5 * 7.0 * (1.0 + res.restitution), rel=1e-6)
