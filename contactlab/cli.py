@@ -31,11 +31,9 @@ def _print_summary(summary):
 
 
 def _simulate(args):
-    from contactlab.config import load_config, load_preset
+    from contactlab.config import load
 
-    if (args.config is None) == (args.preset is None):
-        raise ParameterError("give a CONFIG.toml file or --preset NAME (not both)")
-    config = load_preset(args.preset) if args.preset else load_config(args.config)
+    config = load(args.config, args.preset)
     result = config.simulate()
     if args.plot:
         fig, _ = result.plot()
@@ -46,7 +44,7 @@ def _simulate(args):
 def _demo(args):
     from contactlab.demo import run_demo
 
-    for path in run_demo(Path(args.out)):
+    for path in run_demo(Path(args.out), quick=args.quick, workers=args.workers):
         print(f"wrote {path}")
 
 
@@ -54,6 +52,243 @@ def _presets(args):
     from contactlab.config import list_presets
 
     print("\n".join(list_presets()))
+
+
+def _study(args):
+    from contactlab.study.paper import paper_study
+
+    if not args.paper:
+        raise ParameterError(
+            "say --paper: the paper's study is the study the command line runs; other grids "
+            "are contactlab.study.run_grid in Python"
+        )
+    result = paper_study(
+        Path(args.out),
+        quick=args.quick,
+        workers=args.workers,
+        client=args.scheduler,
+        seed=args.seed,
+        progress=args.progress,
+        tolerance=args.tolerance,
+    )
+    if args.json:
+        print(_dump(result.summary()))
+        return
+    for path in result.files:
+        print(f"wrote {path}")
+    for c in result.conclusions:
+        print(f"conclusion {c.number}, {c.variant}: {c.status}")
+    print(f"{result.summary()['impacts']} impacts in {result.seconds:.1f} s")
+
+
+def _range_value(text):
+    """A number or LOW,HIGH from the command line."""
+    parts = [float(v) for v in text.split(",")]
+    if len(parts) not in (1, 2):
+        raise argparse.ArgumentTypeError(f"give a number or LOW,HIGH; got {text!r}")
+    return parts[0] if len(parts) == 1 else tuple(parts)
+
+
+def _advise(args):
+    from contactlab.advisor import Species, advise, list_species
+
+    if args.list:
+        print("\n".join(list_species()))
+        return
+    explicit = [args.diameter, args.density, args.youngs_modulus]
+    if (args.species is None) == (None in explicit):
+        raise ParameterError(
+            "give a SPECIES (see 'contactlab advise --list') or all of --diameter, --density "
+            "and --youngs-modulus (not both)"
+        )
+    species = args.species or Species(
+        name="custom",
+        diameter=args.diameter,
+        density=args.density,
+        youngs_modulus=args.youngs_modulus,
+        poisson_ratio=args.poisson_ratio,
+        description="given on the command line",
+    )
+    advice = advise(
+        species,
+        args.target,
+        quantity=args.quantity,
+        resonance=args.resonance,
+        velocity=args.velocity,
+        sensor_mass=args.sensor_mass,
+        damping_ratio=args.damping_ratio,
+        cases=args.cases,
+    )
+    print(_dump(advice.to_dict()) if args.json else advice.format_text())
+
+
+# --- inverse methods: identify-sensor, reconstruct, fit, export-dem -------------------
+
+
+def _read_trace(args, force=True):
+    """The trace named on the command line, in newtons unless ``force`` is False."""
+    from dem_check.traces import TraceFormatError, read_trace
+
+    try:
+        trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)
+    except FileNotFoundError:
+        raise ParameterError(f"trace file not found: {args.trace}") from None
+    except TraceFormatError as exc:
+        raise ParameterError(str(exc)) from None
+    if force and trace.unit != "N":
+        raise ParameterError(
+            f"{args.trace} is in {trace.unit}, not N: give --sensitivity [V/N] to convert it"
+        )
+    return trace
+
+
+def _save_plot(fig, path):
+    import matplotlib.pyplot as plt
+
+    fig.savefig(path, dpi=150)
+    plt.close(fig)
+    print(f"wrote {path}", file=sys.stderr)
+
+
+def _identify_sensor(args):
+    from contactlab.inverse import identify_sensor, plot_identification
+
+    trace = _read_trace(args, force=False)
+    ident = identify_sensor(trace.t, trace.values, window=args.window)
+    if args.plot:
+        _save_plot(plot_identification(trace.t, trace.values, ident)[0], args.plot)
+    print(_dump(ident.to_dict()) if args.json else repr(ident))
+
+
+def _inverse_sensor(args):
+    from contactlab.bodies import Sensor
+    from contactlab.config import load_config
+
+    if (args.sensor_config is None) == (args.resonance is None):
+        raise ParameterError("give --resonance F --damping-ratio Z or --sensor-config CONFIG.toml")
+    if args.sensor_config is not None:
+        return load_config(args.sensor_config).sensor
+    if args.sensor_mass is None or args.damping_ratio is None:
+        raise ParameterError("--resonance needs --sensor-mass M [kg] and --damping-ratio Z [-]")
+    return Sensor.from_resonance(
+        args.resonance, mass=args.sensor_mass, damping_ratio=args.damping_ratio
+    )
+
+
+def _reconstruct(args):
+    from contactlab.inverse import reconstruct_force
+
+    sensor = _inverse_sensor(args)
+    trace = _read_trace(args)
+    rec = reconstruct_force(
+        trace.t,
+        trace.values,
+        sensor,
+        args.method,
+        baseline_window=args.baseline,
+        regularization=args.regularization,
+        cutoff=args.cutoff,
+    )
+    if args.plot:
+        _save_plot(rec.plot()[0], args.plot)
+    print(_dump(rec.summary()) if args.json else repr(rec))
+
+
+def _fit(args):
+    from contactlab.config import load_config
+    from contactlab.inverse import fit_contact
+
+    model = load_config(args.model)
+    trace = _read_trace(args)
+    fit = fit_contact(
+        trace.t,
+        trace.values,
+        model.grain,
+        model.sensor,
+        args.law,
+        velocity=args.velocity,
+        baseline_window=args.baseline,
+    )
+    if args.out:
+        fit.to_json(args.out)
+        print(f"wrote {args.out}", file=sys.stderr)
+    if args.plot:
+        _save_plot(fit.plot()[0], args.plot)
+    print(_dump(fit.to_dict()) if args.json else repr(fit))
+
+
+def _export_dem(args):
+    from contactlab.inverse import export_dem, read_fit
+
+    text = export_dem(
+        read_fit(args.fit),
+        args.to,
+        source=str(args.fit),
+        poisson_ratio=args.poisson_ratio,
+        friction=args.friction,
+    )
+    if args.out:
+        Path(args.out).write_text(text, encoding="utf-8")
+        print(f"wrote {args.out}", file=sys.stderr)
+    else:
+        print(text, end="")
+
+
+def _add_trace_arguments(p):
+    p.add_argument("trace", help="trace file (any format dem_check.read_trace reads)")
+    p.add_argument("--channel", help="channel name or 0-based index (multi-channel files)")
+    p.add_argument("--sensitivity", type=float, help="sensor sensitivity [V/N] for a volt trace")
+
+
+def _add_inverse_parsers(sub):
+    from contactlab.inverse.export import DEM_CODES
+    from contactlab.inverse.fit import FIT_MODELS
+    from contactlab.inverse.reconstruct import CRITERIA, METHODS
+
+    window = {"nargs": 2, "type": float, "metavar": ("T0", "T1")}
+    p = sub.add_parser(
+        "identify-sensor", help="sensor resonance and damping ratio from free ringing"
+    )
+    _add_trace_arguments(p)
+    p.add_argument("--window", **window, help="ringing window [s] (default: automatic)")
+    p.add_argument("--plot", metavar="PNG", help="write the trace and fitted ringing")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_identify_sensor)
+
+    p = sub.add_parser("reconstruct", help="the true contact force from a sensor trace")
+    _add_trace_arguments(p)
+    p.add_argument("--sensor-mass", type=float, help="sensor moving mass [kg]")
+    p.add_argument("--resonance", type=float, help="sensor resonance [Hz]")
+    p.add_argument("--damping-ratio", type=float, help="sensor damping ratio [-]")
+    p.add_argument("--sensor-config", help="TOML impact config whose [sensor] is used")
+    p.add_argument(
+        "--method", choices=tuple(METHODS), default="tikhonov", help="(default tikhonov)"
+    )
+    p.add_argument("--regularization", choices=tuple(CRITERIA), help="tikhonov (default gcv)")
+    p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
+    p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
+    p.add_argument("--plot", metavar="PNG", help="write signal and reconstructed force")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_reconstruct)
+
+    p = sub.add_parser("fit", help="fit a contact law to a trace through the two-mass model")
+    _add_trace_arguments(p)
+    p.add_argument("--law", required=True, choices=tuple(FIT_MODELS), help="law to fit")
+    p.add_argument("--model", required=True, help="TOML impact config: its grain and sensor")
+    p.add_argument("--velocity", type=float, help="measured impact velocity [m/s] (fixed)")
+    p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
+    p.add_argument("--out", metavar="FIT.json", help="write the fit as JSON")
+    p.add_argument("--plot", metavar="PNG", help="write trace, fitted signal and force")
+    p.add_argument("--json", action="store_true", help="print the fit as JSON")
+    p.set_defaults(func=_fit)
+
+    p = sub.add_parser("export-dem", help="a fitted law as LIGGGHTS/MercuryDPM/YADE/EDEM input")
+    p.add_argument("fit", help="FIT.json written by 'contactlab fit --out'")
+    p.add_argument("--to", required=True, choices=tuple(DEM_CODES), help="target code")
+    p.add_argument("--out", metavar="FILE", help="write the snippet here (default: print)")
+    p.add_argument("--poisson-ratio", type=float, help="grain Poisson ratio [-] (Hertz laws)")
+    p.add_argument("--friction", type=float, help="friction coefficient [-] (not fitted)")
+    p.set_defaults(func=_export_dem)
 
 
 def _build_parser():
@@ -78,7 +313,63 @@ def _build_parser():
 
     p = sub.add_parser("demo", help="run the built-in demonstration into a results folder")
     p.add_argument("--out", default="results", help="output folder (default: results)")
+    p.add_argument("--quick", action="store_true", help="the study on its coarse grid")
+    p.add_argument("--workers", type=int, default=1, help="worker processes for the study")
     p.set_defaults(func=_demo)
+
+    p = sub.add_parser(
+        "study", help="the paper's Monte Carlo error study: Figures 5-12, CSV tables, summary"
+    )
+    p.add_argument("--paper", action="store_true", help="run the Keska et al. (2021) study")
+    p.add_argument("--out", default="results", help="output folder (default: results)")
+    p.add_argument("--quick", action="store_true", help="a coarse grid (a few seconds)")
+    p.add_argument("--workers", type=int, default=1, help="local worker processes (default 1)")
+    p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler instead")
+    p.add_argument("--seed", type=int, default=0, help="root random seed (default 0)")
+    p.add_argument(
+        "--tolerance", type=float, default=10.0, help="adequate RMS error [%%] (default 10)"
+    )
+    p.add_argument(
+        "--progress",
+        action=argparse.BooleanOptionalAction,
+        default=None,
+        help="progress bar (default: on a terminal only)",
+    )
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_study)
+
+    p = sub.add_parser(
+        "advise", help="lowest sensor resonance for an error target, for a grain species"
+    )
+    p.add_argument("species", nargs="?", help="species preset (see --list) or a TOML file")
+    p.add_argument("--list", action="store_true", help="list the species presets")
+    p.add_argument("--target", type=float, default=5.0, help="error target [%%] (default 5)")
+    p.add_argument(
+        "--quantity",
+        choices=("force", "time", "both"),
+        default="force",
+        help="error the target applies to (default: peak force)",
+    )
+    p.add_argument("--resonance", type=float, help="also report this sensor's errors [Hz]")
+    p.add_argument("--velocity", type=float, default=2.0, help="impact speed [m/s] (default 2)")
+    p.add_argument("--sensor-mass", type=float, default=1.233e-3, help="sensor moving mass [kg]")
+    p.add_argument("--damping-ratio", type=float, default=0.02, help="sensor damping ratio [-]")
+    p.add_argument(
+        "--cases",
+        choices=("corners", "centre"),
+        default="corners",
+        help="grains per resonance: corners of the ranges and centre (default), or centre",
+    )
+    p.add_argument("--diameter", type=_range_value, help="grain diameter [m]: X or LOW,HIGH")
+    p.add_argument("--density", type=_range_value, help="grain density [kg/m^3]: X or LOW,HIGH")
+    p.add_argument(
+        "--youngs-modulus", type=_range_value, help="Young's modulus [Pa]: X or LOW,HIGH"
+    )
+    p.add_argument("--poisson-ratio", type=float, default=0.3, help="Poisson ratio [-]")
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_advise)
+
+    _add_inverse_parsers(sub)
     return parser
 
 

@@ -88,7 +88,12 @@ def test_config_from_material(tmp_path):
 
 
 def test_demo_writes_figure_and_summary(tmp_path, capsys):
-    assert contactlab_main(["demo", "--out", str(tmp_path)]) == 0
+    assert contactlab_main(["demo", "--out", str(tmp_path), "--quick"]) == 0
     summary = json.loads((tmp_path / "summary.json").read_text())
     assert summary["base_case_rigid_wall"]["contact_time [s]"] > 0
     assert (tmp_path / "base_case.png").stat().st_size > 10_000
+    assert summary["engine_check"]["passed"] is True
+    # the reconstruction recovers the peak within the 5 % where the raw signal misses
+    errors = summary["reconstruction_relative_errors"]
+    assert abs(errors["raw_peak [-]"]) > 0.5
+    assert abs(errors["tikhonov_peak [-]"]) < 0.05

@@ -1,0 +1,384 @@
+"""What one grid point of a study simulates: the set-up, its parameters and the scatter.
+
+A :class:`StudySetup` is the base impact (grain, sensor, contact law, impact speed) plus
+how the contact stiffness scatters between repetitions (:class:`Scatter`) and how the law
+follows the grain's size. A grid point changes any of its parameters by name:
+
+* ``grain.diameter`` [m], ``grain.density`` [kg/m^3], ``grain.youngs_modulus`` [Pa],
+  ``grain.poisson_ratio`` [-];
+* ``sensor.resonance`` [Hz], ``sensor.mass`` [kg], ``sensor.damping_ratio`` [-] (a new
+  resonance keeps the moving mass and the damping ratio; the element stiffness follows);
+* ``law.<parameter>`` for every parameter of the law (``law.stiffness``,
+  ``law.damping``, ...);
+* ``velocity`` [m/s].
+"""
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+from scipy.special import ndtr, ndtri
+
+from contactlab import analytic
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ParameterError
+from contactlab.laws import ContactLaw, Hertz, HertzDamped, LinearViscoelastic, PlasticTrapezoid
+from contactlab.validation import check_choice, check_number
+
+__all__ = [
+    "DISTRIBUTIONS",
+    "SIZE_DEPENDENCE",
+    "STIFFNESS_PARAMETERS",
+    "Scatter",
+    "StudySetup",
+]
+
+DISTRIBUTIONS = ("uniform", "normal")
+"""Distributions of the stiffness factor (see :class:`Scatter`)."""
+
+SIZE_DEPENDENCE = ("fixed", "material")
+"""How the contact law follows the grain diameter (see :class:`StudySetup`)."""
+
+STIFFNESS_PARAMETERS = {
+    "linear": ("stiffness",),
+    "hertz": ("k_hertz",),
+    "hertz_damped": ("k_hertz",),
+    "kuwabara_kono": ("k_hertz",),
+    "hunt_crossley": ("stiffness",),
+    "walton_braun": ("loading_stiffness", "unloading_stiffness"),
+    "linear_plastic": ("stiffness",),
+    "thornton": ("effective_modulus",),
+}
+"""Law parameters that make up "the contact stiffness" the scatter multiplies (all by the
+same factor, so that e.g. Walton-Braun keeps its restitution). The prescribed plastic pulse
+has none: name what to scatter with ``StudySetup(vary=...)``."""
+
+_LAW_UNITS = {
+    "linear": {"stiffness": "N/m", "damping": "N*s/m"},
+    "hertz": {"k_hertz": "N/m^1.5"},
+    "hertz_damped": {"k_hertz": "N/m^1.5", "damping": "N*s/m^1.25"},
+    "kuwabara_kono": {"k_hertz": "N/m^1.5", "dissipation": "s"},
+    "hunt_crossley": {"stiffness": "N/m^n", "exponent": "-", "damping": "s/m"},
+    "walton_braun": {"loading_stiffness": "N/m", "unloading_stiffness": "N/m"},
+    "linear_plastic": {"stiffness": "N/m", "yield_force": "N"},
+    "thornton": {"effective_modulus": "Pa", "effective_radius": "m", "yield_pressure": "Pa"},
+    "plastic_trapezoid": {"contact_time": "s", "ramp_time": "s"},
+}
+"""Units of the law parameters, for unit-bearing column names."""
+
+_RESULT_NAMES = ("contact_time",)
+"""Law parameters named like a result column; their columns get a ``law_`` prefix."""
+
+
+def _law_column(param, unit, suffix=""):
+    prefix = "law_" if param in _RESULT_NAMES else ""
+    return f"{prefix}{param}{suffix} [{unit}]"
+
+
+_GRAIN_COLUMNS = {
+    "grain.diameter": "diameter [m]",
+    "grain.density": "density [kg/m^3]",
+    "grain.youngs_modulus": "youngs_modulus [Pa]",
+    "grain.poisson_ratio": "poisson_ratio [-]",
+}
+_SENSOR_COLUMNS = {
+    "sensor.resonance": "resonance [Hz]",
+    "sensor.mass": "sensor_mass [kg]",
+    "sensor.damping_ratio": "sensor_damping_ratio [-]",
+}
+_OTHER_COLUMNS = {"velocity": "velocity [m/s]"}
+
+_TRUNCATION = 3.0
+"""The normal stiffness factor is truncated at this many standard deviations."""
+
+
+@dataclass(frozen=True)
+class Scatter:
+    """Random scatter of the contact stiffness between the repetitions of a grid point.
+
+    Each repetition multiplies the law's stiffness parameter(s) by a factor ``f`` with
+    mean 1 (the paper: 10 repetitions, ``f`` uniform in [0.5, 1.5]).
+
+    Parameters
+    ----------
+    repetitions : int, default 10
+        Impacts per grid point, >= 1.
+    spread : float, default 0.5
+        ``"uniform"``: half-width of ``f`` (``f`` in ``[1 - spread, 1 + spread]``), in
+        [0, 1). ``"normal"``: standard deviation of ``f``, in [0, 1/3); the normal is
+        truncated at 3 standard deviations so that ``f`` stays positive.
+    distribution : {"uniform", "normal"}
+        Distribution of ``f``.
+
+    Notes
+    -----
+    Draws come from one :class:`numpy.random.SeedSequence` per grid point (see
+    :meth:`factors`), so a point's draws do not depend on the grid around it, on the
+    number of workers or on the order in which points are run. The truncated normal is
+    sampled by inverting its distribution function, one uniform draw per factor.
+    """
+
+    repetitions: int = 10
+    spread: float = 0.5
+    distribution: str = "uniform"
+
+    def __post_init__(self):
+        if isinstance(self.repetitions, bool) or not isinstance(
+            self.repetitions, (int, np.integer)
+        ):
+            raise ParameterError(f"repetitions must be an integer >= 1; got {self.repetitions!r}")
+        if self.repetitions < 1:
+            raise ParameterError(f"repetitions must be an integer >= 1; got {self.repetitions}")
+        check_choice("distribution", self.distribution, DISTRIBUTIONS)
+        high = 1.0 if self.distribution == "uniform" else 1.0 / _TRUNCATION
+        check_number(
+            "spread",
+            self.spread,
+            low=0.0,
+            high=high,
+            low_open=False,
+            high_open=True,
+            unit=f"- (relative; {self.distribution})",
+        )
+
+    def factors(self, seed_sequence):
+        """Stiffness factors [-] of one grid point, shape ``(repetitions,)``.
+
+        Parameters
+        ----------
+        seed_sequence : numpy.random.SeedSequence
+            The grid point's own seed sequence.
+        """
+        u = np.random.default_rng(seed_sequence).random(self.repetitions)
+        if self.distribution == "uniform":
+            return 1.0 + self.spread * (2.0 * u - 1.0)
+        lo = ndtr(-_TRUNCATION)
+        return 1.0 + self.spread * ndtri(lo + u * (1.0 - 2.0 * lo))
+
+
+def law_units(law):
+    """Units of a law's parameters, name -> unit string."""
+    return _LAW_UNITS[law.name]
+
+
+@dataclass(frozen=True)
+class StudySetup:
+    """The base impact of a study and how its repetitions scatter.
+
+    Parameters
+    ----------
+    grain : Grain
+        Base grain.
+    sensor : Sensor
+        Base sensor (not rigid: studies sweep its resonance).
+    law : ContactLaw or PlasticTrapezoid
+        Base contact law (its stiffness is the mean of the scatter).
+    velocity : float, default 2.0
+        Impact speed [m/s].
+    scatter : Scatter, default Scatter()
+        Repetitions and stiffness scatter (the paper's: 10, uniform, +-50 %).
+    size_dependence : {"fixed", "material"}
+        ``"fixed"``: the law is used as given at every grain size (the paper's program
+        took the contact stiffness as an input independent of the diameter).
+        ``"material"``: at every grid point the law is rebuilt from the grain's material
+        data (``youngs_modulus``, ``poisson_ratio``, radius): ``hertz`` through
+        :meth:`Hertz.from_material`; ``hertz_damped`` likewise, keeping the base law's
+        damping factor ``eta / sqrt(m kH)`` (so its restitution); ``linear`` with the
+        equivalent stiffness ``m (pi / t_H)**2`` of the elastic Hertz contact (the spring
+        with the same rigid-wall contact time ``t_H`` at this impact speed; it grows in
+        proportion to the diameter) and the base law's damping ratio. The base law's own
+        stiffness is then not used.
+    vary : str or tuple of str, optional
+        Law parameters the scatter multiplies; default (None) the law's stiffness
+        (:data:`STIFFNESS_PARAMETERS`), which follows the law when it is replaced.
+    samples_per_period : float, default 100
+        Output grid: samples per the shorter of the sensor period and the rigid-wall
+        contact time of the stiffest draw, >= 20. The sensor lobe and both peaks are
+        refined on the dense solution, so the grid only has to find them; with 100 samples
+        a peak read off the grid itself would be within ``(pi/100)**2 / 2 = 0.05 %``.
+    """
+
+    grain: Grain
+    sensor: Sensor
+    law: object
+    velocity: float = 2.0
+    scatter: Scatter = field(default_factory=Scatter)
+    size_dependence: str = "fixed"
+    vary: tuple = None
+    samples_per_period: float = 100.0
+
+    def __post_init__(self):
+        if not isinstance(self.grain, Grain):
+            raise ParameterError(f"grain must be a contactlab.Grain; got {self.grain!r}")
+        if not isinstance(self.sensor, Sensor) or self.sensor.is_rigid:
+            raise ParameterError(
+                f"sensor must be a moving contactlab.Sensor (studies sweep its resonance); "
+                f"got {self.sensor!r}"
+            )
+        if not isinstance(self.law, (ContactLaw, PlasticTrapezoid)):
+            raise ParameterError(f"law must be a law from contactlab.laws; got {self.law!r}")
+        if not isinstance(self.scatter, Scatter):
+            raise ParameterError(f"scatter must be a Scatter; got {self.scatter!r}")
+        object.__setattr__(
+            self, "velocity", check_number("velocity", self.velocity, low=0.0, unit="m/s")
+        )
+        check_choice("size_dependence", self.size_dependence, SIZE_DEPENDENCE)
+        if self.size_dependence == "material":
+            check_choice("law (for size_dependence='material')", self.law.name, tuple(_MATERIAL))
+            self.grain.material()  # raises when the grain has no material data
+        object.__setattr__(
+            self,
+            "samples_per_period",
+            check_number("samples_per_period", self.samples_per_period, low=20.0, low_open=False),
+        )
+        if isinstance(self.vary, str):
+            object.__setattr__(self, "vary", (self.vary,))
+        if self.vary is None and not self.varied and self.scatter.spread > 0.0:
+            raise ParameterError(
+                f"law {self.law.name!r} has no contact stiffness to scatter; name the "
+                f"parameter(s) with vary=(...), one of {tuple(self.law.parameters())}"
+            )
+        for name in self.varied:
+            check_choice("vary", name, tuple(self.law.parameters()))
+
+    @property
+    def varied(self):
+        """Law parameters the scatter multiplies: ``vary``, or the law's stiffness."""
+        if self.vary is None:
+            return STIFFNESS_PARAMETERS.get(self.law.name, ())
+        return tuple(self.vary)
+
+    @classmethod
+    def paper(cls, **changes):
+        """The set-up of the paper's error study (Keska et al. 2021, Section 2.2).
+
+        Grain 5.0 mm, 765 kg/m^3, G = 9 MPa, nu = 0.2; linear contact k2 = 1e5 N/m
+        (hard, dry grain) with the paper's damping c2 = 1 N*s/m; steel disc sensor
+        10 mm x 2 mm (1.233 g) at 40 kHz with damping ratio 0.02 (the paper leaves it
+        open); impact speed 2 m/s; 10 repetitions, stiffness uniform within +-50 %.
+        Keyword arguments replace fields (``StudySetup.paper(velocity=3.0)``).
+        """
+        base = cls(
+            grain=Grain(diameter=5.0e-3, density=765.0, shear_modulus=9.0e6, poisson_ratio=0.2),
+            sensor=Sensor.from_disc(10.0e-3, 2.0e-3, 40.0e3, damping_ratio=0.02),
+            law=LinearViscoelastic(stiffness=1.0e5, damping=1.0),
+        )
+        return replace(base, **changes)
+
+    # -- parameter names -------------------------------------------------------
+    def parameter_names(self):
+        """Names a grid may change (see the module docstring)."""
+        laws = tuple(f"law.{p}" for p in self.law.parameters())
+        return (*_GRAIN_COLUMNS, *_SENSOR_COLUMNS, *laws, *_OTHER_COLUMNS)
+
+    def check_parameter(self, name):
+        """Return ``name`` if a grid may change it, else raise with a near-match hint."""
+        check_choice("grid parameter", name, self.parameter_names())
+        if self.size_dependence == "material" and name.startswith("law."):
+            raise ParameterError(
+                f"{name} cannot be swept with size_dependence='material': the law is built "
+                "from the grain's material data at every point"
+            )
+        return name
+
+    def column(self, name):
+        """Unit-bearing column name of a grid parameter, e.g. ``"resonance [Hz]"``."""
+        if name.startswith("law."):
+            param = name[4:]
+            suffix = "_mean" if param in self.varied else ""
+            return _law_column(param, law_units(self.law)[param], suffix)
+        return {**_GRAIN_COLUMNS, **_SENSOR_COLUMNS, **_OTHER_COLUMNS}[name]
+
+    def varied_columns(self):
+        """Column names of the scattered law parameters in the per-impact frame."""
+        units = law_units(self.law)
+        return [_law_column(p, units[p]) for p in self.varied]
+
+    # -- building one grid point -----------------------------------------------
+    def at(self, overrides):
+        """Grain, sensor, mean law and impact speed at a grid point.
+
+        Parameters
+        ----------
+        overrides : dict
+            Grid parameter name -> value (names checked by :meth:`check_parameter`).
+
+        Returns
+        -------
+        grain : Grain
+        sensor : Sensor
+        law : ContactLaw or PlasticTrapezoid
+            The law before scatter.
+        velocity : float
+            [m/s]
+        """
+        grain_kw = {
+            "diameter": self.grain.diameter,
+            "density": self.grain.density,
+            "youngs_modulus": self.grain.youngs_modulus,
+            "poisson_ratio": self.grain.poisson_ratio,
+        }
+        sensor_kw = {
+            "resonance": self.sensor.resonance,
+            "mass": self.sensor.mass,
+            "damping_ratio": self.sensor.damping_ratio,
+        }
+        law_kw = self.law.parameters()
+        velocity = self.velocity
+        for name, value in overrides.items():
+            group, _, param = name.partition(".")
+            if group == "grain":
+                grain_kw[param] = value
+            elif group == "sensor":
+                sensor_kw[param] = value
+            elif group == "law":
+                law_kw[param] = value
+            else:
+                velocity = check_number("velocity", value, low=0.0, unit="m/s")
+        grain = Grain(**grain_kw)
+        sensor = Sensor.from_resonance(**sensor_kw)
+        if self.size_dependence == "material":
+            law = _MATERIAL[self.law.name](self, grain, velocity)
+        else:
+            law = type(self.law)(**law_kw)
+        return grain, sensor, law, velocity
+
+    def scattered(self, law, factor):
+        """The law with its :attr:`vary` parameters multiplied by ``factor`` [-]."""
+        if not self.varied:
+            return law
+        params = law.parameters()
+        params.update({p: params[p] * factor for p in self.varied})
+        return type(law)(**params)
+
+
+# ---------------------------------------------------------------------------
+# Laws built from the grain's material data (size_dependence="material")
+# ---------------------------------------------------------------------------
+def _material_hertz(setup, grain, velocity):
+    return Hertz.from_material(*grain.material())
+
+
+def _material_hertz_damped(setup, grain, velocity):
+    base = setup.law
+    factor = base.damping / math.sqrt(setup.grain.mass * base.k_hertz)
+    k_hertz = Hertz.from_material(*grain.material()).k_hertz
+    return HertzDamped(k_hertz=k_hertz, damping=factor * math.sqrt(grain.mass * k_hertz))
+
+
+def _material_linear(setup, grain, velocity):
+    k_hertz = Hertz.from_material(*grain.material()).k_hertz
+    t_hertz = analytic.hertz_contact_time(k_hertz, grain.mass, velocity)
+    stiffness = grain.mass * (math.pi / t_hertz) ** 2
+    base = setup.law
+    ratio = base.damping / (2.0 * math.sqrt(base.stiffness * setup.grain.mass))
+    return LinearViscoelastic(
+        stiffness=stiffness, damping=2.0 * ratio * math.sqrt(stiffness * grain.mass)
+    )
+
+
+_MATERIAL = {
+    "linear": _material_linear,
+    "hertz": _material_hertz,
+    "hertz_damped": _material_hertz_damped,
+}
