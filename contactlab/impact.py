@@ -27,9 +27,9 @@ import math
 import warnings
 
 import numpy as np
-from scipy.integrate import DOP853
 
 from contactlab.bodies import Grain, Sensor
+from contactlab.dop853 import DenseSteps, Stepper, interpolate
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.euler import solve_euler
 from contactlab.laws import ContactLaw, PlasticTrapezoid
@@ -83,7 +83,7 @@ class _System:
         )
 
     def rhs(self, force):
-        """Right-hand side ``y' = f(t, y)`` for a contact force function of (d, d').
+        """Right-hand side ``y' = f(y)`` for a contact force function of (d, d').
 
         The state is unpacked to Python floats and the law's formula evaluated on them
         (the ``_*_raw`` formulas of :mod:`contactlab.laws` take floats): one call costs
@@ -92,13 +92,13 @@ class _System:
         m1, m2, k1, c1 = self.m1, self.m2, self.k1, self.c1
         if self.rigid:
 
-            def f(t, y):
+            def f(y):
                 _, _, x2, v2 = y.tolist()
                 return np.array([0.0, 0.0, v2, -force(x2, v2) / m2])
 
         else:
 
-            def f(t, y):
+            def f(y):
                 x1, v1, x2, v2 = y.tolist()
                 s2 = force(x2 - x1, v2 - v1)
                 return np.array([v1, (s2 - k1 * x1 - c1 * v1) / m1, v2, -s2 / m2])
@@ -213,10 +213,10 @@ def _recontact_horizon(system, y0, threshold):
 def _adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     """Contact piece on any branch with DOP853; returns (Segment, y_end, event or None).
 
-    The integrator (:class:`scipy.integrate.DOP853`, order 8 with error control) is
-    stepped directly; after each step the event functions (force falling to zero, the
-    branch's exits) are checked at the step end and a sign change is located on the
-    step's dense output with :func:`scipy.optimize.brentq` to machine precision.
+    The integrator (:class:`contactlab.dop853.Stepper`: DOP853, order 8 with error
+    control) is stepped directly; after each step the event functions (force falling to
+    zero, the branch's exits) are checked at the step end and a sign change is located on
+    the step's 7th-order interpolant to machine precision.
     """
     force = branch.force
     directions = [-1] + [e.direction for e in branch.exits]
@@ -229,42 +229,42 @@ def _adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
 
     scale = velocity * 1e-6  # displacement scale [m]: 1 us of travel at impact speed
     atol = 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
-    solver = DOP853(
-        system.rhs(force), t0, np.asarray(y0, dtype=float), t0 + tau_max, rtol=rtol, atol=atol
-    )
-    times, pieces, event, before = [t0], [], None, event_values(solver.y)
-    while solver.status == "running":
-        solver.step()
-        if solver.status == "failed":
-            raise RuntimeError(f"adaptive integration failed at t = {solver.t:.6g} s")
-        pieces.append(solver.dense_output())
-        times.append(solver.t)
-        after = event_values(solver.y)
-        hit = _first_crossing(
-            pieces[-1], solver.t_old, solver.t, before, after, directions, event_values
-        )
+    stepper = Stepper(system.rhs(force), t0, y0, rtol, atol)
+    steps, event, before = [], None, event_values(stepper.y)
+    t_end = t0 + tau_max
+    while stepper.t < t_end:
+        if not stepper.step(t_end):
+            raise RuntimeError(f"adaptive integration failed at t = {stepper.t:.6g} s")
+        F = stepper.interpolant()
+        steps.append((stepper.t_old, stepper.t - stepper.t_old, stepper.y_old, F))
+        after = event_values(stepper.y)
+        hit = _first_crossing(steps[-1], before, after, directions, event_values)
         if hit is not None:
             t_end, j = hit
             event = "end" if j == 0 else branch.exits[j - 1].target
             break
         before = after
-    else:
-        t_end = solver.t
-    states = DenseStates(t0, times, pieces)
+    states = DenseStates(t0, DenseSteps(*zip(*steps, strict=True)))
     seg = Segment(t0, t_end, "contact", branch.name, states, _clipped(force), states.grid)
     return seg, states(t_end - t0)[0], event
 
 
-def _first_crossing(dense, t_old, t_new, before, after, directions, event_values):
-    """Earliest event crossing inside one step, (time, index), or None."""
+def _first_crossing(step, before, after, directions, event_values):
+    """Earliest event crossing inside one step ``(t_old, h, y_old, F)``: (time, index) or
+    None."""
+    t_old, h, y_old, F = step
     best = None
     for j, (a, b, direction) in enumerate(zip(before, after, directions, strict=True)):
         if not ((a > 0 >= b) if direction < 0 else (a < 0 <= b)):
             continue
         if b == 0:
-            root = t_new
+            root = t_old + h
         else:
-            root = locate_root(lambda t, j=j: event_values(dense(t))[j], t_old, t_new)
+
+            def g(t, j=j):
+                return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
+
+            root = locate_root(g, t_old, t_old + h)
         if best is None or root < best[0]:
             best = (root, j)
     return best

@@ -16,10 +16,7 @@ All give ``states(tau) -> (n, 4)`` at local times ``tau`` [s] and a faster
 (sensor displacement [m] and velocity [m/s], grain displacement [m] and velocity [m/s]).
 """
 
-import bisect
-
 import numpy as np
-from scipy.integrate import OdeSolution
 
 __all__ = ["AffineForceStates", "DenseStates", "LinearContactStates"]
 
@@ -138,58 +135,26 @@ class AffineForceStates:
 
 
 class DenseStates:
-    """States of an adaptive piece from its DOP853 per-step dense outputs.
+    """States of an adaptive piece from its integrator's per-step interpolants.
 
     Parameters
     ----------
     t0 : float
         Start of the piece [s] (local time 0).
-    times : array_like
-        Step boundaries [s], increasing, ``len(pieces) + 1`` of them.
-    pieces : list of scipy.integrate.DenseOutput
-        Each step's 7th-order interpolant, as :meth:`scipy.integrate.DOP853.dense_output`
-        returns it (absolute time).
-
-    Notes
-    -----
-    :meth:`grid` evaluates every step's interpolant at once from their coefficients
-    (the ``F``, ``y_old``, ``t_old`` and ``h`` of scipy's DOP853 dense output, in its
-    nested form ``y_old + x (F0 + (1 - x) (F1 + x (F2 + ...))))`` with
-    ``x = (t - t_old) / h``) instead of one call per step; ``tests/test_impact.py``
-    checks it against the interpolants themselves.
+    steps : contactlab.dop853.DenseSteps
+        The steps' interpolants (absolute time).
     """
 
-    def __init__(self, t0, times, pieces):
-        self._t0 = t0
-        self._times = np.asarray(times, dtype=float)
-        self._solution = OdeSolution(self._times, pieces)
-        self._pieces, self._bounds = pieces, self._times.tolist()
-        # (7, steps, dim): one contiguous table per coefficient, gathered per sample
-        self._coefficients = np.ascontiguousarray(np.stack([p.F for p in pieces], axis=1))
-        self._y_old = np.stack([p.y_old for p in pieces])
-        self._steps = np.array([p.h for p in pieces])
+    def __init__(self, t0, steps):
+        self._t0, self._steps = t0, steps
 
     def __call__(self, tau):
         """States (n, 4) at local times ``tau`` [s] (any order)."""
         tau = np.atleast_1d(tau)
         if tau.size == 1:  # the metrics' root finders ask one time at a time
-            t = self._t0 + float(tau[0])
-            i = min(max(bisect.bisect_right(self._bounds, t) - 1, 0), len(self._pieces) - 1)
-            return self._pieces[i](t)[None, :]
-        return self._solution(self._t0 + tau).T
+            return self._steps.at(self._t0 + float(tau[0]))[None, :]
+        return self._steps(self._t0 + tau)
 
     def grid(self, tau, step, out):
         """Write the states at local times ``tau`` [s] into ``out`` (n, 4)."""
-        t = self._t0 + tau
-        which = np.searchsorted(self._times, t, side="right") - 1
-        np.clip(which, 0, self._steps.size - 1, out=which)
-        x = ((t - self._times[which]) / self._steps[which])[:, None]
-        factors = (x, 1.0 - x)
-        y = np.zeros((t.size, self._y_old.shape[1]))  # row-major like the gathered rows
-        rows = np.empty_like(y)
-        for i, table in enumerate(self._coefficients[::-1]):
-            y += np.take(table, which, axis=0, out=rows)
-            y *= factors[i % 2]
-        y += np.take(self._y_old, which, axis=0, out=rows)
-        out[...] = y
-        return out
+        return self._steps(self._t0 + tau, out=out)

@@ -1,0 +1,197 @@
+"""A lean DOP853 integrator for the nonlinear contact pieces, with per-step dense output.
+
+The contact pieces of a Hertz-family impact are small (four states) and short (a few
+dozen steps), so the cost of :class:`scipy.integrate.DOP853` is mostly its general
+machinery, not arithmetic. This module runs the same method with the same coefficients
+(taken from scipy's class), error norm and step-size control, without that machinery:
+the right-hand side is an autonomous ``f(y)``, events are checked by the caller after
+each step, and each step's 7th-order interpolant is kept as plain arrays so that a whole
+output grid is evaluated at once (:class:`DenseSteps`).
+
+References
+----------
+Hairer E., Norsett S.P., Wanner G. (1993) Solving Ordinary Differential Equations I:
+Nonstiff Problems, 2nd ed., Springer, Sec. II.4-II.6 (DOP853, step-size control, initial
+step). scipy.integrate.DOP853 (the coefficient tables and error norm used here).
+"""
+
+import bisect
+import math
+
+import numpy as np
+from scipy.integrate import DOP853 as _SCIPY
+
+__all__ = ["DenseSteps", "Stepper", "interpolate"]
+
+_SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
+"""Step-size control of scipy's Runge-Kutta solvers (Hairer's defaults)."""
+
+_EXPONENT = -1.0 / (_SCIPY.error_estimator_order + 1)
+_STAGES = _SCIPY.n_stages
+_A_ROWS = [np.array(_SCIPY.A[s, :s]) for s in range(_STAGES)]
+_A_EXTRA_ROWS = [np.array(a[: _STAGES + 1 + i]) for i, a in enumerate(_SCIPY.A_EXTRA)]
+
+
+class Stepper:
+    """DOP853 steps of ``y' = f(y)`` from ``y0`` at ``t0``.
+
+    Parameters
+    ----------
+    fun : callable
+        ``fun(y) -> ndarray`` (n,), the right-hand side (autonomous).
+    t0 : float
+        Start [s].
+    y0 : array_like
+        Initial state (n,).
+    rtol : float
+        Relative tolerance.
+    atol : ndarray
+        Absolute tolerance per state component.
+
+    Attributes
+    ----------
+    t, y : float, ndarray
+        Time and state after the last accepted step.
+    t_old, y_old : float, ndarray
+        The same before it.
+    """
+
+    def __init__(self, fun, t0, y0, rtol, atol):
+        self._fun = fun
+        self.t = self.t_old = float(t0)
+        self.y = self.y_old = np.asarray(y0, dtype=float)
+        self._rtol, self._atol = rtol, atol
+        self._f = fun(self.y)
+        self._K = np.empty((_SCIPY.A_EXTRA.shape[0] + _STAGES + 1, self.y.size))
+        self._h = self._initial_step()
+
+    def _norm(self, x, scale):
+        x = x / scale
+        return math.sqrt(float(x @ x) / x.size)
+
+    def _initial_step(self):
+        """Hairer's starting step (Sec. II.4): a first-order guess, refined once."""
+        y, f = self.y, self._f
+        scale = self._atol + np.abs(y) * self._rtol
+        d0, d1 = self._norm(y, scale), self._norm(f, scale)
+        h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
+        d2 = self._norm(self._fun(y + h0 * f) - f, scale) / h0
+        if max(d1, d2) <= 1e-15:
+            h1 = max(1e-6, h0 * 1e-3)
+        else:
+            h1 = (0.01 / max(d1, d2)) ** (1.0 / (_SCIPY.error_estimator_order + 1))
+        return min(100.0 * h0, h1)
+
+    def step(self, t_bound):
+        """One accepted step, not beyond ``t_bound`` [s]; returns False if the step size
+        underflows (the solution is not resolvable at this tolerance)."""
+        t, y, f, K = self.t, self.y, self._f, self._K
+        min_step = 10.0 * abs(math.nextafter(t, math.inf) - t)
+        h = max(self._h, min_step)
+        rejected = False
+        while True:
+            if h < min_step:
+                return False
+            t_new = min(t + h, t_bound)
+            h = t_new - t
+            K[0] = f
+            for s in range(1, _STAGES):
+                K[s] = self._fun(y + h * (_A_ROWS[s] @ K[:s]))
+            y_new = y + h * (_SCIPY.B @ K[:_STAGES])
+            f_new = self._fun(y_new)
+            K[_STAGES] = f_new
+            scale = self._atol + np.maximum(np.abs(y), np.abs(y_new)) * self._rtol
+            error = self._error_norm(K[: _STAGES + 1], h, scale)
+            if error < 1.0:
+                factor = _MAX_FACTOR if error == 0 else min(_MAX_FACTOR, _SAFETY * error**_EXPONENT)
+                self._h = h * (min(1.0, factor) if rejected else factor)
+                break
+            h *= max(_MIN_FACTOR, _SAFETY * error**_EXPONENT)
+            rejected = True
+        self.t_old, self.y_old, self._h_done = t, y, h
+        self.t, self.y, self._f = t_new, y_new, f_new
+        return True
+
+    @staticmethod
+    def _error_norm(K, h, scale):
+        err5 = (_SCIPY.E5 @ K) / scale
+        err3 = (_SCIPY.E3 @ K) / scale
+        e5, e3 = float(err5 @ err5), float(err3 @ err3)
+        if e5 == 0.0 and e3 == 0.0:
+            return 0.0
+        return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * scale.size)
+
+    def interpolant(self):
+        """Coefficients ``F`` (7, n) of the last step's 7th-order interpolant.
+
+        ``y(t_old + x h) = y_old + x (F0 + (1 - x) (F1 + x (F2 + (1 - x) (F3 + ...))))``,
+        three extra stages as in DOP853.
+        """
+        K, h, y_old = self._K, self._h_done, self.y_old
+        for i, a in enumerate(_A_EXTRA_ROWS):
+            K[_STAGES + 1 + i] = self._fun(y_old + h * (a @ K[: a.size]))
+        delta = self.y - y_old
+        F = np.empty((_SCIPY.D.shape[0] + 3, y_old.size))
+        F[0] = delta
+        F[1] = h * K[0] - delta
+        F[2] = 2.0 * delta - h * (self._f + K[0])
+        F[3:] = h * (_SCIPY.D @ K)
+        return F
+
+
+def interpolate(F, y_old, x):
+    """One step's interpolant (:meth:`Stepper.interpolant`) at ``x = (t - t_old) / h``."""
+    y = np.zeros(y_old.size)
+    for k, coefficients in enumerate(F[::-1]):
+        y += coefficients
+        y *= x if k % 2 == 0 else 1.0 - x
+    return y + y_old
+
+
+class DenseSteps:
+    """The dense solution of an integration: each step's interpolant, as arrays.
+
+    Parameters
+    ----------
+    t_old, h : array_like
+        Start [s] and length [s] of each step (increasing, contiguous).
+    y_old : array_like
+        State at each step's start (steps, n).
+    F : array_like
+        Interpolant coefficients (steps, 7, n) from :meth:`Stepper.interpolant`.
+    """
+
+    def __init__(self, t_old, h, y_old, F):
+        self._t_old = np.asarray(t_old, dtype=float)
+        self._h = np.asarray(h, dtype=float)
+        self._y_old = np.asarray(y_old, dtype=float)
+        self._F = np.ascontiguousarray(np.moveaxis(np.asarray(F, dtype=float), 1, 0))
+        self._starts = self._t_old.tolist()
+
+    @property
+    def boundaries(self):
+        """Step boundaries [s] (steps + 1)."""
+        return np.append(self._t_old, self._t_old[-1] + self._h[-1])
+
+    def at(self, t):
+        """State (n,) at one time [s]."""
+        i = min(max(bisect.bisect_right(self._starts, t) - 1, 0), self._h.size - 1)
+        return interpolate(self._F[:, i], self._y_old[i], (t - self._t_old[i]) / self._h[i])
+
+    def __call__(self, t, out=None):
+        """States (len(t), n) at times ``t`` [s] (any order), into ``out`` if given."""
+        t = np.atleast_1d(np.asarray(t, dtype=float))
+        which = np.searchsorted(self._t_old, t, side="right") - 1
+        np.clip(which, 0, self._h.size - 1, out=which)
+        x = ((t - self._t_old[which]) / self._h[which])[:, None]
+        factors = (x, 1.0 - x)
+        y = np.zeros((t.size, self._y_old.shape[1]))  # row-major like the gathered rows
+        rows = np.empty_like(y)
+        for k, table in enumerate(self._F[::-1]):
+            y += np.take(table, which, axis=0, out=rows)
+            y *= factors[k % 2]
+        y += np.take(self._y_old, which, axis=0, out=rows)
+        if out is None:
+            return y
+        out[...] = y
+        return out
