@@ -10,7 +10,7 @@
 """
 
 from dem_check.bullet import drop_test
-from dem_check.compare import Comparison, compare
+from dem_check.compare import Comparison, compare, compare_trace
 from dem_check.traces import Trace, TraceFormatError, read_trace, write_trace
 
 __all__ = [
@@ -18,6 +18,7 @@ __all__ = [
     "Trace",
     "TraceFormatError",
     "compare",
+    "compare_trace",
     "drop_test",
     "read_trace",
     "write_trace",
