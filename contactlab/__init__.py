@@ -36,3 +36,15 @@ __all__ = [
 ]
 
 __version__ = "0.1.0"
+
+_SUBPACKAGES = ("advisor", "inverse", "study", "testing")
+"""Imported on first use (``cl.study``...): they pull in pandas, the trace readers or the
+engine bench, which a single simulation does not need."""
+
+
+def __getattr__(name):
+    if name in _SUBPACKAGES:
+        import importlib
+
+        return importlib.import_module(f"contactlab.{name}")
+    raise AttributeError(f"module 'contactlab' has no attribute {name!r}")
