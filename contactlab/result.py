@@ -59,12 +59,41 @@ def _crossing(signal, level, lo, hi):
 
 
 class ImpactSignals:
-    """Table and plot of an impact's signals, shared by every result with the same names.
+    """What every impact result shares: its table, its plot, and the numbers that follow
+    from its events.
 
     A subclass provides the arrays ``t`` [s], ``contact_force`` and ``sensor_force`` [N],
-    ``x1``, ``x2`` [m] and ``v1``, ``v2`` [m/s]: :class:`ImpactResult` (exact solution)
-    and :class:`dem_check.bullet.EngineResult` (rigid-body engine) both do.
+    ``x1``, ``x2`` [m] and ``v1``, ``v2`` [m/s], ``contact_intervals`` [(start, end) s],
+    ``velocity`` and ``rebound_velocity`` [m/s], and ``_contact_peak`` (time [s], force
+    [N]): :class:`ImpactResult` (exact solution) and
+    :class:`dem_check.bullet.EngineResult` (rigid-body engine) both do.
     """
+
+    @property
+    def contact_time(self):
+        """Duration of the first contact [s]."""
+        start, end = self.contact_intervals[0]
+        return end - start
+
+    @property
+    def separation_time(self):
+        """Time of the first separation [s]."""
+        return self.contact_intervals[0][1]
+
+    @property
+    def restitution(self):
+        """Rebound speed over impact speed [-]."""
+        return self.rebound_velocity / self.velocity
+
+    @property
+    def peak_contact_force(self):
+        """Largest contact force S2 during the first contact [N]."""
+        return self._contact_peak[1]
+
+    @property
+    def peak_contact_time(self):
+        """Time of the largest contact force [s]."""
+        return self._contact_peak[0]
 
     def to_frame(self):
         """Signals as a pandas DataFrame with unit-bearing column names."""
@@ -217,27 +246,11 @@ class ImpactResult(ImpactSignals):
         return math.inf if self.sensor.is_rigid else self.sensor.period
 
     # -- events --------------------------------------------------------------
-    @property
-    def contact_time(self):
-        """Duration of the first contact [s], from exact event times."""
-        start, end = self.contact_intervals[0]
-        return end - start
-
-    @property
-    def separation_time(self):
-        """Time of the first separation [s]."""
-        return self.contact_intervals[0][1]
-
     @cached_property
     def rebound_velocity(self):
         """Grain speed away from the sensor after its last contact in the window [m/s]."""
         end = self.contact_intervals[-1][1]
         return -float(self._evaluate([end])[0][0, 3])
-
-    @property
-    def restitution(self):
-        """Rebound speed over impact speed [-]."""
-        return self.rebound_velocity / self.velocity
 
     # -- pulse metrics -------------------------------------------------------
     def _refined_max(self, values_fn, grid_values, start, end):
@@ -265,16 +278,6 @@ class ImpactResult(ImpactSignals):
     def _contact_peak(self):
         start, end = self.contact_intervals[0]
         return self._refined_max(self._force_at, self.contact_force, start, end)
-
-    @property
-    def peak_contact_force(self):
-        """Largest contact force S2 during the first contact [N]."""
-        return self._contact_peak[1]
-
-    @property
-    def peak_contact_time(self):
-        """Time of the largest contact force [s]."""
-        return self._contact_peak[0]
 
     @cached_property
     def sensor_lobe(self):

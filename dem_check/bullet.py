@@ -203,31 +203,10 @@ class EngineResult(ImpactSignals):
         """Damping the implicit contact adds, ``k2 * dt`` [N*s/m] (compensated or not)."""
         return self.metadata["numerical_damping [N*s/m]"]
 
-    @property
-    def contact_time(self):
-        """Duration of the first contact [s]."""
-        start, end = self.contact_intervals[0]
-        return end - start
-
-    @property
-    def separation_time(self):
-        """Time of the first separation [s]."""
-        return self.contact_intervals[0][1]
-
     @cached_property
     def _contact_peak(self):
         start, end = self.contact_intervals[0]
         return metrics.peak(self.t, self.contact_force, start, end)
-
-    @property
-    def peak_contact_force(self):
-        """Largest engine contact force during the first contact [N]."""
-        return self._contact_peak[1]
-
-    @property
-    def peak_contact_time(self):
-        """Time of the largest contact force [s]."""
-        return self._contact_peak[0]
 
     @cached_property
     def sensor_pulse(self):
@@ -259,11 +238,6 @@ class EngineResult(ImpactSignals):
         """Grain speed away from the sensor at the end of its last contact [m/s]."""
         end = self.contact_intervals[-1][1]
         return -float(np.interp(end, self.t, self.v2))
-
-    @property
-    def restitution(self):
-        """Rebound speed over impact speed [-]."""
-        return self.rebound_velocity / self.velocity
 
     def summary(self):
         """Headline numbers and engine settings as a dict with unit-bearing keys (JSON-ready)."""
