@@ -6,6 +6,8 @@ contact-time error, green for the peak-force error. Solid lines are the paper's 
 bias the standard deviation does not see.
 """
 
+from contactlab.plotting import axes_or_new
+
 __all__ = ["plot_error_family", "plot_errors", "save_figure"]
 
 _COLOURS = {"time": "tab:red", "force": "tab:green"}
@@ -43,15 +45,6 @@ def _style(ax, xscale, xlabel, ylabel, title):
     ax.legend(fontsize="small", frameon=False)
 
 
-def _axes(ax):
-    if ax is None:
-        import matplotlib.pyplot as plt
-
-        fig, ax = plt.subplots(figsize=(7.0, 4.2), layout="constrained")
-        return fig, ax
-    return ax.figure, ax
-
-
 def _x(column):
     from contactlab.validation import check_choice
 
@@ -80,7 +73,7 @@ def plot_errors(points, x, ax=None, measures=("std", "rms"), title=None):
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
     scale, label, xscale = _x(x)
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=(7.0, 4.2))
     data = points.sort_values(x)
     for error in ("time", "force"):
         for measure in measures:
@@ -123,7 +116,7 @@ def plot_error_family(points, x, family, error="force", measure="rms", ax=None, 
     """
     scale, label, xscale = _x(x)
     suffix, _, name = _MEASURES[measure]
-    fig, ax = _axes(ax)
+    fig, ax = axes_or_new(ax, figsize=(7.0, 4.2))
     for value, group in points.groupby(family, sort=True):
         data = group.sort_values(x)
         ax.plot(
