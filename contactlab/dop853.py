@@ -47,6 +47,8 @@ class Stepper:
         Relative tolerance.
     atol : ndarray
         Absolute tolerance per state component.
+    first_step : float, optional
+        First step to try; default :meth:`initial_step`.
 
     Attributes
     ----------
@@ -56,20 +58,20 @@ class Stepper:
         The same before it.
     """
 
-    def __init__(self, fun, t0, y0, rtol, atol):
+    def __init__(self, fun, t0, y0, rtol, atol, first_step=None):
         self._fun = fun
         self.t = self.t_old = float(t0)
         self.y = self.y_old = np.asarray(y0, dtype=float)
         self._rtol, self._atol = rtol, atol
         self._f = fun(self.y)
         self._K = np.empty((_SCIPY.A_EXTRA.shape[0] + _STAGES + 1, self.y.size))
-        self._h = self._initial_step()
+        self._h = self.initial_step() if first_step is None else first_step
 
     def _norm(self, x, scale):
         x = x / scale
         return math.sqrt(float(x @ x) / x.size)
 
-    def _initial_step(self):
+    def initial_step(self):
         """Hairer's starting step (Sec. II.4): a first-order guess, refined once."""
         y, f = self.y, self._f
         scale = self._atol + np.abs(y) * self._rtol

@@ -141,20 +141,44 @@ class DenseStates:
     ----------
     t0 : float
         Start of the piece [s] (local time 0).
-    steps : contactlab.dop853.DenseSteps
-        The steps' interpolants (absolute time).
+    steps : contactlab.dop853.DenseSteps or None
+        The steps in time (absolute [s]) from local time ``switch`` on.
+    start : contactlab.dop853.DenseSteps, optional
+        Steps in ``s = tau**(1/4)`` (state and ``s``) before local time ``switch``: the
+        start of a contact, integrated in that variable (see
+        :func:`contactlab.impact._adaptive_contact`).
+    switch : float, default 0
+        Local time [s] where ``start`` hands over to ``steps``.
     """
 
-    def __init__(self, t0, steps):
-        self._t0, self._steps = t0, steps
+    def __init__(self, t0, steps, start=None, switch=0.0):
+        self._t0, self._steps, self._start, self._switch = t0, steps, start, switch
+
+    def _early(self, tau):
+        if self._start is None:
+            return np.zeros(tau.shape, dtype=bool)
+        return tau < self._switch if self._steps is not None else np.ones(tau.shape, bool)
 
     def __call__(self, tau):
         """States (n, 4) at local times ``tau`` [s] (any order)."""
-        tau = np.atleast_1d(tau)
+        tau = np.atleast_1d(np.asarray(tau, dtype=float))
+        early = self._early(tau)
         if tau.size == 1:  # the metrics' root finders ask one time at a time
+            if early[0]:
+                return self._start.at(max(float(tau[0]), 0.0) ** 0.25)[None, :4]
             return self._steps.at(self._t0 + float(tau[0]))[None, :]
-        return self._steps(self._t0 + tau)
+        out = np.empty((tau.size, 4))
+        if early.any():
+            out[early] = self._start(np.maximum(tau[early], 0.0) ** 0.25)[:, :4]
+        if not early.all():
+            out[~early] = self._steps(self._t0 + tau[~early])
+        return out
 
     def grid(self, tau, step, out):
-        """Write the states at local times ``tau`` [s] into ``out`` (n, 4)."""
-        return self._steps(self._t0 + tau, out=out)
+        """Write the states at increasing local times ``tau`` [s] into ``out`` (n, 4)."""
+        split = int(np.count_nonzero(self._early(tau)))  # the early times come first
+        if split:
+            out[:split] = self._start(np.maximum(tau[:split], 0.0) ** 0.25)[:, :4]
+        if split < tau.size:
+            self._steps(self._t0 + tau[split:], out=out[split:])
+        return out

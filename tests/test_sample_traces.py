@@ -164,13 +164,30 @@ def test_model_file_reproduces_the_truth(model):
     assert result.law.parameters() == pytest.approx(side["law"]["parameters"], rel=1e-9)
 
 
+def _same_up_to(a, b, rel):
+    """Equal nested JSON values, floats within ``rel`` of each other."""
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_same_up_to(a[k], b[k], rel) for k in a)
+    if isinstance(a, list):
+        return len(a) == len(b) and all(_same_up_to(x, y, rel) for x, y in zip(a, b, strict=True))
+    if isinstance(a, float) and isinstance(b, float):
+        return a == pytest.approx(b, rel=rel)
+    return a == b
+
+
 def test_generator_is_deterministic(tmp_path):
     script = DATA / "generate.py"
     subprocess.run([sys.executable, str(script), "--out", str(tmp_path)], check=True)
     written = sorted(p.name for p in tmp_path.iterdir())
     assert written == sorted(p.name for p in DATA.iterdir() if p.name not in INPUTS)
     for name in written:
-        assert (tmp_path / name).read_bytes() == (DATA / name).read_bytes(), name
+        if name.endswith(".json"):
+            # the truth is the solver's: it may move in its last digits when the solver
+            # improves (adaptive Hertz pieces: ~1e-9), never beyond 1e-8
+            fresh = json.loads((tmp_path / name).read_text())
+            assert _same_up_to(fresh, json.loads((DATA / name).read_text()), 1e-8), name
+        else:  # quantised samples: identical bytes
+            assert (tmp_path / name).read_bytes() == (DATA / name).read_bytes(), name
 
 
 TEXT_SAMPLES = [p.with_suffix("") for p in SIDECARS if p.with_suffix("").suffix == ".csv"]
