@@ -161,9 +161,16 @@ def _exact_contact(system, branch, t0, y0, tau_max):
 
 
 def _clipped(force):
+    """Contact force S2 [N] of a contact piece: the branch formula, never tensile.
+
+    Zero overlap counts as contact (``d >= 0``): at the touch a damped law's force jumps
+    to ``c v0``, and the piece's force is the right-hand limit there, so its largest
+    value is attained, not only approached.
+    """
+
     def contact_force(tau, states):
         d, r = _overlap_rate(states)
-        return np.where(d > 0, np.maximum(force(d, r), 0.0), 0.0)
+        return np.where(d >= 0, np.maximum(force(d, r), 0.0), 0.0)
 
     return contact_force
 

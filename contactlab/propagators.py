@@ -147,8 +147,13 @@ class Trajectory:
         tau = np.atleast_1d(np.asarray(tau, dtype=float))
         flow = self._flow
         if flow.modal:
-            return self._combine(np.exp(np.multiply.outer(tau, self._rates)))
-        return np.einsum("nij,j->ni", expm(np.multiply.outer(tau, flow.matrix)), self._z0)
+            states = self._combine(np.exp(np.multiply.outer(tau, self._rates)))
+        else:
+            states = np.einsum("nij,j->ni", expm(np.multiply.outer(tau, flow.matrix)), self._z0)
+        # the start exactly, not its modal round-off: a contact starts at zero overlap, and
+        # a force read there (a damper's jump at the touch) must see exactly zero
+        states[tau == 0.0] = self._z0
+        return states
 
     def grid(self, tau0, step, n, out=None):
         """States at ``tau0 + j * step`` [s], ``j = 0 .. n-1`` -> array (n, dim).
@@ -197,6 +202,8 @@ class Trajectory:
                 column[...] = (left @ right).ravel()
         if split < n:
             out[split:] = self(tau0 + step * np.arange(split, n))
+        if tau0 == 0.0:
+            out[0] = self._z0  # as in __call__
         return out
 
     def _combine(self, powers):

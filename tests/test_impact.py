@@ -279,3 +279,15 @@ def test_loose_tolerance_keeps_event_times_tight(paper_grain, paper_sensor, law)
     assert loose.contact_time == pytest.approx(tight.contact_time, rel=1e-8)
     assert [e[1] for e in loose.events] == [e[1] for e in tight.events]
     assert loose.impulse == pytest.approx(tight.impulse, rel=1e-7)
+
+
+def test_damper_jump_at_the_touch_is_the_attained_peak(paper_grain):
+    """A damped linear contact on a stiff sensor jumps to c v0 at the touch and falls from
+    there: the peak is that value, exactly, at t = 0, on any output grid."""
+    sensor = cl.Sensor.from_resonance(200e3, mass=1.233e-3, damping_ratio=0.02)
+    law = LinearViscoelastic(1e4, 1.0)  # c**2 / m = 2e4 N/m > k: the force falls from t = 0
+    for rate in (2e7, 1e9):
+        res = cl.simulate_impact(paper_grain, sensor, law, 2.0, sample_rate=rate)
+        assert res.peak_contact_force == 2.0  # c v0, exact: the state at t = 0 is exact
+        assert res.peak_contact_time == 0.0
+        assert res.contact_force[0] == 2.0
