@@ -16,8 +16,9 @@ strikes the grain again), each solved by the best method for it:
 * ``"exact"``: every piece linear time-invariant (linear laws and branches, the paper's
   prescribed trapezoid, the free sensor): modal solution or matrix exponential, events
   as roots of the exact expressions (:mod:`contactlab.propagators`);
-* ``"adaptive"``: nonlinear contact pieces with DOP853 (order 8, error-controlled) and
-  event location on its dense output; free pieces still exact;
+* ``"adaptive"``: nonlinear contact pieces with DOP853 (order 8, error-controlled,
+  :mod:`contactlab.dop853`), started in ``s = t**(1/4)`` at a touch, with event location
+  on its dense output; free pieces still exact;
 * ``"euler"``: the paper's explicit Euler at a fixed step (reference method; events are
   step-limited, as in the paper's program);
 * ``"auto"``: exact where the law allows it, else adaptive.
