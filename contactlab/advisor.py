@@ -24,6 +24,7 @@ failure. A failing band narrower than the scan step can hide between scan points
 
 import itertools
 import math
+import os
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -131,7 +132,17 @@ class Species:
 
     @classmethod
     def from_toml(cls, path):
-        """Read a species file (see ``data/species/README.md`` for the format)."""
+        """Read a species file (see ``data/species/README.md`` for the format).
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The TOML file.
+
+        Returns
+        -------
+        Species
+        """
         path = Path(path)
         try:
             data = tomllib.loads(path.read_text(encoding="utf-8"))
@@ -206,9 +217,24 @@ def list_species():
 
 
 def load_species(name):
-    """A species preset by name (``"wheat"``), or a species TOML file by path."""
+    """A species preset by name, or a species TOML file by path.
+
+    Parameters
+    ----------
+    name : str, pathlib.Path or Species
+        A preset name (``"wheat"``, see :func:`list_species`), a path ending in
+        ``.toml``, or a :class:`Species` (returned as it is).
+
+    Returns
+    -------
+    Species
+    """
     if isinstance(name, Species):
         return name
+    if not isinstance(name, (str, os.PathLike)):
+        raise ParameterError(
+            f"species must be a Species, a preset name or a TOML path; got {name!r}"
+        )
     path = Path(name)
     if path.suffix == ".toml":
         return Species.from_toml(path)
@@ -438,6 +464,8 @@ def advise(
     f_min = check_number("f_min", f_min, low=0.0, unit="Hz")
     f_max = check_number("f_max", f_max, low=f_min, unit=f"Hz (> f_min = {f_min:g})")
     rtol = check_number("rtol", rtol, low=1e-6, high=1.0, low_open=False)
+    if resonance is not None:
+        resonance = check_number("resonance", resonance, low=0.0, unit="Hz")
     options = dict(
         velocity=velocity, sensor_mass=sensor_mass, damping_ratio=damping_ratio, cases=cases
     )
@@ -482,7 +510,7 @@ def advise(
         error_at_lowest=at_lowest,
         f_min=f_min,
         f_max=f_max,
-        resonance=None if resonance is None else float(resonance),
+        resonance=resonance,
         at_resonance=at_resonance,
         settings={
             "velocity [m/s]": velocity,

@@ -83,10 +83,17 @@ def _study(args):
 
 def _range_value(text):
     """A number or LOW,HIGH from the command line."""
-    parts = [float(v) for v in text.split(",")]
+    try:
+        parts = [float(v) for v in text.split(",")]
+    except ValueError:
+        parts = []
     if len(parts) not in (1, 2):
         raise argparse.ArgumentTypeError(f"give a number or LOW,HIGH; got {text!r}")
     return parts[0] if len(parts) == 1 else tuple(parts)
+
+
+DEFAULT_POISSON_RATIO = 0.3
+"""Poisson ratio of a grain given by --diameter, --density, --youngs-modulus [-]."""
 
 
 def _advise(args):
@@ -96,17 +103,19 @@ def _advise(args):
         print("\n".join(list_species()))
         return
     explicit = [args.diameter, args.density, args.youngs_modulus]
-    if (args.species is None) == (None in explicit):
+    if (args.species is None) == (None in explicit) or (
+        args.species is not None and args.poisson_ratio is not None
+    ):
         raise ParameterError(
             "give a SPECIES (see 'contactlab advise --list') or all of --diameter, --density "
-            "and --youngs-modulus (not both)"
+            "and --youngs-modulus, optionally --poisson-ratio (not both)"
         )
     species = args.species or Species(
         name="custom",
         diameter=args.diameter,
         density=args.density,
         youngs_modulus=args.youngs_modulus,
-        poisson_ratio=args.poisson_ratio,
+        poisson_ratio=DEFAULT_POISSON_RATIO if args.poisson_ratio is None else args.poisson_ratio,
         description="given on the command line",
     )
     advice = advise(
@@ -292,6 +301,8 @@ def _add_inverse_parsers(sub):
 
 
 def _build_parser():
+    from contactlab.advisor import CASES, PAPER_SENSOR_MASS, QUANTITIES
+
     parser = argparse.ArgumentParser(
         prog="contactlab",
         description="Grain impacts on force sensors: contact laws, an exact two-mass solver "
@@ -346,17 +357,19 @@ def _build_parser():
     p.add_argument("--target", type=float, default=5.0, help="error target [%%] (default 5)")
     p.add_argument(
         "--quantity",
-        choices=("force", "time", "both"),
+        choices=QUANTITIES,
         default="force",
         help="error the target applies to (default: peak force)",
     )
     p.add_argument("--resonance", type=float, help="also report this sensor's errors [Hz]")
     p.add_argument("--velocity", type=float, default=2.0, help="impact speed [m/s] (default 2)")
-    p.add_argument("--sensor-mass", type=float, default=1.233e-3, help="sensor moving mass [kg]")
+    p.add_argument(
+        "--sensor-mass", type=float, default=PAPER_SENSOR_MASS, help="sensor moving mass [kg]"
+    )
     p.add_argument("--damping-ratio", type=float, default=0.02, help="sensor damping ratio [-]")
     p.add_argument(
         "--cases",
-        choices=("corners", "centre"),
+        choices=CASES,
         default="corners",
         help="grains per resonance: corners of the ranges and centre (default), or centre",
     )
@@ -365,7 +378,11 @@ def _build_parser():
     p.add_argument(
         "--youngs-modulus", type=_range_value, help="Young's modulus [Pa]: X or LOW,HIGH"
     )
-    p.add_argument("--poisson-ratio", type=float, default=0.3, help="Poisson ratio [-]")
+    p.add_argument(
+        "--poisson-ratio",
+        type=float,
+        help=f"Poisson ratio [-] with --diameter ... (default {DEFAULT_POISSON_RATIO:g})",
+    )
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_advise)
 

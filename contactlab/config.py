@@ -13,9 +13,11 @@ A file has four tables, every value in SI units::
                   damping_ratio [-], density [kg/m^3]
     [simulation]  velocity [m/s], duration [s], sample_rate [Hz], method, threshold [N]
 
-Unknown tables and keys are rejected by name.
+Unknown tables and keys are rejected by name; the flags ``rigid`` and ``from_material``
+must be TOML booleans (``true``/``false``), not strings or numbers.
 """
 
+import inspect
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -52,31 +54,49 @@ class ImpactConfig:
         )
 
 
-def _law(table, grain, where):
+def _flag(table, key, name):
+    """Remove the boolean ``key`` from a table (default false); anything else is refused."""
+    value = table.pop(key, False)
+    if not isinstance(value, bool):
+        raise ParameterError(f"[{name}] {key} must be true or false; got {value!r}")
+    return value
+
+
+def _build(name, function, *args, **table):
+    """``function(*args, **table)``; a key it does not take, or one it lacks, is named."""
+    try:
+        inspect.signature(function).bind(*args, **table)
+    except TypeError as exc:
+        keys = list(inspect.signature(function).parameters)[len(args) :]
+        raise ParameterError(f"[{name}]: {exc}; valid keys are {', '.join(keys)}") from None
+    return function(*args, **table)
+
+
+def _law(table, grain):
     table = dict(table)
     if "law" not in table:
-        raise ParameterError(f"{where}: [contact] needs law = one of {', '.join(LAWS)}")
-    name = check_choice(f"{where}: [contact] law", table.pop("law"), tuple(LAWS))
-    if table.pop("from_material", False):
+        raise ParameterError(f"[contact] needs law = one of {', '.join(LAWS)}")
+    name = check_choice("[contact] law", table.pop("law"), tuple(LAWS))
+    if _flag(table, "from_material", "contact"):
         if name not in ("hertz", "hertz_damped", "thornton"):
-            raise ParameterError(f"{where}: from_material is for Hertz-family laws, not {name!r}")
+            raise ParameterError(f"from_material is for Hertz-family laws, not {name!r}")
         if name == "hertz_damped":
             table.setdefault("mass", grain.mass)
-        return LAWS[name].from_material(*grain.material(), **table)
+        return _build("contact", LAWS[name].from_material, *grain.material(), **table)
     return get_law(name, **table)
 
 
 def _sensor(table):
     table = dict(table)
-    if table.pop("rigid", False):
+    if _flag(table, "rigid", "sensor"):
         if table:
             raise ParameterError(f"[sensor] rigid = true takes no other keys; got {sorted(table)}")
         return Sensor.rigid()
     if "resonance" not in table:
         return Sensor(**table)
     if "thickness" in table:
-        return Sensor.from_disc(**table)
-    return Sensor.from_resonance(**table)
+        return _build("sensor", Sensor.from_disc, **table)
+    return _build("sensor", Sensor.from_resonance, **table)
 
 
 def _parse(data, where):
@@ -86,6 +106,9 @@ def _parse(data, where):
     missing = [t for t in ("grain", "contact", "sensor") if t not in data]
     if missing:
         raise ParameterError(f"{where}: missing table(s) {missing}")
+    for name, table in data.items():
+        if not isinstance(table, dict):
+            raise ParameterError(f"{where}: {name} must be a table [{name}]; got {table!r}")
     simulation = dict(data.get("simulation", {}))
     bad = sorted(set(simulation) - set(_SIMULATION_KEYS))
     if bad:
@@ -97,7 +120,7 @@ def _parse(data, where):
     try:
         grain = Grain(**data["grain"])
         return ImpactConfig(
-            grain, _sensor(data["sensor"]), _law(data["contact"], grain, where), simulation
+            grain, _sensor(data["sensor"]), _law(data["contact"], grain), simulation
         )
     except ParameterError as exc:
         raise ParameterError(f"{where}: {exc}") from None
@@ -110,6 +133,10 @@ def load_config(path):
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
         raise ParameterError(f"config file not found: {path}") from None
+    except OSError as exc:  # a folder, no permission
+        raise ParameterError(f"cannot read config file {path}: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise ParameterError(f"{path}, byte {exc.start}: not UTF-8 text, so not TOML") from None
     except tomllib.TOMLDecodeError as exc:
         raise ParameterError(f"{path}: not valid TOML: {exc}") from None
     return _parse(data, str(path))

@@ -79,6 +79,7 @@ def first_lobe(t, y, threshold=0.0, hysteresis=0.0):
         when the signal never exceeds it.
     """
     t, y = _as_signal(t, y)
+    threshold = check_number("threshold", threshold)  # NaN would read as "never exceeded"
     hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False)
     above = y > threshold
     if not above.any():

@@ -13,7 +13,13 @@ import numbers
 
 from contactlab.errors import ParameterError, UnknownParameterError
 
-__all__ = ["KeywordChecked", "check_choice", "check_number", "check_probability"]
+__all__ = [
+    "KeywordChecked",
+    "check_choice",
+    "check_count",
+    "check_number",
+    "check_probability",
+]
 
 
 def _describe(low, high, low_open, high_open):
@@ -78,6 +84,17 @@ def check_number(
     if bad_low or bad_high:
         raise ParameterError(f"{name} must be a finite number {rng}{unit_text}; got {x!r}")
     return x
+
+
+def check_count(name, value, low=1):
+    """Return ``value`` as an int after checking it is an integer >= ``low``.
+
+    ``bool`` and floats (even integral ones such as ``2.0``) are rejected: a count is never
+    rounded or truncated silently.
+    """
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral) or value < low:
+        raise ParameterError(f"{name} must be an integer >= {low}; got {value!r}")
+    return int(value)
 
 
 def check_probability(name, value, *, low_open=False, high_open=False):

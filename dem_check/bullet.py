@@ -480,6 +480,9 @@ def drop_scene(
         raise ParameterError(f"grain must be a contactlab.Grain; got {type(grain).__name__}")
     if not isinstance(sensor, Sensor):
         raise ParameterError(f"sensor must be a contactlab.Sensor; got {type(sensor).__name__}")
+    for name, flag in (("gravity", gravity), ("compensate_damping", compensate_damping)):
+        if not isinstance(flag, bool | np.bool_):  # gravity=9.81 would silently mean True
+            raise ParameterError(f"{name} must be True or False; got {flag!r}")
     k2, c2 = _law_parameters(law)
     velocity = check_number("velocity", velocity, low=0.0, low_open=not gravity, unit="m/s")
     dt = _check_time_step(time_step, grain, sensor, law)
@@ -678,8 +681,8 @@ def drop_test(
     ------
     ParameterError
         For a law the engine cannot represent, a time step too coarse for the contact or
-        the sensor, ``compensate_damping`` with ``c2 < k2 * dt``, or a grain that never
-        reaches the plate.
+        the sensor, ``compensate_damping`` with ``c2 < k2 * dt``, ``gravity`` or
+        ``compensate_damping`` not a bool, or a grain that never reaches the plate.
 
     Examples
     --------

@@ -141,7 +141,7 @@ def main(argv=None):
     args = _build_parser().parse_args(argv)
     try:
         return args.func(args)
-    except (ParameterError, TraceFormatError) as exc:
+    except (ParameterError, TraceFormatError, OSError) as exc:  # OSError: a file not found
         print(f"dem-check: error: {exc}", file=sys.stderr)
         return 2
 

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactlab import metrics
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from contactlab.validation import check_choice, check_number
 from dem_check.traces.prepare import noise_level, remove_baseline
@@ -147,6 +148,10 @@ _COLUMNS = (
 
 def _tolerances(tolerances):
     """Defaults updated with ``tolerances``; unknown names raise listing the valid ones."""
+    if tolerances is not None and not isinstance(tolerances, dict):
+        raise ParameterError(
+            f"tolerances must be a dict of quantity name -> tolerance; got {tolerances!r}"
+        )
     merged = dict(DEFAULT_TOLERANCES)
     for name, value in (tolerances or {}).items():
         if name not in merged:
@@ -325,6 +330,7 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     align = check_choice("align", align, ALIGNMENTS)
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False, unit="N")
     labels = tuple(labels) if labels is not None else (_label(a), _label(b))
     if len(labels) != 2:
         raise ParameterError(f"labels must be two names; got {labels!r}")
@@ -555,6 +561,11 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
         ``a`` is the measurement (after baseline removal), ``b`` the model.
     """
     _signal(trace, "measured")
+    if not isinstance(config, ImpactConfig):
+        raise ParameterError(
+            "config must be a contactlab.config.ImpactConfig (from load_config or "
+            f"load_preset); got {type(config).__name__}"
+        )
     k = check_number("k", k, low=0.0, low_open=False)
     trigger = trace.metadata.get("trigger_time")
     trigger = 0.0 if trigger is None else trigger

@@ -84,6 +84,10 @@ def test_explicit_species_and_validation(tmp_path):
         load_species("wheet")
     with pytest.raises(cl.ParameterError, match="quantity"):
         advise("wheat", quantity="peak")
+    with pytest.raises(cl.ParameterError, match="species must be"):
+        load_species(3)
+    with pytest.raises(cl.ParameterError, match="resonance"):
+        advise("wheat", resonance=-70e3)
     bad = tmp_path / "bad.toml"
     bad.write_text('name = "x"\n[diameter]\nvalue = 2e-3\nunit = "mm"\nsource = "me"\n')
     with pytest.raises(cl.ParameterError, match=r"bad\.toml"):

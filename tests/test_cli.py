@@ -1,12 +1,14 @@
 """Command line: help, presets, TOML configs and clear errors."""
 
 import json
+import re
 
 import pytest
 
 import contactlab as cl
 from contactlab.cli import main as contactlab_main
 from contactlab.config import list_presets, load_config
+from contactlab.errors import ParameterError
 from dem_check.cli import main as dem_check_main
 
 GOOD = """
@@ -71,6 +73,44 @@ def test_config_errors_name_the_key(tmp_path, capsys, text, message):
     path.write_text(text)
     assert contactlab_main(["simulate", str(path)]) == 2
     assert message in capsys.readouterr().err
+
+
+LINEAR = 'law = "linear"\nstiffness = 1.0e5\ndamping = 1.0'
+MATERIAL = "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "message"),
+    [
+        # a key the sensor's constructor does not take: named, with the valid ones
+        ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "[sensor]: got an unexpec"),
+        ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "valid keys are resonance"),
+        ("damping_ratio = 0.02", "thickness = 2e-3", "missing a required argument: 'diameter'"),
+        # a flag given as a string would be truthy: refused, not guessed
+        ("resonance = 40.0e3", 'rigid = "false"\nresonance = 40.0e3', "rigid must be true or"),
+        (LINEAR, 'law = "hertz"\nfrom_material = "no"', "from_material must be true or false"),
+        (LINEAR, 'law = "hertz"\nfrom_material = true\nradus = 1', "argument 'radus'"),
+        (f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n", "grain = 5\n", "grain must be a table"),
+    ],
+)
+def test_config_errors_name_file_table_and_key(tmp_path, old, new, message):
+    path = tmp_path / "bad.toml"
+    text = GOOD.replace("density = 765.0", MATERIAL)
+    assert old in text
+    path.write_text(text.replace(old, new, 1))
+    with pytest.raises(ParameterError, match=re.escape(message)) as info:
+        load_config(path)
+    assert str(info.value).startswith(f"{path}: ")
+    assert str(info.value).count(str(path)) == 1  # named once, not once per level
+
+
+def test_unreadable_config_file_is_a_parameter_error(tmp_path):
+    binary = tmp_path / "binary.toml"
+    binary.write_bytes(b"\xff\xfe[grain]\n")
+    with pytest.raises(ParameterError, match=r"binary\.toml, byte 0: not UTF-8 text"):
+        load_config(binary)
+    with pytest.raises(ParameterError, match="cannot read config file"):
+        load_config(tmp_path)  # a folder
 
 
 def test_config_from_material(tmp_path):

@@ -68,7 +68,14 @@ def test_advise_errors_are_named(capsys):
         == 2
     )
     assert "not both" in capsys.readouterr().err
+    # a preset carries its own Poisson ratio: a second one would be silently ignored
+    assert main(["advise", "wheat", "--poisson-ratio", "0.4"]) == 2
+    assert "not both" in capsys.readouterr().err
     assert main(["advise", "wheet"]) == 2
     assert "Did you mean 'wheat'" in capsys.readouterr().err
     assert main(["advise", "wheat", "--target", "-1"]) == 2
     assert "target" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as info:
+        main(["advise", "--diameter", "2 mm", "--density", "1e3", "--youngs-modulus", "1e8"])
+    assert info.value.code == 2
+    assert "--diameter: give a number or LOW,HIGH; got '2 mm'" in capsys.readouterr().err

@@ -149,6 +149,12 @@ def test_bad_arguments(base):
         compare(base, [1.0, 2.0])
     with pytest.raises(ParameterError, match="labels"):
         compare(base, base, labels=("only one",))
+    with pytest.raises(ParameterError, match="hysteresis"):  # checked even when unused
+        compare(base, base, hysteresis=-1.0)
+    with pytest.raises(ParameterError, match="tolerances must be a dict"):
+        compare(base, base, tolerances=0.01)
+    with pytest.raises(ParameterError, match=r"config must be a contactlab\.config\.ImpactConfig"):
+        compare_trace(_trace(base), "fig6.toml")
 
 
 def test_outputs_text_json_and_plot(base):

@@ -139,6 +139,9 @@ def test_compare_bad_input_exits_2(trace_file, config, tmp_path, capsys):
             ["compare", str(trace_file), "--model", str(config), "--sensitivity", "-1"],
             "sensitivity",
         ),
+        # a missing file is bad input (2), not a disagreement (1)
+        (["compare", str(tmp_path / "absent.csv"), "--model", str(config)], "absent.csv"),
+        (["compare", str(tmp_path), "--model", str(config)], str(tmp_path)),
     ]
     for argv, message in cases:
         assert main(argv) == 2, argv

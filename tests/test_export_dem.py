@@ -188,6 +188,20 @@ def test_every_snippet_states_source_and_time_step_guidance(code):
     assert text.endswith("\n")
 
 
+def test_a_parameter_held_fixed_in_the_fit_is_exported():
+    """fit_contact(..., fixed={"restitution": 0.5}) writes it under "fixed", not "parameters"."""
+    fitted = {k: v for k, v in HERTZ_FIT["parameters"].items() if k != "restitution"}
+    fixed = {**HERTZ_FIT, "parameters": fitted, "fixed": {"restitution": 0.5}}
+    text = export_dem(fixed, "liggghts")
+    assert _number(text, "coefficientRestitution peratomtypepair 2") == 0.5
+    assert "restitution = 0.5 (fixed)" in text
+    # everything but the header's note is the same as with a fitted restitution
+    body = [ln for ln in text.splitlines() if "fitted law:" not in ln]
+    assert body == [
+        ln for ln in export_dem(HERTZ_FIT, "liggghts").splitlines() if "fitted law:" not in ln
+    ]
+
+
 def test_read_fit_round_trip(tmp_path):
     path = tmp_path / "FIT.json"
     path.write_text(json.dumps(HERTZ_FIT))
@@ -207,6 +221,12 @@ def test_read_fit_round_trip(tmp_path):
         ),
         (HERTZ_FIT, {"plate_youngs_modulus": 1e7}, "stiffer than the plate"),
         (HERTZ_FIT, {"friction": -0.1}, "friction must be"),
+        ("FIT.json", {}, "fit must be a ContactFit or the dict"),
+        (
+            {**HERTZ_FIT, "parameters": {"effective_modulus": _entry(E_STAR, "Pa")}},
+            {},
+            "'restitution' is neither fitted nor fixed",
+        ),
     ],
 )
 def test_bad_input_names_the_parameter(fit, kwargs, message):

@@ -127,6 +127,11 @@ def test_stiffness_is_not_identifiable_with_a_slow_sensor():
         ({"grain": "grain"}, "contactlab.Grain"),
         ({"sensor": None}, "contactlab.Sensor"),
         ({"window": (0.0,)}, "window must be"),
+        ({"window": 1e-4}, "window must be"),
+        ({"window": (1e-4, 0.0)}, "window end"),
+        ({"fixed": [("damping", 1.0)]}, "fixed must be a dict"),
+        ({"law": "walton_braun", "fixed": {"restitution": 1.5}}, "restitution must be"),
+        ({"max_nfev": 50.5}, "max_nfev must be an integer"),
     ],
 )
 def test_bad_input_names_the_parameter(kwargs, message):

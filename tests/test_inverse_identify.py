@@ -130,10 +130,13 @@ def test_noise_without_ringing_is_refused():
     ("kwargs", "message"),
     [
         ({"window": (1e-4,)}, "window must be"),
+        ({"window": 1e-4}, "window must be"),
         ({"window": (3e-4, 1e-4)}, "window end"),
+        ({"window": (float("nan"), 1e-4)}, "window start"),
+        ({"max_pencil_samples": 500.5}, "max_pencil_samples must be an integer"),
     ],
 )
-def test_bad_windows_name_the_parameter(impact, kwargs, message):
+def test_bad_arguments_name_the_parameter(impact, kwargs, message):
     with pytest.raises(ParameterError, match=message):
         identify_sensor(impact.t, impact.sensor_force, **kwargs)
 

@@ -78,7 +78,9 @@ def test_gcv_and_discrepancy_both_run_on_a_trace(hard_case):
         # the force is non-negative everywhere and zero outside the window
         assert rec.force.min() >= 0.0
         ta, tb = rec.parameters["window [s]"]
-        outside = (rec.t < ta - rec.parameters["grid_step [s]"]) | (rec.t > tb + 1e-6)
+        # the hats of the first and last force values reach one grid step beyond the window
+        step = rec.parameters["grid_step [s]"]
+        outside = (rec.t < ta - step) | (rec.t > tb + step)
         assert np.all(rec.force[outside] == 0.0)
 
 
@@ -119,7 +121,13 @@ def test_demo_figure_is_written(tmp_path):
         ({"cutoff": 1e5}, "cutoff applies to method='inverse'"),
         ({"method": "inverse", "regularization": "gcv"}, "regularization applies"),
         ({"window": (1e-5,)}, "window must be"),
+        ({"window": 1e-5}, "window must be"),
+        ({"window": (-1.0, 1e-4)}, "window start must lie within the record"),
         ({"baseline_window": (0.0, 1e-6)}, "need at least 16"),
+        ({"baseline_window": -1e-4}, "baseline_window must be"),
+        ({"max_unknowns": 100.5}, "max_unknowns must be an integer"),
+        ({"method": "inverse", "max_unknowns": 100}, "max_unknowns applies"),
+        ({"threshold": -1.0}, "threshold must be"),
     ],
 )
 def test_bad_input_names_the_parameter(hard_case, kwargs, message):
@@ -128,6 +136,23 @@ def test_bad_input_names_the_parameter(hard_case, kwargs, message):
     args = {"sensor": SENSOR, **kwargs}
     with pytest.raises(ParameterError, match=message):
         reconstruct_force(t, signal, **args)
+
+
+def test_synthetic_trace_seed_is_checked(hard_case):
+    grain, law, velocity = hard_case
+    with pytest.raises(ParameterError, match="seed must be an integer"):
+        synthetic_trace(grain, SENSOR, law, velocity, seed=1.5)
+
+
+def test_the_automatic_window_starts_within_a_short_pre_trigger(hard_case):
+    grain, law, velocity = hard_case
+    # 20 baseline samples (4 us) are fewer than the quarter period (6.25 us) the window
+    # would start before the onset: it starts at the record's first sample instead
+    t, signal, truth = synthetic_trace(grain, SENSOR, law, velocity, pre_trigger=4e-6)
+    rec = reconstruct_force(t, signal, SENSOR)
+    assert rec.parameters["window [s]"][0] == t[0]
+    # the contact starts 4 us after the record: still within the 5 % of the main tests
+    assert rec.metrics.peak == pytest.approx(truth.peak_contact_force, rel=0.05)
 
 
 def test_a_trace_without_pre_trigger_is_refused(hard_case):

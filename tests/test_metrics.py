@@ -45,3 +45,12 @@ def test_pulse_metrics_pass_hysteresis_and_reject_negative_values():
     )
     with pytest.raises(ParameterError, match="hysteresis"):
         first_lobe(T, PULSE, 0.5, hysteresis=-0.1)
+
+
+@pytest.mark.parametrize("threshold", [np.nan, np.inf, "0.5", None])
+def test_bad_threshold_is_named_not_read_as_no_pulse(threshold):
+    # a NaN threshold compares false everywhere: it would report "no lobe" (nan, nan)
+    with pytest.raises(ParameterError, match="threshold"):
+        first_lobe(T, PULSE, threshold)
+    with pytest.raises(ParameterError, match="threshold"):
+        pulse_metrics(T, PULSE, threshold)

@@ -168,6 +168,8 @@ def test_unknown_grid_name_suggests_the_near_match(setup):
         run_grid(setup, {"law.stifness": [1e5]})
     with pytest.raises(cl.ParameterError, match="non-empty"):
         run_grid(setup, {"sensor.resonance": []})
+    with pytest.raises(cl.ParameterError, match=r"grid\['sensor\.resonance'\].*'40 kHz'"):
+        run_grid(setup, {"sensor.resonance": ["40 kHz"]})
 
 
 def test_law_and_velocity_are_grid_parameters(setup):
@@ -226,6 +228,7 @@ def test_scatter_distributions_and_validation():
         dict(spread=0.4, distribution="normal"),
         dict(repetitions=0),
         dict(repetitions=True),
+        dict(repetitions=2.0),
         dict(distribution="unifrom"),
     ):
         with pytest.raises(cl.ParameterError):
@@ -256,6 +259,33 @@ def test_material_size_dependence(setup):
         replace(setup, grain=cl.Grain(diameter=5e-3, density=765.0), size_dependence="material")
 
 
+def test_vary_is_checked_and_normalised(setup):
+    assert replace(setup, vary=["stiffness", "damping"]).vary == ("stiffness", "damping")
+    with pytest.raises(cl.ParameterError, match="vary must be a law parameter name"):
+        replace(setup, vary=3)
+    # an empty vary would leave the scatter's spread without effect
+    with pytest.raises(cl.ParameterError, match=r"vary=\(\) names nothing"):
+        replace(setup, vary=())
+    assert replace(setup, vary=(), scatter=Scatter(repetitions=2, spread=0.0)).varied == ()
+
+
+def test_output_grid_follows_the_shortest_draw(setup, monkeypatch):
+    """Scattering a pulse length, the shortest contact is the smallest factor's draw."""
+    from contactlab.study import sweep
+
+    rates = []
+
+    def recording(*args, sample_rate, **kwargs):
+        rates.append(sample_rate)
+        return cl.simulate_impact(*args, sample_rate=sample_rate, **kwargs)
+
+    monkeypatch.setattr(sweep, "simulate_impact", recording)
+    varied = replace(setup, law=PlasticTrapezoid(70e-6, 7e-6), vary="contact_time")
+    # 20 kHz: a 50 us period, between the draws' contact times of 35 and 105 us
+    sweep.simulate_point(varied, {"sensor.resonance": 20e3}, [0.5, 1.5])
+    assert rates == [varied.samples_per_period / 35e-6] * 2
+
+
 def test_the_plastic_pulse_needs_a_named_parameter(setup):
     pulse = PlasticTrapezoid(70e-6, 7e-6)
     with pytest.raises(cl.ParameterError, match="vary"):
@@ -279,3 +309,5 @@ def test_point_statistics_of_a_hand_made_frame():
     assert out["time_error_mean [%]"].tolist() == [0.0, 1.0]
     assert out["force_error_rms [%]"].tolist() == [4.0, math.sqrt(2.0)]
     assert out["contact_time_mean [s]"].tolist() == [2.0, 2.0]
+    with pytest.raises(cl.ParameterError, match=r"no column\(s\) \['point'\]"):
+        point_statistics(frame, ["point"])

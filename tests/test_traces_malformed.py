@@ -48,6 +48,9 @@ CASES = {
     "blank line inside data": (GENERIC + "0,1\n\n2e-6,1\n", 3, "blank line"),
     "non-numeric cell": (GENERIC + "0,1\n1e-6,abc\n", 3, "'abc' is not a number"),
     "NaN cell": (GENERIC + "0,1\n1e-6,nan\n", 3, "'nan' is not a number"),
+    # pandas' fast parser reads a column made only of these words as 1.0 and 0.0
+    "boolean words": (GENERIC + "0,TRUE\n1e-6,FALSE\n", 2, "'TRUE' is not a number"),
+    "rigol boolean sequence": (RIGOL + "False,1,\nTrue,2,\n", 3, "'False' is not a number"),
     "quoted number": (GENERIC + '0,1\n1e-6,"2"\n', 3, "is not a number"),
     "unit in a cell": (GENERIC + "0,1\n1e-6,1.2mV\n", 3, "carries a unit"),
     "two units in a header cell": ("t [s] (ms),v [V]\n0,1\n", 1, "mixed units"),
@@ -160,6 +163,39 @@ def test_tdms_without_time_axis(tmp_path):
         writer.write_segment([channel])
     with pytest.raises(
         TraceFormatError, match=re.escape("notime.tdms, channel 'g/c': no wf_increment")
+    ):
+        read_trace(path)
+
+
+@pytest.mark.parametrize("interval", [0.0, -1e-6, np.inf, "1 us"])
+def test_tdms_bad_time_axis_property_is_named(tmp_path, interval):
+    nptdms = pytest.importorskip("nptdms")
+    path = tmp_path / "badtime.tdms"
+    properties = {"unit_string": "V", "wf_increment": interval}
+    with nptdms.TdmsWriter(path) as writer:
+        writer.write_segment([nptdms.ChannelObject("g", "c", np.zeros(4), properties)])
+    with pytest.raises(
+        TraceFormatError, match=re.escape(f"badtime.tdms, channel 'g/c': wf_increment {interval!r}")
+    ):
+        read_trace(path)
+
+
+@pytest.mark.parametrize(
+    ("attrs", "message"),
+    [
+        ({"sample_interval": 0.0, "start_time": 0.0}, "sample_interval 0.0 is not a finite"),
+        ({"sample_interval": 1e-6, "start_time": "soon"}, "start_time 'soon' is not a finite"),
+        ({"sample_interval": 1e-6, "start_time": 0.0, "trigger_time": "x"}, "trigger_time 'x'"),
+    ],
+)
+def test_hdf5_bad_time_attribute_is_named(tmp_path, attrs, message):
+    h5py = pytest.importorskip("h5py")
+    path = tmp_path / "badtime.h5"
+    with h5py.File(path, "w") as f:
+        f["v"] = np.zeros(4)
+        f["v"].attrs.update({"unit": "V", **attrs})
+    with pytest.raises(
+        TraceFormatError, match=r"badtime\.h5, dataset '/?v': " + re.escape(message)
     ):
         read_trace(path)
 

@@ -173,6 +173,9 @@ def test_baseline_window_needs_samples():
         remove_baseline(trace)
     with pytest.raises(ParameterError, match="pre_trigger end"):
         noise_level(trace, pre_trigger=(5e-5, 1e-5))
+    for window in (1e-5, (0.0, 1e-5, 2e-5)):  # not a (start, end) pair
+        with pytest.raises(ParameterError, match=r"pre_trigger must be \(start, end\)"):
+            remove_baseline(trace, pre_trigger=window)
 
 
 def test_metrics_keys_carry_the_trace_unit():

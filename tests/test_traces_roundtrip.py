@@ -289,6 +289,16 @@ def test_writer_rejects_unknown_options_and_non_uniform_time(tmp_path):
         write_trace(tmp_path / "b.csv", uneven, "rigol-sequence")
     with pytest.raises(ParameterError, match="volts"):
         write_trace(tmp_path / "c.csv", Trace(t, trace.values, "N"), "keysight")
+    # a misspelt layout option would write a file the reader cannot read (or silently
+    # another layout): refused by name
+    for fmt, option in [
+        ("generic", {"brackets": "<>"}),
+        ("picoscope", {"infinity": "inf!"}),
+        ("hdf5", {"time": "attr"}),
+    ]:
+        with pytest.raises(ParameterError, match=f"{next(iter(option))} must be one of"):
+            write_trace(tmp_path / f"d.{fmt}", trace, fmt, **option)
+        assert not (tmp_path / f"d.{fmt}").exists()
 
 
 def test_sensitivity_converts_volts_to_newtons(tmp_path):
@@ -319,6 +329,9 @@ def test_trace_is_read_only_and_metrics_match_contactlab(tmp_path):
         trace.unit = "V"
     assert trace.metrics(0.1) == pulse_metrics(t, pulse, 0.1)
     assert list(trace.to_frame().columns) == ["t [s]", "force [N]"]
+    for unit in ("mV", "", None):  # values are in SI base units, nothing else
+        with pytest.raises(ParameterError, match="unit must be one of V, N, A"):
+            Trace(t, pulse, unit)
 
 
 # --- binary formats ------------------------------------------------------------------
@@ -349,6 +362,27 @@ def test_tdms_round_trip(tmp_path):
     np.testing.assert_array_equal(back.t, trace.t)
     np.testing.assert_array_equal(back.values, trace.values)
     assert back.sample_interval == INCREMENT
+
+
+@pytest.mark.parametrize(
+    ("fmt", "options", "module"),
+    [("tdms", {}, "nptdms"), ("hdf5", {"time": "attrs"}, "h5py"), ("rigol-sequence", {}, None)],
+)
+def test_start_and_interval_layouts_keep_every_sample_time(tmp_path, fmt, options, module):
+    """A declared interval 5e-5 off the time column passes a step-by-step check, but
+    ``start + n * declared`` drifts a whole sample over 20 000 samples: the writers must
+    store an interval that gives back every time."""
+    if module is not None:
+        pytest.importorskip(module)
+    n = 20_000
+    t = np.arange(n) * 1.00005e-6
+    trace = Trace(t, np.zeros(n), "V", {"sample_interval": 1e-6})
+    path = tmp_path / f"drift.{fmt}"
+    write_trace(path, trace, fmt, **options)
+    back = read_trace(path)
+    assert back.sample_interval == pytest.approx(1.00005e-6, rel=1e-12)  # the spacing, to rounding
+    # the writers' promise: every time within UNIFORM_RTOL (1e-4) of an interval
+    np.testing.assert_allclose(back.t, t, rtol=0, atol=1e-4 * 1.00005e-6)
 
 
 def _write_isf(path, codes, ymult, xincr, xzero):

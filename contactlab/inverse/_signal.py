@@ -10,8 +10,15 @@ import numpy as np
 
 from contactlab.errors import ParameterError
 from contactlab.metrics import _as_signal
+from contactlab.validation import check_number
 
-__all__ = ["BASELINE_MIN_SAMPLES", "baseline", "lobe_around_peak", "uniform_signal"]
+__all__ = [
+    "BASELINE_MIN_SAMPLES",
+    "baseline",
+    "check_window",
+    "lobe_around_peak",
+    "uniform_signal",
+]
 
 UNIFORM_RTOL = 1e-4
 """Largest deviation of a time step from the mean interval, relative to it (the rule of
@@ -33,7 +40,7 @@ def uniform_signal(t, y, name="signal"):
     """
     try:
         t, y = _as_signal(t, y)
-    except ParameterError as exc:
+    except (TypeError, ValueError) as exc:  # ParameterError, or no numbers at all
         raise ParameterError(f"t and {name}: {exc}") from None
     dt = (t[-1] - t[0]) / (t.size - 1)
     deviation = float(np.max(np.abs(np.diff(t) - dt)))
@@ -43,6 +50,21 @@ def uniform_signal(t, y, name="signal"):
             f"{deviation:.3g} s"
         )
     return t, y, dt
+
+
+def check_window(name, window):
+    """Return a time window as ``(start, end)`` floats [s], finite, with ``start < end``.
+
+    Raises
+    ------
+    ParameterError
+        Not a pair, not finite numbers, or ``end <= start``; the message names ``name``.
+    """
+    if isinstance(window, str) or not hasattr(window, "__len__") or len(window) != 2:
+        raise ParameterError(f"{name} must be (start, end) [s]; got {window!r}")
+    start = check_number(f"{name} start", window[0], unit="s")
+    end = check_number(f"{name} end", window[1], low=start, unit=f"s (> {name} start)")
+    return start, end
 
 
 def baseline(t, y, window=None, k=5.0):
@@ -77,15 +99,13 @@ def baseline(t, y, window=None, k=5.0):
     """
     from dem_check.traces import Trace, detect_onset, noise_level
 
-    window = (float(t[0]), 0.0) if window is None else tuple(float(v) for v in window)
-    if len(window) != 2:
-        raise ParameterError(f"baseline must be (start, end) [s]; got {window!r}")
+    window = (float(t[0]), 0.0) if window is None else check_window("baseline_window", window)
     mask = (t >= window[0]) & (t < window[1])
     if mask.sum() < BASELINE_MIN_SAMPLES:
         raise ParameterError(
             f"baseline window {window} s holds {int(mask.sum())} samples; need at least "
-            f"{BASELINE_MIN_SAMPLES} pre-trigger samples (record a pre-trigger, pass "
-            "baseline=(start, end) [s], or give noise=)"
+            f"{BASELINE_MIN_SAMPLES} pre-trigger samples (record a pre-trigger or pass "
+            "baseline_window=(start, end) [s], --baseline T0 T1 on the command line)"
         )
     trace = Trace(t, y, "N", {"trigger_time": None})
     noise = noise_level(trace, window)

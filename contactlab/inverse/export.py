@@ -28,6 +28,7 @@ from pathlib import Path
 from contactlab import analytic
 from contactlab.bodies import STEEL_DENSITY
 from contactlab.errors import ParameterError
+from contactlab.inverse.fit import FIT_MODELS, ContactFit
 from contactlab.laws import get_law
 from contactlab.validation import check_choice, check_number
 
@@ -69,6 +70,7 @@ class _Contact:
     family: str  # "linear" or "hertz"
     law: str
     fitted: dict
+    fixed: dict
     source: str
     mass: float
     radius: float
@@ -106,7 +108,14 @@ class _Contact:
             f"source: {self.source}",
             f"fitted law: {self.law}; "
             + "; ".join(
-                f"{k} = {_g(v['value'])}{_unit(v)}{_ci(v)}" for k, v in self.fitted.items()
+                [
+                    f"{k} = {_g(v['value'])}{_unit(v['unit'])}{_ci(v)}"
+                    for k, v in self.fitted.items()
+                ]
+                + [
+                    f"{k} = {_g(v)}{_unit(_fixed_unit(self.law, k))} (fixed)"
+                    for k, v in self.fixed.items()
+                ]
             ),
             f"grain: radius {_g(self.radius)} m, density {_g(self.density)} kg/m^3, mass "
             f"{_g(self.mass)} kg; impact velocity {_g(self.velocity)} m/s",
@@ -125,8 +134,14 @@ def _g(value):
     return f"{value:.7g}"
 
 
-def _unit(entry):
-    return "" if entry["unit"] == "-" else f" {entry['unit']}"
+def _fixed_unit(law, name):
+    """Unit of a law parameter held fixed in the fit."""
+    spec = FIT_MODELS[law]
+    return dict(zip(spec.parameters, spec.units, strict=True))[name]
+
+
+def _unit(unit):
+    return "" if unit == "-" else f" {unit}"
 
 
 def _ci(entry):
@@ -140,7 +155,18 @@ def _ci(entry):
 # Reading a fit
 # ---------------------------------------------------------------------------
 def read_fit(path):
-    """Load a FIT.json written by :meth:`ContactFit.to_json` (a dict)."""
+    """Load a FIT.json written by :meth:`ContactFit.to_json`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The FIT.json file.
+
+    Returns
+    -------
+    dict
+        Its contents, for :func:`export_dem`.
+    """
     path = Path(path)
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
@@ -158,8 +184,25 @@ def _value(data, key, where):
         raise ParameterError(f"{where}: missing {key!r} (not a contactlab fit)") from None
 
 
+def _law_value(common, name, where):
+    """A law parameter of the fit, fitted or held fixed."""
+    if name in common["fitted"]:
+        return float(common["fitted"][name]["value"])
+    if name in common["fixed"]:
+        return float(common["fixed"][name])
+    raise ParameterError(f"{where}: {name!r} is neither fitted nor fixed (not a contactlab fit)")
+
+
 def _contact(fit, source, poisson_ratio, plate_youngs_modulus, plate_poisson_ratio, friction):
-    data = fit if isinstance(fit, dict) else fit.to_dict()
+    if isinstance(fit, ContactFit):
+        data = fit.to_dict()
+    elif isinstance(fit, dict):
+        data = fit
+    else:
+        raise ParameterError(
+            f"fit must be a ContactFit or the dict of a FIT.json (read_fit(path)); got "
+            f"{type(fit).__name__}"
+        )
     where = source
     law_name = _value(data, "law", where)
     if law_name not in EXPORTED_LAWS:
@@ -179,6 +222,7 @@ def _contact(fit, source, poisson_ratio, plate_youngs_modulus, plate_poisson_rat
             for k, v in _value(data, "parameters", where).items()
             if k not in ("velocity", "onset")
         },
+        "fixed": dict(data.get("fixed", {})),
         "source": source,
         "mass": mass,
         "radius": radius,
@@ -193,9 +237,8 @@ def _contact(fit, source, poisson_ratio, plate_youngs_modulus, plate_poisson_rat
         k, c = law.stiffness, law.damping
         e = analytic.linear_restitution(k, c, mass, convention="overlap")
         return _Contact("linear", stiffness=k, damping=c, restitution=e, **common)
-    params = common["fitted"]
-    modulus = float(params["effective_modulus"]["value"])
-    e = float(params["restitution"]["value"]) if law_name == "hertz_damped" else 1.0
+    modulus = _law_value(common, "effective_modulus", where)
+    e = _law_value(common, "restitution", where) if law_name == "hertz_damped" else 1.0
     nu = poisson_ratio if poisson_ratio is not None else grain.get("poisson_ratio [-]")
     if nu is None:
         raise ParameterError(
@@ -437,7 +480,8 @@ def export_dem(
     Parameters
     ----------
     fit : ContactFit or dict
-        A fit, or the dict of a FIT.json (:func:`read_fit`).
+        A fit, or the dict of a FIT.json (:func:`read_fit`). Law parameters held fixed
+        in the fit (its ``fixed``) are exported like fitted ones.
     code : {"liggghts", "mercurydpm", "yade", "edem"}
         Target code.
     source : str, default "contactlab fit"
@@ -459,7 +503,8 @@ def export_dem(
     Notes
     -----
     Time steps follow each code's guidance (module constants): a fiftieth of the contact
-    time for linear laws (MercuryDPM), 10 % of the Rayleigh time for LIGGGHTS' Hertz,
+    time for linear laws and for MercuryDPM's Hertz (MercuryDPM's habit), 10 % of the
+    Rayleigh time for LIGGGHTS' Hertz,
     20 % for EDEM, ``0.5 PWaveTimeStep()`` for YADE's Hertz and ``0.05 tc`` for its
     ViscElMat. The contact time is that of the fitted law on a rigid plate at the fitted
     velocity. The Rayleigh time is ``pi R sqrt(rho/G) / (0.1631 nu + 0.8766)``.

@@ -13,6 +13,7 @@ reconstruction of the force, so every fitted coordinate is of order one.
 import json
 import math
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -23,10 +24,10 @@ from contactlab import analytic
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
 from contactlab.impact import simulate_impact
-from contactlab.inverse._signal import baseline, uniform_signal
+from contactlab.inverse._signal import baseline, check_window, uniform_signal
 from contactlab.inverse.reconstruct import reconstruct_force
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic, WaltonBraun
-from contactlab.validation import check_choice, check_number
+from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = [
     "FIT_MODELS",
@@ -53,8 +54,8 @@ the largest are treated as zero: their directions have unbounded variance."""
 
 OVERSAMPLE = 4
 """The model is simulated at this multiple of the trace's sample rate and interpolated
-linearly to the sample times (interpolation error ~ (w dt / 4)**2 / 8, below 1e-4 for
-20 samples per period)."""
+linearly to the sample times (interpolation error ~ (w dt / 4)**2 / 8 of the amplitude:
+8e-4 at 20 trace samples per period, a tenth of a 1 % noise)."""
 
 BOUND = math.log(100.0)
 """Fitted coordinates stay within +-ln(100) of the guess (a factor 100 for ln p)."""
@@ -68,14 +69,10 @@ class IdentifiabilityWarning(ContactlabWarning):
 # ---------------------------------------------------------------------------
 # Transforms of the fitted coordinates
 # ---------------------------------------------------------------------------
-def _log_slope(x):
-    return np.exp(x)
-
-
 _TRANSFORMS = {
     # name: (to coordinate, from coordinate, d value / d coordinate); numpy functions so
     # that an unbounded confidence limit maps to 0 or inf instead of overflowing
-    "log": (np.log, np.exp, _log_slope),
+    "log": (np.log, np.exp, np.exp),
     "logit": (logit, expit, lambda x: expit(x) * (1.0 - expit(x))),
 }
 
@@ -414,7 +411,11 @@ def _shifted(x, i, delta):
 
 
 def _check_fixed(spec, fixed):
-    fixed = dict(fixed or {})
+    if fixed is None:
+        fixed = {}
+    if not isinstance(fixed, Mapping):
+        raise ParameterError(f"fixed must be a dict of law parameter -> value; got {fixed!r}")
+    fixed = dict(fixed)
     unknown = sorted(set(fixed) - set(spec.parameters))
     if unknown:
         raise ParameterError(
@@ -424,7 +425,14 @@ def _check_fixed(spec, fixed):
     if len(fixed) == len(spec.parameters):
         raise ParameterError(f"fixed: every parameter of {spec.law!r} is fixed; nothing to fit")
     units = dict(zip(spec.parameters, spec.units, strict=True))
-    return {name: check_number(name, v, low=0.0, unit=units[name]) for name, v in fixed.items()}
+    # a logit-transformed quantity is a restitution coefficient, in (0, 1]
+    highs = {
+        p: 1.0 for p, kind in zip(spec.parameters, spec.transforms, strict=True) if kind == "logit"
+    }
+    return {
+        name: check_number(name, v, low=0.0, high=highs.get(name), unit=units[name])
+        for name, v in fixed.items()
+    }
 
 
 def fit_contact(
@@ -515,9 +523,9 @@ def fit_contact(
     if velocity is not None:
         velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
     fixed = _check_fixed(spec, fixed)
-    max_nfev = int(check_number("max_nfev", max_nfev, low=0.0))
-    if window is not None and len(window) != 2:
-        raise ParameterError(f"window must be (t0, t1) [s]; got {window!r}")
+    max_nfev = check_count("max_nfev", max_nfev)
+    if window is not None:
+        window = check_window("window", window)
     t, y, dt = uniform_signal(t, signal)
     mean, noise, _, _ = baseline(t, y, baseline_window)
     y = y - mean
@@ -538,7 +546,10 @@ def fit_contact(
     problem = _Problem(spec, grain, sensor, data, fitted, constants, start)
     n_rows, n_par = int(rows.sum()), len(fitted)
     if n_rows <= n_par:
-        raise ParameterError(f"window {tuple(window)} s holds {n_rows} samples")
+        raise ParameterError(
+            f"window {tuple(window)} s holds {n_rows} samples; the fit needs more than "
+            f"{n_par} (one per fitted quantity)"
+        )
     solution = least_squares(
         problem.residuals,
         np.zeros(n_par),

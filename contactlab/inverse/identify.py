@@ -20,8 +20,8 @@ from scipy.optimize import least_squares
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
-from contactlab.inverse._signal import lobe_around_peak, uniform_signal
-from contactlab.validation import check_number
+from contactlab.inverse._signal import check_window, lobe_around_peak, uniform_signal
+from contactlab.validation import check_count
 
 __all__ = ["SensorIdentification", "identify_sensor", "matrix_pencil"]
 
@@ -221,7 +221,7 @@ def identify_sensor(t, signal, window=None, *, max_pencil_samples=1000):
         Window ``(t0, t1)`` [s] of free ringing. Default: from the end of the largest
         lobe plus that lobe's length to the end of the record (see Notes).
     max_pencil_samples : int, default 1000
-        The pencil works on block means of the window, at most this many (the SVD of
+        The pencil works on block means of the window, at most this many (>= 20; the SVD of
         the Hankel matrix grows as the cube); the least-squares fit uses every sample.
 
     Returns
@@ -268,15 +268,8 @@ def identify_sensor(t, signal, window=None, *, max_pencil_samples=1000):
     (40000, 0.02)
     """
     t, y, dt = uniform_signal(t, signal)
-    max_pencil_samples = check_number(
-        "max_pencil_samples", max_pencil_samples, low=MIN_WINDOW_SAMPLES, low_open=False
-    )
-    if window is None:
-        window = _auto_window(t, y)
-    if len(window) != 2:
-        raise ParameterError(f"window must be (t0, t1) [s]; got {window!r}")
-    t0 = check_number("window start", window[0], unit="s")
-    t1 = check_number("window end", window[1], low=t0, unit="s (> window start)")
+    max_pencil_samples = check_count("max_pencil_samples", max_pencil_samples, MIN_WINDOW_SAMPLES)
+    t0, t1 = check_window("window", _auto_window(t, y) if window is None else window)
     mask = (t >= t0) & (t <= t1)
     n = int(mask.sum())
     if n < MIN_WINDOW_SAMPLES:
@@ -285,7 +278,7 @@ def identify_sensor(t, signal, window=None, *, max_pencil_samples=1000):
             f"{MIN_WINDOW_SAMPLES} of free ringing (record longer after the pulse)"
         )
     tau, yw = t[mask] - t0, y[mask]
-    f, zeta = _pencil_guess(yw, dt, int(max_pencil_samples))
+    f, zeta = _pencil_guess(yw, dt, max_pencil_samples)
     if not 0.0 < zeta < 1.0:
         raise ParameterError(
             f"no decaying ringing in the window: the pencil's mode has damping ratio "

@@ -28,9 +28,9 @@ from scipy.optimize import brentq, minimize_scalar, nnls
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
-from contactlab.inverse._signal import baseline, lobe_around_peak, uniform_signal
+from contactlab.inverse._signal import baseline, check_window, lobe_around_peak, uniform_signal
 from contactlab.metrics import pulse_metrics
-from contactlab.validation import check_choice, check_number
+from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = ["CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
 
@@ -267,10 +267,9 @@ def _auto_window(t, y, onset, sensor):
 
 
 def _tikhonov(t, y, dt, sensor, noise, window, options):
-    max_unknowns = int(check_number("max_unknowns", options["max_unknowns"], low=2))
-    criterion = check_choice("regularization", options["regularization"], tuple(CRITERIA))
+    max_unknowns, criterion = options["max_unknowns"], options["regularization"]
     ta, tb = window
-    ia = max(int(np.searchsorted(t, ta)), 0)
+    ia = int(np.searchsorted(t, ta))
     span = (tb - t[ia]) / dt
     q = max(1, math.ceil(span / (max_unknowns - 1)))
     columns = int(span // q) + 1
@@ -350,7 +349,7 @@ def reconstruct_force(
     window=None,
     regularization=None,
     cutoff=None,
-    max_unknowns=DEFAULT_MAX_UNKNOWNS,
+    max_unknowns=None,
     threshold=None,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
@@ -371,11 +370,12 @@ def reconstruct_force(
         Pre-trigger window ``[start, end)`` [s] giving the baseline mean (subtracted),
         the noise and the onset. Default: the samples before ``t = 0``.
     window : (float, float), optional
-        Contact window ``(ta, tb)`` [s] outside which the force is zero (Tikhonov).
-        Default: from a quarter sensor period before the onset (the first crossing of
-        5 baseline standard deviations, which the sensor's rise delays by less than a
-        quarter period) to one lobe-length after the end of the signal's largest lobe
-        (a contact cannot outlast that, see :func:`contactlab.inverse.identify_sensor`).
+        Contact window ``(ta, tb)`` [s] outside which the force is zero (Tikhonov),
+        within the record. Default: from a quarter sensor period before the onset (the
+        first crossing of 5 baseline standard deviations, which the sensor's rise delays
+        by less than a quarter period; not before the record's first sample) to one
+        lobe-length after the end of the signal's largest lobe (a contact cannot outlast
+        that, see :func:`contactlab.inverse.identify_sensor`).
     regularization : {"gcv", "discrepancy"}, optional
         How lambda is chosen (Tikhonov only; default ``"gcv"``). ``"discrepancy"``
         sets the residual to the baseline noise. GCV is the default because the
@@ -387,9 +387,10 @@ def reconstruct_force(
     cutoff : float, optional
         Low-pass cutoff [Hz] of the inverse filter (inverse only); default twice the
         resonance (:data:`DEFAULT_CUTOFF_FACTOR`). Zero-phase Butterworth of order 4.
-    max_unknowns : int, default 400
-        Largest number of force values (Tikhonov); the signal is averaged over blocks
-        of ``q`` samples and the force grid step is ``q`` samples.
+    max_unknowns : int, optional
+        Largest number of force values, >= 2 (Tikhonov only; default
+        :data:`DEFAULT_MAX_UNKNOWNS` = 400); the signal is averaged over blocks of ``q``
+        samples and the force grid step is ``q`` samples.
     threshold : float, optional
         Level [N] at which the metrics read the pulse. Default: 2 % of the
         reconstructed peak, or five standard deviations of the reconstruction over the
@@ -432,33 +433,41 @@ def reconstruct_force(
     for name, value, owner in (
         ("cutoff", cutoff, "inverse"),
         ("regularization", regularization, "tikhonov"),
+        ("max_unknowns", max_unknowns, "tikhonov"),
     ):
         if value is not None and method != owner:
             raise ParameterError(f"{name} applies to method={owner!r}, not {method!r}")
     if cutoff is not None:
         cutoff = check_number("cutoff", cutoff, low=0.0, high=0.5 / dt, high_open=True, unit="Hz")
+    options = {
+        "regularization": check_choice("regularization", regularization or "gcv", tuple(CRITERIA)),
+        "cutoff": cutoff,
+        "max_unknowns": check_count(
+            "max_unknowns", DEFAULT_MAX_UNKNOWNS if max_unknowns is None else max_unknowns, 2
+        ),
+    }
+    if threshold is not None:
+        threshold = check_number("threshold", threshold, low=0.0, unit="N")
     mean, noise, onset, base = baseline(t, y, baseline_window, ONSET_SIGMAS)
     y = y - mean
     if window is None:
-        window = _auto_window(t, y, onset, sensor)
-    elif len(window) != 2:
-        raise ParameterError(f"window must be (ta, tb) [s]; got {window!r}")
-    ta = check_number("window start", window[0], high=float(t[-1]), high_open=True, unit="s")
-    tb = check_number("window end", window[1], low=max(ta, float(t[0])), unit="s")
-    options = {
-        "regularization": regularization or "gcv",
-        "cutoff": cutoff,
-        "max_unknowns": max_unknowns,
-    }
+        start, end = _auto_window(t, y, onset, sensor)
+        window = (max(start, float(t[0])), end)
+    ta, tb = check_window("window", window)
+    if not float(t[0]) <= ta < float(t[-1]):
+        raise ParameterError(
+            f"window start must lie within the record [{t[0]:.6g}, {t[-1]:.6g}) s; got {ta!r}"
+        )
     force, params = METHODS[method](t, y, dt, sensor, noise, (ta, tb), options)
-    # the reconstruction's own noise, over the baseline before the contact window
-    in_base = (t >= base[0]) & (t < min(base[1], ta))
     if threshold is None:
+        # the reconstruction's own noise, over the baseline before the contact window
+        in_base = (t >= base[0]) & (t < min(base[1], ta))
         floor = (
             THRESHOLD_SIGMAS * float(np.std(force[in_base], ddof=1)) if in_base.sum() > 1 else 0.0
         )
         threshold = max(THRESHOLD_FRACTION * float(force.max()), floor)
-    threshold = check_number("threshold", threshold, low=0.0, unit="N")
+        if threshold <= 0.0:
+            raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
     params.update(
         {
             "window [s]": [ta, tb],

@@ -3,7 +3,7 @@
 import numpy as np
 
 from contactlab.impact import simulate_impact
-from contactlab.validation import check_number
+from contactlab.validation import check_count, check_number
 
 __all__ = ["synthetic_trace"]
 
@@ -37,7 +37,7 @@ def synthetic_trace(
         Standard deviation of the Gaussian white noise as a fraction of the peak sensor
         signal [-].
     seed : int, default 0
-        Seed of ``numpy.random.default_rng``.
+        Seed of ``numpy.random.default_rng`` (>= 0).
 
     Returns
     -------
@@ -51,6 +51,7 @@ def synthetic_trace(
     sample_rate = check_number("sample_rate", sample_rate, low=0.0, unit="Hz")
     pre_trigger = check_number("pre_trigger", pre_trigger, low=0.0, low_open=False, unit="s")
     noise = check_number("noise", noise, low=0.0, low_open=False)
+    seed = check_count("seed", seed, low=0)
     truth = simulate_impact(
         grain, sensor, law, velocity, duration=duration, sample_rate=sample_rate
     )

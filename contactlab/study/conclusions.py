@@ -152,15 +152,15 @@ def _conclusion_3(impacts, tol, variant):
     return Conclusion(3, claim, variant, _status(parts), evidence)
 
 
-def _rms_max(points):
-    return float(points[["time_error_rms [%]", "force_error_rms [%]"]].abs().max(axis=1).max())
+def _worst_rms(points):
+    """Per grid point, the larger of the two RMS errors [%]."""
+    return points[["time_error_rms [%]", "force_error_rms [%]"]].max(axis=1)
 
 
 def _adequate_from(points, tol):
     """Smallest diameter [m] from which every larger one meets ``tol`` (None if none)."""
     rows = points.sort_values("diameter [m]")
-    worst = rows[["time_error_rms [%]", "force_error_rms [%]"]].abs().max(axis=1).to_numpy()
-    ok = worst <= tol
+    ok = _worst_rms(rows).to_numpy() <= tol
     if not ok[-1]:
         return None
     i = len(ok) - 1
@@ -202,7 +202,10 @@ def _conclusion_5(points, tol, variant, diameter=2.0e-3, commercial=70e3, specia
     small = points[points["diameter [m]"] <= diameter * (1 + 1e-9)]
     if small.empty:
         return Conclusion(5, claim, variant, "not testable", ["no diameter <= 2 mm"])
-    worst = {float(f): _rms_max(group) for f, group in small.groupby("resonance [Hz]", sort=True)}
+    worst = {
+        float(f): float(_worst_rms(group).max())
+        for f, group in small.groupby("resonance [Hz]", sort=True)
+    }
     evidence = [
         f"worst RMS error (time or force) over d <= {diameter * 1e3:g} mm: "
         + ", ".join(f"{v:.1f} % at {f / 1e3:g} kHz" for f, v in worst.items())
@@ -213,12 +216,16 @@ def _conclusion_5(points, tol, variant, diameter=2.0e-3, commercial=70e3, specia
         f"lowest resonance in the grid within {tol:g} %: "
         + (f"{lowest / 1e3:g} kHz" if lowest else "none")
     )
-    checks = [
+    # the claim's parts: 70 kHz and 200 kHz fail the tolerance, a sensor above 200 kHz meets it
+    fails = [
         [v > tol for f, v in worst.items() if np.isclose(f, at)] for at in (commercial, special)
     ]
-    if not all(checks):
-        return Conclusion(5, claim, variant, "not testable", [*evidence, "70 or 200 kHz missing"])
-    return Conclusion(5, claim, variant, _status([c[0] for c in checks]), evidence)
+    above = [v <= tol for f, v in worst.items() if f > special * (1 + 1e-9)]
+    if not (all(fails) and above):
+        return Conclusion(
+            5, claim, variant, "not testable", [*evidence, "70, 200 or > 200 kHz missing"]
+        )
+    return Conclusion(5, claim, variant, _status([fails[0][0], fails[1][0], any(above)]), evidence)
 
 
 def _variants(frame):
@@ -226,7 +233,17 @@ def _variants(frame):
 
 
 def variant_label(damping):
-    """Name of a contact-damping variant of the paper study."""
+    """Name of a contact-damping variant of the paper study.
+
+    Parameters
+    ----------
+    damping : float
+        Contact damping c2 [N*s/m]: 0 is the elastic variant, anything else the paper's.
+
+    Returns
+    -------
+    str
+    """
     if damping == 0.0:
         return "c2 = 0 (elastic contact)"
     return f"c2 = {damping:g} N*s/m (paper)"
@@ -264,6 +281,11 @@ def evaluate_conclusions(frequency, diameter, tolerance):
 
 def trends(frequency):
     """Spearman rank correlation of each RMS error with resonance, per diameter and variant.
+
+    Parameters
+    ----------
+    frequency : SweepResult
+        The frequency sweep of the paper study (at least two resonances per series).
 
     Returns
     -------
@@ -321,14 +343,16 @@ def differences(frequency, presets, setup):
         damping = float(paper["damping [N*s/m]"].iloc[0])
         step = damping * setup.velocity
         top = paper["resonance [Hz]"].max()
+        points = frequency.points
+        at_top = points[
+            (points["damping [N*s/m]"] == damping) & (points["resonance [Hz]"] == top)
+        ].set_index("diameter [m]")
         parts = []
         for d, group in paper.groupby("diameter [m]", sort=False):
-            at_top = group[group["resonance [Hz]"] == top]
             parts.append(
                 f"{step / group['peak_contact_force [N]'].mean() * 100:.0f} % of the mean peak "
                 f"for d = {d * 1e3:g} mm, whose RMS force error is still "
-                f"{np.sqrt(np.mean(at_top['force_error [%]'] ** 2)):.0f} % at "
-                f"{top / 1e3:g} kHz"
+                f"{at_top.loc[d, 'force_error_rms [%]']:.0f} % at {top / 1e3:g} kHz"
             )
         out.append(
             f"**The contact damper's step.** With the paper's c2 = {damping:g} N*s/m the "
@@ -341,13 +365,11 @@ def differences(frequency, presets, setup):
             "has no step, shows the paper's trends; the paper's sensor damping is not stated "
             "(its software screen shows 500 N*s/m, which would damp the step's ringing)."
         )
-        rows = paper[paper["resonance [Hz]"] == top]
-        parts = []
-        for d, group in rows.groupby("diameter [m]", sort=False):
-            parts.append(
-                f"d = {d * 1e3:g} mm: std {group['time_error [%]'].std(ddof=0):.1f} %, "
-                f"mean {group['time_error [%]'].mean():+.1f} %"
-            )
+        parts = [
+            f"d = {d * 1e3:g} mm: std {row['time_error [%]']:.1f} %, "
+            f"mean {row['time_error_mean [%]']:+.1f} %"
+            for d, row in at_top.iterrows()
+        ]
         out.append(
             f"**Standard deviation against bias.** The paper's measure is the standard "
             f"deviation over the repetitions, which does not see a bias common to all of them. "

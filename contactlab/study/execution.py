@@ -9,22 +9,14 @@ import math
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-import numpy as np
-
 from contactlab.errors import ParameterError
+from contactlab.validation import check_count  # re-exported: a public name of this module
 
 __all__ = ["check_count", "run_tasks"]
 
 CHUNKS_PER_SLOT = 4
 """Chunks per worker slot by default: few enough that pickling costs little, enough that
 the load still balances when points differ in cost."""
-
-
-def check_count(name, value, low=1):
-    """Return ``value`` as an int after checking it is an integer >= ``low``."""
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-        raise ParameterError(f"{name} must be an integer >= {low}; got {value!r}")
-    return int(value)
 
 
 def _progress_bar(total, progress, desc):

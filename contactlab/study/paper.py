@@ -24,10 +24,10 @@ import numpy as np
 
 from contactlab.config import list_presets, load_preset
 from contactlab.study import conclusions as concl
-from contactlab.study.plots import plot_error_family, plot_errors, save_figure
+from contactlab.study.plots import check_formats, plot_error_family, plot_errors, save_figure
 from contactlab.study.setup import Scatter, StudySetup
 from contactlab.study.sweep import run_grid
-from contactlab.validation import check_number
+from contactlab.validation import check_count, check_number
 
 __all__ = ["PAPER_GRID", "QUICK_GRID", "PaperGrid", "PaperStudyResult", "paper_study"]
 
@@ -193,8 +193,8 @@ def paper_study(
         tqdm progress bars (default: only on an interactive terminal).
     tolerance : float, default 10
         RMS error [%] that counts as adequate measurement in the verdicts.
-    formats : tuple of str
-        Figure formats.
+    formats : tuple of str, default ("png", "svg")
+        Figure formats (any matplotlib writes).
 
     Returns
     -------
@@ -202,6 +202,8 @@ def paper_study(
     """
     start = time.perf_counter()
     tolerance = check_number("tolerance", tolerance, low=0.0, unit="%")
+    formats = check_formats(formats)
+    seed = check_count("seed", seed, low=0)
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     grid = QUICK_GRID if quick else PAPER_GRID
@@ -236,7 +238,10 @@ def paper_study(
     settings = {
         "grid": "quick (coarse preview)" if quick else "full",
         "impacts": f"{len(frequency.impacts) + len(diameter.impacts)}",
-        "grain": "paper's: 765 kg/m^3, linear contact k2 = 1e5 N/m (mean), v0 = 2 m/s",
+        "grain": (
+            f"paper's: {setup.grain.density:g} kg/m^3, linear contact k2 = "
+            f"{setup.law.stiffness:g} N/m (mean), v0 = {setup.velocity:g} m/s"
+        ),
         "sensor": (
             f"steel disc 10 mm x 2 mm ({setup.sensor.mass * 1e3:.3f} g), damping ratio "
             f"{setup.sensor.damping_ratio:g}"

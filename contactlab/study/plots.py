@@ -8,7 +8,7 @@ bias the standard deviation does not see.
 
 from contactlab.plotting import axes_or_new
 
-__all__ = ["plot_error_family", "plot_errors", "save_figure"]
+__all__ = ["check_formats", "plot_error_family", "plot_errors", "save_figure"]
 
 _COLOURS = {"time": "tab:red", "force": "tab:green"}
 _LABELS = {"time": "contact-time error", "force": "peak-force error"}
@@ -129,8 +129,35 @@ def plot_error_family(points, x, family, error="force", measure="rms", ax=None, 
     return fig, ax
 
 
+def check_formats(formats):
+    """Return ``formats`` as a tuple after checking each is a file format matplotlib writes.
+
+    Called before a long computation, so that a misspelt format fails before it, not after.
+    """
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    from contactlab.errors import ParameterError
+    from contactlab.validation import check_choice
+
+    if isinstance(formats, str):
+        raise ParameterError(
+            f"formats must be a sequence of names such as ('png',); got {formats!r}"
+        )
+    supported = tuple(FigureCanvasBase.get_supported_filetypes())
+    return tuple(check_choice("formats", fmt, supported) for fmt in formats)
+
+
 def save_figure(fig, path_stem, formats=("png", "svg")):
     """Save a figure as ``path_stem.<format>`` for each format and close it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure.
+    path_stem : pathlib.Path
+        File path without suffix.
+    formats : tuple of str, default ("png", "svg")
+        File formats.
 
     Returns
     -------

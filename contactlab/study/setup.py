@@ -23,7 +23,7 @@ from contactlab import analytic
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import ContactLaw, Hertz, HertzDamped, LinearViscoelastic, PlasticTrapezoid
-from contactlab.validation import check_choice, check_number
+from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = [
     "DISTRIBUTIONS",
@@ -105,8 +105,9 @@ class Scatter:
         Impacts per grid point, >= 1.
     spread : float, default 0.5
         ``"uniform"``: half-width of ``f`` (``f`` in ``[1 - spread, 1 + spread]``), in
-        [0, 1). ``"normal"``: standard deviation of ``f``, in [0, 1/3); the normal is
-        truncated at 3 standard deviations so that ``f`` stays positive.
+        [0, 1). ``"normal"``: standard deviation of the normal ``f`` is drawn from, in
+        [0, 1/3); it is truncated at 3 standard deviations so that ``f`` stays positive,
+        which makes the standard deviation of ``f`` itself 1.3 % smaller.
     distribution : {"uniform", "normal"}
         Distribution of ``f``.
 
@@ -123,12 +124,7 @@ class Scatter:
     distribution: str = "uniform"
 
     def __post_init__(self):
-        if isinstance(self.repetitions, bool) or not isinstance(
-            self.repetitions, (int, np.integer)
-        ):
-            raise ParameterError(f"repetitions must be an integer >= 1; got {self.repetitions!r}")
-        if self.repetitions < 1:
-            raise ParameterError(f"repetitions must be an integer >= 1; got {self.repetitions}")
+        check_count("repetitions", self.repetitions)
         check_choice("distribution", self.distribution, DISTRIBUTIONS)
         high = 1.0 if self.distribution == "uniform" else 1.0 / _TRUNCATION
         check_number(
@@ -154,6 +150,20 @@ class Scatter:
             return 1.0 + self.spread * (2.0 * u - 1.0)
         lo = ndtr(-_TRUNCATION)
         return 1.0 + self.spread * ndtri(lo + u * (1.0 - 2.0 * lo))
+
+
+def _names(name, value):
+    """A parameter name or a sequence of names, as a tuple of str."""
+    names = (value,) if isinstance(value, str) else value
+    try:
+        names = tuple(names)
+    except TypeError:
+        names = None
+    if names is None or not all(isinstance(n, str) for n in names):
+        raise ParameterError(
+            f"{name} must be a law parameter name or a tuple of them; got {value!r}"
+        )
+    return names
 
 
 def law_units(law):
@@ -193,7 +203,7 @@ class StudySetup:
         (:data:`STIFFNESS_PARAMETERS`), which follows the law when it is replaced.
     samples_per_period : float, default 100
         Output grid: samples per the shorter of the sensor period and the rigid-wall
-        contact time of the stiffest draw, >= 20. The sensor lobe and both peaks are
+        contact time of the shortest draw, >= 20. The sensor lobe and both peaks are
         refined on the dense solution, so the grid only has to find them; with 100 samples
         a peak read off the grid itself would be within ``(pi/100)**2 / 2 = 0.05 %``.
     """
@@ -231,12 +241,14 @@ class StudySetup:
             "samples_per_period",
             check_number("samples_per_period", self.samples_per_period, low=20.0, low_open=False),
         )
-        if isinstance(self.vary, str):
-            object.__setattr__(self, "vary", (self.vary,))
-        if self.vary is None and not self.varied and self.scatter.spread > 0.0:
+        if self.vary is not None:
+            object.__setattr__(self, "vary", _names("vary", self.vary))
+        if not self.varied and self.scatter.spread > 0.0:
+            what = "no contact stiffness" if self.vary is None else "vary=() names nothing"
             raise ParameterError(
-                f"law {self.law.name!r} has no contact stiffness to scatter; name the "
-                f"parameter(s) with vary=(...), one of {tuple(self.law.parameters())}"
+                f"law {self.law.name!r}: {what} to scatter with spread "
+                f"{self.scatter.spread:g}; name the parameter(s) with vary=(...), one of "
+                f"{tuple(self.law.parameters())}, or set Scatter(spread=0)"
             )
         for name in self.varied:
             check_choice("vary", name, tuple(self.law.parameters()))

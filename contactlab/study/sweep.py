@@ -25,8 +25,9 @@ import pandas as pd
 from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.impact import simulate_impact
-from contactlab.study.execution import check_count, run_tasks
+from contactlab.study.execution import run_tasks
 from contactlab.study.setup import StudySetup
+from contactlab.validation import check_count
 
 __all__ = [
     "ERRORS",
@@ -77,7 +78,7 @@ def simulate_point(setup, overrides, factors):
     overrides : dict
         Grid parameter name -> value at this point.
     factors : array_like
-        Stiffness factors [-], one impact each.
+        Scatter factors [-] of the ``setup.varied`` parameters, one impact each.
 
     Returns
     -------
@@ -91,12 +92,17 @@ def simulate_point(setup, overrides, factors):
     -----
     The window is the solver's default (the whole first contact and five sensor periods
     of ringing after it, in which the sensor's first lobe has long ended); the output
-    grid has ``setup.samples_per_period`` samples per the shorter of the sensor period and
-    the rigid-wall contact time of the stiffest draw.
+    grid has ``setup.samples_per_period`` samples per the shortest of the sensor period
+    and the rigid-wall contact times of the two extreme draws (the contact time is
+    monotone in a scattered stiffness, damping or pulse length, so one of them is the
+    shortest of all draws).
     """
     grain, sensor, law, velocity = setup.at(overrides)
-    stiffest = setup.scattered(law, float(np.max(factors)))
-    shortest = min(sensor.period, _rigid_contact_time(stiffest, grain.mass, velocity))
+    extremes = {float(np.min(factors)), float(np.max(factors))}
+    shortest = min(
+        sensor.period,
+        *(_rigid_contact_time(setup.scattered(law, f), grain.mass, velocity) for f in extremes),
+    )
     sample_rate = setup.samples_per_period / shortest
     columns = setup.varied_columns()
     out = {name: [] for name in (*columns, *_IMPACT_COLUMNS)}
@@ -126,8 +132,8 @@ def point_statistics(impacts, by):
     ----------
     impacts : pandas.DataFrame
         Per-impact frame (:attr:`SweepResult.impacts`).
-    by : list of str
-        Columns that identify a grid point.
+    by : str or list of str
+        Column(s) that identify a grid point.
 
     Returns
     -------
@@ -136,6 +142,11 @@ def point_statistics(impacts, by):
         ``contact_time_mean [s]``, and for ``q`` in time, force: ``q_error [%]``
         (standard deviation, ``ddof = 0``), ``q_error_mean [%]``, ``q_error_rms [%]``.
     """
+    by = [by] if isinstance(by, str) else list(by)
+    needed = [*by, "contact_time [s]", *(f"{q}_error [%]" for q in ERRORS)]
+    missing = [c for c in needed if c not in impacts.columns]
+    if missing:
+        raise ParameterError(f"impacts has no column(s) {missing} (by = {list(by)!r})")
     groups = impacts.groupby(by, sort=False)
     out = groups.size().rename("repetitions [-]").to_frame()
     out["contact_time_mean [s]"] = groups["contact_time [s]"].mean()
@@ -178,6 +189,13 @@ class SweepResult:
     def to_csv(self, directory, name):
         """Write ``name.csv`` (points) and ``name_impacts.csv`` (impacts) into a folder.
 
+        Parameters
+        ----------
+        directory : str or pathlib.Path
+            Output folder (created).
+        name : str
+            Stem of the two file names.
+
         Returns
         -------
         list of pathlib.Path
@@ -199,9 +217,14 @@ def _grid_points(setup, grid):
     names = [setup.check_parameter(name) for name in grid]
     values = []
     for name in names:
-        vals = np.atleast_1d(np.asarray(grid[name], dtype=float))
-        if vals.ndim != 1 or vals.size == 0:
-            raise ParameterError(f"grid[{name!r}] must be a non-empty 1-D sequence of numbers")
+        try:
+            vals = np.atleast_1d(np.asarray(grid[name], dtype=float))
+        except (TypeError, ValueError):
+            vals = None
+        if vals is None or vals.ndim != 1 or vals.size == 0:
+            raise ParameterError(
+                f"grid[{name!r}] must be a non-empty 1-D sequence of numbers; got {grid[name]!r}"
+            )
         values.append([float(v) for v in vals])
     return (
         names,
@@ -285,19 +308,45 @@ def run_grid(
 
 
 def frequency_sweep(setup, resonances, diameters=None, **options):
-    """Errors against sensor resonance [Hz] (Figures 10 and 11), optionally per diameter [m].
+    """Errors against sensor resonance (Figures 10 and 11), optionally per grain diameter.
 
-    Keyword arguments go to :func:`run_grid`.
+    Parameters
+    ----------
+    setup : StudySetup
+        Base set-up, scatter and settings.
+    resonances : array_like
+        Sensor resonances [Hz] (``sensor.resonance``, varying fastest).
+    diameters : array_like, optional
+        Grain diameters [m] (``grain.diameter``); default the set-up's grain only.
+    **options
+        Keyword arguments of :func:`run_grid` (``seed``, ``workers``, ...).
+
+    Returns
+    -------
+    SweepResult
     """
     grid = {} if diameters is None else {"grain.diameter": diameters}
     return run_grid(setup, {**grid, "sensor.resonance": resonances}, **options)
 
 
 def diameter_sweep(setup, diameters, resonances=None, **options):
-    """Errors against grain diameter [m] (Figure 12), optionally per sensor resonance [Hz].
+    """Errors against grain diameter (Figure 12), optionally per sensor resonance.
 
-    How the contact law follows the diameter is ``setup.size_dependence``. Keyword
-    arguments go to :func:`run_grid`.
+    Parameters
+    ----------
+    setup : StudySetup
+        Base set-up; how the contact law follows the diameter is
+        ``setup.size_dependence``.
+    diameters : array_like
+        Grain diameters [m] (``grain.diameter``, varying fastest).
+    resonances : array_like, optional
+        Sensor resonances [Hz] (``sensor.resonance``); default the set-up's sensor only.
+    **options
+        Keyword arguments of :func:`run_grid` (``seed``, ``workers``, ...).
+
+    Returns
+    -------
+    SweepResult
     """
     grid = {} if resonances is None else {"sensor.resonance": resonances}
     return run_grid(setup, {**grid, "grain.diameter": diameters}, **options)

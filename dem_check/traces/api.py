@@ -61,6 +61,8 @@ def read_trace(path, format="auto", channel=None, sensitivity=None):
     ImportError
         A binary format whose optional package is missing (``pip install
         contactlab[traces]``).
+    OSError
+        The file cannot be opened (``FileNotFoundError``, ``IsADirectoryError``, ...).
     """
     path = os.fspath(path)
     reader = None if format == "auto" else _format(format)

@@ -1,26 +1,57 @@
-"""Checks every reader applies, whatever the format: channel choice and sample validity;
-and the one check writers of uniformly sampled layouts need.
+"""Checks every reader applies, whatever the format: channel choice, sample validity and
+the numeric header fields of binary files; and the check that writers of uniformly
+sampled layouts (``start + n * interval``) need.
 
 Errors name the file and where in it the fault lies. Text readers pass a ``where``
 function mapping a sample index to ``"line N"``; binary readers map it to ``"sample N"``.
 """
 
+import math
+
 import numpy as np
 
 from contactlab.errors import ParameterError, TraceFormatError
 
-__all__ = ["check_samples", "fail", "select_channel", "uniform_interval"]
+__all__ = [
+    "check_samples",
+    "fail",
+    "grid_deviation",
+    "header_number",
+    "select_channel",
+    "uniform_interval",
+]
 
 UNIFORM_RTOL = 1e-4
-"""Largest deviation of a time step from the sample interval, relative to it, for a trace
-to count as uniformly sampled. Time columns printed with ~12 digits (Tektronix) jitter by
-~1e-6 of an interval and must pass; a dropped or repeated sample (a deviation of 1) or
-real timing irregularity must not."""
+"""Largest disagreement between sample times and a uniform grid, relative to the sample
+interval: of a sample time from ``start + n * interval`` for a trace to count as
+uniformly sampled, and of a declared interval from the time column's mean spacing. Time
+columns printed with ~12 digits (Tektronix) jitter by ~1e-6 of an interval and must
+pass; a dropped or repeated sample (a deviation of 1) or real timing irregularity must
+not."""
 
 
 def fail(path, where, message):
     """A :class:`TraceFormatError` reading ``"<path>, <where>: <message>"``."""
     return TraceFormatError(f"{path}, {where}: {message}")
+
+
+def header_number(path, where, name, value, *, positive=False):
+    """A numeric field of a binary file's header (an attribute, a property) as a float.
+
+    Raises
+    ------
+    TraceFormatError
+        Naming the file, ``where`` and the field, if the value is not a finite number
+        (or not > 0 when ``positive``).
+    """
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        number = math.nan
+    if not math.isfinite(number) or (positive and number <= 0.0):
+        shown = value.item() if isinstance(value, np.generic) else value
+        raise fail(path, where, f"{name} {shown!r} is not a finite number{' > 0' * positive}")
+    return number
 
 
 def _key(name):
@@ -117,10 +148,23 @@ def check_samples(t, values, path, where):
     return np.flatnonzero(np.isinf(values))
 
 
+def grid_deviation(t, start, interval, first=0):
+    """Largest distance [s] of the times ``t`` from the grid ``start + n * interval``.
+
+    ``n`` counts from ``first`` (the sample number of ``t[0]``).
+    """
+    n = np.arange(first, first + t.size)
+    return float(np.max(np.abs(start + n * interval - t)))
+
+
 def uniform_interval(trace, purpose="this layout stores start + n * interval"):
     """Sample interval [s] of a uniformly sampled trace.
 
-    Uses ``metadata["sample_interval"]`` when present, else the mean spacing.
+    The interval must give back every sample time as ``t[0] + n * interval`` to within
+    :data:`UNIFORM_RTOL` of an interval (so a writer that stores only the start and the
+    interval keeps the samples where they were). ``metadata["sample_interval"]`` (the
+    file's declared interval) is tried first, then the mean spacing: a declared interval
+    printed with few digits drifts from the time column over a long record.
 
     Parameters
     ----------
@@ -131,16 +175,18 @@ def uniform_interval(trace, purpose="this layout stores start + n * interval"):
     Raises
     ------
     ParameterError
-        If the trace has fewer than 2 samples or its time steps are not uniform.
+        If the trace has fewer than 2 samples or its times are not on a uniform grid.
     """
     t = trace.t
     if t.size < 2:
         raise ParameterError(f"{purpose}: needs at least 2 samples; got {t.size}")
-    interval = trace.metadata.get("sample_interval") or (t[-1] - t[0]) / (t.size - 1)
-    deviation = np.max(np.abs(np.diff(t) - interval))
-    if not deviation <= UNIFORM_RTOL * interval:
-        raise ParameterError(
-            f"{purpose}, but the trace's time steps deviate from {interval!r} s by up to "
-            f"{deviation!r} s (non-uniform sampling)"
-        )
-    return float(interval)
+    spacing = float((t[-1] - t[0]) / (t.size - 1))
+    declared = trace.metadata.get("sample_interval")
+    for interval in (declared, spacing) if declared else (spacing,):
+        deviation = grid_deviation(t, t[0], interval)
+        if deviation <= UNIFORM_RTOL * interval:
+            return float(interval)
+    raise ParameterError(
+        f"{purpose}, but the trace's times deviate from a uniform grid of {spacing!r} s by "
+        f"up to {deviation!r} s (non-uniform sampling)"
+    )

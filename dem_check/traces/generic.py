@@ -19,6 +19,7 @@ say that no instrument layout was recognised.
 
 import re
 
+from contactlab.validation import check_choice
 from dem_check.traces.textblock import Block, Column, output_units, require_unit, write_text
 from dem_check.traces.units import parse_unit
 
@@ -116,7 +117,7 @@ def write(path, trace, *, time_unit="s", value_unit=None, name=None, brackets="[
     """
     t_unit, v_unit = output_units(trace, time_unit, value_unit)
     name = name or ("force" if trace.unit == "N" else "value")
-    left, right = brackets
+    left, right = check_choice("brackets", brackets, ("[]", "()"))
     header = [f"# {key}: {value}" for key, value in (comments or {}).items()]
     header.append(f"t {left}{t_unit.text}{right},{name} {left}{v_unit.text}{right}")
     write_text(path, header, [t_unit.from_si(trace.t), v_unit.from_si(trace.values)])

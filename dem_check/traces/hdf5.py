@@ -15,8 +15,15 @@ A dataset without a unit or a time axis is an error: nothing is assumed.
 
 import numpy as np
 
+from contactlab.validation import check_choice
 from dem_check.traces.binary import require
-from dem_check.traces.checks import check_samples, fail, select_channel, uniform_interval
+from dem_check.traces.checks import (
+    check_samples,
+    fail,
+    header_number,
+    select_channel,
+    uniform_interval,
+)
 from dem_check.traces.textblock import output_units
 from dem_check.traces.trace import Trace
 from dem_check.traces.units import SI_VALUE_UNITS, parse_unit
@@ -68,7 +75,10 @@ def _time(path, dataset, n):
     where = f"dataset {dataset.name!r}"
     attrs = dataset.attrs
     if "sample_interval" in attrs and "start_time" in attrs:
-        interval, start = float(attrs["sample_interval"]), float(attrs["start_time"])
+        interval = header_number(
+            path, where, "sample_interval", attrs["sample_interval"], positive=True
+        )
+        start = header_number(path, where, "start_time", attrs["start_time"])
         t = np.arange(n) * interval
         t += start
         return t, interval, "header"
@@ -107,6 +117,8 @@ def read(head, channel):
         t, interval, source = _time(path, dataset, values.size)
         attrs = {k: _text(v) if isinstance(v, bytes | str) else v for k, v in dataset.attrs.items()}
     trigger = attrs.get("trigger_time")
+    if trigger is not None:
+        trigger = header_number(path, f"dataset {name!r}", "trigger_time", trigger)
     metadata = {
         "format": "hdf5",
         "source": path,
@@ -115,7 +127,7 @@ def read(head, channel):
         "channels": names,
         "sample_interval": interval,
         "sample_interval_source": source,
-        "trigger_time": None if trigger is None else float(trigger),
+        "trigger_time": trigger,
         "time_unit": "s",
         "vertical_unit": unit.text,
         "header": attrs,
@@ -139,6 +151,7 @@ def write(path, trace, *, name="trace/value", time="dataset", value_unit=None):
     value_unit : str, optional
         Unit to store the values in (``"mV"``); default the trace's SI unit.
     """
+    check_choice("time", time, ("dataset", "attrs"))
     h5py = _h5py()
     _, v_unit = output_units(trace, "s", value_unit)
     with h5py.File(path, "w") as h5file:

@@ -18,6 +18,7 @@ import re
 
 import numpy as np
 
+from contactlab.validation import check_choice
 from dem_check.traces.textblock import named_columns, output_units, write_text
 
 __all__ = ["OVERRANGE_TOKENS", "parse_header", "sniff", "write"]
@@ -60,6 +61,7 @@ def write(path, trace, *, time_unit="ms", value_unit="mV", channel="Channel A", 
     infinity : {"∞", "Infinity"}
         How overrange (infinite) samples are written; ``-`` is prefixed for negative ones.
     """
+    check_choice("infinity", infinity, ("∞", "Infinity"))  # the spellings the reader knows
     t_unit, v_unit = output_units(trace, time_unit, value_unit)
     values = v_unit.from_si(trace.values)
     if np.isinf(values).any():

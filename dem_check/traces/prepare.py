@@ -29,10 +29,14 @@ def _baseline(trace, pre_trigger):
         window = (float(t[0]), end)
         mask = t < end
     else:
-        if len(pre_trigger) != 2:
-            raise ParameterError(f"pre_trigger must be (start, end) [s]; got {pre_trigger!r}")
-        start = check_number("pre_trigger start", pre_trigger[0], unit="s")
-        end = check_number("pre_trigger end", pre_trigger[1], low=start, unit="s")
+        try:
+            start, end = pre_trigger
+        except (TypeError, ValueError):
+            raise ParameterError(
+                f"pre_trigger must be (start, end) [s]; got {pre_trigger!r}"
+            ) from None
+        start = check_number("pre_trigger start", start, unit="s")
+        end = check_number("pre_trigger end", end, low=start, unit="s")
         window = (start, end)
         mask = (t >= start) & (t < end)
     samples = trace.values[mask]

@@ -22,7 +22,7 @@ may end with a comma. Time is relative to the trigger.
 import numpy as np
 
 from contactlab.errors import ParameterError
-from dem_check.traces.checks import UNIFORM_RTOL, uniform_interval
+from dem_check.traces.checks import UNIFORM_RTOL, grid_deviation, uniform_interval
 from dem_check.traces.textblock import (
     Block,
     Column,
@@ -122,16 +122,18 @@ def write_sequence(path, trace, *, first_index=0, start=None, increment=None, ch
     channel : str, default "CH1"
     """
     _volts(trace)
+    if isinstance(first_index, bool) or not isinstance(first_index, int | np.integer):
+        raise ParameterError(f"first_index must be an integer sample number; got {first_index!r}")
     increment = uniform_interval(trace) if increment is None else float(increment)
     start = float(trace.t[0] - first_index * increment if start is None else start)
-    n = np.arange(first_index, first_index + len(trace))
-    deviation = np.max(np.abs(start + n * increment - trace.t))
+    deviation = grid_deviation(trace.t, start, increment, first_index)
     if not deviation <= UNIFORM_RTOL * increment:
         raise ParameterError(
             f"start={start!r} s and increment={increment!r} s miss the trace's times by up "
             f"to {deviation!r} s"
         )
     header = [f"X,{channel},Start,Increment,", f"Sequence,Volt,{start!r},{increment!r}"]
+    n = np.arange(first_index, first_index + len(trace))
     write_text(path, header, [n, trace.values], trailing=True)
 
 

@@ -10,7 +10,13 @@ without one is an error.
 import numpy as np
 
 from dem_check.traces.binary import require
-from dem_check.traces.checks import check_samples, fail, select_channel, uniform_interval
+from dem_check.traces.checks import (
+    check_samples,
+    fail,
+    header_number,
+    select_channel,
+    uniform_interval,
+)
 from dem_check.traces.trace import Trace
 from dem_check.traces.units import SI_VALUE_UNITS, parse_unit
 
@@ -51,10 +57,11 @@ def read(head, channel):
         raise fail(path, where, f"unit_string {props.get('unit_string')!r} is not V, N or A")
     if "wf_increment" not in props:
         raise fail(path, where, "no wf_increment property: the time axis is unknown")
+    interval = header_number(path, where, "wf_increment", props["wf_increment"], positive=True)
+    start = header_number(path, where, "wf_start_offset", props.get("wf_start_offset", 0.0))
     values = unit.to_si(np.asarray(found[name][:], dtype=np.float64))
-    interval = float(props["wf_increment"])
     t = np.arange(values.size) * interval
-    t += float(props.get("wf_start_offset", 0.0))
+    t += start
     metadata = {
         "format": "tdms",
         "source": path,

@@ -10,7 +10,8 @@ in what units. :func:`read_block` then does the rest for every layout alike:
   validates with vectorised numpy: no NaN, strictly increasing time, declared record
   length and sample interval honoured;
 - anything the fast path rejects (a non-numeric or missing cell, a wrong cell count, an
-  undecodable byte, a layout's own overrange token such as ``∞``) sends the block through
+  undecodable byte, a layout's own overrange token such as ``∞``), and any block that
+  holds the words ``true`` or ``false`` (pandas would read them as 1 and 0), goes through
   a line-by-line parser that either reads it (special tokens, trailing blank lines) or
   raises :class:`~contactlab.errors.TraceFormatError` naming the file and the 1-based line.
   The slow path costs time only on files that need it.
@@ -66,6 +67,9 @@ _WIDE_BOMS = (
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _WITH_UNIT = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*[A-Za-zµμ]+")
+_BOOLEAN_WORDS = (b"true", b"false")
+"""Words pandas' C parser turns into 1.0 and 0.0 (in any case) in a column made of them:
+a data block that holds one goes to the line parser, which refuses them as not numbers."""
 _INFINITIES = {
     "inf": math.inf,
     "+inf": math.inf,
@@ -332,8 +336,12 @@ def _parse(head, block, offset, used):
     try:
         with head.open_data() as fh:
             fh.seek(offset)
-            frame = pd.read_csv(fh, **options)
+            booleans = _has_boolean_word(fh)
+            fh.seek(offset)
+            frame = None if booleans else pd.read_csv(fh, **options)
     except ValueError:  # pandas' ParserError, EmptyDataError and UnicodeDecodeError too
+        frame = None
+    if frame is None:
         return _parse_lines(head, block, offset, used)
     if block.n_fields is not None and frame.shape[1] != block.n_fields:
         return _parse_lines(head, block, offset, used)
@@ -342,6 +350,17 @@ def _parse(head, block, offset, used):
         return _parse_lines(head, block, offset, used)
     # Keep only the used columns alive (the frame's block may hold other channels).
     return [a if frame.shape[1] <= 2 else a.copy() for a in arrays]
+
+
+def _has_boolean_word(fh):
+    """Whether the rest of ``fh`` holds ``true`` or ``false`` in any case (1 MiB chunks)."""
+    tail = b""
+    while chunk := fh.read(1 << 20):
+        text = tail + chunk.lower()
+        if any(word in text for word in _BOOLEAN_WORDS):
+            return True
+        tail = text[-4:]  # "false" may straddle two chunks
+    return False
 
 
 def _cell(token, specials):

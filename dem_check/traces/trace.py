@@ -7,6 +7,7 @@ import pandas as pd
 
 from contactlab.errors import ParameterError
 from contactlab.metrics import pulse_metrics
+from dem_check.traces.units import SI_VALUE_UNITS
 
 __all__ = ["Trace"]
 
@@ -69,8 +70,11 @@ class Trace:
                 f"t and values must be 1-D arrays of equal length; got shapes {t.shape} "
                 f"and {values.shape}"
             )
-        if not isinstance(self.unit, str) or not self.unit:
-            raise ParameterError(f"unit must be a non-empty string; got {self.unit!r}")
+        if self.unit not in SI_VALUE_UNITS:  # "mV" would be taken for volts downstream
+            raise ParameterError(
+                f"unit must be one of {', '.join(SI_VALUE_UNITS)} (SI base units; scale "
+                f"the values instead); got {self.unit!r}"
+            )
         for name, array in (("t", t), ("values", values)):
             if array.flags.writeable:
                 array = array.view()
