@@ -28,7 +28,7 @@ def _describe(low, high, low_open, high_open):
         parts.append(f"{'>' if low_open else '>='} {low:g}")
     if high is not None:
         parts.append(f"{'<' if high_open else '<='} {high:g}")
-    return " and ".join(parts) if parts else "any finite value"
+    return " and ".join(parts)
 
 
 def check_number(
@@ -71,18 +71,19 @@ def check_number(
     """
     unit_text = f" [{unit}]" if unit else ""
     rng = _describe(low, high, low_open, high_open)
+    rng = f" {rng}" if rng else ""
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
         raise ParameterError(
-            f"{name} must be a real number {rng}{unit_text}; got {value!r} "
+            f"{name} must be a real number{rng}{unit_text}; got {value!r} "
             f"of type {type(value).__name__}"
         )
     x = float(value)
     if math.isnan(x) or (math.isinf(x) and not (allow_inf and x > 0)):
-        raise ParameterError(f"{name} must be a finite number {rng}{unit_text}; got {x!r}")
+        raise ParameterError(f"{name} must be a finite number{rng}{unit_text}; got {x!r}")
     bad_low = low is not None and (x <= low if low_open else x < low)
     bad_high = high is not None and (x >= high if high_open else x > high)
     if bad_low or bad_high:
-        raise ParameterError(f"{name} must be a finite number {rng}{unit_text}; got {x!r}")
+        raise ParameterError(f"{name} must be a finite number{rng}{unit_text}; got {x!r}")
     return x
 
 

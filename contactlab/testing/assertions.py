@@ -12,10 +12,9 @@ from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.impact import simulate_impact
 from contactlab.laws import ContactLaw
-from contactlab.testing._checks import check_count
 from contactlab.testing.closed_forms import ClosedForm, closed_forms_for
 from contactlab.testing.golden import compare_impacts
-from contactlab.validation import check_number
+from contactlab.validation import check_count, check_number
 from dem_check.compare import QUANTITIES
 
 __all__ = [
@@ -229,7 +228,7 @@ def assert_passive(law, max_overlap, rate=0.0, samples=1001, rtol=PASSIVE_RTOL):
     d_max = check_number("max_overlap", max_overlap, low=0.0, unit="m")
     rate = check_number("rate", rate, low=0.0, low_open=False, unit="m/s")
     rtol = check_number("rtol", rtol, low=0.0, low_open=False)
-    samples = check_count("samples", samples, minimum=2)
+    samples = check_count("samples", samples, low=2)
     ramp = np.linspace(0.0, d_max, samples)
     overlap = np.concatenate([ramp, ramp[::-1]])
     rates = np.concatenate([np.full(samples, rate), np.full(samples, -rate)])

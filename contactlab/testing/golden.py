@@ -36,7 +36,7 @@ import numpy as np
 import contactlab
 from contactlab.errors import ParameterError, TraceFormatError
 from contactlab.result import ImpactResult
-from contactlab.testing._checks import check_count
+from contactlab.validation import check_count
 from dem_check.compare import QUANTITIES, compare
 from dem_check.traces import Trace
 
@@ -246,7 +246,7 @@ class GoldenTrace:
         GoldenTrace
         """
         _check_name(name)
-        max_samples = check_count("max_samples", max_samples, minimum=2)
+        max_samples = check_count("max_samples", max_samples, low=2)
         t, channels, unit, quantities = _reading(impact)
         stride = max(1, math.ceil(t.size / max_samples))
         channels = {c: np.array(y[::stride]) for c, y in channels.items()}
@@ -436,7 +436,7 @@ class GoldenStore:
         self.directory = Path(directory)
         self.update = bool(update)
         self.log = [] if log is None else log
-        self.max_samples = check_count("max_samples", max_samples, minimum=2)
+        self.max_samples = check_count("max_samples", max_samples, low=2)
 
     def check(self, name, impact, tolerances=None):
         """Compare an impact with the reference ``name`` (or write it, when updating).

@@ -14,7 +14,7 @@ import numpy as np
 from scipy import signal
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_number
+from contactlab.validation import check_count, check_number
 from dem_check.traces.checks import uniform_interval
 
 __all__ = ["align", "detect_onset", "lowpass", "noise_level", "remove_baseline", "to_force"]
@@ -172,8 +172,7 @@ def lowpass(trace, cutoff, order=4):
     interval = uniform_interval(trace, "lowpass needs uniform sampling")
     nyquist = 0.5 / interval
     cutoff = check_number("cutoff", cutoff, low=0.0, high=nyquist, high_open=True, unit="Hz")
-    if isinstance(order, bool) or not isinstance(order, int | np.integer) or order < 1:
-        raise ParameterError(f"order must be an integer >= 1; got {order!r}")
+    order = check_count("order", order)
     if not np.isfinite(trace.values).all():
         raise ParameterError("lowpass needs finite samples; the trace holds overrange samples")
     sos = signal.butter(order, cutoff, btype="low", output="sos", fs=1.0 / interval)
