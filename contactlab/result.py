@@ -70,6 +70,25 @@ class ImpactSignals:
     :class:`dem_check.bullet.EngineResult` (rigid-body engine) both do.
     """
 
+    def _headline(self):
+        """The set-up and headline numbers with unit-bearing keys (for ``summary()``)."""
+        return {
+            "method": self.method,
+            "law": type(self.law).__name__,
+            "law_parameters": self.law.parameters(),
+            "grain": self.grain.to_dict(),
+            "sensor": self.sensor.to_dict(),
+            "velocity [m/s]": self.velocity,
+            "contact_time [s]": self.contact_time,
+            "peak_contact_force [N]": self.peak_contact_force,
+            "sensor_response_time [s]": self.sensor_response_time,
+            "peak_sensor_force [N]": self.peak_sensor_force,
+            "impulse [N*s]": self.impulse,
+            "restitution [-]": self.restitution,
+            "rebound_velocity [m/s]": self.rebound_velocity,
+            "contact_intervals [s]": [list(iv) for iv in self.contact_intervals],
+        }
+
     @property
     def contact_time(self):
         """Duration of the first contact [s]."""
@@ -388,22 +407,9 @@ class ImpactResult(ImpactSignals):
     def summary(self):
         """Headline numbers as a dict with unit-bearing keys (JSON-ready)."""
         out = {
-            "method": self.method,
-            "law": type(self.law).__name__,
-            "law_parameters": self.law.parameters(),
-            "grain": self.grain.to_dict(),
-            "sensor": self.sensor.to_dict(),
-            "velocity [m/s]": self.velocity,
+            **self._headline(),
             "duration [s]": self.duration,
             "sample_rate [Hz]": self.sample_rate,
-            "contact_time [s]": self.contact_time,
-            "peak_contact_force [N]": self.peak_contact_force,
-            "sensor_response_time [s]": self.sensor_response_time,
-            "peak_sensor_force [N]": self.peak_sensor_force,
-            "impulse [N*s]": self.impulse,
-            "restitution [-]": self.restitution,
-            "rebound_velocity [m/s]": self.rebound_velocity,
-            "contact_intervals [s]": [list(iv) for iv in self.contact_intervals],
             "energy_balance [J]": self.energy_balance,
         }
         if self.verification is not None:

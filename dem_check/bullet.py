@@ -241,23 +241,7 @@ class EngineResult(ImpactSignals):
 
     def summary(self):
         """Headline numbers and engine settings as a dict with unit-bearing keys (JSON-ready)."""
-        return {
-            "method": self.method,
-            "law": type(self.law).__name__,
-            "law_parameters": self.law.parameters(),
-            "grain": self.grain.to_dict(),
-            "sensor": self.sensor.to_dict(),
-            "velocity [m/s]": self.velocity,
-            "contact_time [s]": self.contact_time,
-            "peak_contact_force [N]": self.peak_contact_force,
-            "sensor_response_time [s]": self.sensor_response_time,
-            "peak_sensor_force [N]": self.peak_sensor_force,
-            "impulse [N*s]": self.impulse,
-            "restitution [-]": self.restitution,
-            "rebound_velocity [m/s]": self.rebound_velocity,
-            "contact_intervals [s]": [list(iv) for iv in self.contact_intervals],
-            **self.metadata,
-        }
+        return {**self._headline(), **self.metadata}
 
     def __repr__(self):
         return (
