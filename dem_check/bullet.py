@@ -89,6 +89,13 @@ MIN_STEPS = 20
 """Fewest steps per contact and per sensor period accepted for ``time_step``: coarser steps
 give errors of several percent, too large for a cross-check."""
 
+MAX_STEPS = 2_000_000
+"""Most engine steps one drop test records (0.2 s of engine time at 1e-7 s, about 16 s of
+stepping); more is refused, not allocated."""
+
+_BYTES_PER_STEP = 5 * 32
+"""Memory recorded per step: five Python floats (list slot and float object)."""
+
 TAIL = 20e-6
 """Time simulated after the last contact and the end of the sensor signal's first lobe
 [s]: the engine stops there unless ``duration`` is given."""
@@ -698,6 +705,13 @@ def drop_test(
         after = check_number("duration", duration, low=0.0, unit="s")
         stop = None
     step_limit = math.ceil((scene.approach_time + after) / dt)
+    if step_limit > MAX_STEPS:
+        raise ParameterError(
+            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {step_limit} engine "
+            f"steps; the bench records at most {MAX_STEPS} (about "
+            f"{MAX_STEPS * _BYTES_PER_STEP / 1e6:.0f} MB of signals): shorten duration or "
+            "lengthen time_step"
+        )
     client = pb.connect(pb.DIRECT)  # a fresh engine per run: nothing carries over
     try:
         plate, body = scene.build(client)

@@ -189,6 +189,9 @@ def test_unsupported_laws_and_bad_settings_are_named(grain, paper_sensor, elasti
         drop_test(grain, paper_sensor, elastic, V0, gravity=9.81)
     with pytest.raises(ParameterError, match="compensate_damping must be True or False"):
         drop_test(grain, paper_sensor, elastic, V0, compensate_damping="no")
+    # a window that would need more steps than the bench records is refused up front
+    with pytest.raises(ParameterError, match=r"needs \d+ engine steps.*shorten duration"):
+        drop_test(grain, paper_sensor, elastic, V0, duration=1.0)
 
 
 def test_result_outputs(grain, paper_sensor):

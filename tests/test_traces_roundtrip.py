@@ -7,6 +7,7 @@ own spellings check the readers independently of the writers.
 
 import dataclasses
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -426,3 +427,17 @@ def test_missing_extra_names_it(tmp_path, monkeypatch, module, fmt, suffix):
     monkeypatch.setitem(sys.modules, module, None)  # makes `import module` fail
     with pytest.raises(ImportError, match=r"pip install contactlab\[traces\]"):
         read_trace(path)
+
+
+def test_tds_without_source_does_not_guess_the_channel(tmp_path):
+    """A TDS export whose header lost its Source row keeps every sample, and the channel is
+    called "unknown" rather than guessed."""
+    sample = Path(__file__).parent.parent / "data" / "traces" / "tek_tds.csv"
+    lines = sample.read_text().splitlines(keepends=True)
+    assert lines[5].startswith("Source,CH1,")
+    lines[5] = ",," + lines[5].split(",", 2)[2]
+    path = tmp_path / "no_source.csv"
+    path.write_text("".join(lines))
+    trace, reference = read_trace(path), read_trace(sample)
+    assert trace.metadata["channel"] == "unknown"
+    np.testing.assert_array_equal(trace.values, reference.values)

@@ -104,7 +104,7 @@ def parse_tds(head):
         require_unit(head, lines.get(key, 1), fields.get(key, ""), kind)
         for key, kind in (("Horizontal Units", "time"), ("Vertical Units", "value"))
     )
-    source = fields.get("Source") or "CH1"
+    source = fields.get("Source") or "unknown"  # the file does not say: no guess
     metadata = {
         "instrument": fields.get("Model Number"),
         "header": fields,
