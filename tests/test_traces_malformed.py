@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from contactlab.errors import TraceFormatError
+from contactlab.errors import ParameterError, TraceFormatError
 from dem_check.traces import Trace, read_trace, write_trace
 
 GENERIC = "t [s],v [V]\n"
@@ -217,3 +217,25 @@ def test_corrupt_binaries(tmp_path, content):
     path.write_bytes(content)
     with pytest.raises(TraceFormatError, match=re.escape("corrupt.bin, binary")):
         read_trace(path)
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        ({"name": "force,left"}, "name = 'force,left' contains a comma"),
+        ({"comments": {"note": "two\nlines"}}, "comments['note'] = 'two\\nlines' contains a line"),
+        ({"format": "picoscope", "channel": "A\rB"}, "channel = 'A\\rB' contains a comma"),
+    ],
+)
+def test_writer_text_that_would_not_read_back_is_refused(tmp_path, options, message):
+    trace = Trace(np.arange(4) * 1e-6, np.arange(4.0), "V")
+    with pytest.raises(ParameterError, match=re.escape(message)):
+        write_trace(tmp_path / "out.csv", trace, **options)
+    assert not (tmp_path / "out.csv").exists()  # refused before anything is written
+
+
+def test_commas_in_comments_are_fine(tmp_path):
+    trace = Trace(np.arange(4) * 1e-6, np.arange(4.0), "V")
+    write_trace(tmp_path / "out.csv", trace, comments={"note": "grain 5 mm, 2 m/s"})
+    comments = read_trace(tmp_path / "out.csv").metadata["header"]["comments"]
+    assert comments["note"] == "grain 5 mm, 2 m/s"

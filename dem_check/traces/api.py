@@ -92,6 +92,27 @@ def write_trace(path, trace, format="generic", **options):
         Layout options, documented with each writer (e.g.
         :func:`dem_check.traces.rigol.write_sequence` takes ``first_index``;
         :func:`dem_check.traces.picoscope.write` takes ``time_unit`` and ``value_unit``).
-        Unknown options raise TypeError.
+        Unknown options raise TypeError. Text options (names, units, comments) may not
+        contain a line break, and names and units may not contain the comma that separates
+        cells: the file would not read back (a ParameterError names the option).
     """
-    _format(format, writable=True).write(os.fspath(path), trace, **options)
+    writer = _format(format, writable=True)
+    for name, value in options.items():
+        _check_text_option(name, value)
+    writer.write(os.fspath(path), trace, **options)
+
+
+def _check_text_option(name, value, cells=True):
+    """Refuse text that would break a text layout's lines or (``cells``) its cells."""
+    if isinstance(value, dict):  # comments: one "# key: value" line each, commas allowed
+        for key, item in value.items():
+            _check_text_option(f"{name} key {key!r}", str(key), cells=False)
+            _check_text_option(f"{name}[{key!r}]", str(item), cells=False)
+        return
+    forbidden = ",\r\n" if cells else "\r\n"
+    if isinstance(value, str) and any(c in value for c in forbidden):
+        what = "a comma or a line break" if cells else "a line break"
+        raise ParameterError(
+            f"{name} = {value!r} contains {what}, which would split the file's "
+            f"{'cells or lines' if cells else 'lines'}; choose another text"
+        )
