@@ -1,4 +1,4 @@
-"""Oscilloscope binaries through RigolWFM: LeCroy .trc and Rigol DS1000E .wfm.
+"""Oscilloscope binaries through RigolWFM: LeCroy .trc, Rigol DS1000E .wfm, Tektronix .isf.
 
 RigolWFM ships no sample files, and no instrument file with a known licence is at hand,
 so each test writes a small file from the vendor's layout: the ``WAVEDESC`` block of
@@ -176,3 +176,52 @@ def test_rigol_ds1000e_wfm(tmp_path):
     expected = offset_ps * 1e-12 - N * interval / 2 + np.arange(N) * interval
     np.testing.assert_allclose(trace.t, expected, rtol=0, atol=1e-18)
     assert trace.t[PRE] == pytest.approx(0.0, abs=1e-18)  # the trigger is at t = 0
+
+
+# --- Tektronix .isf ---------------------------------------------------------------------
+
+
+def _tektronix_isf(codes, *, ymult, xincr, xzero):
+    """A Tektronix ISF file: the ``:WFMPRE`` preamble (semicolon-separated ``KEY VALUE``
+    pairs, long field names of the programmer manual) and ``:CURVE #<n><count>`` with
+    big-endian 16-bit signed samples."""
+    data = np.asarray(codes, dtype=">i2").tobytes()
+    header = (
+        ":WFMPRE:BYT_NR 2;BIT_NR 16;ENCDG BIN;BN_FMT RI;BYT_OR MSB;"
+        f'WFID "Ch1, DC coupling";NR_PT {len(codes)};PT_FMT Y;XUNIT "s";XINCR {xincr!r};'
+        f'XZERO {xzero!r};PT_OFF 0;YUNIT "V";YMULT {ymult!r};YOFF 0.0E0;YZERO 0.0E0;:CURVE '
+    )
+    count = str(len(data))
+    return header.encode() + f"#{len(count)}{count}".encode() + data + b"\n"
+
+
+def test_tektronix_isf(tmp_path):
+    codes = _pulse_codes(3000.0, 20.0, seed=3)
+    path = tmp_path / "scope.isf"
+    path.write_bytes(_tektronix_isf(codes, ymult=3.125e-6, xincr=2e-7, xzero=-PRE * 2e-7))
+    assert detect_format(path) == "scope-binary"
+    trace = read_trace(path)
+    assert len(trace) == N and trace.unit == "V"
+    # volts = YZERO + YMULT (code - YOFF); RigolWFM computes in float32: 6e-8 relative
+    np.testing.assert_allclose(trace.values, 3.125e-6 * codes, rtol=1e-7, atol=1e-12)
+    # t = XZERO + XINCR (i - PT_OFF): the trigger at sample PRE is t = 0
+    assert trace.t[PRE] == pytest.approx(0.0, abs=1e-18)
+    assert np.diff(trace.t) == pytest.approx(2e-7, rel=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("cut", "message"),
+    [
+        # 150 whole samples (and the final newline) missing: RigolWFM reads the rest without
+        # a word, and the preamble's NR_PT catches it
+        (301, "the header declares 8192 points"),
+        # half a sample missing: RigolWFM itself fails
+        (300, "not a readable oscilloscope binary"),
+    ],
+)
+def test_truncated_tektronix_isf_is_a_format_error(tmp_path, cut, message):
+    raw = _tektronix_isf(_pulse_codes(3000.0, 20.0, seed=3), ymult=3e-6, xincr=2e-7, xzero=0.0)
+    path = tmp_path / "cut.isf"
+    path.write_bytes(raw[:-cut])
+    with pytest.raises(TraceFormatError, match=rf"cut\.isf, binary: {message}"):
+        read_trace(path)

@@ -30,6 +30,7 @@ EXTRA = "pip install contactlab[traces]"
 """How to install the optional readers."""
 
 _ISF = re.compile(rb":CURVE? #\d")
+_ISF_POINTS = re.compile(rb"(?:NR_PT|NR_P)\s+(\d+)")
 _UNITS = {"v": "V", "a": "A"}
 
 
@@ -44,6 +45,18 @@ def require(module, purpose):
 def sniff(head):
     """Binary content, a Tektronix ISF curve block, or a LeCroy ``WAVEDESC``."""
     return not head.is_text or bool(_ISF.search(head.raw)) or b"WAVEDESC" in head.raw[:512]
+
+
+def _isf_points(head):
+    """Points a Tektronix ISF preamble declares (``NR_PT``/``NR_P``), or None.
+
+    RigolWFM reads a curve cut short by a whole number of samples without complaint; the
+    declared count catches it.
+    """
+    if not _ISF.search(head.raw):
+        return None
+    match = _ISF_POINTS.search(head.raw)
+    return int(match.group(1)) if match else None
 
 
 def _channels(wfm, path):
@@ -106,6 +119,14 @@ def read(head, channel):
     if unit is None:
         raise fail(path, "binary", f"channel {chosen['name']!r} has unit {chosen['unit']!r}")
     t, values = chosen["t"], chosen["values"]
+    declared = _isf_points(head)
+    if declared is not None and declared != values.size:
+        raise fail(
+            path,
+            "binary",
+            f"the header declares {declared} points (NR_PT) but the curve "
+            f"holds {values.size}: the file is truncated or corrupt",
+        )
     metadata = {
         "format": "scope-binary",
         "source": path,
