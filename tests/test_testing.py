@@ -333,3 +333,6 @@ def test_strategy_arguments_are_checked():
         laws("herz")
     with pytest.raises(cl.ParameterError, match=r"diameter\[1\]"):
         grains(diameter=(2e-3, 1e-3))
+    # bounds outside the quantity's own range fail when the strategy is built
+    with pytest.raises(cl.ParameterError, match=r"poisson_ratio\[1\] .* <= 0.5"):
+        grains(poisson_ratio=(0.1, 0.6))

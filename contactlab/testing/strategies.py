@@ -48,12 +48,14 @@ __all__ = [
 ]
 
 
-def _bounds(name, bounds, unit, low=0.0, low_open=True):
-    """Check a ``(low, high)`` pair of bounds; return it as floats."""
+def _bounds(name, bounds, unit, low=0.0, low_open=True, high=None):
+    """Check a ``(low, high)`` pair of bounds inside the quantity's own range; return it as
+    floats, so that a strategy asking for impossible values fails when it is built, not
+    while drawing."""
     if not isinstance(bounds, tuple) or len(bounds) != 2:
         raise ParameterError(f"{name} must be a (low, high) tuple [{unit}]; got {bounds!r}")
-    lo = check_number(f"{name}[0]", bounds[0], low=low, low_open=low_open, unit=unit)
-    hi = check_number(f"{name}[1]", bounds[1], low=lo, low_open=False, unit=unit)
+    lo = check_number(f"{name}[0]", bounds[0], low=low, low_open=low_open, high=high, unit=unit)
+    hi = check_number(f"{name}[1]", bounds[1], low=lo, low_open=False, high=high, unit=unit)
     return lo, hi
 
 
@@ -93,7 +95,7 @@ def grains(
         diameter=st.floats(*_bounds("diameter", diameter, "m")),
         density=st.floats(*_bounds("density", density, "kg/m**3")),
         youngs_modulus=_log_floats(*_bounds("youngs_modulus", youngs_modulus, "Pa")),
-        poisson_ratio=st.floats(*_bounds("poisson_ratio", poisson_ratio, "-", low=-1.0)),
+        poisson_ratio=st.floats(*_bounds("poisson_ratio", poisson_ratio, "-", low=-1.0, high=0.5)),
     )
 
 
