@@ -35,7 +35,7 @@ from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.euler import solve_euler
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.pieces import AffineForceStates, DenseStates, LinearContactStates
-from contactlab.propagators import first_event, linear_flow, locate_root
+from contactlab.propagators import crosses, earliest_root, first_event, linear_flow
 from contactlab.segment import Segment
 from contactlab.validation import check_choice, check_number
 
@@ -131,9 +131,15 @@ def _scan_step(rate, tau_max):
 # ---------------------------------------------------------------------------
 # Exactly solvable pieces
 # ---------------------------------------------------------------------------
+def _event_directions(branch):
+    """Crossing directions of a contact piece's events: contact end (the force falls to
+    zero), then the branch's exits."""
+    return [-1] + [e.direction for e in branch.exits]
+
+
 def _branch_events(branch, contact_force):
-    """Event functions of a contact piece: contact end (force falls to 0) and exits."""
-    directions = [-1] + [e.direction for e in branch.exits]
+    """Event functions of a contact piece (vectorised over states) and their directions."""
+    directions = _event_directions(branch)
 
     def values(states):
         d, r = _overlap_rate(states)
@@ -234,7 +240,7 @@ def _adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     (:func:`_warp_stops_paying`).
     """
     force = branch.force
-    directions = [-1] + [e.direction for e in branch.exits]
+    directions = _event_directions(branch)
     exits = [e.value for e in branch.exits]
 
     def event_values(y):
@@ -245,12 +251,12 @@ def _adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     scale = velocity * 1e-6  # displacement scale [m]: 1 us of travel at impact speed
     atol = 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
     fun = system.rhs(force)
-    start, switch, y, hit = None, 0.0, np.asarray(y0, dtype=float), None
+    start, switch, y, hit, first = None, 0.0, np.asarray(y0, dtype=float), None, None
     if y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0:
         # first step in s: the s of the step an integrator in t would start with
-        first = Stepper(fun, t0, y, rtol, atol).initial_step() ** 0.25
+        first_in_s = Stepper(fun, t0, y, rtol, atol).initial_step() ** 0.25
         z0, z_tol = np.append(y, 0.0), np.append(atol, 1.0)
-        warped = Stepper(_warped(fun), 0.0, z0, rtol, z_tol, first_step=first)
+        warped = Stepper(_warped(fun), 0.0, z0, rtol, z_tol, first_step=first_in_s)
         start, hit = _run(warped, tau_max**0.25, event_values, directions, _warp_stops_paying)
         switch, y = warped.t**4, warped.y[:4]
         first = switch - warped.t_old**4  # carry on with the last step's length in t
@@ -258,7 +264,7 @@ def _adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
             hit = (t0 + hit[0] ** 4, hit[1])
     steps = None
     if hit is None and switch < tau_max:
-        stepper = Stepper(fun, t0 + switch, y, rtol, atol, first_step=first if start else None)
+        stepper = Stepper(fun, t0 + switch, y, rtol, atol, first_step=first)
         steps, hit = _run(stepper, t0 + tau_max, event_values, directions)
     t_end = t0 + tau_max if hit is None else hit[0]
     event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
@@ -310,23 +316,23 @@ def _run(stepper, end, event_values, directions, stop=None):
 
 def _first_crossing(step, before, after, directions, event_values):
     """Earliest event crossing inside one step ``(t_old, h, y_old, F)``: (time, index) or
-    None."""
+    None. At the step's end the events take their end values (``after``), so an event
+    that lands exactly on zero there is found there."""
     t_old, h, y_old, F = step
-    best = None
-    for j, (a, b, direction) in enumerate(zip(before, after, directions, strict=True)):
-        if not ((a > 0 >= b) if direction < 0 else (a < 0 <= b)):
-            continue
-        if b == 0:
-            root = t_old + h
-        else:
+    events = [
+        j
+        for j, (a, b, d) in enumerate(zip(before, after, directions, strict=True))
+        if crosses(a, b, d)
+    ]
+    if not events:
+        return None
 
-            def g(t, j=j):
-                return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
+    def value(t, j):
+        if t == t_old + h:
+            return after[j]
+        return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
 
-            root = locate_root(g, t_old, t_old + h)
-        if best is None or root < best[0]:
-            best = (root, j)
-    return best
+    return earliest_root(events, value, t_old, t_old + h)
 
 
 # ---------------------------------------------------------------------------

@@ -42,32 +42,31 @@ class LinearContactStates:
     def __init__(self, system, k, c, f0, y0):
         flow = system.contact_flow(k, c)
         self._rigid = system.rigid
-        y0 = np.asarray(y0, dtype=float)
-        if self._rigid:
-            self._eq = np.array([-f0 / k, 0.0])
-            self._trajectory = flow.trajectory(y0[2:] - self._eq)
-        else:
-            self._eq = np.array([0.0, 0.0, -f0 / k, 0.0])
-            self._trajectory = flow.trajectory(y0 - self._eq)
+        self._offset = np.array([0.0, 0.0, -f0 / k, 0.0])  # the equilibrium of the branch
+        z0 = np.asarray(y0, dtype=float) - self._offset
+        self._trajectory = flow.trajectory(z0[2:] if self._rigid else z0)
         self.rate = flow.fastest_rate
+
+    def _moving(self, out):
+        """The columns of ``out`` the flow moves (on a wall only the grain's; the plate's
+        are set to rest)."""
+        if not self._rigid:
+            return out
+        out[:, :2] = 0.0
+        return out[:, 2:]
 
     def __call__(self, tau):
         """States (n, 4) at local times ``tau`` [s]."""
-        z = self._trajectory(tau)
-        if not self._rigid:
-            return z + self._eq
-        out = np.zeros((len(z), 4))
-        out[:, 2:] = z + self._eq
+        tau = np.atleast_1d(np.asarray(tau, dtype=float))
+        out = np.empty((tau.size, 4))
+        self._moving(out)[...] = self._trajectory(tau)
+        out += self._offset
         return out
 
     def grid(self, tau, step, out):
         """Write the states at uniformly spaced local times ``tau`` [s] into ``out`` (n, 4)."""
-        if self._rigid:
-            out[:, :2] = 0.0
-            self._trajectory.grid(tau[0], step, tau.size, out=out[:, 2:])
-        else:
-            self._trajectory.grid(tau[0], step, tau.size, out=out)
-        out += np.pad(self._eq, (4 - self._eq.size, 0))
+        self._trajectory.grid(tau[0], step, tau.size, out=self._moving(out))
+        out += self._offset
         return out
 
 

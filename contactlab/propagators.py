@@ -17,10 +17,19 @@ import numpy as np
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-__all__ = ["LinearFlow", "Trajectory", "first_event", "linear_flow", "locate_root"]
+__all__ = [
+    "ROOT_RTOL",
+    "LinearFlow",
+    "Trajectory",
+    "crosses",
+    "earliest_root",
+    "first_event",
+    "linear_flow",
+    "locate_root",
+]
 
-_RTOL = 4 * np.finfo(float).eps
-"""Relative tolerance of event roots: the smallest brentq accepts."""
+ROOT_RTOL = 4 * np.finfo(float).eps
+"""Relative tolerance of event roots and crossings: the smallest brentq accepts."""
 
 _ROOT_ITERATIONS = 1000
 """Iteration cap of :func:`locate_root`: Brent's method needs at most about the square of
@@ -34,7 +43,7 @@ _COND_LIMIT = 1e8
 
 
 class LinearFlow:
-    """Flow of ``z' = A z``: ``z(tau) = exp(A tau) z0``, vectorised over ``tau``.
+    """Flow of ``z' = A z``: ``z(tau) = exp(A tau) z0`` (see :meth:`trajectory`).
 
     Parameters
     ----------
@@ -58,10 +67,6 @@ class LinearFlow:
             self._inv = np.linalg.inv(eigvecs)
         self.fastest_rate = float(np.max(np.abs(eigvals))) if eigvals.size else 0.0
         """Largest ``|lambda|`` [1/s]: sets the scan step for events."""
-
-    def __call__(self, z0, tau):
-        """States at local times ``tau`` [s] (array, shape (n,)) -> array (n, dim)."""
-        return self.trajectory(z0)(tau)
 
     def trajectory(self, z0):
         """The solution from ``z0``, with its modal coefficients computed once.
@@ -92,7 +97,36 @@ def locate_root(fn, lo, hi):
     -------
     float
     """
-    return brentq(fn, lo, hi, xtol=1e-300, rtol=_RTOL, maxiter=_ROOT_ITERATIONS)
+    return brentq(fn, lo, hi, xtol=1e-300, rtol=ROOT_RTOL, maxiter=_ROOT_ITERATIONS)
+
+
+def crosses(before, after, direction):
+    """Whether an event function crossed zero between two values (floats or arrays).
+
+    ``direction`` -1: from positive to non-positive; +1: from negative to non-negative. A
+    value exactly 0 before never counts (the event that started the piece).
+    """
+    return (before > 0) & (after <= 0) if direction < 0 else (before < 0) & (after >= 0)
+
+
+def earliest_root(events, value, lo, hi):
+    """Earliest root on the bracket [lo, hi] [s] among several event functions.
+
+    Parameters
+    ----------
+    events : iterable of int
+        Indices of the events that crossed zero on the bracket.
+    value : callable
+        ``value(t, j)``: event ``j`` at time ``t`` [s].
+    lo, hi : float
+        Bracket [s].
+
+    Returns
+    -------
+    (float, int)
+        Time of the earliest root [s] (:func:`locate_root`) and its event.
+    """
+    return min((locate_root(lambda t, j=j: value(t, j), lo, hi), int(j)) for j in events)
 
 
 @functools.lru_cache(maxsize=1024)
@@ -224,17 +258,15 @@ def first_event(values, tau_max, step, directions, chunk=256):
         Scan step [s]; it must be short against the fastest oscillation of the events so
         that no pair of crossings falls between two scan points.
     directions : sequence of int
-        Per event: -1 for a crossing from positive to non-positive, +1 for negative to
-        non-negative. A value exactly 0 at ``tau = 0`` never counts (the event that
-        started the piece).
+        Per event, as in :func:`crosses`.
     chunk : int
         Scan points evaluated per vectorised call.
 
     Returns
     -------
     (tau, index) or None
-        Time of the earliest crossing [s], located with :func:`scipy.optimize.brentq` to
-        machine precision, and which event it was; None if none before ``tau_max``.
+        Time of the earliest crossing [s], located to machine precision
+        (:func:`earliest_root`), and which event it was; None if none before ``tau_max``.
     """
     directions = np.asarray(directions)
     start, previous = 0.0, values(np.array([0.0]))[0]
@@ -243,22 +275,16 @@ def first_event(values, tau_max, step, directions, chunk=256):
         grid = grid[np.concatenate(([True], np.diff(grid) > 0))]
         vals = values(grid)
         before = np.vstack((previous, vals[:-1]))
-        falls = (before > 0) & (vals <= 0)
-        rises = (before < 0) & (vals >= 0)
-        crossed = np.where(directions < 0, falls, rises)
+        crossed = np.where(directions < 0, crosses(before, vals, -1), crosses(before, vals, +1))
         rows = np.flatnonzero(crossed.any(axis=1))
         if rows.size:
             i = rows[0]
             lo = grid[i - 1] if i > 0 else start
-            best = None
-            for j in np.flatnonzero(crossed[i]):
-
-                def g(s, j=j):
-                    return values(np.array([s]))[0, j]
-
-                root = lo if g(lo) == 0 else locate_root(g, lo, grid[i])
-                if best is None or root < best[0]:
-                    best = (root, int(j))
-            return best
+            return earliest_root(
+                np.flatnonzero(crossed[i]),
+                lambda s, j: values(np.array([s]))[0, j],
+                lo,
+                grid[i],
+            )
         start, previous = grid[-1], vals[-1]
     return None

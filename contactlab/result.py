@@ -7,7 +7,7 @@ from functools import cached_property
 import numpy as np
 
 from contactlab import metrics
-from contactlab.propagators import locate_root
+from contactlab.propagators import ROOT_RTOL, locate_root
 
 __all__ = ["ImpactResult", "ImpactSignals"]
 
@@ -17,9 +17,6 @@ _GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
 
 _ZOOMS = 5
 """Zoom levels of the peak search (:meth:`ImpactResult._refined_max`)."""
-
-_RTOL = 4 * np.finfo(float).eps
-"""Relative resolution of the bisection in :func:`_crossing` (as :func:`locate_root`)."""
 
 _GRADING = np.array([0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2, 0.1, 0.4])
 """Relative panel edges near the start of a contact piece (geometric grading)."""
@@ -48,7 +45,7 @@ def _crossing(signal, level, lo, hi):
     inside = above_lo > 0.0
     if (above_hi > 0.0) == inside:
         return 0.5 * (lo + hi)
-    while hi - lo > _RTOL * max(abs(hi), 1e-300):
+    while hi - lo > ROOT_RTOL * max(abs(hi), 1e-300):
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):
             break
@@ -219,15 +216,17 @@ class ImpactResult(ImpactSignals):
             if hi > lo:
                 tau = self.t[lo:hi] - seg.t0
                 st = seg.states_on_grid(tau, step, states[lo:hi])
-                if seg.kind == "free":  # no force between contacts: skip a zero array
-                    force[lo:hi] = 0.0
-                else:
-                    force[lo:hi] = seg.force(tau, st)
+                force[lo:hi] = seg.force(tau, st)
         return states, force
+
+    def _segment_at(self, t):
+        """The segment holding time ``t`` [s] (the later one on a boundary), as in
+        :meth:`_evaluate`."""
+        return self.segments[max(bisect.bisect_right(self._starts, t) - 1, 0)]
 
     def _at(self, t):
         """State (1, 4) and contact force (1,) at one time [s]: the scalar fast path."""
-        seg = self.segments[max(bisect.bisect_right(self._starts, t) - 1, 0)]
+        seg = self._segment_at(t)
         tau = np.array([t - seg.t0])
         states = seg.states(tau)
         return states, seg.force(tau, states)
@@ -235,7 +234,7 @@ class ImpactResult(ImpactSignals):
     def _signal_at(self, t):
         if self._system.rigid:
             return self._force_at(t)
-        seg = self.segments[max(bisect.bisect_right(self._starts, t) - 1, 0)]
+        seg = self._segment_at(t)
         return float(self._system.signal(seg.states(np.array([t - seg.t0])), None)[0])
 
     def _forces_on(self, times):
