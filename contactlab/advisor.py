@@ -25,13 +25,13 @@ failure. A failing band narrower than the scan step can hide between scan points
 import itertools
 import math
 import os
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
 from contactlab.bodies import Grain, Sensor
+from contactlab.config import read_document
 from contactlab.errors import ParameterError
 from contactlab.laws import Hertz
 from contactlab.study.setup import Scatter, StudySetup
@@ -144,12 +144,7 @@ class Species:
         Species
         """
         path = Path(path)
-        try:
-            data = tomllib.loads(path.read_text(encoding="utf-8"))
-        except FileNotFoundError:
-            raise ParameterError(f"species file not found: {path}") from None
-        except tomllib.TOMLDecodeError as exc:
-            raise ParameterError(f"{path}: not valid TOML: {exc}") from None
+        data = read_document(path, "species")
         allowed = {"name", "description", *_PROPERTIES}
         unknown = sorted(set(data) - allowed)
         missing = sorted(set(_PROPERTIES) - set(data))

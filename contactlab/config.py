@@ -18,6 +18,7 @@ must be TOML booleans (``true``/``false``), not strings or numbers.
 """
 
 import inspect
+import json
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,7 +28,15 @@ from contactlab.errors import ParameterError
 from contactlab.laws import LAWS, get_law
 from contactlab.validation import check_choice
 
-__all__ = ["PRESET_DIR", "ImpactConfig", "list_presets", "load", "load_config", "load_preset"]
+__all__ = [
+    "PRESET_DIR",
+    "ImpactConfig",
+    "list_presets",
+    "load",
+    "load_config",
+    "load_preset",
+    "read_document",
+]
 
 PRESET_DIR = Path(__file__).resolve().parent.parent / "data" / "presets"
 """Folder of the named impact presets (the paper's Figures 5-9)."""
@@ -126,20 +135,42 @@ def _parse(data, where):
         raise ParameterError(f"{where}: {exc}") from None
 
 
-def load_config(path):
-    """Read an impact set-up from a TOML file (see the module docstring for the tables)."""
+def read_document(path, what, kind="TOML"):
+    """The contents of a TOML or JSON parameter file, or a ParameterError naming the file.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The file.
+    what : str
+        What the file is, for the messages (``"config"``, ``"species"``, ``"fit"``).
+    kind : {"TOML", "JSON"}
+        Its syntax.
+
+    Returns
+    -------
+    dict
+    """
+    loads, error = {
+        "TOML": (tomllib.loads, tomllib.TOMLDecodeError),
+        "JSON": (json.loads, json.JSONDecodeError),
+    }[kind]
     path = Path(path)
     try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
+        return loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:
-        raise ParameterError(f"config file not found: {path}") from None
+        raise ParameterError(f"{what} file not found: {path}") from None
     except OSError as exc:  # a folder, no permission
-        raise ParameterError(f"cannot read config file {path}: {exc.strerror}") from None
+        raise ParameterError(f"cannot read {what} file {path}: {exc.strerror}") from None
     except UnicodeDecodeError as exc:
-        raise ParameterError(f"{path}, byte {exc.start}: not UTF-8 text, so not TOML") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise ParameterError(f"{path}: not valid TOML: {exc}") from None
-    return _parse(data, str(path))
+        raise ParameterError(f"{path}, byte {exc.start}: not UTF-8 text, so not {kind}") from None
+    except error as exc:
+        raise ParameterError(f"{path}: not valid {kind}: {exc}") from None
+
+
+def load_config(path):
+    """Read an impact set-up from a TOML file (see the module docstring for the tables)."""
+    return _parse(read_document(path, "config"), str(Path(path)))
 
 
 def list_presets():

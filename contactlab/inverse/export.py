@@ -20,13 +20,12 @@ Friction, rolling resistance and tangential stiffness are not fitted by a normal
 where a code requires them the snippet writes a placeholder marked ``NOT FITTED``.
 """
 
-import json
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 from contactlab import analytic
 from contactlab.bodies import STEEL_DENSITY
+from contactlab.config import read_document
 from contactlab.errors import ParameterError
 from contactlab.inverse.fit import FIT_MODELS, ContactFit
 from contactlab.laws import get_law
@@ -167,14 +166,7 @@ def read_fit(path):
     dict
         Its contents, for :func:`export_dem`.
     """
-    path = Path(path)
-    try:
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise ParameterError(f"fit file not found: {path}") from None
-    except json.JSONDecodeError as exc:
-        raise ParameterError(f"{path}: not valid JSON: {exc}") from None
-    return data
+    return read_document(path, "fit", "JSON")
 
 
 def _value(data, key, where):
