@@ -17,8 +17,8 @@ from contactlab.errors import (
     UnknownParameterError,
     WindowWarning,
 )
-from contactlab.impact import simulate_impact
 from contactlab.result import ImpactResult
+from contactlab.solver import simulate_impact
 
 __all__ = [
     "Grain",

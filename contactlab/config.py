@@ -26,6 +26,7 @@ from pathlib import Path
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import LAWS, get_law
+from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice
 
 __all__ = [
@@ -56,8 +57,6 @@ class ImpactConfig:
 
     def simulate(self, **overrides):
         """Run :func:`contactlab.simulate_impact` with this set-up."""
-        from contactlab.impact import simulate_impact
-
         return simulate_impact(
             self.grain, self.sensor, self.law, **{**self.simulation, **overrides}
         )

@@ -6,7 +6,7 @@ import numpy as np
 
 from contactlab.bodies import Sensor
 from contactlab.config import load_preset
-from contactlab.impact import simulate_impact
+from contactlab.solver import simulate_impact
 
 __all__ = ["run_demo"]
 

@@ -7,7 +7,7 @@ from functools import cached_property
 import numpy as np
 
 from contactlab import metrics
-from contactlab.propagators import ROOT_RTOL, locate_root
+from contactlab.roots import ROOT_RTOL, locate_root
 
 __all__ = ["ImpactResult", "ImpactSignals"]
 

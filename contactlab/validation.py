@@ -17,7 +17,10 @@ __all__ = [
     "KeywordChecked",
     "check_choice",
     "check_count",
+    "check_non_negative",
     "check_number",
+    "check_poisson_ratio",
+    "check_positive",
     "check_probability",
 ]
 
@@ -85,6 +88,21 @@ def check_number(
     if bad_low or bad_high:
         raise ParameterError(f"{name} must be a finite number{rng}{unit_text}; got {x!r}")
     return x
+
+
+def check_positive(name, value, unit=""):
+    """Check a finite number ``> 0`` in ``unit``; return it as float."""
+    return check_number(name, value, low=0.0, unit=unit)
+
+
+def check_non_negative(name, value, unit=""):
+    """Check a finite number ``>= 0`` in ``unit``; return it as float."""
+    return check_number(name, value, low=0.0, low_open=False, unit=unit)
+
+
+def check_poisson_ratio(name, value):
+    """Check a Poisson ratio in (-1, 0.5] [-]; return it as float."""
+    return check_number(name, value, low=-1.0, high=0.5, unit="-")
 
 
 def check_count(name, value, low=1):

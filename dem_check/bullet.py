@@ -743,7 +743,7 @@ def engine_check(
         waveforms are compared without shifting (``align=None``). ``notes`` holds the time
         step, the numerical damping and the wall time of the engine steps.
     """
-    from contactlab.impact import simulate_impact
+    from contactlab.solver import simulate_impact
     from dem_check.compare import compare
 
     engine = drop_test(

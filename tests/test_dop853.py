@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.integrate import DOP853
 
-from contactlab.dop853 import DenseSteps, Stepper
+from contactlab.solver.dop853 import DenseSteps, Stepper
 
 OMEGA, ZETA = 2.5e5, 0.02  # the paper's 40 kHz sensor [rad/s], damping ratio [-]
 

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.linalg import expm
 
-from contactlab.propagators import LinearFlow, linear_flow
+from contactlab.solver.propagators import LinearFlow, linear_flow
 
 MATRICES = {
     # the paper's 40 kHz sensor alone, underdamped (zeta 0.02)

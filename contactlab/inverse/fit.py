@@ -23,10 +23,10 @@ from scipy.special import expit, logit
 from contactlab import analytic
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
-from contactlab.impact import simulate_impact
 from contactlab.inverse._signal import baseline, check_window, uniform_signal
 from contactlab.inverse.reconstruct import reconstruct_force
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic, WaltonBraun
+from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = [

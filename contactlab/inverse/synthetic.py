@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from contactlab.impact import simulate_impact
+from contactlab.solver import simulate_impact
 from contactlab.validation import check_count, check_number
 
 __all__ = ["synthetic_trace"]

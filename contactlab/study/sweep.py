@@ -24,7 +24,7 @@ import pandas as pd
 
 from contactlab import analytic
 from contactlab.errors import ParameterError
-from contactlab.impact import simulate_impact
+from contactlab.solver import simulate_impact
 from contactlab.study.execution import run_tasks
 from contactlab.study.setup import StudySetup
 from contactlab.validation import check_count

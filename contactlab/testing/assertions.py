@@ -10,8 +10,8 @@ import numpy as np
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
-from contactlab.impact import simulate_impact
 from contactlab.laws import ContactLaw
+from contactlab.solver import simulate_impact
 from contactlab.testing.closed_forms import ClosedForm, closed_forms_for
 from contactlab.testing.golden import compare_impacts
 from contactlab.validation import check_count, check_number

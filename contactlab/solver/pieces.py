@@ -26,7 +26,7 @@ class LinearContactStates:
 
     Parameters
     ----------
-    system : contactlab.impact._System
+    system : contactlab.solver.system.System
         Masses and sensor element.
     k, c, f0 : float
         Branch stiffness [N/m], damping [N*s/m] and offset force [N].
@@ -79,7 +79,7 @@ class AffineForceStates:
 
     Parameters
     ----------
-    system : contactlab.impact._System
+    system : contactlab.solver.system.System
         Masses and sensor element.
     a : float
         Force at the start of the piece [N].
@@ -140,12 +140,12 @@ class DenseStates:
     ----------
     t0 : float
         Start of the piece [s] (local time 0).
-    steps : contactlab.dop853.DenseSteps or None
+    steps : contactlab.solver.dop853.DenseSteps or None
         The steps in time (absolute [s]) from local time ``switch`` on.
-    start : contactlab.dop853.DenseSteps, optional
+    start : contactlab.solver.dop853.DenseSteps, optional
         Steps in ``s = tau**(1/4)`` (state and ``s``) before local time ``switch``: the
         start of a contact, integrated in that variable (see
-        :func:`contactlab.impact._adaptive_contact`).
+        :func:`contactlab.solver.adaptive.adaptive_contact`).
     switch : float, default 0
         Local time [s] where ``start`` hands over to ``steps``.
     """

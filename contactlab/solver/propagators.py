@@ -15,27 +15,15 @@ import math
 
 import numpy as np
 from scipy.linalg import expm
-from scipy.optimize import brentq
+
+from contactlab.roots import crosses, earliest_root
 
 __all__ = [
-    "ROOT_RTOL",
     "LinearFlow",
     "Trajectory",
-    "crosses",
-    "earliest_root",
     "first_event",
     "linear_flow",
-    "locate_root",
 ]
-
-ROOT_RTOL = 4 * np.finfo(float).eps
-"""Relative tolerance of event roots and crossings: the smallest brentq accepts."""
-
-_ROOT_ITERATIONS = 1000
-"""Iteration cap of :func:`locate_root`: Brent's method needs at most about the square of
-the bisection count (here ~60**2) on functions that vanish like ``x**1.5`` at the root (a
-Hertz force at zero overlap), where its interpolation steps are slow; 100, scipy's
-default, is not always enough."""
 
 _COND_LIMIT = 1e8
 """Largest eigenvector condition number for which the modal solution is trusted
@@ -81,52 +69,6 @@ class LinearFlow:
         Trajectory
         """
         return Trajectory(self, z0)
-
-
-def locate_root(fn, lo, hi):
-    """Root of ``fn`` in the bracket [lo, hi] [s] to machine precision (brentq).
-
-    Parameters
-    ----------
-    fn : callable
-        Scalar function with a sign change (or a zero) on the bracket.
-    lo, hi : float
-        Bracket [s].
-
-    Returns
-    -------
-    float
-    """
-    return brentq(fn, lo, hi, xtol=1e-300, rtol=ROOT_RTOL, maxiter=_ROOT_ITERATIONS)
-
-
-def crosses(before, after, direction):
-    """Whether an event function crossed zero between two values (floats or arrays).
-
-    ``direction`` -1: from positive to non-positive; +1: from negative to non-negative. A
-    value exactly 0 before never counts (the event that started the piece).
-    """
-    return (before > 0) & (after <= 0) if direction < 0 else (before < 0) & (after >= 0)
-
-
-def earliest_root(events, value, lo, hi):
-    """Earliest root on the bracket [lo, hi] [s] among several event functions.
-
-    Parameters
-    ----------
-    events : iterable of int
-        Indices of the events that crossed zero on the bracket.
-    value : callable
-        ``value(t, j)``: event ``j`` at time ``t`` [s].
-    lo, hi : float
-        Bracket [s].
-
-    Returns
-    -------
-    (float, int)
-        Time of the earliest root [s] (:func:`locate_root`) and its event.
-    """
-    return min((locate_root(lambda t, j=j: value(t, j), lo, hi), int(j)) for j in events)
 
 
 @functools.lru_cache(maxsize=1024)

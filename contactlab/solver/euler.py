@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from contactlab.segment import Segment
+from contactlab.solver.segment import Segment
 
 __all__ = ["solve_euler"]
 
@@ -35,7 +35,7 @@ def solve_euler(system, law, velocity, window, time_step):
 
     Parameters
     ----------
-    system : contactlab.impact._System
+    system : contactlab.solver.system.System
         Masses and sensor element.
     law : ContactLaw or PlasticTrapezoid
         Contact law.

@@ -1,0 +1,277 @@
+"""The contact-law base: sign convention, branches, the abstract law.
+
+Sign convention (stated once, used everywhere)
+----------------------------------------------
+The overlap ``d = x2 - x1`` [m] is positive in compression; its rate ``d' = v2 - v1``
+[m/s] is positive while the bodies approach. A law returns the contact force ``S2`` [N],
+which is **never tensile**: it is ``0`` for ``d <= 0`` and clipped at ``0`` where the
+formula would pull (a damper at the end of contact). The contact therefore ends when the
+force reaches zero, not when the overlap does (see :mod:`contactlab.analytic` for the
+other convention and what it changes).
+
+Each law is a plain vectorised function first (``hertz_force(overlap, k_hertz)``, pvlib
+habit); the classes only gather parameters, validate them, and describe the law to the
+solvers as a small state machine of *branches* (smooth pieces of the force such as
+loading, yielding, unloading) with linear exit conditions. History laws carry one state
+variable: the largest overlap reached so far, ``max_overlap`` [m].
+
+A law defines forces only. Its impact on an immovable wall (restitution, contact time,
+dissipated energy) is simulated by :mod:`contactlab.solver`, which registers its wall
+impact here when it is imported (:func:`use_wall_solver`); :mod:`contactlab` imports the
+solver, so the convenience methods always work and this module never imports it.
+"""
+
+from abc import ABC, abstractmethod
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from contactlab.validation import KeywordChecked
+
+__all__ = ["Branch", "ContactLaw", "Exit", "SmoothLaw", "use_wall_solver"]
+
+
+def one_sided(overlap, raw):
+    """Zero out of contact and never tensile."""
+    return np.where(np.asarray(overlap) > 0, np.maximum(raw, 0.0), 0.0)
+
+
+# The ``_*_raw`` formulas and :func:`signed_power` use operators only, so they take Python floats
+# as well as arrays: the adaptive solver calls them on floats thousands of times per
+# impact, where a numpy call per operation would cost more than the arithmetic. Public
+# functions convert their array_like inputs first.
+def signed_power(x, p):
+    """Signed power ``sign(x) |x|**p`` for ``p >= 1``: the odd extension keeps a zero
+    crossing visible."""
+    return x * abs(x) ** (p - 1.0)
+
+
+def with_history(overlap, max_overlap):
+    overlap = np.asarray(overlap, dtype=float)
+    if max_overlap is None:
+        return overlap, overlap
+    return overlap, np.maximum(np.asarray(max_overlap, dtype=float), overlap)
+
+
+# ---------------------------------------------------------------------------
+# The solver's view of a law: branches with linear exit conditions
+# ---------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Exit:
+    """Condition that ends a branch: ``g = a*d + b*d' + offset`` crossing zero.
+
+    Attributes
+    ----------
+    overlap_coef : float
+        ``a`` [1/m * unit of g].
+    rate_coef : float
+        ``b``.
+    offset : float
+        Constant term.
+    direction : int
+        +1 when the branch ends as ``g`` rises through zero, -1 as it falls.
+    target : str
+        Name of the branch that follows.
+    """
+
+    overlap_coef: float
+    rate_coef: float
+    offset: float
+    direction: int
+    target: str
+
+    def value(self, overlap, rate):
+        """Event function value at the given overlap [m] and rate [m/s]."""
+        return self.overlap_coef * overlap + self.rate_coef * rate + self.offset
+
+
+def rate_turns(target):
+    """Exit when the overlap stops growing (largest overlap reached)."""
+    return Exit(0.0, 1.0, 0.0, -1, target)
+
+
+def overlap_reaches(level, target):
+    """Exit when the overlap rises through ``level`` [m]."""
+    return Exit(1.0, 0.0, -level, +1, target)
+
+
+@dataclass(frozen=True)
+class Branch:
+    """One smooth piece of a law, as the solvers see it.
+
+    Attributes
+    ----------
+    name : str
+        Branch name (``"load"``, ``"yield"``, ``"unload"``).
+    force : callable
+        ``force(overlap, rate)`` -> formula value [N], vectorised, *not* clipped (a sign
+        change marks the end of contact; the solver clips).
+    linear : tuple of float or None
+        ``(k, c, f0)`` when the branch is ``k d + c d' + f0`` (exact solver), else None.
+    exits : tuple of Exit
+        Conditions that end the branch.
+    loading : bool
+        Whether the largest overlap follows the overlap on this branch.
+    """
+
+    name: str
+    force: Callable
+    linear: tuple | None = None
+    exits: tuple = ()
+    loading: bool = True
+
+
+def use_wall_solver(wall_impact):
+    """Register the function that simulates a law's impact on an immovable wall.
+
+    :mod:`contactlab.solver` registers :func:`contactlab.solver.wall_impact` when it is
+    imported, so that :meth:`ContactLaw.impact` and the properties derived from it work
+    without this module importing the solver (data flows laws -> solver only).
+
+    Parameters
+    ----------
+    wall_impact : callable
+        ``wall_impact(law, mass, velocity, **kwargs)`` -> ImpactResult.
+    """
+    ContactLaw._wall_impact = staticmethod(wall_impact)
+
+
+class ContactLaw(KeywordChecked, ABC):
+    """Base class of normal contact laws.
+
+    A law needs :meth:`_force` (the vectorised force from overlap, rate and history) and
+    :meth:`branch` (how the solvers see it). Restitution, contact time, dissipated
+    energy and work follow here.
+
+    Sign convention: overlap ``d > 0`` in compression, rate ``d' > 0`` approaching, force
+    ``>= 0`` always (0 for ``d <= 0``).
+    """
+
+    name: ClassVar[str]
+    """Registry key used by the command line and TOML files."""
+    has_history: ClassVar[bool] = False
+    """Whether the force depends on the largest overlap reached so far."""
+    piecewise_linear: ClassVar[bool] = False
+    """Whether every branch is linear in overlap and rate (exact solver applies)."""
+    prescribed: ClassVar[bool] = False
+    """Whether the force is a prescribed function of time instead of overlap."""
+
+    @abstractmethod
+    def _force(self, overlap, rate, max_overlap):
+        """Force formula (may be negative) for arrays of overlap, rate and history."""
+
+    @abstractmethod
+    def branch(self, name, max_overlap=0.0):
+        """The :class:`Branch` called ``name`` given the largest overlap so far [m]."""
+
+    def parameters(self):
+        """Parameters as a dict (name -> value in SI units)."""
+        return dict(self._params)
+
+    def __repr__(self):
+        args = ", ".join(f"{k}={v:.6g}" for k, v in self._params.items())
+        return f"{type(self).__name__}({args})"
+
+    def __eq__(self, other):
+        return type(self) is type(other) and self._params == other._params
+
+    def __hash__(self):
+        return hash((type(self), tuple(self._params.items())))
+
+    def force(self, overlap, rate=0.0, max_overlap=None):
+        """Contact force [N] for overlap [m] and rate [m/s] (arrays broadcast).
+
+        Parameters
+        ----------
+        overlap : array_like
+            Overlap ``d`` [m], positive in compression.
+        rate : array_like, default 0
+            Overlap rate ``d'`` [m/s], positive while approaching.
+        max_overlap : array_like or None
+            Largest overlap reached before [m] (history laws); ``None`` is a virgin
+            loading path (``max_overlap = overlap``).
+
+        Returns
+        -------
+        numpy.ndarray
+            Force, 0 for ``d <= 0`` and never negative [N].
+        """
+        overlap = np.asarray(overlap, dtype=float)
+        return one_sided(overlap, self._force(overlap, np.asarray(rate, float), max_overlap))
+
+    initial_branch: ClassVar[str] = "load"
+
+    def reentry(self, max_overlap):
+        """Overlap [m] at which a separated grain touches again, and the branch it enters."""
+        return 0.0, self.initial_branch
+
+    _wall_impact: ClassVar[Callable | None] = None
+    """The solver's wall impact, ``f(law, mass, velocity, **kwargs) -> ImpactResult``;
+    set by :func:`use_wall_solver`."""
+
+    def impact(self, mass, velocity, **kwargs):
+        """Impact of a grain of ``mass`` [kg] at ``velocity`` [m/s] on an immovable wall.
+
+        Returns the :class:`~contactlab.result.ImpactResult` of
+        :func:`contactlab.solver.wall_impact`; keyword arguments go to
+        :func:`contactlab.simulate_impact`.
+        """
+        return ContactLaw._wall_impact(self, mass, velocity, **kwargs)
+
+    def restitution(self, mass, velocity):
+        """Coefficient of restitution on an immovable wall [-] (force-zero contact end)."""
+        return self.impact(mass, velocity).restitution
+
+    def contact_time(self, mass, velocity):
+        """Contact duration on an immovable wall [s] (force-zero contact end)."""
+        return self.impact(mass, velocity).contact_time
+
+    def dissipated_energy(self, mass, velocity):
+        """Energy lost in one impact on an immovable wall [J]: ``m v**2 (1 - e**2) / 2``."""
+        e = self.restitution(mass, velocity)
+        return 0.5 * mass * velocity**2 * (1.0 - e**2)
+
+    def work(self, overlap, rate=None):
+        """Work done by the contact force along an overlap path [J] (trapezoidal rule).
+
+        Parameters
+        ----------
+        overlap : array_like
+            Overlap path [m], e.g. a loading-unloading cycle.
+        rate : array_like or None
+            Overlap rate along the path [m/s]; ``None`` is quasi-static (zero rate).
+
+        Returns
+        -------
+        float
+            ``integral F dd`` along the path; for a closed cycle, the energy dissipated.
+        """
+        d = np.asarray(overlap, dtype=float)
+        rate = np.zeros_like(d) if rate is None else np.asarray(rate, dtype=float)
+        d_max = np.maximum.accumulate(np.maximum(d, 0.0)) if self.has_history else None
+        return float(np.trapezoid(self.force(d, rate, d_max), d))
+
+
+class SmoothLaw(ContactLaw):
+    """A law of one smooth branch without history: subclasses define :meth:`_raw`.
+
+    The solvers see the single branch ``"load"``, whose force is the raw formula (it may
+    turn negative, which marks the end of contact); a branch linear in overlap and rate
+    also gives its coefficients (:meth:`_linear`) so the exact solver applies.
+    """
+
+    @abstractmethod
+    def _raw(self, overlap, rate):
+        """Force formula [N] for overlap [m] and rate [m/s] (floats or arrays)."""
+
+    def _linear(self):
+        """``(k, c, f0)`` if the formula is ``k d + c d' + f0``, else None."""
+        return None
+
+    def _force(self, overlap, rate, max_overlap):
+        return self._raw(overlap, rate)
+
+    def branch(self, name, max_overlap=0.0):
+        return Branch("load", self._raw, linear=self._linear(), loading=False)

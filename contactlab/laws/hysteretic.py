@@ -1,0 +1,99 @@
+"""Walton-Braun hysteretic linear contact: stiffer unloading than loading."""
+
+import numpy as np
+
+from contactlab.laws.base import (
+    Branch,
+    ContactLaw,
+    one_sided,
+    overlap_reaches,
+    rate_turns,
+    with_history,
+)
+from contactlab.validation import check_number, check_positive
+
+__all__ = ["WaltonBraun", "walton_braun_force"]
+
+
+def walton_braun_force(overlap, max_overlap, loading_stiffness, unloading_stiffness):
+    """Walton-Braun hysteretic linear force [N].
+
+    Loading ``k1 d`` while ``d`` is at its maximum; otherwise unloading
+    ``k2 (d - d0)`` with the plastic overlap ``d0 = d_max (1 - k1/k2)``.
+
+    Parameters
+    ----------
+    overlap : array_like
+        Overlap [m].
+    max_overlap : array_like or None
+        Largest overlap reached so far [m]; ``None`` means a virgin loading path.
+    loading_stiffness, unloading_stiffness : float
+        ``k1 <= k2`` [N/m].
+
+    References
+    ----------
+    Walton O.R., Braun R.L. (1986) J. Rheol. 30, 949-980. DOI 10.1122/1.549893
+    """
+    d, d_max = with_history(overlap, max_overlap)
+    unloading = unloading_stiffness * (d - d_max * (1.0 - loading_stiffness / unloading_stiffness))
+    return one_sided(d, np.where(d >= d_max, loading_stiffness * d, unloading))
+
+
+class WaltonBraun(ContactLaw):
+    """Walton-Braun hysteretic linear contact (LIGGGHTS hooke/hysteresis, Luding's model).
+
+    Parameters
+    ----------
+    loading_stiffness : float
+        ``k1`` [N/m], > 0.
+    unloading_stiffness : float
+        ``k2 >= k1`` [N/m]. Restitution on a wall ``sqrt(k1/k2)``.
+
+    See Also
+    --------
+    walton_braun_force
+    """
+
+    name = "walton_braun"
+    has_history = True
+    piecewise_linear = True
+
+    def __init__(self, loading_stiffness, unloading_stiffness):
+        self.loading_stiffness = check_positive("loading_stiffness", loading_stiffness, "N/m")
+        self.unloading_stiffness = check_number(
+            "unloading_stiffness",
+            unloading_stiffness,
+            low=self.loading_stiffness,
+            low_open=False,
+            unit="N/m (>= loading_stiffness)",
+        )
+        self._params = {
+            "loading_stiffness": self.loading_stiffness,
+            "unloading_stiffness": self.unloading_stiffness,
+        }
+
+    def _force(self, overlap, rate, max_overlap):
+        d, d_max = with_history(overlap, max_overlap)
+        k1, k2 = self.loading_stiffness, self.unloading_stiffness
+        return np.where(d >= d_max, k1 * d, k2 * (d - self._plastic_overlap(d_max)))
+
+    def _plastic_overlap(self, max_overlap):
+        return max_overlap * (1.0 - self.loading_stiffness / self.unloading_stiffness)
+
+    def branch(self, name, max_overlap=0.0):
+        k1, k2 = self.loading_stiffness, self.unloading_stiffness
+        if name == "load":
+            return Branch("load", lambda d, r: k1 * d, (k1, 0.0, 0.0), (rate_turns("unload"),))
+        d0 = self._plastic_overlap(max_overlap)
+        return Branch(
+            "unload",
+            lambda d, r: k2 * (d - d0),
+            (k2, 0.0, -k2 * d0),
+            (overlap_reaches(max_overlap, "load"),),
+            loading=False,
+        )
+
+    def reentry(self, max_overlap):
+        if max_overlap <= 0.0:
+            return 0.0, "load"
+        return self._plastic_overlap(max_overlap), "unload"

@@ -1,0 +1,18 @@
+"""The two-mass grain/sensor solver: one impact, cut into pieces at its events.
+
+* :mod:`~contactlab.solver.impact`: :func:`simulate_impact`, the event loop and its checks;
+* :mod:`~contactlab.solver.system`: the two-mass system (matrices, right-hand side, signal);
+* :mod:`~contactlab.solver.exact`: linear contact branches and free flight, exactly;
+* :mod:`~contactlab.solver.adaptive`: nonlinear contact pieces with DOP853;
+* :mod:`~contactlab.solver.propagators`, :mod:`~contactlab.solver.pieces`: exact
+  propagation of linear time-invariant pieces and their states on a grid;
+* :mod:`~contactlab.solver.dop853`: the lean DOP853 stepper;
+* :mod:`~contactlab.solver.euler`: the paper's explicit Euler (reference method);
+* :mod:`~contactlab.solver.segment`: one solved piece, as the results read it;
+* :mod:`~contactlab.solver.wall`: a law's impact on an immovable wall.
+"""
+
+from contactlab.solver.impact import METHODS, simulate_impact
+from contactlab.solver.wall import wall_impact
+
+__all__ = ["METHODS", "simulate_impact", "wall_impact"]

@@ -1,0 +1,86 @@
+"""Exactly solvable pieces: linear contact branches and free flight.
+
+Every piece here is linear time-invariant, so its state is the modal solution (or the
+matrix exponential) of :mod:`contactlab.solver.pieces`, and its events are roots of the
+exact expressions, scanned and located by :func:`~contactlab.solver.propagators.first_event`.
+"""
+
+import math
+
+import numpy as np
+
+from contactlab.solver.pieces import AffineForceStates, LinearContactStates
+from contactlab.solver.propagators import first_event
+from contactlab.solver.segment import Segment
+from contactlab.solver.system import clipped, event_directions, overlap_rate, scan_step
+
+__all__ = ["exact_contact", "free_flight"]
+
+
+def _branch_events(branch, contact_force):
+    """Event functions of a contact piece (vectorised over states) and their directions."""
+    directions = event_directions(branch)
+
+    def values(states):
+        d, r = overlap_rate(states)
+        cols = [contact_force(d, r)] + [e.value(d, r) for e in branch.exits]
+        return np.column_stack(cols)
+
+    return values, directions
+
+
+def exact_contact(system, branch, t0, y0, tau_max):
+    """Exact contact piece on a linear branch; returns (Segment, y_end, event or None)."""
+    k, c, f0 = branch.linear
+    if k == 0.0 and c == 0.0:
+        states = AffineForceStates(system, f0, 0.0, y0)
+    else:
+        states = LinearContactStates(system, k, c, f0, y0)
+    force = branch.force
+    values, directions = _branch_events(branch, force)
+    hit = first_event(
+        lambda tau: values(states(tau)), tau_max, scan_step(states.rate, tau_max), directions
+    )
+    tau_end = tau_max if hit is None else hit[0]
+    event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
+    seg = Segment(t0, t0 + tau_end, "contact", branch.name, states, clipped(force), states.grid)
+    return seg, states(tau_end)[0], event
+
+
+def free_flight(system, law, max_overlap, t0, y0, tau_max):
+    """Free flight until the plate and grain touch again; returns (Segment, y_end, hit)."""
+    states = AffineForceStates(system, 0.0, 0.0, y0)
+    seg_force = lambda tau, s: np.zeros(len(s))  # noqa: E731
+    if law.prescribed or tau_max <= 0.0:
+        seg = Segment(t0, t0 + tau_max, "free", None, states, seg_force, states.grid)
+        return seg, None, None
+    threshold, entry = law.reentry(max_overlap)
+    entry_force = law.branch(entry, max_overlap).force
+
+    def values(tau):
+        d, r = overlap_rate(states(tau))
+        # below the threshold: its distance, kept negative at the threshold itself, where
+        # grain and plate touch without contact (so a receding grain is no crossing)
+        below = np.minimum(d - threshold, -np.finfo(float).tiny)
+        return np.where(d > threshold, entry_force(d, r), below)[:, None]
+
+    search = min(tau_max, _recontact_horizon(system, y0, threshold))
+    hit = first_event(values, search, scan_step(states.rate, search), [+1])
+    tau_end = tau_max if hit is None else hit[0]
+    seg = Segment(t0, t0 + tau_end, "free", None, states, seg_force, states.grid)
+    return seg, states(tau_end)[0], None if hit is None else entry
+
+
+def _recontact_horizon(system, y0, threshold):
+    """Latest local time [s] at which a free grain can reach the plate again.
+
+    The free plate's displacement never exceeds ``sqrt(2 E / k1)``, ``E`` its energy at
+    the start (damping only removes energy), and a receding grain (``v2 < 0``) moves
+    away at constant speed: beyond the returned time the overlap cannot reach
+    ``threshold`` [m]. Infinite for a grain that is not receding.
+    """
+    x1, v1, x2, v2 = (float(v) for v in y0)
+    if v2 >= 0.0:
+        return math.inf
+    reach = 0.0 if system.rigid else math.sqrt(system.m1 * v1**2 / system.k1 + x1**2)
+    return max((x2 + reach - threshold) / -v2, 0.0)

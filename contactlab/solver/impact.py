@@ -1,0 +1,321 @@
+"""The two-mass grain/sensor impact solver.
+
+The model is the paper's (Keska et al. 2021, Section 2.2) with the signs of
+``shared/paper/NOTES.md``: axis along the grain's travel, first touch at ``t = 0`` with
+``x1 = x2 = 0``, ``v1 = 0``, ``v2 = v0 > 0``;
+
+* overlap ``d = x2 - x1``, contact force ``S2 = law(d, d', history) >= 0``,
+* sensor signal ``S1 = k1 x1 + c1 v1``,
+* ``m1 v1' = S2 - S1`` and ``m2 v2' = -S2``.
+
+An immovable wall (:meth:`Sensor.rigid`) is the same function with ``x1 = v1 = 0``.
+
+The impact is cut into pieces at events (contact ends, a law changes branch, the plate
+strikes the grain again), each solved by the best method for it:
+
+* ``"exact"``: every piece linear time-invariant (linear laws and branches, the paper's
+  prescribed trapezoid, the free sensor): modal solution or matrix exponential, events
+  as roots of the exact expressions (:mod:`contactlab.solver.exact`);
+* ``"adaptive"``: nonlinear contact pieces with DOP853 (order 8, error-controlled,
+  :mod:`contactlab.solver.adaptive`), started in ``s = t**(1/4)`` at a touch, with event location
+  on its dense output; free pieces still exact;
+* ``"euler"``: the paper's explicit Euler at a fixed step (reference method; events are
+  step-limited, as in the paper's program);
+* ``"auto"``: exact where the law allows it, else adaptive.
+"""
+
+import math
+import warnings
+
+import numpy as np
+
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
+from contactlab.laws import ContactLaw, PlasticTrapezoid
+from contactlab.result import ImpactResult
+from contactlab.solver.adaptive import adaptive_contact
+from contactlab.solver.euler import solve_euler
+from contactlab.solver.exact import exact_contact, free_flight
+from contactlab.solver.pieces import AffineForceStates
+from contactlab.solver.segment import Segment
+from contactlab.solver.system import System
+from contactlab.validation import check_choice, check_number
+
+__all__ = ["METHODS", "simulate_impact"]
+
+METHODS = ("auto", "exact", "adaptive", "euler")
+
+DEFAULT_SAMPLES = 20001
+"""Output samples over the window when no sample rate is given."""
+
+MAX_CONTACTS = 200
+"""Contact intervals after which the solver stops (a grain resting on a ringing plate)."""
+
+
+def _solve_pieces(system, law, velocity, window, contact_solver):
+    """Alternate contact and free pieces until the window ends.
+
+    Returns the segments, the contact intervals [(start, end), ...] and the event log.
+    """
+    segments, intervals, log = [], [], []
+    t, y = 0.0, np.array([0.0, 0.0, 0.0, velocity])
+    branch_name, max_overlap, start = law.initial_branch, 0.0, 0.0
+    # the first contact is always followed to its end, even past the window
+    limit = math.inf if window is None else max(window, 0.0)
+    while True:
+        branch = law.branch(branch_name, max_overlap)
+        horizon = (limit if intervals else _contact_horizon(system, limit)) - t
+        seg, y, event = contact_solver(system, branch, t, y, horizon)
+        segments.append(seg)
+        t = seg.t1
+        if branch.loading:
+            max_overlap = max(max_overlap, y[2] - y[0])
+        if event is None:
+            log.append((t, "window end in contact"))
+            break
+        if event != "end":
+            log.append((t, f"branch {branch.name} -> {event}"))
+            branch_name = event
+            continue
+        intervals.append((start, t))
+        log.append((t, "separation"))
+        if window is None:
+            limit = auto_window(system, t)
+        if len(intervals) >= MAX_CONTACTS:
+            warnings.warn(
+                f"stopped after {MAX_CONTACTS} contacts at t = {t:.4g} s (grain at rest on "
+                "the ringing plate?)",
+                WindowWarning,
+                stacklevel=3,
+            )
+            break
+        seg, y_free, entry = free_flight(system, law, max_overlap, t, y, limit - t)
+        segments.append(seg)
+        if entry is None:
+            break
+        t, y, branch_name, start = seg.t1, y_free, entry, seg.t1
+        log.append((t, "contact"))
+    return segments, intervals, log, limit
+
+
+def _contact_horizon(system, limit):
+    """How far to follow the first contact when looking for its end [s]: a contact longer
+    than a second (or 100 windows) is not an impact."""
+    return 1.0 if math.isinf(limit) else max(100.0 * limit, 1.0)
+
+
+def auto_window(system, contact_end):
+    """Window after the first contact when none was given: the contact and the ringing."""
+    ringing = 0.0 if system.rigid else 5.0 * 2.0 * math.pi / math.sqrt(system.k1 / system.m1)
+    return max(1.5 * contact_end, contact_end + ringing)
+
+
+def _solve_pulse(system, law, velocity, window):
+    """The paper's prescribed trapezoid: exact first-order hold on each straight piece."""
+    segments, y, log = [], np.array([0.0, 0.0, 0.0, velocity]), []
+    for ta, tb, fa, fb in law.pieces(system.m2, velocity):
+        slope = (fb - fa) / (tb - ta)
+        states = AffineForceStates(system, fa, slope, y)
+        segments.append(
+            Segment(ta, tb, "pulse", None, states, _pulse_force(fa, slope), states.grid)
+        )
+        y = states(tb - ta)[0]
+    end = law.contact_time
+    log.append((end, "separation"))
+    limit = auto_window(system, end) if window is None else window
+    seg, _, _ = free_flight(system, law, 0.0, end, y, max(limit - end, 0.0))
+    segments.append(seg)
+    return segments, [(0.0, end)], log, limit
+
+
+def _pulse_force(a, b):
+    return lambda tau, states: np.maximum(a + b * np.asarray(tau), 0.0)
+
+
+def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):
+    if not isinstance(grain, Grain):
+        raise ParameterError(f"grain must be a contactlab.Grain; got {type(grain).__name__}")
+    if not isinstance(sensor, Sensor):
+        raise ParameterError(f"sensor must be a contactlab.Sensor; got {type(sensor).__name__}")
+    if not isinstance(law, (ContactLaw, PlasticTrapezoid)):
+        raise ParameterError(
+            f"law must be a contact law from contactlab.laws; got {type(law).__name__}"
+        )
+    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    if duration is not None:
+        duration = check_number("duration", duration, low=0.0, unit="s")
+    if sample_rate is not None:
+        sample_rate = check_number("sample_rate", sample_rate, low=0.0, unit="Hz")
+    return velocity, duration, sample_rate
+
+
+def simulate_impact(
+    grain,
+    sensor,
+    law,
+    velocity,
+    duration=None,
+    sample_rate=None,
+    method="auto",
+    *,
+    verify=False,
+    rtol=1e-10,
+    time_step=1e-10,
+    threshold=0.0,
+):
+    """Simulate a grain striking a force sensor (or an immovable wall).
+
+    Parameters
+    ----------
+    grain : Grain
+        The grain (mass ``m2``).
+    sensor : Sensor
+        The sensor (``m1, k1, c1``), or ``Sensor.rigid()`` for an immovable wall.
+    law : ContactLaw or PlasticTrapezoid
+        Grain-sensor contact law.
+    velocity : float
+        Impact speed ``v0`` [m/s], > 0.
+    duration : float, optional
+        Output window [s] from first touch. Default: the first contact and five sensor
+        periods of ringing after it (at least 1.5 contact times). The first contact is
+        always solved to its end; if it outlasts the window a :class:`WindowWarning`
+        says how long the window must be.
+    sample_rate : float, optional
+        Output sample rate [Hz]. Default: 20 001 samples over the window. A
+        :class:`ResolutionWarning` gives the minimum rate when the grid cannot resolve
+        the sensor period or the contact (10 samples each).
+    method : {"auto", "exact", "adaptive", "euler"}
+        Solver (see :mod:`contactlab.solver`). ``"exact"`` needs a piecewise-linear law.
+    verify : bool, default False
+        Re-solve at tighter settings (exact: the adaptive solver at ``rtol * 1e-2``;
+        adaptive: ``rtol * 1e-2``; Euler: a ten times smaller step, the paper's check)
+        and report relative differences in ``result.verification``.
+    rtol : float, default 1e-10
+        Relative tolerance of the adaptive solver.
+    time_step : float, default 1e-10
+        Step of the Euler method [s] (the paper's value).
+    threshold : float, default 0
+        Level [N] at which the sensor signal's first lobe is read
+        (``result.sensor_response_time``).
+
+    Returns
+    -------
+    ImpactResult
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> grain = cl.Grain(diameter=5e-3, density=765.0)
+    >>> law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
+    >>> res = cl.simulate_impact(grain, cl.Sensor.rigid(), law, velocity=2.0)
+    >>> round(res.contact_time * 1e6, 2)  # pi sqrt(m/k)
+    70.3
+    """
+
+    velocity, duration, sample_rate = _check_inputs(
+        grain, sensor, law, velocity, duration, sample_rate
+    )
+    method = check_choice("method", method, METHODS)
+    rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
+    if method == "auto":
+        method = "exact" if law.piecewise_linear else "adaptive"
+    if method == "exact" and not law.piecewise_linear:
+        raise ParameterError(
+            f"method='exact' needs a piecewise-linear law; {type(law).__name__} is "
+            "nonlinear: use method='adaptive' (or 'auto')"
+        )
+    system = System(grain, sensor)
+    if method == "euler":
+        time_step = check_number("time_step", time_step, low=0.0, unit="s")
+        segments, intervals, log, window = solve_euler(system, law, velocity, duration, time_step)
+    elif law.prescribed:
+        segments, intervals, log, window = _solve_pulse(system, law, velocity, duration)
+    else:
+        if method == "exact":
+            solver = exact_contact
+        else:
+
+            def solver(sys_, branch, t0, y0, tau_max):
+                return adaptive_contact(sys_, branch, t0, y0, tau_max, rtol, velocity)
+
+        segments, intervals, log, window = _solve_pieces(system, law, velocity, duration, solver)
+    _warn_window(intervals, log, window, duration)
+    if sample_rate is None:
+        sample_rate = (DEFAULT_SAMPLES - 1) / window
+    _warn_resolution(sensor, intervals, sample_rate)
+    result = ImpactResult(
+        grain=grain,
+        sensor=sensor,
+        law=law,
+        velocity=velocity,
+        duration=window,
+        sample_rate=sample_rate,
+        method=method,
+        segments=segments,
+        contact_intervals=intervals,
+        events=log,
+        system=system,
+        threshold=threshold,
+    )
+    if verify:
+        result.verification = _verify(result, rtol, time_step)
+    return result
+
+
+def _warn_window(intervals, log, window, duration):
+    if duration is None:
+        return
+    if not intervals or intervals[0][1] > duration:
+        needed = intervals[0][1] if intervals else math.nan
+        warnings.warn(
+            f"duration = {duration:.4g} s is shorter than the first contact; it must be at "
+            f"least {needed:.4g} s (the results beyond the window are still exact)",
+            WindowWarning,
+            stacklevel=3,
+        )
+
+
+def _warn_resolution(sensor, intervals, sample_rate):
+    needs = []
+    if not sensor.is_rigid:
+        needs.append(10.0 * sensor.resonance)
+    if intervals:
+        needs.append(10.0 / (intervals[0][1] - intervals[0][0]))
+    minimum = max(needs, default=0.0)
+    if sample_rate < minimum:
+        warnings.warn(
+            f"sample_rate = {sample_rate:.4g} Hz cannot resolve the sensor period and the "
+            f"contact (10 samples each); use at least {minimum:.4g} Hz",
+            ResolutionWarning,
+            stacklevel=3,
+        )
+
+
+_VERIFIED = ("contact_time", "peak_contact_force", "peak_sensor_force", "restitution", "impulse")
+
+
+def _verify(result, rtol, time_step):
+    """Re-solve at tighter settings; relative differences of the headline numbers."""
+    kwargs = dict(duration=result.duration, sample_rate=result.sample_rate)
+    if result.method == "euler":
+        kwargs.update(method="euler", time_step=time_step / 10.0)
+    else:
+        kwargs.update(method="adaptive", rtol=max(rtol * 1e-2, 1e-13))
+        if result.method == "exact" and result.law.prescribed:
+            kwargs.update(method="exact")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", WindowWarning)
+        ref = simulate_impact(
+            result.grain,
+            result.sensor,
+            result.law,
+            result.velocity,
+            threshold=result.threshold,
+            **kwargs,
+        )
+    diffs = {}
+    for name in _VERIFIED:
+        a, b = getattr(result, name), getattr(ref, name)
+        diffs[name] = abs(a - b) / abs(b) if b else abs(a - b)
+    diffs["reference_method"] = kwargs["method"]
+    return diffs
