@@ -251,7 +251,7 @@ def _add_trace_arguments(p):
 
 def _add_inverse_parsers(sub):
     from contactlab.inverse.export import DEM_CODES
-    from contactlab.inverse.fit import FIT_MODELS
+    from contactlab.inverse.fit_models import FIT_MODELS
     from contactlab.inverse.reconstruct import CRITERIA, METHODS
 
     window = {"nargs": 2, "type": float, "metavar": ("T0", "T1")}

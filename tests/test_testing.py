@@ -28,7 +28,7 @@ from contactlab.testing import (
     register_closed_form,
 )
 from contactlab.testing import closed_forms as closed_forms_module
-from contactlab.testing.golden import REGRESSION_RTOL, STORED_QUANTITIES
+from contactlab.testing.golden_trace import REGRESSION_RTOL, STORED_QUANTITIES
 from contactlab.testing.strategies import grains, impact_velocities, laws, sensors
 from dem_check.compare import QUANTITIES
 from dem_check.traces import Trace

@@ -8,6 +8,7 @@
 See ``docs/inverse.md`` for the methods and the accuracies achieved.
 """
 
+from contactlab.inverse.demo import reconstruction_demo
 from contactlab.inverse.export import DEM_CODES, export_dem, read_fit
 from contactlab.inverse.fit import (
     FIT_MODELS,
@@ -21,7 +22,6 @@ from contactlab.inverse.plots import (
     plot_fit,
     plot_identification,
     plot_reconstruction,
-    reconstruction_demo,
 )
 from contactlab.inverse.reconstruct import ForceReconstruction, reconstruct_force
 from contactlab.inverse.synthetic import synthetic_trace

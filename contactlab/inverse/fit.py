@@ -10,22 +10,19 @@ in units of the contact time) around a starting guess read from a Tikhonov
 reconstruction of the force, so every fitted coordinate is of order one.
 """
 
-import json
 import math
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import least_squares
-from scipy.special import expit, logit
 
-from contactlab import analytic
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
 from contactlab.inverse._signal import baseline, check_window, uniform_signal
+from contactlab.inverse.fit_models import FIT_MODELS, TRANSFORMS, FitModel
+from contactlab.inverse.fit_result import ContactFit, FittedParameter
 from contactlab.inverse.reconstruct import reconstruct_force
-from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic, WaltonBraun
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, check_count, check_number
 
@@ -37,9 +34,6 @@ __all__ = [
     "IdentifiabilityWarning",
     "fit_contact",
 ]
-
-FORMAT = "contactlab-fit-1"
-"""Tag of the JSON layout written by :meth:`ContactFit.to_dict` (read by the exporter)."""
 
 MAX_TRANSFORMED_STDERR = 0.25
 """Identifiability criterion: largest standard error of a transformed parameter (ln p,
@@ -64,232 +58,6 @@ BOUND = math.log(100.0)
 class IdentifiabilityWarning(ContactlabWarning):
     """The trace does not determine a fitted parameter (or the optimiser did not
     converge); the message names the parameters and the fix."""
-
-
-# ---------------------------------------------------------------------------
-# Transforms of the fitted coordinates
-# ---------------------------------------------------------------------------
-_TRANSFORMS = {
-    # name: (to coordinate, from coordinate, d value / d coordinate); numpy functions so
-    # that an unbounded confidence limit maps to 0 or inf instead of overflowing
-    "log": (np.log, np.exp, np.exp),
-    "logit": (logit, expit, lambda x: expit(x) * (1.0 - expit(x))),
-}
-
-
-@dataclass(frozen=True)
-class FitModel:
-    """How one contact law is fitted: its parameters, transforms, guess and law object.
-
-    ``guess(grain, velocity, contact_time, restitution)`` gives starting values from a
-    reconstructed pulse; ``build(values, grain)`` makes the law from fitted values.
-    """
-
-    law: str
-    parameters: tuple
-    units: tuple
-    transforms: tuple
-    guess: object
-    build: object
-
-
-def _hertz_stiffness(modulus, grain):
-    return analytic.hertz_stiffness(modulus, grain.radius)
-
-
-def _hertz_modulus_guess(grain, velocity, contact_time):
-    """E* [Pa] of an elastic Hertz impact on a flat lasting ``contact_time`` [s].
-
-    The Hertz contact time scales as ``E***(-2/5)``: invert it from a reference modulus.
-    """
-    reference = 1e6
-    k_hertz = _hertz_stiffness(reference, grain)
-    t_ref = analytic.hertz_contact_time(k_hertz, grain.mass, velocity)
-    return reference * (t_ref / contact_time) ** 2.5
-
-
-def _linear_guess(grain, velocity, contact_time, restitution):
-    k = grain.mass * (math.pi / contact_time) ** 2
-    c = analytic.linear_damping_from_restitution(k, restitution, grain.mass, convention="force")
-    return {"stiffness": k, "damping": c}
-
-
-def _hertz_damped_build(values, grain):
-    k_hertz = _hertz_stiffness(values["effective_modulus"], grain)
-    damping = analytic.tsuji_damping_coefficient(k_hertz, grain.mass, values["restitution"])
-    return HertzDamped(k_hertz, damping)
-
-
-def _walton_braun_guess(grain, velocity, contact_time, restitution):
-    # t_c = (pi/2) sqrt(m/k1) (1 + e) with e = sqrt(k1/k2)
-    k1 = grain.mass * (math.pi * (1.0 + restitution) / (2.0 * contact_time)) ** 2
-    return {"loading_stiffness": k1, "restitution": restitution}
-
-
-FIT_MODELS = {
-    "linear": FitModel(
-        "linear",
-        ("stiffness", "damping"),
-        ("N/m", "N*s/m"),
-        ("log", "log"),
-        _linear_guess,
-        lambda v, grain: LinearViscoelastic(v["stiffness"], v["damping"]),
-    ),
-    "hertz": FitModel(
-        "hertz",
-        ("effective_modulus",),
-        ("Pa",),
-        ("log",),
-        lambda grain, v, tc, e: {"effective_modulus": _hertz_modulus_guess(grain, v, tc)},
-        lambda v, grain: Hertz(_hertz_stiffness(v["effective_modulus"], grain)),
-    ),
-    "hertz_damped": FitModel(
-        "hertz_damped",
-        ("effective_modulus", "restitution"),
-        ("Pa", "-"),
-        ("log", "logit"),
-        lambda grain, v, tc, e: {
-            "effective_modulus": _hertz_modulus_guess(grain, v, tc),
-            "restitution": e,
-        },
-        _hertz_damped_build,
-    ),
-    "walton_braun": FitModel(
-        "walton_braun",
-        ("loading_stiffness", "restitution"),
-        ("N/m", "-"),
-        ("log", "logit"),
-        _walton_braun_guess,
-        lambda v, grain: WaltonBraun(
-            v["loading_stiffness"], v["loading_stiffness"] / v["restitution"] ** 2
-        ),
-    ),
-}
-"""Fittable laws: registry name -> :class:`FitModel`.
-
-``hertz_damped`` is fitted in the parameters the DEM codes take: the effective modulus
-``E*`` [Pa] (Hertz stiffness ``4/3 E* sqrt(R)`` on the flat sensor) and the restitution
-``e`` that the Tsuji/EDEM/LIGGGHTS mapping turns into the damping (overlap convention),
-so the fitted pair goes into those codes unchanged. ``walton_braun`` is fitted as the
-loading stiffness and ``e = sqrt(k_load / k_unload)``.
-"""
-
-
-# ---------------------------------------------------------------------------
-# Result
-# ---------------------------------------------------------------------------
-def _finite_or_none(value):
-    """JSON has no infinity: an unbounded limit is written as null."""
-    return float(value) if math.isfinite(value) else None
-
-
-@dataclass(frozen=True)
-class FittedParameter:
-    """One fitted quantity with its uncertainty (SI units)."""
-
-    value: float
-    """Best-fit value."""
-    stderr: float
-    """Standard error (delta method from the transformed coordinate)."""
-    ci95: tuple
-    """95 % confidence interval ``(low, high)``: +-1.96 standard errors of the
-    transformed coordinate, mapped back (asymmetric for ln p and logit e)."""
-    unit: str
-    """Unit of ``value``."""
-    identifiable: bool
-    """False when the trace does not determine it (see :data:`MAX_TRANSFORMED_STDERR`)."""
-
-    def to_dict(self):
-        """As a JSON-ready dict."""
-        return {
-            "value": self.value,
-            "stderr": _finite_or_none(self.stderr),
-            "ci95": [_finite_or_none(v) for v in self.ci95],
-            "unit": self.unit,
-            "identifiable": self.identifiable,
-        }
-
-
-@dataclass(frozen=True, eq=False)
-class ContactFit:
-    """A contact law fitted to a sensor trace (see :func:`fit_contact`).
-
-    ``parameters`` maps each fitted name (the law's, ``velocity`` unless it was
-    measured, ``onset``) to a :class:`FittedParameter`; ``fixed`` holds the law
-    parameters that were given instead of fitted; ``law`` is the fitted law
-    object; ``simulation`` the model at the best fit (its ``contact_force`` is the
-    fitted S2). ``t``, ``signal``, ``model`` and ``residuals`` [N] are on the fitted
-    samples.
-    """
-
-    law: object
-    law_name: str
-    parameters: dict
-    fixed: dict
-    velocity: float
-    velocity_measured: bool
-    onset: float
-    grain: Grain
-    sensor: Sensor
-    t: np.ndarray
-    signal: np.ndarray
-    model: np.ndarray
-    goodness: dict
-    simulation: object = field(repr=False, default=None)
-
-    @property
-    def residuals(self):
-        """Model minus signal at the fitted samples [N]."""
-        return self.model - self.signal
-
-    @property
-    def not_identifiable(self):
-        """Names of the parameters the trace does not determine."""
-        return [name for name, p in self.parameters.items() if not p.identifiable]
-
-    def to_dict(self):
-        """Everything needed to reuse the fit (FIT.json layout, JSON-ready)."""
-        return {
-            "format": FORMAT,
-            "law": self.law_name,
-            "law_parameters": self.law.parameters(),
-            "parameters": {k: p.to_dict() for k, p in self.parameters.items()},
-            "fixed": dict(self.fixed),
-            "velocity [m/s]": self.velocity,
-            "velocity_measured": self.velocity_measured,
-            "onset [s]": self.onset,
-            "grain": self.grain.to_dict(),
-            "sensor": self.sensor.to_dict(),
-            "goodness_of_fit": dict(self.goodness),
-            "contact_time_on_sensor [s]": self.simulation.contact_time,
-            "restitution_on_sensor [-]": self.simulation.restitution,
-            "not_identifiable": self.not_identifiable,
-        }
-
-    def to_json(self, path=None):
-        """The :meth:`to_dict` layout as JSON text; also written to ``path`` if given."""
-        text = json.dumps(self.to_dict(), indent=2)
-        if path is not None:
-            with open(path, "w", encoding="utf-8") as fh:
-                fh.write(text + "\n")
-        return text
-
-    def plot(self, ax=None):
-        """Trace, fitted signal and fitted contact force; returns (fig, ax).
-
-        See :func:`contactlab.inverse.plots.plot_fit`.
-        """
-        from contactlab.inverse.plots import plot_fit
-
-        return plot_fit(self, ax=ax)
-
-    def __repr__(self):
-        fitted = ", ".join(
-            f"{k}={p.value:.4g}{'' if p.identifiable else ' (not identifiable)'}"
-            for k, p in self.parameters.items()
-        )
-        chi2 = self.goodness["reduced_chi_squared [-]"]
-        return f"ContactFit({self.law_name}: {fitted}; reduced chi2={chi2:.3g})"
 
 
 # ---------------------------------------------------------------------------
@@ -318,7 +86,7 @@ class _Problem:
             if kind == "onset":
                 out[name] = self.start["onset"] + xi * self.scale
             else:
-                to, back, _ = _TRANSFORMS[kind]
+                to, back, _ = TRANSFORMS[kind]
                 out[name] = back(to(self.start[name]) + xi)
         return out
 
@@ -327,7 +95,7 @@ class _Problem:
         kind = self.kinds[i]
         if kind == "onset":
             return self.scale
-        to, _, derivative = _TRANSFORMS[kind]
+        to, _, derivative = TRANSFORMS[kind]
         return derivative(to(self.start[self.names[i]]) + x)
 
     def predict(self, values):

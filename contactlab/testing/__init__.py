@@ -35,12 +35,8 @@ from contactlab.testing.closed_forms import (
     closed_forms_for,
     register_closed_form,
 )
-from contactlab.testing.golden import (
-    GoldenMissingError,
-    GoldenStore,
-    GoldenTrace,
-    compare_impacts,
-)
+from contactlab.testing.golden import GoldenStore, compare_impacts
+from contactlab.testing.golden_trace import GoldenMissingError, GoldenTrace
 
 __all__ = [
     "CLOSED_FORMS",

@@ -251,7 +251,7 @@ def assert_trace_matches(actual, reference, tolerances=None, align=None):
     The comparison is :func:`dem_check.compare.compare`'s (contact time, peak contact
     and sensor forces, sensor response time, restitution, and the RMS and largest
     differences of the sensor signals over the reference's peak), at regression
-    tolerances (:data:`contactlab.testing.golden.REGRESSION_RTOL`, 1e-6) unless told
+    tolerances (:data:`contactlab.testing.golden_trace.REGRESSION_RTOL`, 1e-6) unless told
     otherwise. A quantity one side lacks (a measured trace has no contact force) is
     reported as not available, not as failed.
 

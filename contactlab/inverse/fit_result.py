@@ -1,0 +1,128 @@
+"""The result of a contact-law fit: fitted parameters with intervals, FIT.json layout."""
+
+import json
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from contactlab.bodies import Grain, Sensor
+
+__all__ = ["FORMAT", "ContactFit", "FittedParameter"]
+
+FORMAT = "contactlab-fit-1"
+"""Tag of the JSON layout written by :meth:`ContactFit.to_dict` (read by the exporter)."""
+
+
+def _finite_or_none(value):
+    """JSON has no infinity: an unbounded limit is written as null."""
+    return float(value) if math.isfinite(value) else None
+
+
+@dataclass(frozen=True)
+class FittedParameter:
+    """One fitted quantity with its uncertainty (SI units)."""
+
+    value: float
+    """Best-fit value."""
+    stderr: float
+    """Standard error (delta method from the transformed coordinate)."""
+    ci95: tuple
+    """95 % confidence interval ``(low, high)``: +-1.96 standard errors of the
+    transformed coordinate, mapped back (asymmetric for ln p and logit e)."""
+    unit: str
+    """Unit of ``value``."""
+    identifiable: bool
+    """False when the trace does not determine it (see :data:`MAX_TRANSFORMED_STDERR`)."""
+
+    def to_dict(self):
+        """As a JSON-ready dict."""
+        return {
+            "value": self.value,
+            "stderr": _finite_or_none(self.stderr),
+            "ci95": [_finite_or_none(v) for v in self.ci95],
+            "unit": self.unit,
+            "identifiable": self.identifiable,
+        }
+
+
+@dataclass(frozen=True, eq=False)
+class ContactFit:
+    """A contact law fitted to a sensor trace (see :func:`fit_contact`).
+
+    ``parameters`` maps each fitted name (the law's, ``velocity`` unless it was
+    measured, ``onset``) to a :class:`FittedParameter`; ``fixed`` holds the law
+    parameters that were given instead of fitted; ``law`` is the fitted law
+    object; ``simulation`` the model at the best fit (its ``contact_force`` is the
+    fitted S2). ``t``, ``signal``, ``model`` and ``residuals`` [N] are on the fitted
+    samples.
+    """
+
+    law: object
+    law_name: str
+    parameters: dict
+    fixed: dict
+    velocity: float
+    velocity_measured: bool
+    onset: float
+    grain: Grain
+    sensor: Sensor
+    t: np.ndarray
+    signal: np.ndarray
+    model: np.ndarray
+    goodness: dict
+    simulation: object = field(repr=False, default=None)
+
+    @property
+    def residuals(self):
+        """Model minus signal at the fitted samples [N]."""
+        return self.model - self.signal
+
+    @property
+    def not_identifiable(self):
+        """Names of the parameters the trace does not determine."""
+        return [name for name, p in self.parameters.items() if not p.identifiable]
+
+    def to_dict(self):
+        """Everything needed to reuse the fit (FIT.json layout, JSON-ready)."""
+        return {
+            "format": FORMAT,
+            "law": self.law_name,
+            "law_parameters": self.law.parameters(),
+            "parameters": {k: p.to_dict() for k, p in self.parameters.items()},
+            "fixed": dict(self.fixed),
+            "velocity [m/s]": self.velocity,
+            "velocity_measured": self.velocity_measured,
+            "onset [s]": self.onset,
+            "grain": self.grain.to_dict(),
+            "sensor": self.sensor.to_dict(),
+            "goodness_of_fit": dict(self.goodness),
+            "contact_time_on_sensor [s]": self.simulation.contact_time,
+            "restitution_on_sensor [-]": self.simulation.restitution,
+            "not_identifiable": self.not_identifiable,
+        }
+
+    def to_json(self, path=None):
+        """The :meth:`to_dict` layout as JSON text; also written to ``path`` if given."""
+        text = json.dumps(self.to_dict(), indent=2)
+        if path is not None:
+            with open(path, "w", encoding="utf-8") as fh:
+                fh.write(text + "\n")
+        return text
+
+    def plot(self, ax=None):
+        """Trace, fitted signal and fitted contact force; returns (fig, ax).
+
+        See :func:`contactlab.inverse.plots.plot_fit`.
+        """
+        from contactlab.inverse.plots import plot_fit
+
+        return plot_fit(self, ax=ax)
+
+    def __repr__(self):
+        fitted = ", ".join(
+            f"{k}={p.value:.4g}{'' if p.identifiable else ' (not identifiable)'}"
+            for k, p in self.parameters.items()
+        )
+        chi2 = self.goodness["reduced_chi_squared [-]"]
+        return f"ContactFit({self.law_name}: {fitted}; reduced chi2={chi2:.3g})"
