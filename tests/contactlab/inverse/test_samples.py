@@ -10,7 +10,7 @@ from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, identify_sensor, reconstruct_force
 from dem_check import read_trace
 
-TRACES = Path(__file__).parent.parent / "data" / "traces"
+TRACES = Path(__file__).parents[3] / "data" / "traces"
 SAMPLES = sorted(p.with_suffix("").name for p in TRACES.glob("*.json"))
 
 

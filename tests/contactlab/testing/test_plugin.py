@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-DOCS = Path(__file__).parents[1] / "docs" / "testing.md"
+DOCS = Path(__file__).parents[3] / "docs" / "testing.md"
 
 GOLDEN_TEST = """
 import contactlab as cl
