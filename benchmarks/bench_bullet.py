@@ -15,7 +15,7 @@ import pybullet as pb
 
 import contactlab as cl
 from contactlab.config import load_preset
-from dem_check.bullet import drop_scene, drop_test
+from dem_check.engines.bullet import drop_scene, drop_test
 
 REPEATS = 7
 TIME_STEP = 1e-7  # [s]

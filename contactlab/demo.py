@@ -41,13 +41,13 @@ def run_demo(out, quick=False, workers=1):
         ``error_vs_frequency.csv``, ``error_vs_diameter.csv``, ``summary.md``),
         ``reconstruction.png`` (:func:`contactlab.inverse.reconstruction_demo`) and the
         engine check ``bullet_base_case.png/.csv/.json``
-        (:func:`dem_check.bullet.base_case_check`).
+        (:func:`dem_check.engines.bullet.base_case_check`).
     """
     import matplotlib.pyplot as plt
 
     from contactlab.inverse import reconstruction_demo
     from contactlab.study.paper import paper_study
-    from dem_check.bullet import base_case_check
+    from dem_check.engines.bullet import base_case_check
 
     out.mkdir(parents=True, exist_ok=True)
     # base case: the paper's grain, hard contact k2 = 1e5 N/m, c2 = 1 N*s/m, v0 = 2 m/s

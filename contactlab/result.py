@@ -64,7 +64,7 @@ class ImpactSignals:
     ``x1``, ``x2`` [m] and ``v1``, ``v2`` [m/s], ``contact_intervals`` [(start, end) s],
     ``velocity`` and ``rebound_velocity`` [m/s], and ``_contact_peak`` (time [s], force
     [N]): :class:`ImpactResult` (exact solution) and
-    :class:`dem_check.bullet.EngineResult` (rigid-body engine) both do.
+    :class:`dem_check.engines.EngineResult` (rigid-body engine) both do.
     """
 
     def _headline(self):

@@ -1,7 +1,7 @@
 """dem_check: cross-checks of contactlab against a rigid-body engine and measured traces.
 
-* :func:`drop_test` drops the grain on the sensor in pybullet and reads the impact as
-  :func:`contactlab.simulate_impact` does (:mod:`dem_check.bullet`);
+* :func:`drop_test` drops the grain on the sensor in an engine and reads the impact as
+  :func:`contactlab.simulate_impact` does (:mod:`dem_check.engines`; pybullet by default);
 * :func:`compare` sets two impacts (engine, model, measured trace) side by side,
   quantity by quantity, and says which agree within tolerance (:class:`Comparison`);
 * measured oscilloscope and DAQ exports are read with :func:`read_trace` (formats detected
@@ -9,8 +9,8 @@
   naming the file and line).
 """
 
-from dem_check.bullet import drop_test
 from dem_check.compare import Comparison, compare, compare_trace
+from dem_check.engines import drop_test
 from dem_check.traces import Trace, TraceFormatError, read_trace, write_trace
 
 __all__ = [

@@ -39,7 +39,7 @@ def _report(comparison, args):
 
 
 def _bullet(args):
-    from dem_check.bullet import engine_check
+    from dem_check.engines.bullet import engine_check
 
     config = load(args.config, args.preset)
     comparison = engine_check(

@@ -149,7 +149,9 @@ def test_compare_bad_input_exits_2(trace_file, config, tmp_path, capsys):
 
 
 SAMPLES = sorted(
-    p for p in (Path(__file__).parent.parent / "data" / "traces").iterdir() if p.suffix == ".json"
+    p
+    for p in (Path(__file__).resolve().parents[2] / "data" / "traces").iterdir()
+    if p.suffix == ".json"
 )
 
 

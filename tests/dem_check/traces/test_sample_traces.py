@@ -28,7 +28,7 @@ from dem_check.traces import (
     remove_baseline,
 )
 
-DATA = Path(__file__).resolve().parents[1] / "data" / "traces"
+DATA = Path(__file__).resolve().parents[3] / "data" / "traces"
 SIDECARS = sorted(DATA.glob("*.json"))
 
 CUTOFF_PER_RESONANCE = 10.0

@@ -432,7 +432,7 @@ def test_missing_extra_names_it(tmp_path, monkeypatch, module, fmt, suffix):
 def test_tds_without_source_does_not_guess_the_channel(tmp_path):
     """A TDS export whose header lost its Source row keeps every sample, and the channel is
     called "unknown" rather than guessed."""
-    sample = Path(__file__).parent.parent / "data" / "traces" / "tek_tds.csv"
+    sample = Path(__file__).resolve().parents[3] / "data" / "traces" / "tek_tds.csv"
     lines = sample.read_text().splitlines(keepends=True)
     assert lines[5].startswith("Source,CH1,")
     lines[5] = ",," + lines[5].split(",", 2)[2]

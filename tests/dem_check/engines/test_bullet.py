@@ -16,7 +16,7 @@ from contactlab import analytic
 from contactlab.config import load_preset
 from contactlab.errors import ParameterError
 from dem_check import drop_test
-from dem_check.bullet import (
+from dem_check.engines.bullet import (
     GRAVITY,
     base_case_check,
     convergence_study,

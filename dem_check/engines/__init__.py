@@ -1,0 +1,105 @@
+"""Engines that rebuild the reduced model's impact: one module per engine, one interface.
+
+>>> import contactlab as cl
+>>> from dem_check.engines import drop_test
+>>> grain = cl.Grain(diameter=5e-3, density=765.0)
+>>> law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
+>>> res = drop_test(grain, cl.Sensor.rigid(), law, 2.0, engine="bullet")
+>>> round(res.contact_time * 1e6, 1)  # pi sqrt(m/k) = 70.3 us
+70.3
+
+The interface
+-------------
+An engine is a module (or package) of this package, named in :data:`ENGINES`, that
+provides::
+
+    drop_test(grain, sensor, law, velocity, time_step=None, **options) -> EngineResult
+
+* ``grain`` (:class:`contactlab.Grain`), ``sensor`` (:class:`contactlab.Sensor`;
+  ``Sensor.rigid()`` is an immovable plate), ``law`` (a :mod:`contactlab.laws` law) and
+  ``velocity`` (grain speed towards the sensor at release [m/s]) mean what they mean for
+  :func:`contactlab.simulate_impact`; ``time_step`` is the engine step [s] (``None``: the
+  engine's own default);
+* ``options`` are the engine's own keywords, each a keyword-only parameter of its
+  ``drop_test`` (so an unknown one raises TypeError there);
+* a law the engine cannot represent, or a time step too coarse for the contact or the
+  sensor, raises :class:`~contactlab.errors.ParameterError` naming it;
+* the result is an :class:`~dem_check.engines.result.EngineResult`: time from the first
+  touch, the model's axis (x along the grain's travel, into the sensor), contact force S2
+  and sensor signal S1 = k1 x1 + c1 v1 [N], so :func:`dem_check.compare` reads it as it
+  reads :class:`contactlab.ImpactResult`.
+
+Adding an engine is one module beside :mod:`dem_check.engines.bullet` and one line in
+:data:`ENGINES`. Engines are imported when first asked for, so one whose library is an
+optional extra costs nothing until it is used.
+"""
+
+import difflib
+import importlib
+
+from contactlab.errors import ParameterError
+from dem_check.engines.result import EngineResult
+
+__all__ = ["ENGINES", "EngineResult", "drop_test", "engine_module"]
+
+ENGINES = {
+    "bullet": "dem_check.engines.bullet",  # pybullet's soft contact (LinearViscoelastic)
+}
+"""Engine name -> the module that implements the interface (see the module docstring)."""
+
+
+def engine_module(engine):
+    """The module of an engine named in :data:`ENGINES`.
+
+    Parameters
+    ----------
+    engine : str
+        Engine name, e.g. ``"bullet"``.
+
+    Returns
+    -------
+    module
+        It provides ``drop_test`` (see the module docstring).
+
+    Raises
+    ------
+    ParameterError
+        For a name not in :data:`ENGINES`; the message lists the valid names.
+    """
+    if not isinstance(engine, str) or engine not in ENGINES:
+        near = difflib.get_close_matches(str(engine), ENGINES, n=1)
+        hint = f" (did you mean {near[0]!r}?)" if near else ""
+        raise ParameterError(f"unknown engine {engine!r}{hint}; valid names: {', '.join(ENGINES)}")
+    return importlib.import_module(ENGINES[engine])
+
+
+def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", **options):
+    """Drop the grain on the sensor in an engine and read the impact like the reduced model.
+
+    Parameters
+    ----------
+    grain : Grain
+    sensor : Sensor
+    law : ContactLaw
+        One the engine represents (pybullet: ``LinearViscoelastic``).
+    velocity : float
+        Grain speed towards the sensor at release [m/s].
+    time_step : float, optional
+        Engine step [s]; default the engine's own.
+    engine : str, default "bullet"
+        A name in :data:`ENGINES`.
+    **options
+        The engine's own keywords (pybullet:
+        :func:`dem_check.engines.bullet.drop_test`); an unknown one raises TypeError.
+
+    Returns
+    -------
+    EngineResult
+
+    Raises
+    ------
+    ParameterError
+        For an unknown engine (listing the valid names) or what the engine refuses.
+    """
+    module = engine_module(engine)
+    return module.drop_test(grain, sensor, law, velocity, time_step, **options)

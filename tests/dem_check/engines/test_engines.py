@@ -1,0 +1,61 @@
+"""The engine interface: one ``drop_test`` dispatching by name through ``ENGINES``."""
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+import dem_check
+from contactlab.errors import ParameterError
+from dem_check import engines
+from dem_check.engines import ENGINES, bullet, drop_test, engine_module
+from dem_check.engines.result import contact_crossings
+
+
+@pytest.fixture(scope="module")
+def case():
+    """The paper's 5 mm grain on the rigid plate, undamped k2 = 1e5 N/m, 2 m/s."""
+    grain = cl.Grain(diameter=5e-3, density=765.0)
+    return grain, cl.Sensor.rigid(), cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0), 2.0
+
+
+def test_every_registered_engine_provides_drop_test():
+    assert "bullet" in ENGINES
+    for name in ENGINES:
+        assert callable(engine_module(name).drop_test)
+    assert dem_check.drop_test is engines.drop_test
+
+
+@pytest.mark.parametrize("name", ["bulet", "pybullet", "", None, 3])
+def test_unknown_engine_lists_the_valid_names(case, name):
+    with pytest.raises(ParameterError, match=r"unknown engine .*valid names: bullet"):
+        drop_test(*case, engine=name)
+
+
+def test_close_name_is_suggested(case):
+    with pytest.raises(ParameterError, match=r"did you mean 'bullet'\?"):
+        drop_test(*case, engine="bulet")
+
+
+def test_unknown_keyword_raises_type_error(case):
+    with pytest.raises(TypeError, match="no_such_option"):
+        drop_test(*case, engine="bullet", no_such_option=1.0)
+
+
+@pytest.mark.bullet
+def test_dispatch_gives_the_engine_module_result(case):
+    via_registry = drop_test(*case, 1e-7, engine="bullet", duration=100e-6)
+    direct = bullet.drop_test(*case, 1e-7, duration=100e-6)
+    assert via_registry.method == direct.method == "pybullet"
+    # the engine is deterministic (deterministicOverlappingPairs=1): bit-identical runs
+    np.testing.assert_array_equal(via_registry.contact_force, direct.contact_force)
+    np.testing.assert_array_equal(via_registry.t, direct.t)
+
+
+def test_contact_crossings_interpolate_linearly():
+    # piecewise-linear indicator: linear interpolation is exact at its zeros
+    t = np.arange(8.0)
+    indicator = np.array([-1.0, 1.0, 3.0, 1.0, -3.0, -1.0, 1.0, 2.0])
+    rises, falls = contact_crossings(indicator, t)
+    np.testing.assert_allclose(rises, [0.5, 5.5], rtol=0, atol=1e-15)  # exact up to rounding
+    np.testing.assert_allclose(falls[:1], [3.25], rtol=0, atol=1e-15)  # exact up to rounding
+    assert np.isnan(falls[-1])  # still in contact at the end
