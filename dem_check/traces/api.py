@@ -8,7 +8,7 @@ from dem_check.traces.checks import fail
 from dem_check.traces.detect import detect_head
 from dem_check.traces.formats import FORMATS
 from dem_check.traces.prepare import to_force
-from dem_check.traces.textblock import read_head
+from dem_check.traces.texthead import read_head
 
 __all__ = ["read_trace", "write_trace"]
 

@@ -1,7 +1,7 @@
 """Recognise a trace file by its content, never by its extension."""
 
 from dem_check.traces.formats import FORMATS
-from dem_check.traces.textblock import read_head
+from dem_check.traces.texthead import read_head
 
 __all__ = ["detect_format", "detect_head"]
 

@@ -20,7 +20,8 @@ say that no instrument layout was recognised.
 import re
 
 from contactlab.validation import check_choice
-from dem_check.traces.textblock import Block, Column, output_units, require_unit, write_text
+from dem_check.traces.textblock import Block, Column, require_unit
+from dem_check.traces.textwrite import output_units, write_text
 from dem_check.traces.units import parse_unit
 
 __all__ = ["parse_header", "sniff", "write"]

@@ -24,7 +24,7 @@ from dem_check.traces.checks import (
     select_channel,
     uniform_interval,
 )
-from dem_check.traces.textblock import output_units
+from dem_check.traces.textwrite import output_units
 from dem_check.traces.trace import Trace
 from dem_check.traces.units import SI_VALUE_UNITS, parse_unit
 

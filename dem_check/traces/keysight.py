@@ -14,7 +14,8 @@ from decimal import Decimal
 import numpy as np
 
 from contactlab.errors import ParameterError
-from dem_check.traces.textblock import named_columns, write_text
+from dem_check.traces.textblock import named_columns
+from dem_check.traces.textwrite import write_text
 
 __all__ = ["engineering", "parse_header", "sniff", "write"]
 

@@ -16,7 +16,8 @@ segment and are refused.
 """
 
 from contactlab.errors import ParameterError
-from dem_check.traces.textblock import Block, Column, write_text
+from dem_check.traces.textblock import Block, Column
+from dem_check.traces.textwrite import write_text
 from dem_check.traces.units import parse_unit
 
 __all__ = ["parse_header", "sniff", "write"]

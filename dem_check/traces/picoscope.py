@@ -19,7 +19,8 @@ import re
 import numpy as np
 
 from contactlab.validation import check_choice
-from dem_check.traces.textblock import named_columns, output_units, write_text
+from dem_check.traces.textblock import named_columns
+from dem_check.traces.textwrite import output_units, write_text
 
 __all__ = ["OVERRANGE_TOKENS", "parse_header", "sniff", "write"]
 

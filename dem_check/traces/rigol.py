@@ -23,14 +23,8 @@ import numpy as np
 
 from contactlab.errors import ParameterError
 from dem_check.traces.checks import UNIFORM_RTOL, grid_deviation, uniform_interval
-from dem_check.traces.textblock import (
-    Block,
-    Column,
-    Sequence,
-    named_columns,
-    require_unit,
-    write_text,
-)
+from dem_check.traces.textblock import Block, Column, Sequence, named_columns, require_unit
+from dem_check.traces.textwrite import write_text
 from dem_check.traces.units import parse_unit
 
 __all__ = ["parse_seconds", "parse_sequence", "sniff_seconds", "sniff_sequence"]

@@ -23,7 +23,8 @@ import numpy as np
 
 from contactlab.errors import ParameterError
 from dem_check.traces.checks import uniform_interval
-from dem_check.traces.textblock import Block, Column, require_unit, write_text
+from dem_check.traces.textblock import Block, Column, require_unit
+from dem_check.traces.textwrite import write_text
 
 __all__ = ["parse_mso", "parse_tds", "sniff_mso", "sniff_tds", "write_mso", "write_tds"]
 
