@@ -52,7 +52,7 @@ def sample(request):
 def test_every_readable_layout_has_a_labelled_sample():
     sidecars = [json.loads(p.read_text(encoding="utf-8")) for p in SIDECARS]
     assert all(s["synthetic"] is True for s in sidecars)
-    # RigolWFM's binaries ("scope-binary") have no writer: tests/test_traces_binary.py
+    # RigolWFM's binaries ("scope-binary") have no writer: tests/dem_check/traces/test_binary.py
     assert {s["format"] for s in sidecars} == set(FORMATS) - {"scope-binary"}
     assert all((DATA / s["file"]).is_file() for s in sidecars)
     assert all((DATA / s["model"]).is_file() for s in sidecars)
