@@ -17,12 +17,14 @@ from contactlab.errors import (
     UnknownParameterError,
     WindowWarning,
 )
+from contactlab.oblique_result import ObliqueResult
 from contactlab.result import ImpactResult
-from contactlab.solver import simulate_impact
+from contactlab.solver import simulate_impact, simulate_oblique
 
 __all__ = [
     "Grain",
     "ImpactResult",
+    "ObliqueResult",
     "ParameterError",
     "ResolutionWarning",
     "Sensor",
@@ -33,6 +35,7 @@ __all__ = [
     "laws",
     "metrics",
     "simulate_impact",
+    "simulate_oblique",
 ]
 
 __version__ = "0.1.0"

@@ -1,6 +1,6 @@
 """Plots of impacts and studies. matplotlib is imported only here, only when plotting."""
 
-__all__ = ["axes_or_new", "plot_impact"]
+__all__ = ["axes_or_new", "plot_impact", "plot_oblique"]
 
 
 def axes_or_new(ax, figsize=(7.0, 4.0)):
@@ -40,6 +40,38 @@ def plot_impact(result, ax=None, title=None):
     t_us = result.t * 1e6
     ax.plot(t_us, result.contact_force, lw=2.6, color="black", label="contact force $S_2$")
     ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    ax.set_xlabel("time [µs]")
+    ax.set_ylabel("force [N]")
+    ax.set_xlim(t_us[0], t_us[-1])
+    if title:
+        ax.set_title(title)
+    ax.legend(loc="upper right", frameon=False)
+    return fig, ax
+
+
+def plot_oblique(result, ax=None, title=None):
+    """Normal force (thick), tangential force and sensor signal of an oblique impact.
+
+    Parameters
+    ----------
+    result : ObliqueResult
+        The impact to draw; time in microseconds, forces in newtons.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw into; a new figure is made when None.
+    title : str, optional
+        Axes title.
+
+    Returns
+    -------
+    (matplotlib.figure.Figure, matplotlib.axes.Axes)
+    """
+    fig, ax = axes_or_new(ax)
+    t_us = result.t * 1e6
+    ax.plot(t_us, result.normal_force, lw=2.6, color="black", label="normal force $S_2$")
+    ax.plot(t_us, result.tangential_force, lw=1.6, color="tab:blue", label="tangential force")
+    if not result.sensor.is_rigid:
+        ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
     ax.axhline(0.0, color="0.6", lw=0.5)
     ax.set_xlabel("time [µs]")
     ax.set_ylabel("force [N]")

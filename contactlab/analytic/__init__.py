@@ -61,6 +61,13 @@ from contactlab.analytic.plastic import (
 )
 from contactlab.analytic.pulse import plastic_trapezoid_amplitude
 from contactlab.analytic.sensor import half_sine_residual_amplitude
+from contactlab.analytic.tangential import (
+    SOLID_SPHERE_INERTIA,
+    effective_shear_modulus,
+    gross_sliding_rebound,
+    mindlin_stiffness_coefficient,
+    slides_throughout,
+)
 
 __all__ = [
     "CONVENTIONS",
@@ -68,11 +75,14 @@ __all__ = [
     "KUWABARA_KONO_C1",
     "KUWABARA_KONO_C2",
     "KUWABARA_KONO_MAX_PARAMETER",
+    "SOLID_SPHERE_INERTIA",
     "contact_modulus_radius",
     "damping_ratio",
     "effective_mass",
     "effective_modulus",
     "effective_radius",
+    "effective_shear_modulus",
+    "gross_sliding_rebound",
     "half_sine_residual_amplitude",
     "hertz_contact_time",
     "hertz_max_force",
@@ -88,8 +98,10 @@ __all__ = [
     "linear_plastic_restitution",
     "linear_plastic_yield_velocity",
     "linear_restitution",
+    "mindlin_stiffness_coefficient",
     "plastic_trapezoid_amplitude",
     "rayleigh_time",
+    "slides_throughout",
     "thornton_restitution",
     "thornton_yield_force",
     "thornton_yield_overlap",

@@ -8,7 +8,8 @@ gathers and checks its parameters:
 * :mod:`~contactlab.laws.hertz`: Hertz, damped Hertz (Tsuji), Kuwabara-Kono, Hunt-Crossley;
 * :mod:`~contactlab.laws.hysteretic`: Walton-Braun;
 * :mod:`~contactlab.laws.plastic`: linear spring with a force cap, Thornton;
-* :mod:`~contactlab.laws.pulse`: the paper's prescribed trapezoid.
+* :mod:`~contactlab.laws.pulse`: the paper's prescribed trapezoid;
+* :mod:`~contactlab.laws.tangential`: tangential laws (Cundall-Strack spring, Mindlin).
 
 :data:`LAWS` maps the names used in TOML files and on the command line to the classes.
 """
@@ -29,10 +30,18 @@ from contactlab.laws.hysteretic import WaltonBraun, walton_braun_force
 from contactlab.laws.linear import LinearViscoelastic, linear_viscoelastic_force
 from contactlab.laws.plastic import LinearPlastic, Thornton, linear_plastic_force, thornton_force
 from contactlab.laws.pulse import PlasticTrapezoid, plastic_trapezoid_force
+from contactlab.laws.tangential import (
+    TANGENTIAL_LAWS,
+    Mindlin,
+    TangentialLaw,
+    TangentialSpring,
+    mindlin_stiffness,
+)
 from contactlab.validation import check_choice
 
 __all__ = [
     "LAWS",
+    "TANGENTIAL_LAWS",
     "Branch",
     "ContactLaw",
     "Exit",
@@ -42,8 +51,11 @@ __all__ = [
     "KuwabaraKono",
     "LinearPlastic",
     "LinearViscoelastic",
+    "Mindlin",
     "PlasticTrapezoid",
     "SmoothLaw",
+    "TangentialLaw",
+    "TangentialSpring",
     "Thornton",
     "WaltonBraun",
     "get_law",
@@ -53,6 +65,7 @@ __all__ = [
     "kuwabara_kono_force",
     "linear_plastic_force",
     "linear_viscoelastic_force",
+    "mindlin_stiffness",
     "plastic_trapezoid_force",
     "thornton_force",
     "walton_braun_force",

@@ -37,15 +37,54 @@ def adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
 
     scale = velocity * 1e-6  # displacement scale [m]: 1 us of travel at impact speed
     atol = 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
-    fun = system.rhs(force)
+    y = np.asarray(y0, dtype=float)
+    touch = y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0
+    start, steps, switch, hit = integrate_piece(
+        system.rhs(force), t0, y, tau_max, rtol, atol, event_values, directions, touch
+    )
+    t_end = t0 + tau_max if hit is None else hit[0]
+    event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
+    states = DenseStates(t0, steps, start, switch)
+    seg = Segment(t0, t_end, "contact", branch.name, states, clipped(force), states.grid)
+    return seg, states(t_end - t0)[0], event
+
+
+def integrate_piece(fun, t0, y0, tau_max, rtol, atol, event_values, directions, touch):
+    """DOP853 from ``t0`` until an event or ``t0 + tau_max``, started in ``s = tau**(1/4)``
+    at a touch (see :func:`adaptive_contact`); shared with the oblique solver.
+
+    Parameters
+    ----------
+    fun : callable
+        Autonomous right-hand side ``fun(y) -> ndarray``.
+    t0, y0 : float, array_like
+        Start [s] and state.
+    tau_max : float
+        Longest piece [s].
+    rtol, atol : float, ndarray
+        Tolerances (``atol`` per state component).
+    event_values : callable
+        ``event_values(y) -> list`` of event function values; ``y`` carries ``s`` as an
+        extra last component during the warped start.
+    directions : list of int
+        Crossing direction of each event (:func:`contactlab.roots.crosses`).
+    touch : bool
+        Whether the piece starts at a touch (warped start).
+
+    Returns
+    -------
+    (DenseSteps or None, DenseSteps or None, float, tuple or None)
+        The warped steps (in ``s``), the steps in time, the local time where the first
+        hand over to the second [s], and the first event ``(time [s], index)`` or None.
+    """
     start, switch, y, hit, first = None, 0.0, np.asarray(y0, dtype=float), None, None
-    if y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0:
+    if touch:
         # first step in s: the s of the step an integrator in t would start with
         first_in_s = Stepper(fun, t0, y, rtol, atol).initial_step() ** 0.25
         z0, z_tol = np.append(y, 0.0), np.append(atol, 1.0)
         warped = Stepper(_warped(fun), 0.0, z0, rtol, z_tol, first_step=first_in_s)
         start, hit = _run(warped, tau_max**0.25, event_values, directions, _warp_stops_paying)
-        switch, y = warped.t**4, warped.y[:4]
+        switch, y = warped.t**4, warped.y[:-1]
         first = switch - warped.t_old**4  # carry on with the last step's length in t
         if hit is not None:
             hit = (t0 + hit[0] ** 4, hit[1])
@@ -53,11 +92,7 @@ def adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     if hit is None and switch < tau_max:
         stepper = Stepper(fun, t0 + switch, y, rtol, atol, first_step=first)
         steps, hit = _run(stepper, t0 + tau_max, event_values, directions)
-    t_end = t0 + tau_max if hit is None else hit[0]
-    event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
-    states = DenseStates(t0, steps, start, switch)
-    seg = Segment(t0, t_end, "contact", branch.name, states, clipped(force), states.grid)
-    return seg, states(t_end - t0)[0], event
+    return start, steps, switch, hit
 
 
 def _warped(fun):

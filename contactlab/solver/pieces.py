@@ -148,10 +148,13 @@ class DenseStates:
         :func:`contactlab.solver.adaptive.adaptive_contact`).
     switch : float, default 0
         Local time [s] where ``start`` hands over to ``steps``.
+    size : int, default 4
+        Number of state components returned (the first ``size`` of the integrated ones).
     """
 
-    def __init__(self, t0, steps, start=None, switch=0.0):
+    def __init__(self, t0, steps, start=None, switch=0.0, size=4):
         self._t0, self._steps, self._start, self._switch = t0, steps, start, switch
+        self._size = size
 
     def _early(self, tau):
         if self._start is None:
@@ -164,11 +167,11 @@ class DenseStates:
         early = self._early(tau)
         if tau.size == 1:  # the metrics' root finders ask one time at a time
             if early[0]:
-                return self._start.at(max(float(tau[0]), 0.0) ** 0.25)[None, :4]
+                return self._start.at(max(float(tau[0]), 0.0) ** 0.25)[None, : self._size]
             return self._steps.at(self._t0 + float(tau[0]))[None, :]
-        out = np.empty((tau.size, 4))
+        out = np.empty((tau.size, self._size))
         if early.any():
-            out[early] = self._start(np.maximum(tau[early], 0.0) ** 0.25)[:, :4]
+            out[early] = self._start(np.maximum(tau[early], 0.0) ** 0.25)[:, : self._size]
         if not early.all():
             out[~early] = self._steps(self._t0 + tau[~early])
         return out
@@ -177,7 +180,7 @@ class DenseStates:
         """Write the states at increasing local times ``tau`` [s] into ``out`` (n, 4)."""
         split = int(np.count_nonzero(self._early(tau)))  # the early times come first
         if split:
-            out[:split] = self._start(np.maximum(tau[:split], 0.0) ** 0.25)[:, :4]
+            out[:split] = self._start(np.maximum(tau[:split], 0.0) ** 0.25)[:, : self._size]
         if split < tau.size:
             self._steps(self._t0 + tau[split:], out=out[split:])
         return out

@@ -1,0 +1,358 @@
+"""Oblique impact of a spinning sphere on a flat or a force sensor: normal and tangential.
+
+The normal side is the two-mass model of :func:`contactlab.simulate_impact` (a rigid flat,
+or the sensor's moving mass on its spring and damper along the normal). The tangential
+side adds three states, the grain's tangential velocity ``vt`` [m/s], its spin ``w``
+[rad/s] and the tangential law's history ``h``; the flat (or sensor head) does not move
+tangentially. With the contact-point slip ``s = vt - R w`` and the tangential force ``F``
+on the grain (:mod:`contactlab.laws.tangential`)::
+
+    m vt' = F,     I w' = -R F,     so  s' = F (1/m + R**2/I),
+
+and ``F`` never feeds back into the normal motion: the normal side is exactly the normal
+impact alone.
+
+Coulomb friction makes the right-hand side switch between *sticking* (``h`` follows the
+law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigma mu N``,
+``h`` slaved to the cap). Each phase is a smooth piece integrated with DOP853
+(:func:`contactlab.solver.adaptive.integrate_piece`, the adaptive solver's stepper, started in
+``s = t**(1/4)`` at the touch), ended by events located on the step interpolant:
+
+* the normal force falls to zero (contact end);
+* sticking: the trial force reaches ``+mu N`` or ``-mu N``;
+* sliding: sticking becomes admissible, i.e. ``sigma dF_trial/dt < mu dN/dt`` along a
+  sticking path (the limit of LAMMPS' rule "increment the history, then cap" as the time
+  step vanishes). ``dN/dt`` comes from central differences of the normal law (relative step
+  1e-7: about 1e-13 relative error on smooth laws), the rest is exact.
+
+At the touch (``N = 0``) the phase is that of the limit ``t -> 0+``, read from a state one
+millionth of the first step later.
+"""
+
+import math
+import warnings
+
+import numpy as np
+
+from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ParameterError, WindowWarning
+from contactlab.laws import SmoothLaw, TangentialLaw
+from contactlab.solver.adaptive import integrate_piece
+from contactlab.solver.dop853 import Stepper
+from contactlab.solver.exact import free_flight
+from contactlab.solver.impact import DEFAULT_SAMPLES, auto_window
+from contactlab.solver.pieces import DenseStates
+from contactlab.solver.system import System
+from contactlab.validation import check_number
+
+__all__ = ["ObliqueModel", "simulate_oblique"]
+
+STICK = 0
+"""Phase code of a sticking contact (sliding phases are +1 and -1, the sign of F)."""
+
+MAX_PHASES = 1000
+"""Stick/slide switches after which the solver gives up (a chattering contact)."""
+
+_PROBE = 1e-6
+"""Fraction of the first step at which the phase at a touch is read."""
+
+_DIFF_STEP = 1e-7
+"""Relative step of the central differences of the normal law."""
+
+
+class ObliqueModel:
+    """Right-hand sides and event functions of the oblique impact, phase by phase.
+
+    State ``y = [x1, v1, x2, v2, vt, w, h]``: sensor displacement and velocity, grain
+    normal position and velocity, grain tangential velocity [m/s], spin [rad/s], and the
+    tangential law's history (m or N).
+
+    Parameters
+    ----------
+    system : contactlab.solver.system.System
+        Masses and sensor element (normal side).
+    normal_law : SmoothLaw
+        Normal contact law.
+    tangential_law : TangentialLaw
+        Tangential contact law.
+    radius : float
+        Grain radius [m] (lever arm of the tangential force).
+    inertia : float
+        Grain moment of inertia [kg*m**2].
+    """
+
+    def __init__(self, system, normal_law, tangential_law, radius, inertia):
+        self.system, self.law = system, tangential_law
+        self.normal = normal_law.branch("load").force
+        self.radius, self.inertia = radius, inertia
+        self.slip_compliance = 1.0 / system.m2 + radius**2 / inertia
+
+    # -- pieces of the right-hand side ----------------------------------------------------
+    def _normal_accelerations(self, x1, v1, n):
+        """(a1, a2): sensor and grain normal accelerations [m/s**2] under force ``n``."""
+        sys_ = self.system
+        a2 = -n / sys_.m2
+        if sys_.rigid:
+            return 0.0, a2
+        return (n - sys_.k1 * x1 - sys_.c1 * v1) / sys_.m1, a2
+
+    def tangential_force(self, phase, y):
+        """Tangential force F [N] on the grain in ``phase`` at state ``y`` (floats)."""
+        x1, _, x2, _, vt, w, h = y
+        d = x2 - x1
+        if phase == STICK:
+            return self.law.trial_force(h, d, vt - self.radius * w)
+        return phase * self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
+
+    def rhs(self, phase):
+        """``y' = f(y)`` in ``phase`` (STICK, +1 or -1)."""
+        normal, law, radius, inertia = self.normal, self.law, self.radius, self.inertia
+        m2, mu = self.system.m2, law.friction
+
+        def f(y):
+            x1, v1, x2, v2, vt, w, h = y.tolist()
+            d = x2 - x1
+            n = normal(d, v2 - v1)
+            slip = vt - radius * w
+            if phase == STICK:
+                force, dh = law.trial_force(h, d, slip), law.history_rate(d, slip)
+            else:
+                force, dh = phase * mu * max(n, 0.0), 0.0
+            a1, a2 = self._normal_accelerations(x1, v1, n)
+            return np.array([v1, a1, v2, a2, force / m2, -radius * force / inertia, dh])
+
+        return f
+
+    def _normal_force_rate(self, d, r, r_rate):
+        """dN/dt [N/s] from central differences of the normal law in overlap and rate."""
+        normal = self.normal
+        hd = _DIFF_STEP * abs(d) if d != 0.0 else 1e-300
+        hr = _DIFF_STEP * max(abs(r), 1e-12)
+        n_d = (normal(d + hd, r) - normal(d - hd, r)) / (2.0 * hd)
+        n_r = (normal(d, r + hr) - normal(d, r - hr)) / (2.0 * hr)
+        return n_d * r + n_r * r_rate
+
+    def slide_exit(self, phase, y):
+        """``sigma dF_trial/dt - mu dN/dt`` [N/s]: sliding goes on while >= 0."""
+        x1, v1, x2, v2, vt, w, _ = y[:7]
+        d, r = x2 - x1, v2 - v1
+        n = self.normal(d, r)
+        cap = phase * self.law.friction * max(n, 0.0)
+        slip = vt - self.radius * w
+        a1, a2 = self._normal_accelerations(x1, v1, n)
+        history = self.law.history_on_cap(cap, d, slip)
+        rate = self.law.trial_force_rate(history, d, r, slip, cap * self.slip_compliance)
+        return phase * rate - self.law.friction * self._normal_force_rate(d, r, a2 - a1)
+
+    def events(self, phase):
+        """Event functions ``values(y) -> list`` and their crossing directions.
+
+        Event 0 is the contact end; in sticking, events 1 and 2 are the trial force
+        reaching ``+mu N`` and ``-mu N``; in sliding, event 1 is the end of sliding.
+        """
+        normal, mu = self.normal, self.law.friction
+
+        if phase == STICK:
+
+            def values(y):
+                x1, v1, x2, v2 = y[:4].tolist()
+                n = normal(x2 - x1, v2 - v1)
+                force = self.tangential_force(STICK, y[:7].tolist())
+                return [n, force - mu * n, -force - mu * n]
+
+            return values, [-1, +1, +1]
+
+        def values(y):
+            x1, v1, x2, v2 = y[:4].tolist()
+            return [normal(x2 - x1, v2 - v1), self.slide_exit(phase, y.tolist())]
+
+        return values, [-1, -1]
+
+    def touch_phase(self, y0, first_step):
+        """Phase at a touch: STICK without slip, else the limit ``t -> 0+`` (probe)."""
+        slip = y0[4] - self.radius * y0[5]
+        if slip == 0.0:
+            return STICK
+        sliding = -1 if slip > 0.0 else +1
+        probe = y0 + _PROBE * first_step * self.rhs(sliding)(y0)
+        return STICK if self.slide_exit(sliding, probe.tolist()) < 0.0 else sliding
+
+
+class ContactPiece:
+    """One phase of the contact: local dense states (n, 7) and the phase code."""
+
+    def __init__(self, t0, t1, phase, states):
+        self.t0, self.t1, self.phase, self.states = t0, t1, phase, states
+
+
+def _solve_contact(model, y0, rtol, scale):
+    """Integrate the contact from the touch to the separation; returns (pieces, y_end)."""
+    velocity, force_scale = scale
+    length = velocity * 1e-6  # displacement scale [m]: 1 us of travel at impact speed
+    history_scale = length if model.law.history_kind == "displacement" else force_scale
+    spin_scale = velocity / model.radius
+    atol = (
+        1e-3
+        * rtol
+        * np.array([length, velocity, length, velocity, velocity, spin_scale, history_scale])
+    )
+    first = Stepper(model.rhs(STICK), 0.0, y0, rtol, atol).initial_step()
+    phase = model.touch_phase(y0, first)
+    pieces, t, y, touch = [], 0.0, np.asarray(y0, dtype=float), True
+    for _ in range(MAX_PHASES):
+        values, directions = model.events(phase)
+        start, steps, switch, hit = integrate_piece(
+            model.rhs(phase), t, y, 1.0, rtol, atol, values, directions, touch
+        )
+        if hit is None:
+            raise RuntimeError("the contact lasted more than 1 s: not an impact")
+        states = DenseStates(t, steps, start, switch, size=7)
+        pieces.append(ContactPiece(t, hit[0], phase, states))
+        y = states(hit[0] - t)[0]
+        t, touch = hit[0], False
+        if hit[1] == 0:
+            return pieces, y
+        if phase == STICK:
+            phase = +1 if hit[1] == 1 else -1
+        else:
+            cap = phase * model.law.friction * max(model.normal(y[2] - y[0], y[3] - y[1]), 0.0)
+            y[6] = model.law.history_on_cap(cap, y[2] - y[0], y[4] - model.radius * y[5])
+            phase = STICK
+    raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
+
+
+def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, spin):
+    if not isinstance(grain, Grain):
+        raise ParameterError(f"grain must be a contactlab.Grain; got {type(grain).__name__}")
+    if not isinstance(sensor, Sensor):
+        raise ParameterError(f"sensor must be a contactlab.Sensor; got {type(sensor).__name__}")
+    if not isinstance(normal_law, SmoothLaw):
+        raise ParameterError(
+            "normal_law must be a normal contact law without history (LinearViscoelastic, "
+            f"Hertz, HertzDamped, KuwabaraKono, HuntCrossley); got {type(normal_law).__name__}"
+        )
+    if not isinstance(tangential_law, TangentialLaw):
+        raise ParameterError(
+            "tangential_law must be a tangential law from contactlab.laws (TangentialSpring, "
+            f"Mindlin); got {type(tangential_law).__name__}"
+        )
+    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    angle = check_number(
+        "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
+    )
+    spin = check_number("spin", spin, unit="rad/s")
+    return velocity, angle, spin
+
+
+def simulate_oblique(
+    grain,
+    sensor,
+    normal_law,
+    tangential_law,
+    velocity,
+    angle,
+    *,
+    spin=0.0,
+    duration=None,
+    sample_rate=None,
+    rtol=1e-9,
+    inertia_factor=SOLID_SPHERE_INERTIA,
+):
+    """Simulate a spinning sphere striking a flat or a force sensor at an angle.
+
+    Parameters
+    ----------
+    grain : Grain
+        The grain (mass ``m``, radius ``R``).
+    sensor : Sensor
+        The sensor along the normal (``m1, k1, c1``), or ``Sensor.rigid()`` for a flat.
+        It does not move tangentially.
+    normal_law : SmoothLaw
+        Normal contact law (Hertz, HertzDamped, LinearViscoelastic, KuwabaraKono,
+        HuntCrossley).
+    tangential_law : TangentialLaw
+        Tangential law (:class:`~contactlab.laws.TangentialSpring`,
+        :class:`~contactlab.laws.Mindlin`).
+    velocity : float
+        Impact speed [m/s], > 0.
+    angle : float
+        Angle of incidence from the surface normal [rad], in [0, pi/2).
+    spin : float, default 0
+        Initial angular velocity [rad/s] about the axis normal to the plane of incidence,
+        signed so that the contact point slides at ``vt - R spin`` (a ball rolling forward
+        has positive spin).
+    duration : float, optional
+        Output window [s]; default the contact and five sensor periods of ringing
+        (at least 1.5 contact times), as :func:`contactlab.simulate_impact`.
+    sample_rate : float, optional
+        Output sample rate [Hz]; default 20 001 samples over the window.
+    rtol : float, default 1e-9
+        Relative tolerance of the DOP853 integration.
+    inertia_factor : float, default 0.4
+        ``I / (m R**2)`` [-] (0.4: a homogeneous solid sphere).
+
+    Returns
+    -------
+    ObliqueResult
+
+    Notes
+    -----
+    The solver follows the first contact; if the sensor's plate strikes the grain again
+    within the window a :class:`~contactlab.errors.WindowWarning` says when.
+    See :mod:`contactlab.solver.oblique` for the equations and events.
+    """
+    from contactlab.oblique_result import ObliqueResult
+
+    velocity, angle, spin = _check_inputs(
+        grain, sensor, normal_law, tangential_law, velocity, angle, spin
+    )
+    rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
+    kappa = check_number("inertia_factor", inertia_factor, low=0.0)
+    if duration is not None:
+        duration = check_number("duration", duration, low=0.0, unit="s")
+    if sample_rate is not None:
+        sample_rate = check_number("sample_rate", sample_rate, low=0.0, unit="Hz")
+    system = System(grain, sensor)
+    radius = grain.radius
+    model = ObliqueModel(system, normal_law, tangential_law, radius, kappa * grain.mass * radius**2)
+    vn, vt = velocity * math.cos(angle), velocity * math.sin(angle)
+    y0 = np.array([0.0, 0.0, 0.0, vn, vt, spin, 0.0])
+    force_scale = grain.mass * velocity / 1e-6  # momentum over 1 us [N]
+    pieces, y_end = _solve_contact(model, y0, rtol, (velocity, force_scale))
+    t_end = pieces[-1].t1
+    window = auto_window(system, t_end) if duration is None else duration
+    if window < t_end:
+        warnings.warn(
+            f"duration = {window:.4g} s is shorter than the contact; it must be at least "
+            f"{t_end:.4g} s (the results beyond the window are still exact)",
+            WindowWarning,
+            stacklevel=2,
+        )
+    free, _, recontact = free_flight(
+        system, normal_law, 0.0, t_end, y_end[:4], max(window - t_end, 0.0)
+    )
+    if recontact is not None:
+        warnings.warn(
+            f"the sensor strikes the grain again at t = {free.t1:.4g} s; simulate_oblique "
+            "follows the first contact only (the signals after it assume free flight)",
+            WindowWarning,
+            stacklevel=2,
+        )
+    if sample_rate is None:
+        sample_rate = (DEFAULT_SAMPLES - 1) / window
+    return ObliqueResult(
+        grain=grain,
+        sensor=sensor,
+        normal_law=normal_law,
+        tangential_law=tangential_law,
+        velocity=velocity,
+        angle=angle,
+        spin=spin,
+        model=model,
+        pieces=pieces,
+        free=free,
+        final_state=y_end,
+        duration=window,
+        sample_rate=sample_rate,
+    )
