@@ -386,8 +386,23 @@ def _build_parser():
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_advise)
 
+    p = sub.add_parser("benchmark", help="published DEM benchmarks against theory")
+    p.add_argument("name", choices=["chung-ooi"], help="the benchmark (Chung & Ooi 2011)")
+    p.add_argument("--out", default="results", help="output folder (default: results)")
+    p.set_defaults(func=_benchmark)
+
     _add_inverse_parsers(sub)
     return parser
+
+
+def _benchmark(args):
+    """Run a benchmark; print its table and where the figures went."""
+    from contactlab.benchmarks.chung_ooi import run_chung_ooi
+
+    report = run_chung_ooi(args.out)
+    print(report["markdown"])
+    failed = sum(not r["passed"] for r in report["rows"])
+    print(f"{len(report['rows']) - failed} passed, {failed} failed; figures in {args.out}")
 
 
 def main(argv=None):
