@@ -25,6 +25,10 @@ _PROPERTIES = {
     "poisson_ratio": "-",
 }
 
+_OPTIONAL = {"friction_steel": "-"}
+"""Tables a species file may add: the grain's Coulomb friction coefficient against steel
+(a sensor head), for oblique impacts (:class:`contactlab.laws.Mindlin`)."""
+
 
 def _range(name, value, unit):
     """(low, high) from a number or a [low, high] pair, both checked."""
@@ -55,6 +59,8 @@ class Species:
         Young's modulus of the grain [Pa].
     poisson_ratio : float
         Poisson ratio [-].
+    friction_steel : float or (float, float), optional
+        Coulomb friction coefficient of the grain against steel [-].
     description : str, optional
         One line about the material (moisture range ...).
     sources : dict, optional
@@ -66,6 +72,7 @@ class Species:
     density: tuple
     youngs_modulus: tuple
     poisson_ratio: float
+    friction_steel: tuple | None = None
     description: str = ""
     sources: dict = field(default_factory=dict)
 
@@ -77,6 +84,10 @@ class Species:
             "poisson_ratio",
             check_number("poisson_ratio", self.poisson_ratio, low=-1.0, high=0.5, high_open=False),
         )
+        if self.friction_steel is not None:
+            object.__setattr__(
+                self, "friction_steel", _range("friction_steel", self.friction_steel, "-")
+            )
 
     @classmethod
     def from_toml(cls, path):
@@ -93,16 +104,18 @@ class Species:
         """
         path = Path(path)
         data = read_document(path, "species")
-        allowed = {"name", "description", *_PROPERTIES}
+        allowed = {"name", "description", *_PROPERTIES, *_OPTIONAL}
         unknown = sorted(set(data) - allowed)
         missing = sorted(set(_PROPERTIES) - set(data))
         if unknown or missing:
             raise ParameterError(
                 f"{path}: unknown key(s) {unknown}, missing table(s) {missing}; a species "
-                f"file has name, description and tables {list(_PROPERTIES)}"
+                f"file has name, description and tables {list(_PROPERTIES)} (optionally "
+                f"{list(_OPTIONAL)})"
             )
         values, sources = {}, {}
-        for prop, unit in _PROPERTIES.items():
+        present = {p: u for p, u in (_PROPERTIES | _OPTIONAL).items() if p in data}
+        for prop, unit in present.items():
             table = data[prop]
             if not isinstance(table, dict) or set(table) != {"value", "unit", "source"}:
                 raise ParameterError(f"{path}: [{prop}] needs exactly value, unit and source")
@@ -150,6 +163,9 @@ class Species:
             "density [kg/m^3]": list(self.density),
             "youngs_modulus [Pa]": list(self.youngs_modulus),
             "poisson_ratio [-]": self.poisson_ratio,
+            "friction_steel [-]": None
+            if self.friction_steel is None
+            else list(self.friction_steel),
             "sources": dict(self.sources),
         }
 

@@ -20,7 +20,15 @@ def test_the_six_presets_are_there():
 @pytest.mark.parametrize("name", SPECIES)
 def test_every_preset_loads_with_sources_and_advises(name):
     species = load_species(name)
-    assert set(species.sources) == {"diameter", "density", "youngs_modulus", "poisson_ratio"}
+    assert set(species.sources) == {
+        "diameter",
+        "density",
+        "youngs_modulus",
+        "poisson_ratio",
+        "friction_steel",
+    }
+    lo, hi = species.friction_steel
+    assert 0.1 < lo <= hi < 0.7  # grain on steel: measured ranges 0.16-0.56
     assert all(len(text) > 10 for text in species.sources.values())
     lo, hi = species.diameter
     assert 1e-3 < lo <= hi < 10e-3  # seeds, in metres
