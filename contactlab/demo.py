@@ -76,6 +76,16 @@ def run_demo(out, quick=False, workers=1):
     engine_files = base_case_check(out)
     summary["engine_check"] = json.loads(engine_files[-1].read_text())
     written += engine_files
+    # oblique impacts: the Chung & Ooi (2011) benchmark against theory
+    from contactlab.benchmarks.chung_ooi import run_chung_ooi
+
+    chung_ooi = run_chung_ooi(out)
+    written += [*chung_ooi["figures"], out / "chung_ooi.csv"]
+    summary["chung_ooi"] = {
+        "graded": len(chung_ooi["rows"]),
+        "passed": sum(r["passed"] for r in chung_ooi["rows"]),
+        "not_run": chung_ooi["not_run"],
+    }
     path = out / "summary.json"
     path.write_text(json.dumps(_jsonable(summary), indent=2))
     written.append(path)
