@@ -6,11 +6,20 @@ State vector everywhere: ``y = [x1, v1, x2, v2]`` (sensor displacement [m] and v
 adaptive contact pieces.
 """
 
+import math
+
 import numpy as np
 
 from contactlab.solver.propagators import linear_flow
 
-__all__ = ["System", "clipped", "event_directions", "overlap_rate", "scan_step"]
+__all__ = [
+    "System",
+    "clipped",
+    "event_directions",
+    "force_scales",
+    "overlap_rate",
+    "scan_step",
+]
 
 SCAN_STEPS_PER_RADIAN = 5.0
 """Event scan: about 31 points per period of the fastest mode, so no two crossings of an
@@ -25,11 +34,19 @@ class System:
         self.rigid = sensor.is_rigid
         self.m1, self.k1, self.c1 = sensor.mass, sensor.stiffness, sensor.damping
         if not self.rigid:
-            self.sensor_flow = linear_flow([[0.0, 1.0], [-self.k1 / self.m1, -self.c1 / self.m1]])
+            self.sensor_flow = linear_flow(
+                [[0.0, 1.0], [-self.k1 / self.m1, -self.c1 / self.m1]],
+                force_scales(self.k1, self.m1),
+            )
 
     def contact_flow(self, k, c):
         """The :class:`~contactlab.solver.propagators.LinearFlow` of a linear contact branch."""
-        return linear_flow(self.contact_matrix(k, c))
+        scale = None
+        if k > 0.0:
+            scale = force_scales(k, self.m2)
+            if not self.rigid:
+                scale = force_scales(self.k1, self.m1) + scale
+        return linear_flow(self.contact_matrix(k, c), scale)
 
     def contact_matrix(self, k, c):
         """System matrix under a contact force ``k d + c d' + f0`` (rigid: grain only)."""
@@ -76,6 +93,16 @@ class System:
         signal = states[:, 0] * self.k1
         signal += self.c1 * states[:, 1]
         return signal
+
+
+def force_scales(stiffness, mass):
+    """Scales ``(k, k / omega)`` that make a mass's displacement and velocity forces [N].
+
+    ``k x`` and ``k v / omega`` (``omega = sqrt(k / m)``) are of one size in a
+    spring-mass oscillation: the coordinates in which
+    :class:`~contactlab.solver.propagators.LinearFlow` computes modes to full accuracy.
+    """
+    return (stiffness, stiffness / math.sqrt(stiffness / mass))
 
 
 def overlap_rate(states):
