@@ -284,11 +284,14 @@ class ImpactResult(ImpactSignals):
     def _refined_max(self, values_on, grid_values, start, end):
         """Largest value of a dense signal on [start, end] [s], refined from the grid.
 
-        From the largest grid sample (or an end of the interval), the neighbourhood of
-        one sample interval each side is searched on 17 points of the dense solution,
-        zoomed eightfold around the best point five times: the peak's time to about
-        1e-5 of a sample interval, so its value to about 1e-10 relative on a smooth
-        peak, and no smoothness assumed (a plateau or a kink is found just as well).
+        Every local maximum of the grid samples (and the ends of the interval) is a
+        candidate: a sensor ringing on a slow pulse has many nearly equal peaks, and
+        the largest sample need not sit by the largest peak when the grid has few
+        samples per period. Around each candidate, one sample interval each side is
+        searched on 17 points of the dense solution, zoomed eightfold around the best
+        point five times (all candidates at once): each peak's time to about 1e-5 of a
+        sample interval, so its value to about 1e-10 relative on a smooth peak, and no
+        smoothness assumed (a plateau or a kink is found just as well).
 
         Parameters
         ----------
@@ -298,16 +301,21 @@ class ImpactResult(ImpactSignals):
             The signal on the output grid ``self.t``.
         """
         inside = np.flatnonzero((self.t >= start) & (self.t <= end))
-        candidates = np.array(
-            [start, end] + ([self.t[inside[np.argmax(grid_values[inside])]]] if inside.size else [])
-        )
-        t_best = float(candidates[np.argmax(values_on(candidates))])
+        v = grid_values[inside]
+        peaks = inside[1:-1][(v[1:-1] > v[:-2]) & (v[1:-1] >= v[2:])]
+        if v.size:
+            peaks = np.append(peaks, inside[v.argmax()])
+        candidates = np.concatenate(([start, end], self.t[peaks]))
         width = 1.0 / self.sample_rate
+        offsets = np.linspace(-1.0, 1.0, 17)
         for _ in range(_ZOOMS):
-            times = np.clip(t_best + width * np.linspace(-1.0, 1.0, 17), start, end)
-            t_best = float(times[np.argmax(values_on(times))])
+            times = np.clip(candidates[:, None] + width * offsets, start, end)
+            values = values_on(times.ravel()).reshape(times.shape)
+            candidates = times[np.arange(times.shape[0]), values.argmax(axis=1)]
             width /= 8.0
-        return t_best, float(values_on(np.array([t_best]))[0])
+        values = values_on(candidates)
+        best = int(np.argmax(values))
+        return float(candidates[best]), float(values[best])
 
     @cached_property
     def _contact_peak(self):
