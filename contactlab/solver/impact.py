@@ -51,6 +51,16 @@ DEFAULT_SAMPLES = 20001
 MAX_CONTACTS = 200
 """Contact intervals after which the solver stops (a grain resting on a ringing plate)."""
 
+FIRST_CONTACT_HORIZON = 1.0
+"""How far the first contact is followed when no window is given [s]: a contact longer
+than a second is not an impact."""
+
+RINGING_PERIODS = 5.0
+"""Default window: sensor periods of ringing after the first contact."""
+
+WINDOW_PER_CONTACT = 1.5
+"""Default window: at least this many first-contact durations."""
+
 
 def _solve_pieces(system, law, velocity, window, contact_solver):
     """Alternate contact and free pieces until the window ends.
@@ -101,13 +111,17 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
 def _contact_horizon(system, limit):
     """How far to follow the first contact when looking for its end [s]: a contact longer
     than a second (or 100 windows) is not an impact."""
-    return 1.0 if math.isinf(limit) else max(100.0 * limit, 1.0)
+    if math.isinf(limit):
+        return FIRST_CONTACT_HORIZON
+    return max(100.0 * limit, FIRST_CONTACT_HORIZON)
 
 
 def auto_window(system, contact_end):
     """Window after the first contact when none was given: the contact and the ringing."""
-    ringing = 0.0 if system.rigid else 5.0 * 2.0 * math.pi / math.sqrt(system.k1 / system.m1)
-    return max(1.5 * contact_end, contact_end + ringing)
+    ringing = (
+        0.0 if system.rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(system.k1 / system.m1)
+    )
+    return max(WINDOW_PER_CONTACT * contact_end, contact_end + ringing)
 
 
 def _solve_pulse(system, law, velocity, window):
