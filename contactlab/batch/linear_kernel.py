@@ -5,8 +5,8 @@ Each row is solved as :func:`contactlab.simulate_impact` solves a linear
 and free pieces in modal form, each event found by scanning its exact expression on the
 same grid (:func:`contactlab.solver.propagators.first_event`, step
 :func:`contactlab.solver.system.scan_step`) and located by Brent's method to the same
-tolerance (:mod:`contactlab.batch.roots`), the same window (first contact, then
-:func:`contactlab.solver.impact.auto_window`) and the same contact cap. While it goes,
+tolerance (:mod:`contactlab.batch.roots`), the same window (:func:`contactlab.solver.impact.auto_window` after each
+separation) and the same contact cap. While it goes,
 the kernel reads the headline numbers as :class:`contactlab.ImpactResult` defines them
 (first lobe of the sensor signal from the first rise above zero to the first return to
 it; peaks over the first contact and over that lobe; restitution after the last contact),
@@ -63,7 +63,7 @@ _CONTACT_END, _RECONTACT, _SENSOR, _SENSOR_SLOPE, _FORCE_SLOPE = range(5)
 _M1, _K1, _C1, _M2, _K2, _C2, _RIGID, _IN_CONTACT = range(8)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _state(tau, lam, vec, coef, nm, base, slope, y0, out):
     if tau == 0.0:
         out[:] = y0
@@ -76,7 +76,17 @@ def _state(tau, lam, vec, coef, nm, base, slope, y0, out):
             out[c] += (vec[c, k] * e).real
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
+def _state_from(tau, terms, vec, nm, base, slope, out):
+    """State from its modal terms ``coef * exp(lam tau)`` (the scan's recurrence)."""
+    for c in range(4):
+        out[c] = base[c] + slope[c] * tau
+    for k in range(nm):
+        for c in range(4):
+            out[c] += (vec[c, k] * terms[k]).real
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _signal(kind, y, par):
     """One signal at state ``y``: event functions, sensor signal, slopes of the signals."""
     d, r = y[2] - y[0], y[3] - y[1]
@@ -99,7 +109,7 @@ def _signal(kind, y, par):
     return k2 * r + c2 * (-force / par[_M2] - a1)  # _FORCE_SLOPE
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _clipped_force(y, par):
     """Contact force S2 of a contact piece, never tensile (contactlab.solver.system.clipped)."""
     d = y[2] - y[0]
@@ -108,7 +118,7 @@ def _clipped_force(y, par):
     return max(par[_K2] * d + par[_C2] * (y[3] - y[1]), 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _root(kind, lo, f_lo, hi, f_hi, piece, par, y, work):
     """Root of one signal on ``[lo, hi]`` (Brent, the solver's tolerance)."""
     lam, vec, coef, nm, base, slope, y0 = piece
@@ -119,26 +129,50 @@ def _root(kind, lo, f_lo, hi, f_hi, piece, par, y, work):
     return x
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
 def _read(event, y, par, track, values):
-    """Signals of a scan point: [event, sensor signal, its slope, contact-force slope]."""
+    """Signals of a scan point: [event, sensor signal, its slope, contact-force slope,
+    contact force] (as :func:`_signal` and :func:`_clipped_force`, in one pass)."""
     values[0] = _signal(event, y, par) if event >= 0 else 0.0
-    if track[0]:
-        values[1] = _signal(_SENSOR, y, par)
-        values[2] = _signal(_SENSOR_SLOPE, y, par)
+    d, r = y[2] - y[0], y[3] - y[1]
+    raw = par[_K2] * d + par[_C2] * r
+    force = raw if par[_IN_CONTACT] > 0.0 else 0.0
+    a1 = 0.0
+    if par[_RIGID] == 0.0:
+        s1 = par[_K1] * y[0] + par[_C1] * y[1]
+        a1 = (force - s1) / par[_M1]
+        values[1] = s1
+        values[2] = par[_K1] * y[1] + par[_C1] * a1
     if track[1]:
-        values[3] = _signal(_FORCE_SLOPE, y, par)
+        values[3] = par[_K2] * r + par[_C2] * (-force / par[_M2] - a1)
+        values[4] = 0.0 if d < 0.0 else max(raw, 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy", inline="always")
+def _may_exceed(value, slope, best, h):
+    """Whether a local maximum inside a scan interval of length ``h`` [s] can beat ``best``.
+
+    The signal is concave about a maximum found between two scan points (31 per period
+    of the fastest mode), so on the interval it stays below ``S(a) + S'(a) h``; twice
+    that slope term is kept as a margin. Refining only the maxima that can win saves
+    the root searches on the many lower ripples of a ringing sensor.
+    """
+    return value + 2.0 * slope * h >= best
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _falls(before, after):
     """Crossing from positive to non-positive (contactlab.roots.crosses, direction -1)."""
     return before > 0.0 and after <= 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work):
     """Scan one piece on ``(tau0, tau_max]`` as ``first_event`` does; returns the event time.
+
+    The scan points are those of ``first_event``; the modal terms are carried from one
+    to the next by one complex product (about 256 eps relative after a chunk), as the
+    scan only looks for sign changes; roots and peaks are evaluated directly.
 
     ``track`` (flags, updated): [0] the sensor lobe is open (look for its end and its
     maxima), [1] the contact force's maxima are wanted (first contact). ``best``
@@ -147,18 +181,28 @@ def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, wor
     event, or -1 when there is none (``event < 0`` scans for none).
     """
     lam, vec, coef, nm, base, slope, y0 = piece
-    prev, cur = np.zeros(4), np.zeros(4)
+    prev, cur = np.zeros(5), np.zeros(5)
     _state(tau0, lam, vec, coef, nm, base, slope, y0, y)
     _read(event, y, par, track, prev)
     start, t_prev = tau0, tau0
+    terms, ratio = np.empty(nm, np.complex128), np.empty(nm, np.complex128)
+    for k in range(nm):
+        ratio[k] = cmath.exp(lam[k] * step)
     while start < tau_max:
         last = start
+        for k in range(nm):  # modal terms at the chunk's start, then one product a point
+            terms[k] = coef[k] * cmath.exp(lam[k] * start)
         for i in range(1, _CHUNK + 1):
+            for k in range(nm):
+                terms[k] *= ratio[k]
             tau = min(start + step * i, tau_max)
             if tau <= last:
                 continue
             last = tau
-            _state(tau, lam, vec, coef, nm, base, slope, y0, y)
+            if tau < tau_max:
+                _state_from(tau, terms, vec, nm, base, slope, y)
+            else:
+                _state(tau, lam, vec, coef, nm, base, slope, y0, y)
             _read(event, y, par, track, cur)
             hit = -1.0
             if event >= 0:
@@ -169,7 +213,8 @@ def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, wor
                 if crossed:
                     hit = _root(event, t_prev, prev[0], tau, cur[0], piece, par, y, work)
             upto = tau if hit < 0.0 else hit
-            if track[0] and _falls(prev[2], cur[2]):
+            h = tau - t_prev
+            if track[0] and _falls(prev[2], cur[2]) and _may_exceed(prev[1], prev[2], best[0], h):
                 t_max = _root(_SENSOR_SLOPE, t_prev, prev[2], tau, cur[2], piece, par, y, work)
                 if t_max <= upto:
                     _state(t_max, lam, vec, coef, nm, base, slope, y0, y)
@@ -179,7 +224,7 @@ def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, wor
                 if t_end <= upto:
                     best[2] = t_end
                     track[0] = False
-            if track[1] and _falls(prev[3], cur[3]):
+            if track[1] and _falls(prev[3], cur[3]) and _may_exceed(prev[4], prev[3], best[1], h):
                 t_max = _root(_FORCE_SLOPE, t_prev, prev[3], tau, cur[3], piece, par, y, work)
                 if t_max <= upto:
                     _state(t_max, lam, vec, coef, nm, base, slope, y0, y)
@@ -192,7 +237,7 @@ def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, wor
     return -1.0
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _scan_step(rate, tau_max):
     """contactlab.solver.system.scan_step."""
     if rate == 0.0:
@@ -200,7 +245,7 @@ def _scan_step(rate, tau_max):
     return min(tau_max / 64.0, 1.0 / (SCAN_STEPS_PER_RADIAN * rate))
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _quadratic_modes(mass, damping, stiffness, row, lam, vec, inv):
     """Modes of ``m x'' + c x' + k x = 0`` on the components ``row, row + 1``.
 
@@ -229,7 +274,7 @@ def _quadratic_modes(mass, damping, stiffness, row, lam, vec, inv):
     return 2.0 / abs(b0 * b1 * (lam[1] - lam[0]) / omega)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _contact_modes(par, lam, vec, inv):
     """Modes of the coupled system under the linear contact (``System.contact_matrix``).
 
@@ -258,7 +303,31 @@ def _contact_modes(par, lam, vec, inv):
     return cond
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
+def _conjugates_once(lam, vec, inv, nm):
+    """Keep one mode of each complex-conjugate pair, its shape doubled; returns the
+    number of modes kept (first in the arrays).
+
+    The state is real, so a pair's two terms are complex conjugates and their sum is
+    twice the real part of one (as :class:`contactlab.solver.propagators.Trajectory`
+    does): half the exponentials. A mode whose imaginary part is round-off of a real
+    eigenvalue (below 1e-10 of its size) counts as real and stays.
+    """
+    kept = 0
+    for k in range(nm):
+        real = abs(lam[k].imag) <= 1e-10 * abs(lam[k])
+        if not real and lam[k].imag < 0.0:
+            continue
+        weight = 1.0 if real else 2.0
+        lam[kept] = lam[k]
+        for c in range(4):
+            vec[c, kept] = weight * vec[c, k]
+            inv[kept, c] = inv[k, c]
+        kept += 1
+    return kept
+
+
+@njit(cache=True, error_model="numpy")
 def _fastest(lam, nm):
     rate = 0.0
     for k in range(nm):
@@ -266,7 +335,7 @@ def _fastest(lam, nm):
     return rate
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _start_piece(inv, nm, base, y0, coef):
     for k in range(nm):
         acc = 0j
@@ -275,7 +344,7 @@ def _start_piece(inv, nm, base, y0, coef):
         coef[k] = acc
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _recontact_horizon(y, par):
     """contactlab.solver.exact._recontact_horizon (threshold 0)."""
     x1, v1, x2, v2 = y[0], y[1], y[2], y[3]
@@ -285,7 +354,7 @@ def _recontact_horizon(y, par):
     return max((x2 + reach - 0.0) / -v2, 0.0)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
     """Solve one impact; write the six outputs into ``out``; return the row status."""
     rigid = math.isinf(k1)
@@ -306,6 +375,7 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
     if not cond < _COND_LIMIT:
         return STATUS_FALLBACK
     rate_c, rate_f = _fastest(lam_c, nm_c), _fastest(lam_f, nm_f)
+    nm_c, nm_f = _conjugates_once(lam_c, vec_c, inv_c, nm_c), _conjugates_once(lam_f, vec_f, inv_f, nm_f)
     ringing = 0.0 if rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(k1 / m1)
     zeros = np.zeros(4)
     coef_c, coef_f = np.zeros(4, np.complex128), np.zeros(2, np.complex128)
@@ -336,7 +406,7 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
         if contacts == 0:
             contact_time = t
             track[1] = False
-            limit = max(WINDOW_PER_CONTACT * t, t + ringing)
+        limit = max(WINDOW_PER_CONTACT * t, t + ringing)  # auto_window, after every contact
         contacts += 1
         rebound = -y[3]
         if contacts >= MAX_CONTACTS:
@@ -378,7 +448,7 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
     return STATUS_OK
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def solve_rows(m1, k1, c1, m2, k2, c2, v0, out, status):
     """Solve every row: ``out`` (rows, OUTPUTS), ``status`` (rows,)."""
     for i in range(m1.size):

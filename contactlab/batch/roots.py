@@ -38,7 +38,7 @@ MAX_ITERATIONS = 1000
 _PRE, _CUR, _BLK, _FPRE, _FCUR, _FBLK, _SPRE, _SCUR, _COUNT = range(WORK_SIZE)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def brent_start(work, xa, fa, xb, fb):
     """Start a search on the bracket ``[xa, xb]`` with the function values at its ends.
 
@@ -57,7 +57,7 @@ def brent_start(work, xa, fa, xb, fb):
     return _iterate(work)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def brent_next(work, f_new):
     """Continue a search with the function value at the abscissa last returned."""
     work[_FCUR] = f_new
@@ -67,7 +67,7 @@ def brent_next(work, f_new):
     return _iterate(work)
 
 
-@njit(cache=True)
+@njit(cache=True, error_model="numpy")
 def _iterate(work):
     xpre, xcur, xblk = work[_PRE], work[_CUR], work[_BLK]
     fpre, fcur, fblk = work[_FPRE], work[_FCUR], work[_FBLK]
