@@ -22,7 +22,7 @@ LAYERS = (
     ("closed forms and bodies", ("contactlab.analytic", "contactlab.bodies")),
     ("contact laws", ("contactlab.laws",)),
     ("results and metrics", ("contactlab.metrics", "contactlab.result", "contactlab.plotting")),
-    ("solver", ("contactlab.solver", "contactlab")),
+    ("solver", ("contactlab.solver", "contactlab.batch", "contactlab")),
     ("set-ups and studies", ("contactlab.config", "contactlab.study", "contactlab.advisor")),
     (
         "measurements and engines",

@@ -1,17 +1,19 @@
 """Compiled kernel of :func:`contactlab.batch.linear_impacts`: one impact per row.
 
-Each row is solved as :func:`contactlab.simulate_impact` solves a linear
-(Kelvin-Voigt) impact with ``method="exact"`` (:mod:`contactlab.solver.exact`): contact
-and free pieces in modal form, each event found by scanning its exact expression on the
-same grid (:func:`contactlab.solver.propagators.first_event`, step
+Each row is solved as :func:`contactlab.simulate_impact` solves a linear (Kelvin-Voigt)
+impact with ``method="exact"`` (:mod:`contactlab.solver.exact`): contact and free pieces
+in modal form (modes in the force-scaled coordinates of
+:func:`contactlab.solver.system.force_scales`), each event found by scanning its exact
+expression on the same points (:func:`contactlab.solver.propagators.first_event`, step
 :func:`contactlab.solver.system.scan_step`) and located by Brent's method to the same
-tolerance (:mod:`contactlab.batch.roots`), the same window (:func:`contactlab.solver.impact.auto_window` after each
-separation) and the same contact cap. While it goes,
-the kernel reads the headline numbers as :class:`contactlab.ImpactResult` defines them
-(first lobe of the sensor signal from the first rise above zero to the first return to
-it; peaks over the first contact and over that lobe; restitution after the last contact),
-exactly instead of from an output grid: the peaks are the largest of the local maxima
-(roots of the derivative, scanned on the same grid) and the piece ends.
+tolerance (:mod:`contactlab.batch.roots`), the same window
+(:func:`contactlab.solver.impact.auto_window` after each separation) and the same contact
+cap. While it goes, the kernel reads the headline numbers as
+:class:`contactlab.ImpactResult` defines them: the sensor signal's first lobe from the
+first rise above zero to the first return to it, the peaks over the first contact and
+over that lobe, the restitution after the last contact. It reads them exactly rather
+than refined from an output grid: a peak is the largest of the local maxima (roots of
+the signal's slope, found on the same scan) and the piece ends.
 
 State everywhere ``y = [x1, v1, x2, v2]``; a piece is ``y(tau) = base + slope tau +
 Re(V (coef * exp(lam tau)))`` (modes ``lam``, mode shapes ``V`` with the rows of the
@@ -170,7 +172,10 @@ def _falls(before, after):
 def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work):
     """Scan one piece on ``(tau0, tau_max]`` as ``first_event`` does; returns the event time.
 
-    The scan points are those of ``first_event``; the modal terms are carried from one
+    A dip of the sensor signal between two scan points whose bottom may reach zero
+    (the signal is convex there, so above ``S(a) + S'(a) h``) is refined: the lobe ends
+    at the first crossing even when no scan point sees it. The scan points are those of
+    ``first_event``; the modal terms are carried from one
     to the next by one complex product (about 256 eps relative after a chunk), as the
     scan only looks for sign changes; roots and peaks are evaluated directly.
 
@@ -223,6 +228,14 @@ def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, wor
                 t_end = _root(_SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:
                     best[2] = t_end
+                    track[0] = False
+            elif track[0] and prev[2] < 0.0 and cur[2] >= 0.0 and prev[1] + 2.0 * prev[2] * h <= 0:
+                # a dip between two scan points that may reach zero: its bottom decides
+                t_min = _root(_SENSOR_SLOPE, t_prev, prev[2], tau, cur[2], piece, par, y, work)
+                _state(t_min, lam, vec, coef, nm, base, slope, y0, y)
+                bottom = _signal(_SENSOR, y, par)
+                if t_min <= upto and bottom <= 0.0:
+                    best[2] = _root(_SENSOR, t_prev, prev[1], t_min, bottom, piece, par, y, work)
                     track[0] = False
             if track[1] and _falls(prev[3], cur[3]) and _may_exceed(prev[4], prev[3], best[1], h):
                 t_max = _root(_FORCE_SLOPE, t_prev, prev[3], tau, cur[3], piece, par, y, work)
@@ -375,7 +388,8 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
     if not cond < _COND_LIMIT:
         return STATUS_FALLBACK
     rate_c, rate_f = _fastest(lam_c, nm_c), _fastest(lam_f, nm_f)
-    nm_c, nm_f = _conjugates_once(lam_c, vec_c, inv_c, nm_c), _conjugates_once(lam_f, vec_f, inv_f, nm_f)
+    nm_c = _conjugates_once(lam_c, vec_c, inv_c, nm_c)
+    nm_f = _conjugates_once(lam_f, vec_f, inv_f, nm_f)
     ringing = 0.0 if rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(k1 / m1)
     zeros = np.zeros(4)
     coef_c, coef_f = np.zeros(4, np.complex128), np.zeros(2, np.complex128)
@@ -392,8 +406,19 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
         _start_piece(inv_c, nm_c, zeros, y0, coef_c)
         contact = (lam_c, vec_c, coef_c, nm_c, zeros, zeros, y0)
         horizon = (FIRST_CONTACT_HORIZON if contacts == 0 else limit) - t
-        tau = _scan(contact, par, 0.0, horizon, _scan_step(rate_c, horizon), _CONTACT_END, -1,
-                    track, best, y, work)
+        tau = _scan(
+            contact,
+            par,
+            0.0,
+            horizon,
+            _scan_step(rate_c, horizon),
+            _CONTACT_END,
+            -1,
+            track,
+            best,
+            y,
+            work,
+        )
         if not track[0] and math.isnan(lobe_end):
             lobe_end = t + best[2]
         if tau < 0.0:  # the window ends in this contact
@@ -422,8 +447,9 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
         if tau_max <= 0.0:
             break
         search = min(tau_max, _recontact_horizon(y_sep, par))
-        tau = _scan(free, par, 0.0, search, _scan_step(rate_f, search), _RECONTACT, 1,
-                    track, best, y, work)
+        tau = _scan(
+            free, par, 0.0, search, _scan_step(rate_f, search), _RECONTACT, 1, track, best, y, work
+        )
         if tau < 0.0 and track[0] and search < tau_max:
             step = _scan_step(rate_f, tau_max - search)
             _scan(free, par, search, tau_max, step, -1, 1, track, best, y, work)

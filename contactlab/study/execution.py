@@ -4,12 +4,11 @@ Every backend returns the results in task order, and the tasks carry everything 
 need (random draws included), so the backend never changes a result.
 """
 
-import contextlib
 import math
 import sys
 from concurrent.futures import ProcessPoolExecutor
 
-from contactlab.errors import ParameterError
+from contactlab.batch.dask import connected_client
 from contactlab.validation import check_count  # re-exported: a public name of this module
 
 __all__ = ["check_count", "run_tasks"]
@@ -32,26 +31,6 @@ def _progress_bar(total, progress, desc):
 
 def _run_chunk(fn, chunk):
     return [fn(task) for task in chunk]
-
-
-@contextlib.contextmanager
-def _dask_client(client):
-    """A connected Client from a Client or a scheduler address; imports dask lazily."""
-    try:
-        from dask.distributed import Client
-    except ImportError as exc:
-        raise ImportError(
-            "running on a Dask cluster needs dask.distributed: pip install 'contactlab[dask]'"
-        ) from exc
-    if isinstance(client, Client):
-        yield client
-    elif isinstance(client, str):
-        with Client(client) as owned:
-            yield owned
-    else:
-        raise ParameterError(
-            f"client must be a dask.distributed.Client or a scheduler address; got {client!r}"
-        )
 
 
 def _dask_map(client, fn, chunks, bar):
@@ -126,7 +105,7 @@ def run_tasks(fn, tasks, *, workers=1, client=None, chunksize=None, progress=Non
     bar = _progress_bar(len(tasks), progress, desc)
     try:
         if client is not None:
-            with _dask_client(client) as connected:
+            with connected_client(client) as connected:
                 slots = max(1, sum(connected.nthreads().values()))
                 results = _dask_map(connected, fn, _split(tasks, chunksize, slots), bar)
         elif workers > 1:
