@@ -5,10 +5,12 @@ locate threshold crossings of the signals with the same rule: one crossing defin
 (:func:`crosses`), one bracketed root finder (:func:`locate_root`), one tolerance.
 """
 
+import math
+
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["ROOT_RTOL", "crosses", "earliest_root", "locate_root"]
+__all__ = ["ROOT_RTOL", "SIDE_STEPS", "crossed_side", "crosses", "earliest_root", "locate_root"]
 
 ROOT_RTOL = 4 * np.finfo(float).eps
 """Relative tolerance of event roots and crossings: the smallest brentq accepts."""
@@ -46,7 +48,7 @@ def crosses(before, after, direction):
     return (before > 0) & (after <= 0) if direction < 0 else (before < 0) & (after >= 0)
 
 
-def earliest_root(events, value, lo, hi):
+def earliest_root(events, value, lo, hi, directions):
     """Earliest root on the bracket [lo, hi] [s] among several event functions.
 
     Parameters
@@ -57,10 +59,42 @@ def earliest_root(events, value, lo, hi):
         ``value(t, j)``: event ``j`` at time ``t`` [s].
     lo, hi : float
         Bracket [s].
+    directions : sequence of int
+        Crossing direction of every event (indexed like ``value``), as in :func:`crosses`.
 
     Returns
     -------
     (float, int)
-        Time of the earliest root [s] (:func:`locate_root`) and its event.
+        Time of the earliest root [s] and its event: the root of :func:`locate_root`,
+        moved to the first float at which the event has happened (:func:`crossed_side`).
     """
-    return min((locate_root(lambda t, j=j: value(t, j), lo, hi), int(j)) for j in events)
+    found = []
+    for j in events:
+        fn = lambda t, j=j: value(t, j)  # noqa: E731
+        found.append((crossed_side(fn, locate_root(fn, lo, hi), hi, directions[j]), int(j)))
+    return min(found)
+
+
+SIDE_STEPS = 64
+"""Floats stepped over by :func:`crossed_side` before it takes the bracket's end (brentq's
+root is within ``ROOT_RTOL``, a few floats, of the crossing)."""
+
+
+def crossed_side(fn, t, hi, direction):
+    """The first float from ``t`` on (at most ``hi``) where an event has happened.
+
+    A root located to machine precision may sit just before the crossing (a contact force
+    still 1e-17 N positive). The next piece starts from the state there, and its own
+    events read it: a free flight that starts with a positive contact force sees no
+    re-contact when the grain strikes again within one scan step (found by the batch
+    solver's comparison). So events are taken on their crossed side: ``fn <= 0`` falling
+    (``direction < 0``), ``fn >= 0`` rising.
+    """
+    for _ in range(SIDE_STEPS):
+        if t >= hi:
+            return hi
+        v = fn(t)
+        if (v <= 0.0) if direction < 0 else (v >= 0.0):
+            return t
+        t = math.nextafter(t, math.inf)
+    return hi

@@ -29,6 +29,7 @@ import numpy as np
 from numba import njit
 
 from contactlab.batch.roots import WORK_SIZE, brent_next, brent_start
+from contactlab.roots import SIDE_STEPS
 from contactlab.solver.impact import (
     FIRST_CONTACT_HORIZON,
     MAX_CONTACTS,
@@ -118,6 +119,21 @@ def _clipped_force(y, par):
     if d < 0.0:
         return 0.0
     return max(par[_K2] * d + par[_C2] * (y[3] - y[1]), 0.0)
+
+
+@njit(cache=True, error_model="numpy")
+def _crossed_side(kind, direction, t, hi, piece, par, y):
+    """contactlab.roots.crossed_side: the first float from ``t`` where the event happened."""
+    lam, vec, coef, nm, base, slope, y0 = piece
+    for _ in range(SIDE_STEPS):
+        if t >= hi:
+            return hi
+        _state(t, lam, vec, coef, nm, base, slope, y0, y)
+        v = _signal(kind, y, par)
+        if (v <= 0.0) if direction < 0 else (v >= 0.0):
+            return t
+        t = np.nextafter(t, math.inf)
+    return hi
 
 
 @njit(cache=True, error_model="numpy")
@@ -217,6 +233,7 @@ def _scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, wor
                     crossed = prev[0] < 0.0 and cur[0] >= 0.0
                 if crossed:
                     hit = _root(event, t_prev, prev[0], tau, cur[0], piece, par, y, work)
+                    hit = _crossed_side(event, direction, hit, tau, piece, par, y)
             upto = tau if hit < 0.0 else hit
             h = tau - t_prev
             if track[0] and _falls(prev[2], cur[2]) and _may_exceed(prev[1], prev[2], best[0], h):

@@ -154,4 +154,4 @@ def _first_crossing(step, before, after, directions, event_values):
             return after[j]
         return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
 
-    return earliest_root(events, value, t_old, t_old + h)
+    return earliest_root(events, value, t_old, t_old + h, directions)

@@ -238,6 +238,7 @@ def first_event(values, tau_max, step, directions, chunk=256):
                 lambda s, j: values(np.array([s]))[0, j],
                 lo,
                 grid[i],
+                directions,
             )
         start, previous = grid[-1], vals[-1]
     return None
