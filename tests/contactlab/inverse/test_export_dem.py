@@ -242,3 +242,58 @@ def test_read_fit_errors(tmp_path):
     bad.write_text("{not json")
     with pytest.raises(ParameterError, match="not valid JSON"):
         read_fit(bad)
+
+
+# --- LAMMPS (realised by LAMMPS itself in tests/dem_check/engines/lammps/test_realise.py) ---
+def _commands(text):
+    return [ln for ln in text.splitlines() if ln and not ln.startswith("#")]
+
+
+def test_hertz_snippet_is_the_fitted_law_on_the_plane():
+    commands = _commands(export_dem(HERTZ_FIT, "lammps"))
+    assert commands[0] == "pair_style granular"
+    wall = next(ln for ln in commands if ln.startswith("fix sensor_plate all wall/gran"))
+    words = wall.split()
+    assert words[4:7] == ["granular", "hertz", f"{4 / 3 * E_STAR:.7g}"]  # k = 4/3 E*
+    assert words[7] == "0.5"  # the fit's restitution, LAMMPS' coeff_restitution input
+    assert "damping coeff_restitution" in wall and "limit_damping" in wall
+    assert wall.endswith("zplane 0.0 NULL")
+    # grain-grain: hertz/material with the grain's E behind E* (steel plate)
+    pair = next(ln for ln in commands if ln.startswith("pair_coeff * *"))
+    youngs = float(pair.split()[4])
+    expected = (1 - 0.2**2) / (1 / E_STAR - (1 - 0.3**2) / 210e9)
+    assert youngs == pytest.approx(expected, rel=1e-6)  # 7 significant digits written
+
+
+def test_linear_snippet_takes_k_and_c_as_they_are():
+    commands = _commands(export_dem(LINEAR_FIT, "lammps"))
+    wall = next(ln for ln in commands if ln.startswith("fix sensor_plate"))
+    assert "hooke 100000 1 damping velocity" in wall and "limit_damping" in wall
+    step = float(next(ln for ln in commands if ln.startswith("timestep")).split()[1])
+    contact = analytic.linear_contact_time(
+        LINEAR.stiffness, LINEAR.damping, GRAIN.mass, convention="force"
+    )
+    assert step == pytest.approx(contact / 200, rel=1e-6)  # 7 significant digits
+
+
+@pytest.mark.parametrize("fit", [HERTZ_FIT, LINEAR_FIT], ids=["hertz_damped", "linear"])
+def test_snippet_creates_nothing_and_does_not_run(fit):
+    for line in _commands(export_dem(fit, "lammps")):
+        command = line.split()[0]
+        assert command in ("pair_style", "pair_coeff", "fix", "timestep"), line
+        assert not re.search(r"nve|velocity all|create_atoms|^run", line), line
+
+
+def test_every_header_states_the_realised_rebound():
+    fitted = analytic.tsuji_restitution(analytic.tsuji_damping_factor(0.5), "force")
+    for code in DEM_CODES:
+        text = export_dem(HERTZ_FIT, code)
+        line = next(ln for ln in text.splitlines() if "realised rebound" in ln)
+        assert f"{fitted:.4f}" in line, code  # the fitted law's 0.5503 is always named
+        if code == "mercurydpm":
+            assert "realised rebound on a rigid plate: 0.5000, NOT the fitted law's" in line
+        elif code == "edem":
+            assert "not documented" in line
+        else:
+            assert f"realised rebound on a rigid plate: {fitted:.4f}, the fitted law's" in line
+    assert math.isclose(fitted, 0.550283, rel_tol=1e-5)  # the table of tsuji_restitution

