@@ -7,10 +7,14 @@
 * measured oscilloscope and DAQ exports are read with :func:`read_trace` (formats detected
   by content; nothing lost, nothing guessed: bad files raise :class:`TraceFormatError`
   naming the file and line).
+
+Each engine is also an attribute named after it (``dem_check.lammps.drop_test``,
+``dem_check.bullet.drop_test``): the module in :data:`dem_check.engines.ENGINES`, imported
+when first used, so an engine whose library is an optional extra costs nothing until then.
 """
 
 from dem_check.compare import Comparison, compare, compare_trace
-from dem_check.engines import drop_test
+from dem_check.engines import ENGINES, drop_test, engine_module
 from dem_check.traces import Trace, TraceFormatError, read_trace, write_trace
 
 __all__ = [
@@ -23,3 +27,9 @@ __all__ = [
     "read_trace",
     "write_trace",
 ]
+
+
+def __getattr__(name):
+    if name in ENGINES:
+        return engine_module(name)
+    raise AttributeError(f"module 'dem_check' has no attribute {name!r}")

@@ -59,3 +59,14 @@ def test_contact_crossings_interpolate_linearly():
     np.testing.assert_allclose(rises, [0.5, 5.5], rtol=0, atol=1e-15)  # exact up to rounding
     np.testing.assert_allclose(falls[:1], [3.25], rtol=0, atol=1e-15)  # exact up to rounding
     assert np.isnan(falls[-1])  # still in contact at the end
+
+
+@pytest.mark.parametrize("name", ["bullet", "lammps"])
+def test_engine_reachable_as_an_attribute_of_dem_check(name):
+    """``dem_check.<engine>.drop_test`` is the engine's own drop test."""
+    assert getattr(dem_check, name).drop_test is engine_module(name).drop_test
+
+
+def test_unknown_attribute_of_dem_check_raises_attribute_error():
+    with pytest.raises(AttributeError, match="no attribute 'pybullet'"):
+        dem_check.pybullet  # noqa: B018
