@@ -50,6 +50,7 @@ from contactlab.analytic.materials import (
     rayleigh_time,
     youngs_from_shear,
 )
+from contactlab.analytic.pair import PairRebound, pair_rebound
 from contactlab.analytic.plastic import (
     linear_plastic_contact_time,
     linear_plastic_restitution,
@@ -76,6 +77,7 @@ __all__ = [
     "KUWABARA_KONO_C2",
     "KUWABARA_KONO_MAX_PARAMETER",
     "SOLID_SPHERE_INERTIA",
+    "PairRebound",
     "contact_modulus_radius",
     "damping_ratio",
     "effective_mass",
@@ -99,6 +101,7 @@ __all__ = [
     "linear_plastic_yield_velocity",
     "linear_restitution",
     "mindlin_stiffness_coefficient",
+    "pair_rebound",
     "plastic_trapezoid_amplitude",
     "rayleigh_time",
     "slides_throughout",

@@ -1,0 +1,134 @@
+"""One figure per Chung & Ooi test: contactlab's curves, LAMMPS' points, the theory."""
+
+from pathlib import Path
+
+import numpy as np
+
+from contactlab.benchmarks.chung_ooi.oblique import ANGLES
+
+__all__ = ["DRAW", "save_figure"]
+
+_STYLE = {"total": "o-", "incremental": "x--"}
+
+
+def save_figure(case, draw, out):
+    """Draw ``case`` with ``draw(ax)`` and save ``chung_ooi_test<N>.png`` in ``out``."""
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.0, 4.0), layout="constrained")
+    draw(ax)
+    ax.set_title(f"Chung & Ooi test {case.number}: {case.title}", fontsize=9)
+    ax.legend(frameon=False, fontsize=7)
+    path = Path(out) / f"chung_ooi_test{case.number}.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
+
+
+def _lammps_points(ax, x, y, label):
+    if np.isfinite(y).any():
+        ax.plot(x, y, "k+", ms=7, label=label)
+
+
+def draw_hertz(case, curves):
+    def draw(ax):
+        for name, (t, f) in curves.items():
+            ax.plot(t * 1e6, f, label=f"{name}: contactlab")
+        ax.set_xlabel("time [µs]")
+        ax.set_ylabel("contact force [N]")
+
+    return draw
+
+
+def draw_restitution(case, curves):
+    def draw(ax):
+        for name, (asked, got) in curves.items():
+            ax.plot(asked, got, "o-", label=f"{name}: contactlab")
+        ax.plot([0, 1], [0, 1], "k:", label="requested")
+        ax.set_xlabel("requested restitution [-]")
+        ax.set_ylabel("realised restitution [-]")
+
+    return draw
+
+
+def draw_oblique(case, curves):
+    mu = case.inputs["friction [-]"]
+
+    def draw(ax):
+        angles = np.radians(ANGLES)
+        for name, forms in curves.items():
+            for history, data in forms.items():
+                ax.plot(ANGLES, data[:, 0], _STYLE[history], label=f"{name}, Mindlin {history}")
+                _lammps_points(ax, ANGLES, data[:, 1], f"{name}, LAMMPS {history}")
+        ratio = 2 * mu / np.tan(angles)  # mu (1 + e) vn / vt with e = 1
+        ok = 3.5 * ratio <= 1.0
+        ax.plot(np.array(ANGLES)[ok], 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")
+        ax.set_xlabel("incidence angle [deg]")
+        ax.set_ylabel("tangential restitution vt'/vt [-]")
+
+    return draw
+
+
+def draw_tangential_speed(case, curves):
+    e = case.inputs["restitution"]
+
+    def draw(ax):
+        for name, forms in curves.items():
+            for history, data in forms.items():
+                ax.plot(data[:, 0], data[:, 1], _STYLE[history], label=f"{name}, psi2, {history}")
+                ax.plot(data[:, 0], -data[:, 2], _STYLE[history], label=f"{name}, -R w'/(mu vn)")
+                _lammps_points(ax, data[:, 0], data[:, 3], f"{name}, LAMMPS {history}")
+                _lammps_points(ax, data[:, 0], -data[:, 4], f"{name}, LAMMPS {history}")
+        limit = 3.5 * (1 + e)
+        x = np.linspace(limit, 14.0, 50)
+        ax.plot(x, (x - limit) / e, "k-", lw=2, label="gross sliding (theory)")
+        ax.plot(x, -np.full_like(x, (1 + e) / 0.4), "k-", lw=2)
+        ax.set_xlim(0.0, 14.0)  # Chung & Ooi's axes (85 deg lies beyond)
+        ax.set_ylim(-6.0, 8.0)
+        ax.set_xlabel("psi1 = vt / (mu vn) [-]")
+        ax.set_ylabel("psi2 = slip'/(mu vn'), -R w'/(mu vn) [-]")
+
+    return draw
+
+
+def draw_beta(case, curves):
+    def draw(ax):
+        for name, forms in curves.items():
+            for history, data in forms.items():
+                ax.plot(data[:, 0], data[:, 1], _STYLE[history], label=f"{name}, {history}")
+                if data.shape[1] > 2:
+                    _lammps_points(ax, data[:, 0], data[:, 2], f"{name}, LAMMPS {history}")
+        x = np.linspace(0.0, 1.0, 50)
+        ax.plot(x, x - 1.0, "k-", lw=2, label="gross sliding (theory)")
+        ax.set_xlabel("3.5 mu (1 + e) vn / slip [-]")
+        ax.set_ylabel("beta = -slip'/slip [-]")
+
+    return draw
+
+
+def draw_pair_spin(case, curves):
+    def draw(ax):
+        for name, data in curves.items():
+            ax.plot(data[:, 0], data[:, 1], "o-", label=f"{name}: w1' [rad/s]")
+            ax.plot(data[:, 0], data[:, 2], "x--", label=f"{name}: v1t' [m/s]")
+        top = max(d[:, 0].max() for d in curves.values())
+        ax.plot([0, top], [0, top], "k:", label="theory: w1' = w, v1t' = 0")
+        ax.axhline(0.0, color="k", lw=0.5)
+        ax.set_xlabel("initial spin w [rad/s]")
+        ax.set_ylabel("after the impact")
+
+    return draw
+
+
+DRAW = {
+    1: draw_hertz,
+    2: draw_hertz,
+    3: draw_restitution,
+    4: draw_oblique,
+    5: draw_tangential_speed,
+    6: draw_beta,
+    7: draw_pair_spin,
+    8: draw_beta,
+    9: draw_restitution,
+}
+"""Test number -> ``draw_*(case, curves)`` returning ``draw(ax)``."""
