@@ -25,8 +25,9 @@ law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigm
   step vanishes). ``dN/dt`` comes from central differences of the normal law (relative step
   1e-7: about 1e-13 relative error on smooth laws), the rest is exact.
 
-At the touch (``N = 0``) the phase is that of the limit ``t -> 0+``, read from a state one
-millionth of the first step later.
+At the touch (``N = 0``) the phase is that of LAMMPS' rule in the limit ``t -> 0+``: the
+history starts from zero and the contact slides only if the trial force along a sticking
+path exceeds ``mu N`` already (:meth:`ObliqueModel.touch_phase`).
 """
 
 import math
@@ -169,14 +170,28 @@ class ObliqueModel:
 
         return values, [-1, -1]
 
-    def touch_phase(self, y0, first_step):
-        """Phase at a touch: STICK without slip, else the limit ``t -> 0+`` (probe)."""
+    def touch_phase(self, y0, first_step, rtol, atol):
+        """Phase at a touch: the limit ``t -> 0+`` of LAMMPS' rule.
+
+        The history starts at the touch and the force is capped only once the trial force
+        exceeds ``mu N``: the contact sticks unless the trial force along a sticking path
+        from the touch's state already exceeds the cap there. That path is followed for
+        one short DOP853 step (a millionth of the first step); the ratio of trial force
+        to cap is a power of time near the touch (constant for Hertz-Mindlin, growing
+        for a damped normal force), so the probe's length does not matter.
+        """
         slip = y0[4] - self.radius * y0[5]
         if slip == 0.0:
             return STICK
-        sliding = -1 if slip > 0.0 else +1
-        probe = y0 + _PROBE * first_step * self.rhs(sliding)(y0)
-        return STICK if self.slide_exit(sliding, probe.tolist()) < 0.0 else sliding
+        probe_time = _PROBE * first_step
+        stepper = Stepper(self.rhs(STICK), 0.0, y0, rtol, atol, first_step=probe_time)
+        stepper.step(probe_time)
+        probe = stepper.y.tolist()
+        force = self.tangential_force(STICK, probe)
+        cap = self.law.friction * max(self.normal(probe[2] - probe[0], probe[3] - probe[1]), 0.0)
+        if abs(force) <= cap:
+            return STICK
+        return +1 if force > 0.0 else -1
 
 
 class ContactPiece:
@@ -198,7 +213,7 @@ def _solve_contact(model, y0, rtol, scale):
         * np.array([length, velocity, length, velocity, velocity, spin_scale, history_scale])
     )
     first = Stepper(model.rhs(STICK), 0.0, y0, rtol, atol).initial_step()
-    phase = model.touch_phase(y0, first)
+    phase = model.touch_phase(y0, first, rtol, atol)
     pieces, t, y, touch = [], 0.0, np.asarray(y0, dtype=float), True
     for _ in range(MAX_PHASES):
         values, directions = model.events(phase)

@@ -16,7 +16,7 @@ Tolerances (on the error defined in :func:`row`):
 
 import contactlab as cl
 
-__all__ = ["LAMMPS_TOLERANCE", "TOLERANCE", "grain", "rebound", "row"]
+__all__ = ["LAMMPS_TOLERANCE", "TOLERANCE", "engine_row", "grain", "rebound", "row"]
 
 TOLERANCE = 1e-6
 """Largest error of contactlab against theory (see the module docstring)."""
@@ -88,4 +88,26 @@ def row(case, material, quantity, ours, theory, *, scale=None, lammps=None):
         "tolerance": TOLERANCE,
         "lammps_tolerance": LAMMPS_TOLERANCE,
         "passed": bool(passed),
+    }
+
+
+def engine_row(case, material, quantity, ours, lammps, scale):
+    """A number without a closed form, graded as contactlab against LAMMPS.
+
+    The theory column is None; ``relative_error`` is ``|ours - lammps| / scale`` against
+    :data:`LAMMPS_TOLERANCE` (two independent integrations of the same model).
+    """
+    error = abs(ours - lammps) / scale
+    return {
+        "test": case.number,
+        "material": material.name,
+        "quantity": quantity,
+        "contactlab": ours,
+        "theory": None,
+        "lammps": lammps,
+        "relative_error": error,
+        "lammps_error": None,
+        "tolerance": LAMMPS_TOLERANCE,
+        "lammps_tolerance": LAMMPS_TOLERANCE,
+        "passed": bool(error <= LAMMPS_TOLERANCE),
     }

@@ -17,7 +17,12 @@ import contactlab as cl
 from contactlab import analytic
 from contactlab.benchmarks.chung_ooi.cases import TEST8_PARTNERS
 from contactlab.benchmarks.chung_ooi.grading import grain, row
-from contactlab.benchmarks.chung_ooi.oblique import ANGLES, HISTORIES, graded
+from contactlab.benchmarks.chung_ooi.oblique import (
+    ANGLES,
+    HISTORIES,
+    closed_form_holds,
+    contact_momentum,
+)
 
 __all__ = ["pair_impact", "pair_spin_test", "unequal_pair_test"]
 
@@ -122,7 +127,13 @@ def pair_spin_test(case, material):
 
 
 def unequal_pair_test(case, material):
-    """Test 8: sphere 1 spins onto a large, heavy sphere 2 at rest; beta graded in sliding."""
+    """Test 8: sphere 1 spins onto a large, heavy sphere 2 at rest.
+
+    Graded: the realised restitution; the equivalent sphere's angular momentum about the
+    contact point (exact, worst angle); beta against gross sliding where that holds
+    (:func:`~contactlab.benchmarks.chung_ooi.oblique.closed_form_holds`: not at test 8's
+    e = 0.5, whose curves are drawn).
+    """
     radius, radius2, vn, mu, e = (
         case.inputs[k]
         for k in (
@@ -136,7 +147,7 @@ def unequal_pair_test(case, material):
     spheres = ((material, radius), (TEST8_PARTNERS[material.name], radius2))
     rows, curves = [], {}
     for history in HISTORIES:
-        out = []
+        out, momenta = [], []
         for degrees in ANGLES:
             slip = vn * math.tan(math.radians(degrees))
             before = analytic.PairRebound(vn, 0.0, 0.0, 0.0, slip / radius, 0.0)
@@ -144,11 +155,29 @@ def unequal_pair_test(case, material):
             beta = -_slip(after, (radius, radius2)) / slip
             realised = res.restitution
             out.append((3.5 * mu * (1 + e) * vn / slip, beta))
-            if graded(history, e) and analytic.slides_throughout(
+            equivalent = (res.rebound_normal_velocity, res.tangential_velocity)
+            momenta.append(
+                (
+                    contact_momentum(res.grain, (*equivalent, res.angular_velocity)),
+                    contact_momentum(res.grain, (vn, 0.0, res.spin)),
+                )
+            )
+            if closed_form_holds(e) and analytic.slides_throughout(
                 vn, 0.0, -slip / radius, radius, realised, mu
             ):
                 theory = 3.5 * mu * (1 + realised) * vn / slip - 1.0
                 label = f"beta at tan = {slip / vn:.3g}, {history} [-]"
                 rows.append(row(case, material, label, beta, theory))
+        after, before = max(momenta, key=lambda m: abs(m[0] - m[1]) / abs(m[1]))
+        rows.append(
+            row(
+                case,
+                material,
+                f"equivalent I w + m R vt after, worst angle, {history} [kg*m**2/s]",
+                after,
+                before,
+            )
+        )
         curves[history] = np.array(out)
+    rows.append(row(case, material, f"restitution for e = {e:g} [-]", realised, e))
     return rows, curves

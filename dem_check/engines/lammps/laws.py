@@ -129,11 +129,14 @@ class GranularModel:
     effective_mass: float
     effective_radius: float
 
-    def words(self):
-        """The model as ``pair_coeff`` / ``fix wall/gran granular`` words (one-sided)."""
+    def words(self, tangential=TANGENTIAL):
+        """The model as ``pair_coeff`` / ``fix wall/gran granular`` words (one-sided).
+
+        ``tangential`` is the tangential sub-model's words (default: no tangential force).
+        """
         return (
             f"{self.normal} {self.stiffness!r} {self.damping_coefficient!r} "
-            f"damping {self.damping} {TANGENTIAL} limit_damping"
+            f"damping {self.damping} {tangential} limit_damping"
         )
 
     @property

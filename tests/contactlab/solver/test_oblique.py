@@ -36,7 +36,6 @@ SLIDING = {
     "hertz-total": (HERTZ, "total"),
     "hertz-incremental": (HERTZ, "incremental"),
     "hertz-spring": (HERTZ, "spring"),
-    "damped-total": (DAMPED, "total"),
 }
 
 
@@ -58,19 +57,37 @@ def test_gross_sliding_impulse(normal, tangential, sensor):
     assert res.tangential_impulse == pytest.approx(-0.092 * res.normal_impulse, rel=1e-6)
 
 
-@pytest.mark.parametrize("tangential", ["incremental", "spring"])
+STICKING_FIRST = {
+    "total": TANGENTIAL["total"],
+    "incremental": TANGENTIAL["incremental"],
+    "spring": TangentialSpring(stiffness=2e7, friction=0.092),
+}
+
+
+@pytest.mark.parametrize("tangential", STICKING_FIRST.values(), ids=STICKING_FIRST.keys())
 def test_damped_normal_force_sticks_first(tangential):
     """A damped normal force jumps at the touch (~t**0.25) while the elastic tangential
-    force grows from zero, so these forms stick briefly first: the impulse ratio falls
-    short of mu by the stick's share."""
+    force grows from zero, so every form sticks briefly first (LAMMPS' rule: the history
+    starts at zero): the impulse ratio falls short of mu by the stick's share."""
     res = cl.simulate_oblique(
-        GRAIN, cl.Sensor.rigid(), DAMPED, TANGENTIAL[tangential], SPEED, math.radians(60.0)
+        GRAIN, cl.Sensor.rigid(), DAMPED, tangential, SPEED, math.radians(60.0)
     )
     (_start, end, first), *rest = res.phases
     assert first == "stick" and [p[2] for p in rest] == ["slide-"]
-    assert end < 0.01 * res.contact_time
+    assert end < 0.01 * res.contact_time  # measured 0.22 %, 0.60 %, 0.84 % of the contact
     ratio = -res.tangential_impulse / res.normal_impulse
-    assert 0.092 * (1 - 1e-3) < ratio < 0.092  # issue's 1e-3 bar; measured 3.6e-4, 2.5e-5
+    assert 0.092 * (1 - 1e-3) < ratio < 0.092  # issue's 1e-3 bar; measured 5e-5 to 3.6e-4
+
+
+def test_a_damped_spring_slides_from_the_touch():
+    """With a constant tangential damping the trial force ``-eta s`` is finite at the
+    touch while the cap ``mu N`` starts at zero: the contact slides from the touch."""
+    res = cl.simulate_oblique(
+        GRAIN, cl.Sensor.rigid(), DAMPED, TANGENTIAL["spring"], SPEED, math.radians(60.0)
+    )
+    assert [p[2] for p in res.phases] == ["slide-"]
+    ratio = -res.tangential_impulse / res.normal_impulse
+    assert ratio == pytest.approx(0.092, rel=1e-6)  # gross sliding: exact impulse ratio
 
 
 @pytest.mark.parametrize("sensor", [cl.Sensor.rigid(), SENSOR], ids=["rigid", "sensor"])

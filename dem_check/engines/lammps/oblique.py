@@ -1,0 +1,231 @@
+"""Oblique impacts of a spinning sphere on a rigid wall in LAMMPS, for :func:`contactlab.simulate_oblique`.
+
+One sphere (``units si``, z up) starts a few steps above ``fix wall/gran granular ...
+zplane 0.0 NULL`` with velocity ``(vt, 0, -vn)`` and angular velocity ``(0, spin, 0)``: its
+contact point (at ``-R z``) moves at ``vt - R spin`` along x, the sign convention of
+:func:`contactlab.simulate_oblique`. The normal law is mapped exactly by
+:func:`~dem_check.engines.lammps.laws.granular_model` (``m* = m``, ``R* = R`` at a plane
+wall); the tangential law by :func:`tangential_words`:
+
+=======================================  ==============================================
+contactlab                               LAMMPS ``tangential`` sub-model
+=======================================  ==============================================
+``Mindlin(k, mu, history="total")``      ``mindlin kt 0 mu`` with ``kt = k / sqrt(R*)``
+``Mindlin(k, mu, history="incremental")``  ``mindlin/force kt 0 mu``
+``TangentialSpring(k, mu)``              ``linear_history k 0 mu``
+=======================================  ==============================================
+
+LAMMPS' Mindlin force is ``kt a`` times the history with ``a = sqrt(R* d)``, so ``kt a =
+k sqrt(d)``. ``kt`` is always given: ``mindlin NULL`` at a wall mixes the wall as if it
+were the grain's material, ``G* = G / (2 (2 - nu))``, half of a rigid flat's
+``G / (2 - nu)`` (``contactlab.laws.Mindlin.from_material``'s default), and would halve the
+stiffness. No tangential damping (``x_gamma_t = 0``): LAMMPS scales it with the normal
+damping, contactlab's spring damping is a constant; a :class:`TangentialSpring` with
+damping is refused. ``limit_damping`` keeps the contact one-sided, as in contactlab.
+
+The step defaults to the wall contact time over :data:`STEPS_PER_CONTACT`. Velocity Verlet
+(``fix nve/sphere``) converges to contactlab's rebound to second order in the step for
+``mindlin`` and ``linear_history``, to first order for ``mindlin/force`` (its history
+increment uses the stiffness at the step's start; ``docs/benchmark.md`` gives the
+measured errors).
+"""
+
+import math
+from dataclasses import dataclass
+
+from contactlab.errors import ParameterError
+from contactlab.laws import Mindlin, TangentialSpring
+from contactlab.solver import wall_impact
+from contactlab.validation import check_number
+from dem_check.engines.lammps.laws import granular_model
+from dem_check.engines.lammps.session import LammpsSession
+
+__all__ = ["STEPS_PER_CONTACT", "LammpsOblique", "lammps_oblique", "tangential_words"]
+
+STEPS_PER_CONTACT = 2000
+"""Default steps per (wall) contact time: rebound within 3e-5 of the impact speed for
+``mindlin/force`` (first order), 1e-8 for the second-order forms."""
+
+_GAP_STEPS = 3.5
+"""Release gap: the normal travel of 3.5 steps (the grain touches during step 4)."""
+
+_CHUNK = 1.6
+"""Contact times run before the rebound is first read (more chunks if still touching)."""
+
+_MAX_CHUNKS = 20
+"""Chunks after which the contact is declared not to end."""
+
+
+def tangential_words(law, effective_radius):
+    """The LAMMPS ``tangential`` words of a contactlab tangential law.
+
+    Parameters
+    ----------
+    law : TangentialSpring or Mindlin
+        The tangential law.
+    effective_radius : float
+        ``R*`` of the contact [m] (the grain's radius at a plane wall).
+
+    Returns
+    -------
+    str
+        E.g. ``"tangential mindlin 1.5e10 0 0.3"``.
+
+    Raises
+    ------
+    ParameterError
+        For another law, or a spring with damping (see the module docstring).
+    """
+    radius = check_number("effective_radius", effective_radius, low=0.0, unit="m")
+    if type(law) is Mindlin:
+        model = "mindlin" if law.history == "total" else "mindlin/force"
+        return f"tangential {model} {law.k_mindlin / math.sqrt(radius)!r} 0 {law.friction!r}"
+    if type(law) is TangentialSpring:
+        if law.damping != 0.0:
+            raise ParameterError(
+                f"tangential_law TangentialSpring has damping = {law.damping:.6g} N*s/m; "
+                "LAMMPS' linear_history damping is x_gamma_t times the normal damping, not "
+                "a constant: only damping = 0 maps exactly"
+            )
+        return f"tangential linear_history {law.k!r} 0 {law.friction!r}"
+    raise ParameterError(
+        f"tangential_law must be Mindlin or TangentialSpring; got {type(law).__name__}"
+    )
+
+
+@dataclass(frozen=True)
+class LammpsOblique:
+    """LAMMPS' rebound of one oblique impact (signs as :class:`contactlab.ObliqueResult`).
+
+    Attributes
+    ----------
+    velocity, angle, spin : float
+        Impact speed [m/s], angle from the normal [rad], initial spin [rad/s].
+    radius : float
+        Grain radius [m].
+    rebound_normal_velocity, tangential_velocity, angular_velocity : float
+        After the impact: normal speed away from the wall [m/s], tangential velocity
+        [m/s], spin [rad/s].
+    time_step : float
+        LAMMPS' step [s].
+    steps : int
+        Steps run.
+    script : str
+        The input deck LAMMPS ran.
+    """
+
+    velocity: float
+    angle: float
+    spin: float
+    radius: float
+    rebound_normal_velocity: float
+    tangential_velocity: float
+    angular_velocity: float
+    time_step: float
+    steps: int
+    script: str
+
+    @property
+    def slip_after(self):
+        """Contact-point slip after the impact ``vt' - R spin'`` [m/s]."""
+        return self.tangential_velocity - self.radius * self.angular_velocity
+
+
+def _deck(grain, normal_words, tangential, vn, vt, spin, time_step, gap):
+    r = grain.radius
+    side = 4.0 * r  # x and y are periodic: the grain slides any distance
+    top = r + gap + 4.0 * r
+    setup = "the LAMMPS box"
+    return [
+        ("units si", setup),
+        ("atom_style sphere", setup),
+        ("atom_modify map array", setup),
+        ("boundary p p f", setup),
+        ("comm_modify vel yes", setup),
+        (f"region box block {-side!r} {side!r} {-side!r} {side!r} {-r!r} {top!r}", setup),
+        ("create_box 1 box", setup),
+        (f"create_atoms 1 single 0.0 0.0 {r + gap!r}", "the grain's release gap"),
+        (f"set atom 1 diameter {2.0 * r!r} mass {grain.mass!r}", "the grain's diameter, mass"),
+        (f"velocity all set {vt!r} 0.0 {-vn!r}", "velocity, angle"),
+        (f"set atom 1 omega 0.0 {spin!r} 0.0", "spin"),
+        (f"neighbor {r!r} nsq", setup),
+        ("fix integrate all nve/sphere", setup),
+        (
+            f"fix wall all wall/gran granular {normal_words} zplane 0.0 NULL",
+            f"the laws: {tangential}",
+        ),
+        (f"timestep {time_step!r}", "time_step"),
+    ]
+
+
+def lammps_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0.0, time_step=None):
+    """Run one oblique impact on a rigid wall in LAMMPS.
+
+    Parameters
+    ----------
+    grain : Grain
+        The grain (mass, radius).
+    normal_law : ContactLaw
+        One of LAMMPS' exact normal mappings (Hertz, HertzDamped, LinearViscoelastic,
+        KuwabaraKono).
+    tangential_law : Mindlin or TangentialSpring
+        See :func:`tangential_words`.
+    velocity : float
+        Impact speed [m/s].
+    angle : float
+        Angle from the wall normal [rad], in [0, pi/2).
+    spin : float, default 0
+        Initial spin [rad/s], signed as in :func:`contactlab.simulate_oblique`.
+    time_step : float, optional
+        LAMMPS' step [s]; default the wall contact time over :data:`STEPS_PER_CONTACT`.
+
+    Returns
+    -------
+    LammpsOblique
+
+    Raises
+    ------
+    ParameterError
+        For a law LAMMPS cannot hold exactly, or bad numbers (named).
+    ImportError
+        Without the ``lammps`` extra.
+    """
+    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    angle = check_number(
+        "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
+    )
+    spin = check_number("spin", spin, unit="rad/s")
+    vn, vt = velocity * math.cos(angle), velocity * math.sin(angle)
+    contact_time = wall_impact(normal_law, grain.mass, vn).contact_time
+    if time_step is None:
+        time_step = contact_time / STEPS_PER_CONTACT
+    time_step = check_number("time_step", time_step, low=0.0, high=contact_time / 20, unit="s")
+    model = granular_model(normal_law, grain.mass, grain.radius)
+    tangential = tangential_words(tangential_law, grain.radius)
+    gap = _GAP_STEPS * vn * time_step
+    deck = _deck(grain, model.words(tangential), tangential, vn, vt, spin, time_step, gap)
+    chunk = math.ceil((gap / vn + _CHUNK * contact_time) / time_step)
+    with LammpsSession(context="oblique impact") as session:
+        for line, what in deck:
+            session.command(line, what)
+        for number in range(1, _MAX_CHUNKS + 1):
+            session.command(f"run {chunk}")
+            z = float(session.lmp.numpy.extract_atom("x")[0][2])
+            v = session.lmp.numpy.extract_atom("v")[0]
+            if z > grain.radius and v[2] > 0.0:  # left the wall, moving away
+                break
+        else:
+            raise RuntimeError(f"the contact lasted more than {number * chunk} steps")
+        omega = session.lmp.numpy.extract_atom("omega")[0]
+        return LammpsOblique(
+            velocity=velocity,
+            angle=angle,
+            spin=spin,
+            radius=grain.radius,
+            rebound_normal_velocity=float(v[2]),
+            tangential_velocity=float(v[0]),
+            angular_velocity=float(omega[1]),
+            time_step=time_step,
+            steps=number * chunk,
+            script=session.script,
+        )
