@@ -66,7 +66,7 @@ def scipy_reference(law, angle):
     history = length if law.history_kind == "displacement" else GRAIN.mass * SPEED / 1e-6
     atol = 1e-3 * RTOL * np.array([length, SPEED, length, SPEED, SPEED, SPEED / radius, history])
     y = np.array([0.0, 0.0, 0.0, SPEED * math.cos(angle), SPEED * math.sin(angle), 0.0, 0.0])
-    phase = model.touch_phase(y, 1e-9)
+    phase = model.touch_phase(y, 1e-9, RTOL, atol)
     t = 0.0
     while True:
         rhs = model.rhs(phase)

@@ -13,7 +13,7 @@ References
 Maw N., Barber J.R., Fawcett J.N. (1976) The oblique impact of elastic spheres. Wear 38,
 101-114. DOI 10.1016/0043-1648(76)90201-8
 Johnson K.L. (1985) Contact Mechanics, Cambridge University Press, Sec. 7.2 and 11.4.
-Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656. DOI 10.1007/s10035-010-0227-2
+Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656. DOI 10.1007/s10035-011-0277-0
 """
 
 import math
