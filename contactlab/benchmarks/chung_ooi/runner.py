@@ -103,8 +103,8 @@ def _markdown(rows, not_run):
     for r in rows:
         lines.append(
             f"| {r['test']} | {r['material']} | {r['quantity']} | {_number(r['contactlab'])} | "
-            f"{_number(r['theory'], 'no closed form')} | {_number(r['lammps'])} | {_error(r['relative_error'])} "
-            f"| {_error(r['lammps_error'])} | {r['tolerance']:.0e} | "
+            f"{_number(r['theory'], 'no closed form')} | {_number(r['lammps'])} | "
+            f"{_error(r['relative_error'])} | {_error(r['lammps_error'])} | {r['tolerance']:.0e} | "
             f"{r['lammps_tolerance']:.0e} | {'pass' if r['passed'] else 'FAIL'} |"
         )
     for number, reason in not_run.items():
