@@ -135,6 +135,7 @@ def test_demo_writes_figure_and_summary(tmp_path, capsys):
     assert summary["engine_check"]["passed"] is True
     chung_ooi = summary["chung_ooi"]  # the nine tests, LAMMPS beside on 4-6
     assert chung_ooi["passed"] == chung_ooi["graded"] and chung_ooi["not_run"] == {}
+    assert chung_ooi["lammps"] == "run beside (tests 4-6)"  # the test extra has LAMMPS
     # the reconstruction recovers the peak within the 5 % where the raw signal misses
     errors = summary["reconstruction_relative_errors"]
     assert abs(errors["raw_peak [-]"]) > 0.5
