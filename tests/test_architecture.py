@@ -21,9 +21,20 @@ LAYERS = (
     ("foundation", ("contactlab.errors", "contactlab.validation", "contactlab.roots")),
     ("closed forms and bodies", ("contactlab.analytic", "contactlab.bodies")),
     ("contact laws", ("contactlab.laws",)),
-    ("results and metrics", ("contactlab.metrics", "contactlab.result", "contactlab.plotting")),
+    (
+        "results and metrics",
+        (
+            "contactlab.metrics",
+            "contactlab.result",
+            "contactlab.oblique_result",
+            "contactlab.plotting",
+        ),
+    ),
     ("solver", ("contactlab.solver", "contactlab.batch", "contactlab")),
-    ("set-ups and studies", ("contactlab.config", "contactlab.study", "contactlab.advisor")),
+    (
+        "set-ups and studies",
+        ("contactlab.config", "contactlab.study", "contactlab.advisor", "contactlab.benchmarks"),
+    ),
     (
         "measurements and engines",
         ("dem_check.traces", "dem_check.compare", "dem_check.engines", "contactlab.inverse"),
@@ -34,7 +45,8 @@ LAYERS = (
     ),
 )
 """Layers from the bottom up, as module-name prefixes; the longest matching prefix places
-a module. A module imports from its own layer or the ones below, never above."""
+a module (a package's own name, ``contactlab`` or ``dem_check``, places only its
+``__init__``). A module imports from its own layer or the ones below, never above."""
 
 
 def _modules():
@@ -83,7 +95,7 @@ def _layer(name):
         (len(prefix), index)
         for index, (_, prefixes) in enumerate(LAYERS)
         for prefix in prefixes
-        if name == prefix or name.startswith(prefix + ".")
+        if name == prefix or (prefix not in PACKAGES and name.startswith(prefix + "."))
     ]
     return max(matches)[1] if matches else None
 
