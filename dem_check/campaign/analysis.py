@@ -1,0 +1,153 @@
+"""Per-impact analysis: the signal's own numbers, the reconstructed force, an optional fit.
+
+Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
+segment (local baseline, impact, decayed ringing):
+
+- ``peak_signal [N]`` and ``response_time [s]``: the first lobe of the smoothed signal
+  read with :func:`contactlab.metrics.pulse_metrics` at the onset level (five sigma of
+  the local noise), with the same hysteresis so that only a return to zero ends it;
+- ``impulse [N*s]``: the integral of the signal from the end of the local baseline to
+  the end of the decayed ringing. The sensor returns to rest, so this is the impulse of
+  the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
+- ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
+  by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV) on the segment;
+- with a grain, ``velocity_change [m/s]`` = impulse / grain mass (``(1 + e) v`` for an
+  impact at speed ``v`` and restitution ``e``: the impulse alone cannot separate them);
+- with ``fit=`` a law name, :func:`contactlab.inverse.fit_contact` on the segment: each
+  fitted parameter with its 95 % interval and identifiability flag (columns
+  ``fit_<name> [unit]``, ``fit_<name>_low [unit]``, ``fit_<name>_high [unit]``,
+  ``fit_<name>_identifiable``).
+"""
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactlab.errors import ParameterError
+from contactlab.inverse import fit_contact, reconstruct_force
+from contactlab.metrics import first_lobe, impulse
+from dem_check.campaign.detection import ONSET_SIGMAS
+
+__all__ = ["GALLERY_PERIODS", "ImpactTraces", "analyse_impact", "window_row"]
+
+GALLERY_PERIODS = 3.0
+"""Sensor periods kept for the report's gallery before the reconstruction window and
+after it [-]."""
+
+
+@dataclass(frozen=True, eq=False)
+class ImpactTraces:
+    """The signal and reconstructed force of one impact, cropped for the report."""
+
+    t: np.ndarray
+    """Time [s] (the record's time base)."""
+    signal: np.ndarray
+    """Sensor signal without its local baseline [N]."""
+    force: np.ndarray
+    """Reconstructed contact force [N]."""
+
+
+def window_row(window):
+    """The table row of an impact that is not analysed: where it is and why not."""
+    return {"status": window.status, "reason": window.reason, "onset [s]": window.onset}
+
+
+def _signal_numbers(t, raw, smooth, flat, base):
+    """Peak, response time and impulse of the signal (module docstring)."""
+    in_base = (t >= base[0]) & (t < base[1])
+    level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
+    lobe = first_lobe(t, smooth - smooth[in_base].mean(), level, hysteresis=level)
+    in_lobe = (t >= lobe[0]) & (t <= lobe[1])
+    peak = np.max(flat[in_lobe] - np.mean(flat[in_base])) if in_lobe.any() else np.nan
+    return {
+        "noise [N]": float(np.std(raw[in_base], ddof=1)),
+        "peak_signal [N]": float(peak),
+        "response_time [s]": float(lobe[1] - lobe[0]),
+        "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), base[1], t[-1]),
+    }
+
+
+def _fit_columns(fit):
+    """``fit_<name> [unit]`` and its interval, identifiability and the fit's chi2."""
+    columns = {}
+    for name, p in fit.parameters.items():
+        if name == "onset":
+            continue  # the onset is in its own column
+        columns[f"fit_{name} [{p.unit}]"] = p.value
+        columns[f"fit_{name}_low [{p.unit}]"] = p.ci95[0]
+        columns[f"fit_{name}_high [{p.unit}]"] = p.ci95[1]
+        columns[f"fit_{name}_identifiable"] = p.identifiable
+    columns["fit_reduced_chi_squared [-]"] = fit.goodness["reduced_chi_squared [-]"]
+    return columns
+
+
+def _fit(t, raw, base, grain, sensor, law):
+    """Fit columns and notes (warnings turned into text: nothing hidden)."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        fit = fit_contact(t, raw, grain, sensor, law, baseline_window=base)
+    notes = [f"fit: {w.message}" for w in caught]
+    return _fit_columns(fit), notes
+
+
+def analyse_impact(detection, window, sensor, grain=None, fit=None):
+    """The table row and gallery traces of one ``"ok"`` impact.
+
+    Parameters
+    ----------
+    detection : Detection
+        The record's detection (its baseline-free and smoothed signals).
+    window : ImpactWindow
+        The impact (status ``"ok"``).
+    sensor : Sensor
+    grain : Grain, optional
+        Gives ``velocity_change [m/s]``; needed by ``fit``.
+    fit : str, optional
+        A law name of :data:`contactlab.inverse.FIT_MODELS`.
+
+    Returns
+    -------
+    row : dict
+        Unit-bearing columns (module docstring); ``status`` is ``"ok"``, or
+        ``"reconstruction failed"`` / ``"fit failed"`` with the error in ``reason``.
+    traces : ImpactTraces or None
+        For the gallery (``None`` when the reconstruction failed).
+    """
+    part = slice(window.first, window.stop)
+    t = np.asarray(detection.signal.t[part])
+    raw = np.asarray(detection.signal.values[part])
+    smooth = np.asarray(detection.smoothed.values[part])
+    flat = np.asarray(detection.lowpassed.values[part])
+    base = window.baseline_window
+    row = {"status": "ok", "reason": "", "onset [s]": window.onset}
+    row.update(_signal_numbers(t, raw, smooth, flat, base))
+    if grain is not None:
+        row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
+    try:
+        rec = reconstruct_force(t, raw, sensor, baseline_window=base)
+    except ParameterError as exc:
+        row.update(status="reconstruction failed", reason=str(exc))
+        return row, None
+    row["peak_contact_force [N]"] = rec.metrics.peak
+    row["contact_time [s]"] = rec.metrics.duration
+    start, end = rec.parameters["window [s]"]
+    keep = (t >= start - GALLERY_PERIODS * sensor.period) & (
+        t <= end + GALLERY_PERIODS * sensor.period
+    )
+    traces = ImpactTraces(t[keep].copy(), rec.signal[keep].copy(), rec.force[keep].copy())
+    if fit is not None:
+        try:
+            columns, notes = _fit(t, raw, base, grain, sensor, fit)
+        except ParameterError as exc:
+            row.update(status="fit failed", reason=f"fit: {exc}")
+        else:
+            row.update(columns)
+            row["reason"] = "; ".join(notes)
+    if not math.isfinite(row["contact_time [s]"]):
+        row.update(
+            status="reconstruction failed",
+            reason="the reconstructed force does not return below its threshold in the segment",
+        )
+    return row, traces
