@@ -78,6 +78,80 @@ def _compare(args):
     return _report(comparison, args)
 
 
+def _campaign_bodies(args):
+    """Grain and sensor of ``dem-check campaign``: a set-up, or a sensor alone."""
+    from contactlab.bodies import Sensor
+
+    flags = (args.resonance, args.damping_ratio, args.sensor_mass)
+    if args.model is None and args.preset is None:
+        if None in flags:
+            raise ParameterError(
+                "give the sensor: --model CONFIG.toml, --preset NAME, or --resonance F "
+                "--damping-ratio Z --sensor-mass M"
+            )
+        sensor = Sensor.from_resonance(
+            args.resonance, mass=args.sensor_mass, damping_ratio=args.damping_ratio
+        )
+        return None, sensor
+    if any(f is not None for f in flags):
+        raise ParameterError("give --model/--preset or the sensor flags, not both")
+    config = load(args.model, args.preset)
+    return config.grain, config.sensor
+
+
+def _campaign(args):
+    from dem_check.campaign import run_campaign
+
+    grain, sensor = _campaign_bodies(args)
+    result = run_campaign(
+        args.paths,
+        sensor,
+        grain,
+        sensitivity=args.sensitivity,
+        channel=args.channel,
+        out=args.out,
+        fit=args.fit,
+        metadata=args.metadata,
+        gallery=args.gallery,
+        progress=not args.no_progress,
+    )
+    print(json.dumps(result.summary(), indent=2) if args.json else result)
+    if args.out:
+        print(f"wrote {args.out}/report.html (open it in a browser)", file=sys.stderr)
+    summary = result.summary()
+    every_ok = summary["files_ok"] == summary["files"] and (
+        summary["impacts_ok"] == summary["impacts"]
+    )
+    return 0 if every_ok else 1
+
+
+def _add_campaign_parser(sub):
+    p = sub.add_parser(
+        "campaign",
+        help="every impact in a measurement day's records: table, statistics, HTML report",
+        description="Find every impact in long records (files, folders or globs), read "
+        "each one's signal, reconstruct its true contact force, and write impacts.csv, "
+        "files.csv, statistics.csv, regressions.csv, settings.json and report.html "
+        "(one self-contained page). Exit code 0: every file and impact analysed; 1: some "
+        "were not (their status and reason are in the tables); 2: bad input.",
+    )
+    p.add_argument("paths", nargs="+", help="trace files, folders or glob patterns")
+    p.add_argument("--out", metavar="DIR", help="output folder for the tables and report")
+    p.add_argument("--model", metavar="CONFIG.toml", help="TOML set-up: grain and sensor")
+    p.add_argument("--preset", help="a named preset instead of a TOML file")
+    p.add_argument("--resonance", type=float, help="sensor resonance [Hz] (no grain)")
+    p.add_argument("--damping-ratio", type=float, help="sensor damping ratio [-]")
+    p.add_argument("--sensor-mass", type=float, help="sensor moving mass [kg]")
+    p.add_argument("--sensitivity", type=float, metavar="V_PER_N", help="sensitivity [V/N]")
+    p.add_argument("--channel", help="channel name, needed when files hold several")
+    p.add_argument("--fit", metavar="LAW", help="fit this law to every impact (needs a grain)")
+    p.add_argument("--metadata", metavar="CSV", help="CSV with a 'file' column to join")
+    p.add_argument("--gallery", type=int, default=24, help="impacts drawn in the report (24)")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--json", action="store_true", help="print the summary as JSON")
+    p.set_defaults(func=_campaign)
+
+
 def _common(parser):
     parser.add_argument("--preset", help="a named preset instead of a TOML file")
     parser.add_argument(
@@ -162,6 +236,7 @@ def _build_parser():
     )
     _common(p)
     p.set_defaults(func=_compare)
+    _add_campaign_parser(sub)
     return parser
 
 

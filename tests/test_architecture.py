@@ -37,7 +37,13 @@ LAYERS = (
     ),
     (
         "measurements and engines",
-        ("dem_check.traces", "dem_check.compare", "dem_check.engines", "contactlab.inverse"),
+        (
+            "dem_check.traces",
+            "dem_check.compare",
+            "dem_check.engines",
+            "dem_check.campaign",
+            "contactlab.inverse",
+        ),
     ),
     (
         "applications",

@@ -1,0 +1,193 @@
+"""Shared set-ups of the campaign tests: the synthetic grain and sensor, and a real browser.
+
+The browser is Debian's ``chromium``, driven through the DevTools protocol over a pipe
+(``--remote-debugging-pipe``: NUL-terminated JSON on file descriptors 3 and 4), so no
+WebSocket library is needed. Every console message of level error, every uncaught
+exception and every browser log entry of level error (a resource that failed to load)
+is collected; the page's text and chosen elements are read back after the load event.
+The DevTools protocol was chosen over ``--enable-logging=stderr``, whose console lines
+are a log format with no contract and miss failed resource loads on ``file://`` pages.
+"""
+
+import json
+import os
+import select
+import shutil
+import subprocess
+import tempfile
+import time
+from pathlib import Path
+
+import pytest
+
+import contactlab as cl
+from contactlab.config import load_config
+
+ROOT = Path(__file__).resolve().parents[3]
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_FLAGS = (
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--remote-debugging-pipe",
+)
+REQUIRE_BROWSER = os.environ.get("CONTACTLAB_REQUIRE_BROWSER") == "1"
+"""Set by ``.ci/run`` (which installs chromium): a missing browser fails instead of
+skipping."""
+
+
+@pytest.fixture(scope="session")
+def hard_setup():
+    """A hard grain whose raw signal overstates the peak force by 38 %.
+
+    The grain and the 40 kHz sensor of ``data/traces/model_hard.toml`` with a linear
+    contact k2 = 4e4 N/m, c2 = 0.5 N*s/m: contact time 100 us, raw peak +38 %.
+    """
+    config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
+    law = cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
+    return config.grain, config.sensor, law
+
+
+class DevTools:
+    """A headless Chromium driven over the DevTools pipe."""
+
+    def __init__(self, profile):
+        to_child_r, self._to_child = os.pipe()
+        self._from_child, from_child_w = os.pipe()
+        # the browser reads commands on fd 3 and writes replies on fd 4
+        redirect = f'exec 3<&{to_child_r} 4>&{from_child_w}; exec "$0" "$@"'
+        self.stderr = tempfile.TemporaryFile()
+        self.process = subprocess.Popen(
+            ["bash", "-c", redirect, CHROMIUM, *CHROMIUM_FLAGS, f"--user-data-dir={profile}"],
+            pass_fds=(to_child_r, from_child_w),
+            stdin=subprocess.DEVNULL,
+            stdout=subprocess.DEVNULL,
+            stderr=self.stderr,
+        )
+        os.close(to_child_r)
+        os.close(from_child_w)
+        self._buffer, self._next_id, self.events = b"", 0, []
+
+    def _read_message(self, deadline):
+        while b"\0" not in self._buffer:
+            left = deadline - time.monotonic()
+            if left <= 0 or not select.select([self._from_child], [], [], left)[0]:
+                raise TimeoutError("chromium did not answer in time")
+            chunk = os.read(self._from_child, 1 << 16)
+            if not chunk:
+                raise RuntimeError("chromium closed the DevTools pipe")
+            self._buffer += chunk
+        message, self._buffer = self._buffer.split(b"\0", 1)
+        return json.loads(message)
+
+    def call(self, method, session=None, timeout=30.0, **params):
+        """Send a command; return its result (events arriving meanwhile are kept)."""
+        self._next_id += 1
+        message = {"id": self._next_id, "method": method, "params": params}
+        if session:
+            message["sessionId"] = session
+        os.write(self._to_child, json.dumps(message).encode() + b"\0")
+        deadline = time.monotonic() + timeout
+        while True:
+            reply = self._read_message(deadline)
+            if reply.get("id") == self._next_id:
+                if "error" in reply:
+                    raise RuntimeError(f"{method}: {reply['error']}")
+                return reply["result"]
+            self.events.append(reply)
+
+    def wait_for(self, method, timeout=30.0):
+        """Read events until ``method`` arrives."""
+        deadline = time.monotonic() + timeout
+        while not any(e.get("method") == method for e in self.events):
+            self.events.append(self._read_message(deadline))
+
+    def drain(self, quiet=0.5):
+        """Keep reading events until none arrives for ``quiet`` seconds."""
+        while True:
+            try:
+                self.events.append(self._read_message(time.monotonic() + quiet))
+            except TimeoutError:
+                return
+
+    def close(self):
+        try:
+            self.call("Browser.close", timeout=10.0)
+        except (TimeoutError, RuntimeError, OSError):
+            pass
+        try:
+            self.process.wait(timeout=10.0)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            self.process.wait()
+        os.close(self._to_child)
+        os.close(self._from_child)
+        self.stderr.close()
+
+
+def _errors(events):
+    """Console errors, uncaught exceptions and error log entries, as text."""
+    found = []
+    for event in events:
+        method, params = event.get("method"), event.get("params", {})
+        if method == "Runtime.consoleAPICalled" and params["type"] in ("error", "assert"):
+            found.append("console: " + " ".join(str(a.get("value")) for a in params["args"]))
+        elif method == "Runtime.exceptionThrown":
+            found.append("exception: " + params["exceptionDetails"].get("text", ""))
+        elif method == "Log.entryAdded" and params["entry"]["level"] == "error":
+            entry = params["entry"]
+            found.append(f"log ({entry['source']}): {entry['text']} {entry.get('url', '')}")
+    return found
+
+
+READ_PAGE = """JSON.stringify({
+  text: document.body.innerText,
+  ids: Object.fromEntries([...document.querySelectorAll('[id]')].map(e => [e.id, e.innerText])),
+  svgs: document.querySelectorAll('svg').length,
+  drawn: [...document.querySelectorAll('svg')].filter(s => s.getBoundingClientRect().width > 0).length,
+  scripts: document.scripts.length,
+  resources: performance.getEntriesByType('resource').map(r => r.name)
+})"""
+
+
+@pytest.fixture(scope="session")
+def open_in_chromium(tmp_path_factory):
+    """``open(path) -> dict``: load an HTML file in headless Chromium and report
+    ``errors`` (list of str), ``text``, ``ids`` (element id -> text), ``svgs`` and
+    ``drawn`` (SVG elements, and those laid out with a width), ``scripts`` and
+    ``resources`` (URLs the page fetched)."""
+    if not os.access(CHROMIUM, os.X_OK):
+        message = f"{CHROMIUM} not installed (bash .ci/run installs Debian's chromium)"
+        if REQUIRE_BROWSER:
+            pytest.fail(message)
+        pytest.skip(message)
+
+    def open_page(path):
+        profile = tmp_path_factory.mktemp("chromium-profile")
+        browser = DevTools(profile)
+        try:
+            targets = browser.call("Target.getTargets")["targetInfos"]
+            page = next(t for t in targets if t["type"] == "page")
+            session = browser.call("Target.attachToTarget", targetId=page["targetId"], flatten=True)
+            session = session["sessionId"]
+            for domain in ("Runtime", "Log", "Page"):
+                browser.call(f"{domain}.enable", session)
+            browser.call("Page.navigate", session, url=Path(path).resolve().as_uri())
+            browser.wait_for("Page.loadEventFired")
+            browser.drain()
+            page_state = browser.call(
+                "Runtime.evaluate", session, expression=READ_PAGE, returnByValue=True
+            )
+            report = json.loads(page_state["result"]["value"])
+            report["errors"] = _errors(browser.events)
+            return report
+        finally:
+            browser.close()
+            shutil.rmtree(profile, ignore_errors=True)
+
+    return open_page
