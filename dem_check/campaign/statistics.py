@@ -181,7 +181,8 @@ def join_metadata(impacts, metadata):
 
 def _unit(column):
     found = re.search(r"\[(.*)\]\s*$", str(column))
-    return found.group(1) if found else "-"
+    unit = found.group(1) if found else "-"
+    return f"({unit})" if re.search(r"[/*]", unit) else unit
 
 
 def regressions(joined, predictors):

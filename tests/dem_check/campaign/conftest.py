@@ -18,6 +18,8 @@ import tempfile
 import time
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 
 import contactlab as cl
@@ -51,6 +53,114 @@ def hard_setup():
     config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
     law = cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
     return config.grain, config.sensor, law
+
+
+SENSITIVITY = 0.01124
+"""Sensitivity of the synthetic volt records [V/N] (as data/traces)."""
+
+NOISE = 0.03
+"""Noise of the synthetic records [N]: about 1 % of the hard grain's 3 N peaks."""
+
+RECORDS = (
+    # file, writer, writer options, law, sample rate [Hz], noise [N], in volts
+    ("hard_generic.csv", "generic", {}, "hard", 2e6, NOISE, True),
+    ("hard_rigol.csv", "rigol-sequence", {}, "hard", 5e6, NOISE, True),
+    ("hard_keysight.csv", "keysight", {}, "hard", 1e6, 2 * NOISE, True),
+    ("hard_daq.h5", "hdf5", {"name": "day1/sensor", "time": "attrs"}, "hard", 2e6, NOISE, True),
+    ("hard_daq.tdms", "tdms", {"group": "day1", "channel": "sensor"}, "hard", 2e6, NOISE, False),
+    ("soft.csv", "generic", {}, "soft", 2e6, NOISE / 2, False),
+    ("hertz.h5", "hdf5", {"name": "day1/sensor"}, "hertz", 2e6, NOISE, True),
+)
+"""The good records of the shared campaign: five formats of the hard grain, with
+different sample rates and noise, plus a soft linear grain and a damped-Hertz grain."""
+
+IMPACTS_PER_RECORD = 3
+
+
+def _laws(hard_law):
+    soft = load_config(ROOT / "data" / "traces" / "model_soft.toml").law
+    hertz = load_config(ROOT / "data" / "traces" / "model_hertz.toml").law
+    return {"hard": hard_law, "soft": soft, "hertz": hertz}
+
+
+@pytest.fixture(scope="session")
+def campaign(tmp_path_factory, hard_setup):
+    """One campaign over good and bad files, run once for the tests that read it.
+
+    Returns a dict: ``result`` (CampaignResult), ``truth`` (file name -> truth table),
+    ``folder``, ``out`` (the output folder), ``bad`` (file or path -> expected status).
+    """
+    from dem_check import write_trace
+    from dem_check.campaign import run_campaign, synthetic_record
+
+    grain, sensor, hard_law = hard_setup
+    laws = _laws(hard_law)
+    folder = tmp_path_factory.mktemp("day1")
+    rng = np.random.default_rng(14)
+    truth, sensitivities, metadata = {}, {}, []
+    for k, (name, layout, options, law, rate, noise, volts) in enumerate(RECORDS):
+        onsets = 1e-3 + np.cumsum(rng.uniform(2.5e-3, 4e-3, IMPACTS_PER_RECORD))
+        velocities = rng.uniform(1.5, 2.5, IMPACTS_PER_RECORD)
+        trace, table = synthetic_record(
+            grain,
+            sensor,
+            laws[law],
+            velocities,
+            onsets,
+            length=onsets[-1] + 2.5e-3,
+            sample_rate=rate,
+            noise=noise,
+            sensitivity=SENSITIVITY if volts else None,
+            offset=0.004 if volts else -0.05,
+            seed=k,
+        )
+        write_trace(folder / name, trace, layout, **options)
+        truth[name] = table
+        if volts:
+            sensitivities[name] = SENSITIVITY
+        if law == "hard":  # the others get no metadata row: a note says so
+            metadata += [
+                {"file": name, "impact": i, "velocity [m/s]": v} for i, v in enumerate(velocities)
+            ]
+    # bad inputs: each must be listed with its reason while the others are analysed
+    (folder / "notes.bin").write_bytes(bytes(range(256)) * 4)
+    volts_without, _ = synthetic_record(
+        grain,
+        sensor,
+        hard_law,
+        [2.0],
+        [1e-3],
+        length=4e-3,
+        sample_rate=1e6,
+        noise=NOISE,
+        sensitivity=SENSITIVITY,
+        seed=99,
+    )
+    write_trace(folder / "scope2.csv", volts_without, "generic")
+    quiet, _ = synthetic_record(
+        grain, sensor, hard_law, [], [], length=5e-3, sample_rate=1e6, noise=NOISE, seed=98
+    )
+    write_trace(folder / "quiet.csv", quiet, "generic")
+    empty = tmp_path_factory.mktemp("empty")
+    meta_path = tmp_path_factory.mktemp("meta") / "metadata.csv"
+    metadata.append({"file": "day2.csv", "impact": 0, "velocity [m/s]": 2.0})  # no such record
+    pd.DataFrame(metadata).to_csv(meta_path, index=False)
+    out = tmp_path_factory.mktemp("report")
+    result = run_campaign(
+        [folder, empty],
+        sensor,
+        grain,
+        sensitivity=sensitivities,
+        out=out,
+        metadata=meta_path,
+    )
+    bad = {
+        str(folder / "notes.bin"): "unreadable",
+        str(folder / "scope2.csv"): "no sensitivity",
+        str(folder / "quiet.csv"): "no impact",
+        str(empty): "empty folder",
+    }
+    return {"result": result, "truth": truth, "folder": folder, "out": out, "bad": bad}
 
 
 class DevTools:
@@ -149,7 +259,8 @@ READ_PAGE = """JSON.stringify({
   text: document.body.innerText,
   ids: Object.fromEntries([...document.querySelectorAll('[id]')].map(e => [e.id, e.innerText])),
   svgs: document.querySelectorAll('svg').length,
-  drawn: [...document.querySelectorAll('svg')].filter(s => s.getBoundingClientRect().width > 0).length,
+  drawn: [...document.querySelectorAll('svg')]
+    .filter(s => s.getBoundingClientRect().width > 0).length,
   scripts: document.scripts.length,
   resources: performance.getEntriesByType('resource').map(r => r.name)
 })"""
