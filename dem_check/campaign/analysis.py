@@ -32,6 +32,13 @@ from dem_check.campaign.detection import ONSET_SIGMAS
 
 __all__ = ["GALLERY_PERIODS", "ImpactTraces", "analyse_impact", "window_row"]
 
+IMPULSE_EXCESS = 0.2
+"""Largest excess of the segment's impulse over the reconstructed contact's [-]. One
+impact gives the same impulse both ways (to the few per cent that noise allows); a
+second impact or contact inside the segment that the ringing check could not see (it
+began within a sensor period of the first lobe's end) adds its own, and the impact is
+flagged ``"overlap"``."""
+
 GALLERY_PERIODS = 3.0
 """Sensor periods kept for the report's gallery before the reconstruction window and
 after it [-]."""
@@ -132,6 +139,14 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
         return row, None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration
+    excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
+    if not abs(excess) <= IMPULSE_EXCESS:
+        reason = (
+            f"the segment's impulse is {excess + 1.0:.3g} times that of the reconstructed "
+            "contact: a second impact (or contact) follows within the first one's main "
+            "lobe, so neither is analysed alone"
+        )
+        return {**window_row(window), "status": "overlap", "reason": reason}, None
     start, end = rec.parameters["window [s]"]
     keep = (t >= start - GALLERY_PERIODS * sensor.period) & (
         t <= end + GALLERY_PERIODS * sensor.period
