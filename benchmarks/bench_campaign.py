@@ -113,11 +113,81 @@ def accuracy(result, truth):
     }
 
 
+ACCURACY_CASES = (
+    # law, sample rate [Hz], noise [N]
+    ("hard", 5e6, 0.005),
+    ("hard", 5e6, 0.03),
+    ("hard", 2e6, 0.03),
+    ("hard", 1e6, 0.03),
+    ("hard", 5e6, 0.15),
+    ("fig6", 5e6, 0.05),
+    ("soft", 2e6, 0.03),
+    ("soft", 2e6, 0.1),
+    ("hertz", 1e6, 0.005),
+    ("hertz", 5e6, 0.03),
+)
+"""The accuracy table of docs/campaign.md: 8 impacts per case, 1.5-2.5 m/s."""
+
+
+def accuracy_table():
+    """Largest errors per case of :data:`ACCURACY_CASES` (one record of 8 impacts each)."""
+    from dem_check.campaign.analysis import analyse_impact
+
+    config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
+    laws = {
+        "hard": cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5),
+        "fig6": config.law,
+        "soft": load_config(ROOT / "data" / "traces" / "model_soft.toml").law,
+        "hertz": load_config(ROOT / "data" / "traces" / "model_hertz.toml").law,
+    }
+    print("case                      found  noise/peak  onset[us]  signal  impulse  force  time")
+    for law, rate, noise in ACCURACY_CASES:
+        rng = np.random.default_rng(1)
+        onsets = 1e-3 + np.cumsum(rng.uniform(3e-3, 6e-3, 8))
+        trace, truth = synthetic_record(
+            config.grain,
+            config.sensor,
+            laws[law],
+            rng.uniform(1.5, 2.5, 8),
+            onsets,
+            length=onsets[-1] + 5e-3,
+            sample_rate=rate,
+            noise=noise,
+        )
+        found = find_impacts(trace, config.sensor)
+        rows = pd.DataFrame(
+            [analyse_impact(found, w, config.sensor, config.grain)[0] for w in found.impacts]
+        )
+        if len(rows) != len(truth) or (rows["status"] != "ok").any():
+            print(f"{law} {rate:.0e} {noise}: {len(rows)} found, statuses {set(rows['status'])}")
+            continue
+        worst = {
+            c: 100 * (rows[c] / truth[c] - 1).abs().max()
+            for c in (
+                "peak_signal [N]",
+                "impulse [N*s]",
+                "peak_contact_force [N]",
+                "contact_time [s]",
+            )
+        }
+        onset = 1e6 * (rows["onset [s]"] - truth["onset [s]"]).abs().max()
+        ratio = 100 * noise / truth["peak_signal [N]"].mean()
+        print(
+            f"{law:<6}{rate / 1e6:>4.0f} MHz {noise:>6} N  {len(rows)}/{len(truth)}  "
+            f"{ratio:>8.2f} %  {onset:>8.2f}  " + "  ".join(f"{v:5.2f}%" for v in worst.values())
+        )
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--samples", type=int, default=1_500_000, help="total samples")
     parser.add_argument("--impacts", type=int, default=20, help="impacts in all")
+    parser.add_argument(
+        "--accuracy", action="store_true", help="also print docs/campaign.md's accuracy table"
+    )
     args = parser.parse_args()
+    if args.accuracy:
+        accuracy_table()
     with tempfile.TemporaryDirectory() as tmp:
         folder = Path(tmp)
         config, truth = write_records(folder, args.samples, args.impacts)
@@ -138,7 +208,9 @@ def main():
     for stage, seconds in result.timings.items():
         print(f"  {stage:<32}{seconds:>10.2f}")
     print(f"  {'total run_campaign':<32}{total:>10.2f}   (goal < 60 s)")
-    print(f"  {'reference: read_trace alone':<32}{read_time:>10.2f}   ratio {total / read_time:.1f}")
+    print(
+        f"  {'reference: read_trace alone':<32}{read_time:>10.2f}   ratio {total / read_time:.1f}"
+    )
     print(
         f"  {'reference: detect + reconstruct':<32}{floor_time:>10.2f}   "
         f"ratio {total / floor_time:.2f}"
