@@ -67,7 +67,9 @@ def _signal_numbers(t, raw, smooth, flat, base):
     level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
     lobe = first_lobe(t, smooth - smooth[in_base].mean(), level, hysteresis=level)
     in_lobe = (t >= lobe[0]) & (t <= lobe[1])
-    peak = np.max(flat[in_lobe] - np.mean(flat[in_base])) if in_lobe.any() else np.nan
+    # both filters pass the baseline's level unchanged (unit gain at 0 Hz), and the
+    # low-passed record is unread near the record's ends, where a baseline may lie
+    peak = np.max(flat[in_lobe]) - smooth[in_base].mean() if in_lobe.any() else np.nan
     return {
         "noise [N]": float(np.std(raw[in_base], ddof=1)),
         "peak_signal [N]": float(peak),
