@@ -3,9 +3,11 @@
 Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
 segment (local baseline, impact, decayed ringing):
 
-- ``peak_signal [N]`` and ``response_time [s]``: the first lobe of the smoothed signal
-  read with :func:`contactlab.metrics.pulse_metrics` at the onset level (five sigma of
-  the local noise), with the same hysteresis so that only a return to zero ends it;
+- ``response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
+  :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
+  noise), with the same hysteresis so that only a return to zero ends it;
+- ``peak_signal [N]``: the largest value of the low-passed signal (flat pass band) in
+  that lobe;
 - ``impulse [N*s]``: the integral of the signal from the end of the local baseline to
   the end of the decayed ringing. The sensor returns to rest, so this is the impulse of
   the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);

@@ -175,7 +175,7 @@ def _analyse_file(path, options, timings, progress):
         found = detection.find_impacts(trace, sensor)
     except ParameterError as exc:
         timings["detect"] += time.perf_counter() - started
-        return _file_row(path, "no baseline", f"{path}: {exc}", trace), [], {}, _envelope(trace)
+        return _file_row(path, "not analysable", f"{path}: {exc}", trace), [], {}, _envelope(trace)
     timings["detect"] += time.perf_counter() - started
     rows, gallery = [], {}
     started = time.perf_counter()

@@ -134,3 +134,20 @@ def test_command_line_exit_codes(small_day, tmp_path, capsys):
     assert "give the sensor" in capsys.readouterr().err
     assert main(["campaign", str(tmp_path / "none"), *sensor]) == 2
     assert "no such file or folder" in capsys.readouterr().err
+
+
+def test_a_campaign_without_any_analysable_impact_still_reports(tmp_path, hard_setup):
+    import numpy as np
+
+    from dem_check import Trace
+
+    grain, sensor, _ = hard_setup
+    uneven = np.cumsum(np.random.default_rng(0).uniform(1.0, 2.0, 5000)) * 1e-7
+    noise = np.random.default_rng(1).normal(0.0, 0.03, 5000)
+    write_trace(tmp_path / "uneven.csv", Trace(uneven, noise, "N"), "generic")
+    result = run_campaign(tmp_path / "uneven.csv", sensor, grain, out=tmp_path / "out")
+    (row,) = result.files.to_dict("records")
+    assert row["status"] == "not analysable" and "uniform" in row["reason"]
+    assert len(result.impacts) == 0 and len(result.statistics) == 0
+    page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    assert 'id="impact-count">0<' in page and "uneven.csv" in page
