@@ -8,6 +8,7 @@ id salt so that ids never collide between the figures of one page.
 
 import io
 import itertools
+import re
 
 import numpy as np
 
@@ -47,14 +48,26 @@ def _figure(width, height):
 
 
 def _svg(fig):
-    """The figure as an ``<svg>`` element string (no XML prolog, no date)."""
+    """The figure as an ``<svg>`` element string (no XML prolog, no date), every id in it
+    prefixed with the figure's number: matplotlib names groups and glyphs alike in every
+    figure (``xtick_1``, ``DejaVuSans-30``), and ids must be unique in one page."""
     import matplotlib
 
+    number = next(_salt)
     buffer = io.StringIO()
-    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": f"f{next(_salt)}"}):
+    with matplotlib.rc_context({"svg.fonttype": "path", "svg.hashsalt": f"f{number}"}):
         fig.savefig(buffer, format="svg", metadata={"Date": None})
     text = buffer.getvalue()
-    return text[text.index("<svg") :]
+    text = text[text.index("<svg") :]
+    ids = set(re.findall(r'\bid="([^"]+)"', text))
+    prefix = f"fig{number}-"
+
+    def renamed(match):
+        name = match.group(2)
+        return f"{match.group(1)}{prefix}{name}" if name in ids else match.group(0)
+
+    # definitions (id="x") and references (href="#x", url(#x))
+    return re.sub(r'(\bid="|href="#|url\(#)([^")]+)', renamed, text)
 
 
 def record_svg(envelope, onsets, statuses, name):
@@ -109,10 +122,10 @@ def regressions_svg(joined, lines):
         ax.plot(x, ok[line["response"]].to_numpy(dtype=float) * scale, "o", ms=3)
         span = np.array([np.nanmin(x), np.nanmax(x)])
         ax.plot(span, (line["intercept"] + line["slope"] * span) * scale, "-")
-        unit = "[us]" if scale == 1e6 else ""
+        name = line["response"].split(" [")[0]
         ax.set(
             xlabel=line["predictor"],
-            ylabel=f"{line['response'].split(' [')[0]} {unit}".strip(),
+            ylabel=f"{name} [us]" if scale == 1e6 else line["response"],
             title=f"r = {line['r']:.3f}, p = {line['p_value']:.2g}",
         )
     return _svg(fig)

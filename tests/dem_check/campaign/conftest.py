@@ -258,6 +258,8 @@ def _errors(events):
 READ_PAGE = """JSON.stringify({
   text: document.body.innerText,
   ids: Object.fromEntries([...document.querySelectorAll('[id]')].map(e => [e.id, e.innerText])),
+  idCount: document.querySelectorAll('[id]').length,
+  uniqueIds: new Set([...document.querySelectorAll('[id]')].map(e => e.id)).size,
   svgs: document.querySelectorAll('svg').length,
   drawn: [...document.querySelectorAll('svg')]
     .filter(s => s.getBoundingClientRect().width > 0).length,
@@ -269,7 +271,8 @@ READ_PAGE = """JSON.stringify({
 @pytest.fixture(scope="session")
 def open_in_chromium(tmp_path_factory):
     """``open(path) -> dict``: load an HTML file in headless Chromium and report
-    ``errors`` (list of str), ``text``, ``ids`` (element id -> text), ``svgs`` and
+    ``errors`` (list of str), ``text``, ``ids`` (element id -> text), ``idCount`` and
+    ``uniqueIds`` (elements with an id, and distinct ids), ``svgs`` and
     ``drawn`` (SVG elements, and those laid out with a width), ``scripts`` and
     ``resources`` (URLs the page fetched)."""
     if not os.access(CHROMIUM, os.X_OK):

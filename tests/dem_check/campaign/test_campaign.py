@@ -165,6 +165,7 @@ def test_report_renders_in_chromium(campaign, open_in_chromium):
     for path in campaign["bad"]:
         assert path in page["ids"]["failures"]
     assert page["svgs"] >= 4 and page["drawn"] == page["svgs"]
+    assert page["uniqueIds"] == page["idCount"] > 100  # every id unique, the figures' too
 
 
 def test_browser_check_catches_console_errors_and_missing_resources(tmp_path, open_in_chromium):
