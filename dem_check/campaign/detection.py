@@ -348,7 +348,11 @@ def _classify(smoothed, indices, period, floor, overrange):
         return [ImpactWindow(rough, (np.nan, np.nan), detected, stop, "no baseline", reason)]
     base = (float(t[base_start]), float(t[base_end]))
     segment = Trace(t[base_start:stop], z[base_start:stop], smoothed.unit)
-    onset = detect_onset(segment, ONSET_SIGMAS, base)
+    try:
+        onset = detect_onset(segment, ONSET_SIGMAS, base)
+    except ParameterError as exc:  # the local noise is far above the record's
+        reason = f"the local baseline before {rough:.6g} s is too noisy to time it: {exc}"
+        return [ImpactWindow(rough, base, base_start, stop, "no baseline", reason)]
 
     def window(at, status="ok", reason=""):
         return ImpactWindow(at, base, base_start, stop, status, reason)
