@@ -68,7 +68,7 @@ def test_impulse_and_velocity_change(campaign, hard_setup):
         change = truth["velocity [m/s]"] * (1.0 + truth["restitution [-]"])
         # impulse / mass = (1 + e) v: the same 3 % as the impulse
         np.testing.assert_allclose(rows["velocity_change [m/s]"], change, rtol=0.03)
-        np.testing.assert_allclose(
+        np.testing.assert_allclose(  # the same division: equal to rounding
             rows["velocity_change [m/s]"], rows["impulse [N*s]"] / grain.mass, rtol=1e-12
         )
 
@@ -126,7 +126,7 @@ def test_regression_finds_the_linear_laws_proportionality(campaign):
     # (< 2.5 % per impact) over a 1.5-2.5 m/s spread: a few per cent of the slope
     assert line["slope"] == pytest.approx(ratio.mean(), rel=0.05)
     assert abs(line["intercept"]) < 0.05 * hard["peak_contact_force [N]"].mean()
-    assert line["r"] > 0.98 and line["p_value"] < 1e-6
+    assert line["r"] > 0.98 and line["p_value"] < 1e-6  # 15 points on a line, 2 % scatter
     assert line["slope_unit"] == "N/(m/s)"
     assert any("soft.csv" in n for n in result.notes)
     assert any("day2.csv" in n for n in result.notes)
@@ -136,6 +136,7 @@ def test_outputs_read_back(campaign):
     out, result = campaign["out"], campaign["result"]
     impacts = pd.read_csv(out / "impacts.csv", keep_default_na=False, na_values=[""])
     assert list(impacts.columns) == list(result.impacts.columns)
+    # pandas writes floats as their shortest repr: the round trip is exact
     np.testing.assert_allclose(impacts["onset [s]"], result.impacts["onset [s]"], rtol=1e-15)
     files = pd.read_csv(out / "files.csv", keep_default_na=False, na_values=[""])
     assert files["file"].tolist() == result.files["file"].tolist()
