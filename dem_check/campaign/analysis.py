@@ -63,7 +63,7 @@ def window_row(window):
     return {"status": window.status, "reason": window.reason, "onset [s]": window.onset}
 
 
-def _signal_numbers(t, raw, smooth, flat, base):
+def _signal_numbers(t, raw, smooth, flat, base, end):
     """Peak, response time and impulse of the signal (module docstring)."""
     in_base = (t >= base[0]) & (t < base[1])
     level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
@@ -76,7 +76,7 @@ def _signal_numbers(t, raw, smooth, flat, base):
         "noise [N]": float(np.std(raw[in_base], ddof=1)),
         "peak_signal [N]": float(peak),
         "response_time [s]": float(lobe[1] - lobe[0]),
-        "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), base[1], t[-1]),
+        "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), base[1], end),
     }
 
 
@@ -133,7 +133,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
     flat = np.asarray(detection.lowpassed.values[part])
     base = window.baseline_window
     row = {"status": "ok", "reason": "", "onset [s]": window.onset}
-    row.update(_signal_numbers(t, raw, smooth, flat, base))
+    row.update(_signal_numbers(t, raw, smooth, flat, base, window.end))
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     try:

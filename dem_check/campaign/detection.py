@@ -91,6 +91,12 @@ keeps coming back above it."""
 QUIET_PERIODS = 4.0
 """An impact ends after this many sensor periods below the floor [-]."""
 
+TAIL_PERIODS = 16.0
+"""Quiet sensor periods kept after an impact's ringing has decayed (up to the next
+impact's run) [-]: the reconstruction reads the signal to three periods past a window
+that may end a lobe-length after the main lobe, which a noisy record's short ringing
+would not reach."""
+
 BASELINE_PERIODS = 20.0
 """Longest baseline taken before an impact [sensor periods]: enough samples for the
 noise (to a few per cent) without reaching back into an older impact."""
@@ -146,7 +152,11 @@ class ImpactWindow:
     first: int
     """Index of the first sample of the impact's segment (the baseline's first)."""
     stop: int
-    """Index one past the segment's last sample (ringing decayed, or the record's end)."""
+    """Index one past the segment's last sample (:data:`TAIL_PERIODS` after the ringing
+    decayed, the next impact's run, or the record's end)."""
+    end: float
+    """Time the ringing had decayed [s]: :data:`QUIET_PERIODS` after the last sample above
+    the noise floor (or the record's end)."""
     status: str
     """``"ok"``, ``"overlap"``, ``"truncated"``, ``"no baseline"``, ``"negative"`` or
     ``"overrange"``: only ``"ok"`` impacts are analysed further."""
@@ -318,18 +328,25 @@ def find_impacts(trace, sensor):
     hold = round(QUIET_PERIODS * sensor.period / dt)
     spread = round(3.0 * floor.kernel / dt)  # the kernel's reach before a rise
     overrange = np.asarray(trace.metadata["overrange"], dtype=int)
+    tail = round(TAIL_PERIODS * sensor.period / dt)
+    runs = _runs(z, floor.floor, floor.threshold, hold)
     windows, previous_end = [], 0
-    for first, last in _runs(z, floor.floor, floor.threshold, hold):
+    for k, (first, last) in enumerate(runs):
         run = z[first : last + 1]
         polarity = 1.0 if run.max() >= -run.min() else -1.0  # the main lobe's side
         detected = first + int(np.argmax(polarity * run > floor.threshold))
         quiet = np.flatnonzero(np.abs(z[previous_end:detected]) <= floor.floor)
         base_end = previous_end + (int(quiet[-1]) if quiet.size else 0) - spread
         base_start = max(previous_end, base_end - round(BASELINE_PERIODS * sensor.period / dt))
-        stop = min(last + hold, t.size)
+        following = runs[k + 1][0] if k + 1 < len(runs) else t.size
+        stop = min(last + hold + tail, following, t.size)
         previous_end = last + 1
         windows += _classify(
-            smoothed, (base_start, base_end, detected, last, stop, hold), period, floor, overrange
+            smoothed,
+            (base_start, base_end, detected, last, stop, hold),
+            period,
+            floor,
+            overrange,
         )
     return Detection(floor, windows, signal, smoothed, lowpassed)
 
@@ -338,24 +355,26 @@ def _classify(smoothed, indices, period, floor, overrange):
     """The :class:`ImpactWindow` (one, or several for an overlap) of one run."""
     base_start, base_end, detected, last, stop, hold = indices
     t, z = smoothed.t, np.asarray(smoothed.values)
+    truncated = last + hold > t.size
     rough = float(t[detected])
+    end = float(t[min(last + hold, t.size - 1)])
     if base_end - base_start < BASELINE_MIN_SAMPLES:
         reason = (
             f"only {max(base_end - base_start, 0)} quiet samples before the impact at "
             f"{rough:.6g} s (need {BASELINE_MIN_SAMPLES}): it starts too close to the "
             "record's start or to the previous impact's ringing"
         )
-        return [ImpactWindow(rough, (np.nan, np.nan), detected, stop, "no baseline", reason)]
+        return [ImpactWindow(rough, (np.nan, np.nan), detected, stop, end, "no baseline", reason)]
     base = (float(t[base_start]), float(t[base_end]))
     segment = Trace(t[base_start:stop], z[base_start:stop], smoothed.unit)
     try:
         onset = detect_onset(segment, ONSET_SIGMAS, base)
     except ParameterError as exc:  # the local noise is far above the record's
         reason = f"the local baseline before {rough:.6g} s is too noisy to time it: {exc}"
-        return [ImpactWindow(rough, base, base_start, stop, "no baseline", reason)]
+        return [ImpactWindow(rough, base, base_start, stop, end, "no baseline", reason)]
 
     def window(at, status="ok", reason=""):
-        return ImpactWindow(at, base, base_start, stop, status, reason)
+        return ImpactWindow(at, base, base_start, stop, end, status, reason)
 
     if z[detected] < 0.0:
         reason = (
@@ -364,7 +383,7 @@ def _classify(smoothed, indices, period, floor, overrange):
             "sensor's polarity"
         )
         return [window(onset, "negative", reason)]
-    if stop < last + hold:
+    if truncated:
         reason = (
             f"the record ends {t[-1] - onset:.4g} s after the onset, before the ringing "
             "decayed below the noise floor"
