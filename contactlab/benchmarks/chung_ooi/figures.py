@@ -17,7 +17,7 @@ def save_figure(case, draw, out):
 
     fig, ax = plt.subplots(figsize=(6.0, 4.0), layout="constrained")
     draw(ax)
-    ax.set_title(f"Chung & Ooi test {case.number}: {case.title}", fontsize=9)
+    ax.set_title(f"Chung & Ooi test {case.number}\n{case.title}", fontsize=9)
     ax.legend(frameon=False, fontsize=7)
     path = Path(out) / f"chung_ooi_test{case.number}.png"
     fig.savefig(path, dpi=120)
