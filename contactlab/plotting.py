@@ -1,6 +1,6 @@
 """Plots of impacts and studies. matplotlib is imported only here, only when plotting."""
 
-__all__ = ["axes_or_new", "plot_impact", "plot_oblique"]
+__all__ = ["axes_or_new", "finish_force_axes", "plot_impact", "plot_oblique"]
 
 
 def axes_or_new(ax, figsize=(7.0, 4.0)):
@@ -18,6 +18,27 @@ def axes_or_new(ax, figsize=(7.0, 4.0)):
         fig, ax = plt.subplots(figsize=figsize, layout="constrained")
         return fig, ax
     return ax.figure, ax
+
+
+def finish_force_axes(ax, title=None, t_us=None):
+    """Zero line, axis labels (time [µs], force [N]), title and legend of a force plot.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    title : str, optional
+        Axes title.
+    t_us : array_like, optional
+        Time axis [µs]; the x range is set to its ends when given.
+    """
+    ax.axhline(0.0, color="0.6", lw=0.5)
+    ax.set_xlabel("time [µs]")
+    ax.set_ylabel("force [N]")
+    if t_us is not None:
+        ax.set_xlim(t_us[0], t_us[-1])
+    if title:
+        ax.set_title(title)
+    ax.legend(loc="upper right", frameon=False)
 
 
 def plot_impact(result, ax=None, title=None):
@@ -40,13 +61,7 @@ def plot_impact(result, ax=None, title=None):
     t_us = result.t * 1e6
     ax.plot(t_us, result.contact_force, lw=2.6, color="black", label="contact force $S_2$")
     ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
-    ax.axhline(0.0, color="0.6", lw=0.5)
-    ax.set_xlabel("time [µs]")
-    ax.set_ylabel("force [N]")
-    ax.set_xlim(t_us[0], t_us[-1])
-    if title:
-        ax.set_title(title)
-    ax.legend(loc="upper right", frameon=False)
+    finish_force_axes(ax, title, t_us)
     return fig, ax
 
 
@@ -72,11 +87,5 @@ def plot_oblique(result, ax=None, title=None):
     ax.plot(t_us, result.tangential_force, lw=1.6, color="tab:blue", label="tangential force")
     if not result.sensor.is_rigid:
         ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
-    ax.axhline(0.0, color="0.6", lw=0.5)
-    ax.set_xlabel("time [µs]")
-    ax.set_ylabel("force [N]")
-    ax.set_xlim(t_us[0], t_us[-1])
-    if title:
-        ax.set_title(title)
-    ax.legend(loc="upper right", frameon=False)
+    finish_force_axes(ax, title, t_us)
     return fig, ax

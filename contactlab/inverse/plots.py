@@ -1,6 +1,6 @@
 """Figures of the inverse methods. matplotlib is imported only when plotting."""
 
-from contactlab.plotting import axes_or_new
+from contactlab.plotting import axes_or_new, finish_force_axes
 
 __all__ = ["plot_fit", "plot_identification", "plot_reconstruction"]
 
@@ -82,12 +82,7 @@ def plot_reconstruction(reconstruction, truth=None, ax=None, title=None):
         color="tab:blue",
         label=f"reconstructed $S_2$ ({reconstruction.method})",
     )
-    ax.axhline(0.0, color="0.6", lw=0.5)
-    ax.set_xlabel("time [µs]")
-    ax.set_ylabel("force [N]")
-    if title:
-        ax.set_title(title)
-    ax.legend(loc="upper right", frameon=False)
+    finish_force_axes(ax, title)
     return fig, ax
 
 
@@ -118,10 +113,6 @@ def plot_fit(fit, ax=None, title=None):
         color="black",
         label="fitted contact force $S_2$",
     )
-    ax.axhline(0.0, color="0.6", lw=0.5)
-    ax.set_xlabel("time [µs]")
-    ax.set_ylabel("force [N]")
     chi2 = fit.goodness["reduced_chi_squared [-]"]
-    ax.set_title(title or f"{fit.law_name}: reduced $\\chi^2$ = {chi2:.3g}")
-    ax.legend(loc="upper right", frameon=False)
+    finish_force_axes(ax, title or f"{fit.law_name}: reduced $\\chi^2$ = {chi2:.3g}")
     return fig, ax
