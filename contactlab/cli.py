@@ -2,6 +2,7 @@
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 
@@ -10,6 +11,9 @@ import numpy as np
 from contactlab.errors import ParameterError
 
 __all__ = ["main"]
+
+EVERY_CORE = os.cpu_count() or 1
+"""Default worker processes of the study and the demo: every core of this machine."""
 
 
 def _json_default(obj):
@@ -327,7 +331,12 @@ def _build_parser():
     p = sub.add_parser("demo", help="run the built-in demonstration into a results folder")
     p.add_argument("--out", default="results", help="output folder (default: results)")
     p.add_argument("--quick", action="store_true", help="the study on its coarse grid")
-    p.add_argument("--workers", type=int, default=1, help="worker processes for the study")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=EVERY_CORE,
+        help=f"worker processes for the study (default: every core, {EVERY_CORE} here)",
+    )
     p.set_defaults(func=_demo)
 
     p = sub.add_parser(
@@ -336,7 +345,12 @@ def _build_parser():
     p.add_argument("--paper", action="store_true", help="run the Keska et al. (2021) study")
     p.add_argument("--out", default="results", help="output folder (default: results)")
     p.add_argument("--quick", action="store_true", help="a coarse grid (a few seconds)")
-    p.add_argument("--workers", type=int, default=1, help="local worker processes (default 1)")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=EVERY_CORE,
+        help=f"local worker processes (default: every core, {EVERY_CORE} here)",
+    )
     p.add_argument("--scheduler", metavar="ADDRESS", help="run on this Dask scheduler instead")
     p.add_argument("--seed", type=int, default=0, help="root random seed (default 0)")
     p.add_argument(

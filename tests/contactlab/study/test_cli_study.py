@@ -1,10 +1,11 @@
 """Command line: ``contactlab study`` and ``contactlab advise``."""
 
 import json
+import os
 
 import pytest
 
-from contactlab.cli import main
+from contactlab.cli import _build_parser, main
 
 
 @pytest.mark.parametrize("command", ["study", "advise"])
@@ -79,3 +80,11 @@ def test_advise_errors_are_named(capsys):
         main(["advise", "--diameter", "2 mm", "--density", "1e3", "--youngs-modulus", "1e8"])
     assert info.value.code == 2
     assert "--diameter: give a number or LOW,HIGH; got '2 mm'" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("command", [["study", "--paper"], ["demo"]])
+def test_study_and_demo_use_every_core_by_default(command):
+    """Issue 15: the study runs on every core unless --workers says otherwise."""
+    parser = _build_parser()
+    assert parser.parse_args(command).workers == (os.cpu_count() or 1)
+    assert parser.parse_args([*command, "--workers", "1"]).workers == 1
