@@ -85,6 +85,26 @@ def _study(args):
     print(f"{result.summary()['impacts']} impacts in {result.seconds:.1f} s")
 
 
+def _map(args):
+    from contactlab.laws import LinearViscoelastic
+    from contactlab.study import StudySetup, design_map
+    from contactlab.study.plots import save_figure
+
+    law = LinearViscoelastic(stiffness=args.stiffness, damping=args.damping)
+    result = design_map(StudySetup.paper(law=law))
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    csv = out / "design_map.csv"
+    result.table.to_csv(csv, index=False)
+    fig, _ = result.plot(tolerance=args.tolerance)
+    files = [csv, *save_figure(fig, out / "design_map")]
+    if args.json:
+        print(_dump({"points": len(result.table), "files": [str(p) for p in files]}))
+        return
+    for path in files:
+        print(f"wrote {path}")
+
+
 def _range_value(text):
     """A number or LOW,HIGH from the command line."""
     try:
@@ -364,6 +384,23 @@ def _build_parser():
     )
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_study)
+
+    p = sub.add_parser(
+        "map",
+        help="design map: force and contact-time error over sensor resonance x grain diameter",
+    )
+    p.add_argument("--out", default="results", help="output folder (default: results)")
+    p.add_argument(
+        "--stiffness", type=float, default=1e5, help="contact stiffness k2 [N/m] (default 1e5)"
+    )
+    p.add_argument(
+        "--damping", type=float, default=1.0, help="contact damping c2 [N*s/m] (default 1)"
+    )
+    p.add_argument(
+        "--tolerance", type=float, default=10.0, help="error contour drawn [%%] (default 10)"
+    )
+    p.add_argument("--json", action="store_true", help="print a JSON summary")
+    p.set_defaults(func=_map)
 
     p = sub.add_parser(
         "advise", help="lowest sensor resonance for an error target, for a grain species"

@@ -4,9 +4,11 @@
 * :mod:`contactlab.study.sweep`: sweeps and their per-point error statistics;
 * :mod:`contactlab.study.execution`: serial, process-parallel and Dask execution;
 * :mod:`contactlab.study.paper`: the paper's Figures 5-12 and its conclusions 2-5;
+* :mod:`contactlab.study.design_map`: errors over resonance x diameter (a design map);
 * :mod:`contactlab.study.plots`: the figures (matplotlib is imported only there).
 """
 
+from contactlab.study.design_map import DesignMap, design_map
 from contactlab.study.paper import PAPER_GRID, QUICK_GRID, PaperGrid, paper_study
 from contactlab.study.setup import DISTRIBUTIONS, SIZE_DEPENDENCE, Scatter, StudySetup
 from contactlab.study.sweep import (
@@ -23,10 +25,12 @@ __all__ = [
     "PAPER_GRID",
     "QUICK_GRID",
     "SIZE_DEPENDENCE",
+    "DesignMap",
     "PaperGrid",
     "Scatter",
     "StudySetup",
     "SweepResult",
+    "design_map",
     "diameter_sweep",
     "frequency_sweep",
     "paper_study",

@@ -6,9 +6,17 @@ contact-time error, green for the peak-force error. Solid lines are the paper's 
 bias the standard deviation does not see.
 """
 
+import numpy as np
+
 from contactlab.plotting import axes_or_new
 
-__all__ = ["check_formats", "plot_error_family", "plot_errors", "save_figure"]
+__all__ = [
+    "check_formats",
+    "plot_design_map",
+    "plot_error_family",
+    "plot_errors",
+    "save_figure",
+]
 
 _COLOURS = {"time": "tab:red", "force": "tab:green"}
 _LABELS = {"time": "contact-time error", "force": "peak-force error"}
@@ -127,6 +135,53 @@ def plot_error_family(points, x, family, error="force", measure="rms", ax=None, 
         )
     _style(ax, xscale, label, f"{_LABELS[error]}, {name} [%]", title)
     return fig, ax
+
+
+def plot_design_map(design_map, tolerance=10.0, color_limit=100.0):
+    """Force and contact-time errors over resonance x diameter, side by side.
+
+    Parameters
+    ----------
+    design_map : DesignMap
+        From :func:`contactlab.study.design_map`.
+    tolerance : float, default 10
+        Error [%] drawn as the dashed ``+-tolerance`` contours.
+    color_limit : float, default 100
+        Largest error [%] the colours resolve; beyond it they saturate (the colour bar
+        says so with its arrows; the table keeps every value).
+
+    Returns
+    -------
+    (matplotlib.figure.Figure, numpy.ndarray of matplotlib.axes.Axes)
+    """
+    import matplotlib.pyplot as plt
+
+    from contactlab.study.design_map import PAPER_OPERATING_POINTS
+
+    f_khz, d_mm = design_map.resonances / 1e3, design_map.diameters * 1e3
+    fig, axes = plt.subplots(1, 2, figsize=(12.0, 4.6), layout="constrained", sharey=True)
+    for ax, column, name in zip(
+        axes, ("force_error [%]", "time_error [%]"), ("peak force", "contact time"), strict=True
+    ):
+        values = design_map.grid(column)
+        limit = min(float(np.nanmax(np.abs(values))), color_limit)
+        mesh = ax.pcolormesh(
+            f_khz, d_mm, values, cmap="RdBu_r", vmin=-limit, vmax=limit, shading="nearest"
+        )
+        fig.colorbar(mesh, ax=ax, label=f"{name} error [%]", extend="both")
+        lines = ax.contour(
+            f_khz, d_mm, values, levels=[-tolerance, tolerance], colors="k", linestyles="--"
+        )
+        ax.clabel(lines, fmt="%+g %%", fontsize=7)
+        points = np.array(PAPER_OPERATING_POINTS)
+        ax.plot(points[:, 0] / 1e3, points[:, 1] * 1e3, "k*", ms=9, label="paper's sensors")
+        ax.set_xscale("log")
+        ax.set_xlabel("sensor resonance [kHz]")
+        ax.set_title(f"{name}: sensor reading vs true contact")
+        ax.legend(loc="upper right", frameon=True, fontsize=8)
+    axes[0].set_ylabel("grain diameter [mm]")
+    fig.suptitle(design_map.law, fontsize=9)
+    return fig, axes
 
 
 def check_formats(formats):

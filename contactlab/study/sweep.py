@@ -33,6 +33,7 @@ __all__ = [
     "ERRORS",
     "SweepResult",
     "diameter_sweep",
+    "error_percent",
     "frequency_sweep",
     "point_statistics",
     "run_grid",
@@ -66,6 +67,14 @@ def _rigid_contact_time(law, mass, velocity):
     """Contact time of the law on an immovable wall [s]."""
     closed = _CLOSED_FORMS.get(law.name)
     return law.contact_time(mass, velocity) if closed is None else closed(law, mass, velocity)
+
+
+def error_percent(reading, truth):
+    """Error of a reading against the truth [%]: ``100 (reading / truth - 1)``.
+
+    Works on floats and arrays; a reading above the truth gives a positive error.
+    """
+    return 100.0 * (reading / truth - 1.0)
 
 
 def simulate_point(setup, overrides, factors):
@@ -116,8 +125,8 @@ def simulate_point(setup, overrides, factors):
         out["sensor_response_time [s]"].append(res.sensor_response_time)
         out["peak_contact_force [N]"].append(res.peak_contact_force)
         out["peak_sensor_force [N]"].append(res.peak_sensor_force)
-        out["time_error [%]"].append(100.0 * (res.sensor_response_time / res.contact_time - 1))
-        out["force_error [%]"].append(100.0 * (res.peak_sensor_force / res.peak_contact_force - 1))
+        out["time_error [%]"].append(error_percent(res.sensor_response_time, res.contact_time))
+        out["force_error [%]"].append(error_percent(res.peak_sensor_force, res.peak_contact_force))
     return out
 
 

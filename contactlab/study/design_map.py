@@ -1,0 +1,187 @@
+"""Design map: the sensor's force and contact-time errors over resonance x grain diameter.
+
+Each point of the map is one impact at the set-up's nominal law (no scatter): the grain of
+that diameter (same density) strikes a sensor of that resonance (same moving mass and
+damping ratio), and the errors are those an experimenter makes reading the sensor
+signal's first lobe instead of the true force:
+
+* ``force_error [%] = 100 (peak S1 / peak S2 - 1)``;
+* ``time_error [%] = 100 (response time / contact time - 1)``.
+
+These are the definitions of :func:`contactlab.study.simulate_point`
+(:func:`~contactlab.study.sweep.error_percent`). A linear law
+(the paper's) is solved for the whole map at once by
+:func:`contactlab.batch.linear_impacts` (exact, the single solver's numbers to 1e-9);
+any other law goes through :func:`contactlab.study.simulate_point` point by point.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from contactlab.batch import linear_impacts
+from contactlab.errors import ParameterError
+from contactlab.laws import LinearViscoelastic
+from contactlab.study.setup import StudySetup
+from contactlab.study.sweep import error_percent, simulate_point
+from contactlab.validation import check_number
+
+__all__ = [
+    "DEFAULT_DIAMETERS",
+    "DEFAULT_RESONANCES",
+    "PAPER_OPERATING_POINTS",
+    "DesignMap",
+    "design_map",
+]
+
+DEFAULT_RESONANCES = tuple(np.geomspace(10e3, 300e3, 41))
+"""Sensor resonances of the default map [Hz]: 10-300 kHz, log-spaced (the study's range)."""
+
+DEFAULT_DIAMETERS = tuple(np.round(np.arange(1.0, 10.001, 0.25), 2) * 1e-3)
+"""Grain diameters of the default map [m]: 1-10 mm (Figure 12's range), 0.25 mm apart."""
+
+PAPER_OPERATING_POINTS = tuple(
+    (resonance, diameter)
+    for diameter in (5.0e-3, 2.5e-3)
+    for resonance in (20e3, 40e3, 70e3, 200e3)
+)
+"""``(resonance [Hz], diameter [m])`` pairs the paper discusses: commercial sensors at 20,
+40 and 70 kHz and special designs at 200 kHz (Section 2.2), for its 5 mm grain and the
+2.5 mm grain of Figures 10-11."""
+
+_ERRORS = ("force_error [%]", "time_error [%]")
+
+
+def _grid(name, values, unit):
+    values = np.asarray(values, dtype=float)
+    if values.ndim != 1 or values.size == 0:
+        raise ParameterError(f"{name} must be a non-empty list of values [{unit}]; got {values!r}")
+    for value in values:
+        check_number(name, float(value), low=0.0, unit=unit)
+    if np.any(np.diff(values) <= 0.0):
+        raise ParameterError(f"{name} must be strictly increasing [{unit}]")
+    return values
+
+
+@dataclass(frozen=True)
+class DesignMap:
+    """Errors of the sensor reading over a resonance x diameter grid.
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per grid point: ``resonance [Hz]``, ``diameter [m]``, the impact's
+        ``contact_time [s]``, ``sensor_response_time [s]``, ``peak_contact_force [N]``,
+        ``peak_sensor_force [N]`` and the two errors ``force_error [%]``,
+        ``time_error [%]``; resonance varies fastest.
+    resonances, diameters : numpy.ndarray
+        The grid axes [Hz], [m].
+    law : str
+        The set-up's law, as ``repr``.
+    """
+
+    table: pd.DataFrame
+    resonances: np.ndarray
+    diameters: np.ndarray
+    law: str
+
+    def grid(self, column):
+        """``column`` as an array of shape (diameters, resonances)."""
+        return self.table[column].to_numpy().reshape(self.diameters.size, self.resonances.size)
+
+    def plot(self, tolerance=10.0):
+        """Both errors as colour maps, with the ``+-tolerance`` [%] contours and the paper's
+        operating points; returns (fig, axes)."""
+        from contactlab.study.plots import plot_design_map
+
+        return plot_design_map(self, tolerance)
+
+
+def _batch_rows(setup, points):
+    """Impact columns of every point, solved at once by the batch linear solver."""
+    frame = pd.DataFrame(
+        [
+            {
+                "m1 [kg]": sensor.mass,
+                "k1 [N/m]": sensor.stiffness,
+                "c1 [N*s/m]": sensor.damping,
+                "m2 [kg]": grain.mass,
+                "k2 [N/m]": law.stiffness,
+                "c2 [N*s/m]": law.damping,
+                "v0 [m/s]": velocity,
+            }
+            for grain, sensor, law, velocity in (setup.at(p) for p in points)
+        ]
+    )
+    solved = linear_impacts(frame)
+    return pd.DataFrame(
+        {
+            "contact_time [s]": solved["contact_time [s]"],
+            "sensor_response_time [s]": solved["response_time [s]"],
+            "peak_contact_force [N]": solved["peak_contact_force [N]"],
+            "peak_sensor_force [N]": solved["peak_sensor_force [N]"],
+        }
+    )
+
+
+def _point_rows(setup, points):
+    """Impact columns of every point, one :func:`simulate_point` each (any law)."""
+    keys = (
+        "contact_time [s]",
+        "sensor_response_time [s]",
+        "peak_contact_force [N]",
+        "peak_sensor_force [N]",
+    )
+    rows = [simulate_point(setup, p, [1.0]) for p in points]
+    return pd.DataFrame({key: [row[key][0] for row in rows] for key in keys})
+
+
+def design_map(setup=None, resonances=DEFAULT_RESONANCES, diameters=DEFAULT_DIAMETERS):
+    """Force and contact-time errors of the sensor reading over resonance x diameter.
+
+    Parameters
+    ----------
+    setup : StudySetup, optional
+        Grain, sensor (its mass and damping ratio are kept), law and impact speed;
+        default :meth:`StudySetup.paper` (linear contact, k2 = 1e5 N/m, c2 = 1 N*s/m).
+        With ``size_dependence="material"`` the law follows the grain's size.
+    resonances : sequence of float, default :data:`DEFAULT_RESONANCES`
+        Sensor resonances [Hz], increasing.
+    diameters : sequence of float, default :data:`DEFAULT_DIAMETERS`
+        Grain diameters [m], increasing.
+
+    Returns
+    -------
+    DesignMap
+
+    Examples
+    --------
+    >>> from contactlab.study import design_map
+    >>> m = design_map(resonances=[20e3, 200e3], diameters=[2.5e-3, 5e-3])
+    >>> m.grid("force_error [%]").shape
+    (2, 2)
+    """
+    setup = StudySetup.paper() if setup is None else setup
+    resonances = _grid("resonances", resonances, "Hz")
+    diameters = _grid("diameters", diameters, "m")
+    points = [
+        {"grain.diameter": float(d), "sensor.resonance": float(f)}
+        for d in diameters
+        for f in resonances
+    ]
+    linear = isinstance(setup.law, LinearViscoelastic)
+    impacts = (_batch_rows if linear else _point_rows)(setup, points)
+    table = pd.DataFrame(
+        {
+            "resonance [Hz]": [p["sensor.resonance"] for p in points],
+            "diameter [m]": [p["grain.diameter"] for p in points],
+        }
+    ).join(impacts)
+    table["force_error [%]"] = error_percent(
+        table["peak_sensor_force [N]"], table["peak_contact_force [N]"]
+    )
+    table["time_error [%]"] = error_percent(
+        table["sensor_response_time [s]"], table["contact_time [s]"]
+    )
+    return DesignMap(table, resonances, diameters, repr(setup.law))
