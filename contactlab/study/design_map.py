@@ -92,10 +92,10 @@ class DesignMap:
 
     def plot(self, tolerance=10.0):
         """Both errors as colour maps, with the ``+-tolerance`` [%] contours and the paper's
-        operating points; returns (fig, axes)."""
+        operating points (:data:`PAPER_OPERATING_POINTS`); returns (fig, axes)."""
         from contactlab.study.plots import plot_design_map
 
-        return plot_design_map(self, tolerance)
+        return plot_design_map(self, PAPER_OPERATING_POINTS, tolerance)
 
 
 def _batch_rows(setup, points):

@@ -137,13 +137,15 @@ def plot_error_family(points, x, family, error="force", measure="rms", ax=None, 
     return fig, ax
 
 
-def plot_design_map(design_map, tolerance=10.0, color_limit=100.0):
+def plot_design_map(design_map, points=(), tolerance=10.0, color_limit=100.0):
     """Force and contact-time errors over resonance x diameter, side by side.
 
     Parameters
     ----------
     design_map : DesignMap
         From :func:`contactlab.study.design_map`.
+    points : sequence of (float, float)
+        ``(resonance [Hz], diameter [m])`` operating points to mark.
     tolerance : float, default 10
         Error [%] drawn as the dashed ``+-tolerance`` contours.
     color_limit : float, default 100
@@ -155,8 +157,6 @@ def plot_design_map(design_map, tolerance=10.0, color_limit=100.0):
     (matplotlib.figure.Figure, numpy.ndarray of matplotlib.axes.Axes)
     """
     import matplotlib.pyplot as plt
-
-    from contactlab.study.design_map import PAPER_OPERATING_POINTS
 
     f_khz, d_mm = design_map.resonances / 1e3, design_map.diameters * 1e3
     fig, axes = plt.subplots(1, 2, figsize=(12.0, 4.6), layout="constrained", sharey=True)
@@ -173,12 +173,13 @@ def plot_design_map(design_map, tolerance=10.0, color_limit=100.0):
             f_khz, d_mm, values, levels=[-tolerance, tolerance], colors="k", linestyles="--"
         )
         ax.clabel(lines, fmt="%+g %%", fontsize=7)
-        points = np.array(PAPER_OPERATING_POINTS)
-        ax.plot(points[:, 0] / 1e3, points[:, 1] * 1e3, "k*", ms=9, label="paper's sensors")
         ax.set_xscale("log")
         ax.set_xlabel("sensor resonance [kHz]")
         ax.set_title(f"{name}: sensor reading vs true contact")
-        ax.legend(loc="upper right", frameon=True, fontsize=8)
+        if len(points):
+            marks = np.asarray(points, dtype=float)
+            ax.plot(marks[:, 0] / 1e3, marks[:, 1] * 1e3, "k*", ms=9, label="operating points")
+            ax.legend(loc="upper right", frameon=True, fontsize=8)
     axes[0].set_ylabel("grain diameter [mm]")
     fig.suptitle(design_map.law, fontsize=9)
     return fig, axes
