@@ -18,6 +18,7 @@ from contactlab.study.sweep import (
     point_statistics,
     run_grid,
     simulate_point,
+    simulate_points,
 )
 
 __all__ = [
@@ -37,4 +38,5 @@ __all__ = [
     "point_statistics",
     "run_grid",
     "simulate_point",
+    "simulate_points",
 ]

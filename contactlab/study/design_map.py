@@ -12,7 +12,8 @@ These are the definitions of :func:`contactlab.study.simulate_point`
 (:func:`~contactlab.study.sweep.error_percent`). A linear law
 (the paper's) is solved for the whole map at once by
 :func:`contactlab.batch.linear_impacts` (exact, the single solver's numbers to 1e-9);
-any other law goes through :func:`contactlab.study.simulate_point` point by point.
+any other law goes through :func:`contactlab.study.simulate_point` point by point (both
+through :func:`contactlab.study.sweep.simulate_points`).
 """
 
 from dataclasses import dataclass
@@ -20,11 +21,9 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from contactlab.batch import linear_impacts
 from contactlab.errors import ParameterError
-from contactlab.laws import LinearViscoelastic
 from contactlab.study.setup import StudySetup
-from contactlab.study.sweep import error_percent, simulate_point
+from contactlab.study.sweep import simulate_points
 from contactlab.validation import check_number
 
 __all__ = [
@@ -50,7 +49,14 @@ PAPER_OPERATING_POINTS = tuple(
 40 and 70 kHz and special designs at 200 kHz (Section 2.2), for its 5 mm grain and the
 2.5 mm grain of Figures 10-11."""
 
-_ERRORS = ("force_error [%]", "time_error [%]")
+_COLUMNS = (
+    "contact_time [s]",
+    "sensor_response_time [s]",
+    "peak_contact_force [N]",
+    "peak_sensor_force [N]",
+    "force_error [%]",
+    "time_error [%]",
+)
 
 
 def _grid(name, values, unit):
@@ -98,45 +104,6 @@ class DesignMap:
         return plot_design_map(self, PAPER_OPERATING_POINTS, tolerance)
 
 
-def _batch_rows(setup, points):
-    """Impact columns of every point, solved at once by the batch linear solver."""
-    frame = pd.DataFrame(
-        [
-            {
-                "m1 [kg]": sensor.mass,
-                "k1 [N/m]": sensor.stiffness,
-                "c1 [N*s/m]": sensor.damping,
-                "m2 [kg]": grain.mass,
-                "k2 [N/m]": law.stiffness,
-                "c2 [N*s/m]": law.damping,
-                "v0 [m/s]": velocity,
-            }
-            for grain, sensor, law, velocity in (setup.at(p) for p in points)
-        ]
-    )
-    solved = linear_impacts(frame)
-    return pd.DataFrame(
-        {
-            "contact_time [s]": solved["contact_time [s]"],
-            "sensor_response_time [s]": solved["response_time [s]"],
-            "peak_contact_force [N]": solved["peak_contact_force [N]"],
-            "peak_sensor_force [N]": solved["peak_sensor_force [N]"],
-        }
-    )
-
-
-def _point_rows(setup, points):
-    """Impact columns of every point, one :func:`simulate_point` each (any law)."""
-    keys = (
-        "contact_time [s]",
-        "sensor_response_time [s]",
-        "peak_contact_force [N]",
-        "peak_sensor_force [N]",
-    )
-    rows = [simulate_point(setup, p, [1.0]) for p in points]
-    return pd.DataFrame({key: [row[key][0] for row in rows] for key in keys})
-
-
 def design_map(setup=None, resonances=DEFAULT_RESONANCES, diameters=DEFAULT_DIAMETERS):
     """Force and contact-time errors of the sensor reading over resonance x diameter.
 
@@ -170,18 +137,12 @@ def design_map(setup=None, resonances=DEFAULT_RESONANCES, diameters=DEFAULT_DIAM
         for d in diameters
         for f in resonances
     ]
-    linear = isinstance(setup.law, LinearViscoelastic)
-    impacts = (_batch_rows if linear else _point_rows)(setup, points)
+    impacts = simulate_points([(setup, point, [1.0]) for point in points])
     table = pd.DataFrame(
         {
             "resonance [Hz]": [p["sensor.resonance"] for p in points],
             "diameter [m]": [p["grain.diameter"] for p in points],
+            **{name: [row[name][0] for row in impacts] for name in _COLUMNS},
         }
-    ).join(impacts)
-    table["force_error [%]"] = error_percent(
-        table["peak_sensor_force [N]"], table["peak_contact_force [N]"]
-    )
-    table["time_error [%]"] = error_percent(
-        table["sensor_response_time [s]"], table["contact_time [s]"]
     )
     return DesignMap(table, resonances, diameters, repr(setup.law))

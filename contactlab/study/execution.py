@@ -11,14 +11,14 @@ from concurrent.futures import ProcessPoolExecutor
 from contactlab.batch.dask import connected_client
 from contactlab.validation import check_count  # re-exported: a public name of this module
 
-__all__ = ["check_count", "run_tasks"]
+__all__ = ["check_count", "progress_bar", "run_tasks"]
 
 CHUNKS_PER_SLOT = 4
 """Chunks per worker slot by default: few enough that pickling costs little, enough that
 the load still balances when points differ in cost."""
 
 
-def _progress_bar(total, progress, desc):
+def progress_bar(total, progress, desc, unit="task"):
     """A tqdm bar, or None. ``progress=None`` shows one only on an interactive terminal."""
     if progress is None:
         progress = sys.stderr.isatty()
@@ -26,7 +26,7 @@ def _progress_bar(total, progress, desc):
         return None
     from tqdm.auto import tqdm
 
-    return tqdm(total=total, desc=desc, unit="task", leave=False)
+    return tqdm(total=total, desc=desc, unit=unit, leave=False)
 
 
 def _run_chunk(fn, chunk):
@@ -102,7 +102,7 @@ def run_tasks(fn, tasks, *, workers=1, client=None, chunksize=None, progress=Non
     """
     tasks = list(tasks)
     workers = check_count("workers", workers)
-    bar = _progress_bar(len(tasks), progress, desc)
+    bar = progress_bar(len(tasks), progress, desc)
     try:
         if client is not None:
             with connected_client(client) as connected:

@@ -23,9 +23,11 @@ import numpy as np
 import pandas as pd
 
 from contactlab import analytic
+from contactlab.batch import dask_linear_impacts, linear_impacts
 from contactlab.errors import ParameterError
+from contactlab.laws import LinearViscoelastic
 from contactlab.solver import simulate_impact
-from contactlab.study.execution import run_tasks
+from contactlab.study.execution import progress_bar, run_tasks
 from contactlab.study.setup import StudySetup
 from contactlab.validation import check_count
 
@@ -38,6 +40,7 @@ __all__ = [
     "point_statistics",
     "run_grid",
     "simulate_point",
+    "simulate_points",
 ]
 
 ERRORS = ("time", "force")
@@ -132,6 +135,99 @@ def simulate_point(setup, overrides, factors):
 
 def _point_task(task):
     return simulate_point(*task)
+
+
+def _linear_frame(tasks):
+    """The batch solver's input rows of every impact of the tasks, and the drawn laws."""
+    rows, laws = [], []
+    for setup, overrides, factors in tasks:
+        grain, sensor, law, velocity = setup.at(overrides)
+        for factor in factors:
+            drawn = setup.scattered(law, float(factor))
+            laws.append(drawn)
+            rows.append(
+                {
+                    "m1 [kg]": sensor.mass,
+                    "k1 [N/m]": sensor.stiffness,
+                    "c1 [N*s/m]": sensor.damping,
+                    "m2 [kg]": grain.mass,
+                    "k2 [N/m]": drawn.stiffness,
+                    "c2 [N*s/m]": drawn.damping,
+                    "v0 [m/s]": velocity,
+                }
+            )
+    return pd.DataFrame(rows), laws
+
+
+LINEAR_BLOCKS = 20
+"""Blocks a batched sweep is solved in when a progress bar is shown (one update each)."""
+
+
+def _solve_linear(frame, client, progress):
+    """``linear_impacts(frame)``: on a Dask cluster, or here in blocks under a bar."""
+    if client is not None:
+        return dask_linear_impacts(frame, client)
+    bar = progress_bar(len(frame), progress, "impacts", unit="impact")
+    if bar is None:
+        return linear_impacts(frame)
+    parts = []
+    with bar:
+        size = max(1, math.ceil(len(frame) / LINEAR_BLOCKS))
+        for lo in range(0, len(frame), size):
+            parts.append(linear_impacts(frame.iloc[lo : lo + size]))
+            bar.update(len(parts[-1]))
+    return pd.concat(parts)
+
+
+def simulate_points(tasks, *, client=None, progress=None):
+    """:func:`simulate_point` of every ``(setup, overrides, factors)`` task.
+
+    A linear (Kelvin-Voigt) law is solved for all tasks at once by
+    :func:`contactlab.batch.linear_impacts` (on ``client``'s Dask cluster when one is
+    given, partitioned by rows), which gives the single solver's numbers (to 1e-9,
+    ``docs/batch.md``) and reads the sensor lobe exactly instead of on an output grid;
+    any other law goes through :func:`simulate_point`, task by task, here.
+
+    Parameters
+    ----------
+    tasks : iterable of (StudySetup, dict, array_like)
+        Set-up, grid-point overrides and scatter factors, as :func:`simulate_point` takes.
+    client : dask.distributed.Client or str, optional
+        Dask cluster for a linear law.
+    progress : bool, optional
+        tqdm progress bar (default: only on an interactive terminal).
+
+    Returns
+    -------
+    list of dict
+        One :func:`simulate_point` dict per task.
+    """
+    tasks = list(tasks)
+    if not tasks or not all(isinstance(t[0].law, LinearViscoelastic) for t in tasks):
+        return [simulate_point(*task) for task in tasks]
+    frame, laws = _linear_frame(tasks)
+    solved = _solve_linear(frame, client, progress)
+    results, start = [], 0
+    for setup, _, factors in tasks:
+        stop = start + len(factors)
+        part = solved.iloc[start:stop]
+        out = {
+            column: [law.parameters()[name] for law in laws[start:stop]]
+            for name, column in zip(setup.varied, setup.varied_columns(), strict=True)
+        }
+        out["contact_time [s]"] = part["contact_time [s]"].tolist()
+        out["sensor_response_time [s]"] = part["response_time [s]"].tolist()
+        out["peak_contact_force [N]"] = part["peak_contact_force [N]"].tolist()
+        out["peak_sensor_force [N]"] = part["peak_sensor_force [N]"].tolist()
+        out["time_error [%]"] = error_percent(
+            part["response_time [s]"], part["contact_time [s]"]
+        ).tolist()
+        out["force_error [%]"] = error_percent(
+            part["peak_sensor_force [N]"], part["peak_contact_force [N]"]
+        ).tolist()
+        results.append(out)
+        start = stop
+    return results
 
 
 def point_statistics(impacts, by):
@@ -268,7 +364,9 @@ def run_grid(
         ``i``-th child of ``SeedSequence(seed).spawn``), so results do not depend on the
         execution order, the number of workers or the backend.
     workers : int, default 1
-        Local worker processes.
+        Local worker processes. A linear law is solved by the batch solver instead
+        (:func:`simulate_points`: compiled, in this process or on ``client``), which
+        needs no workers.
     client : dask.distributed.Client or str, optional
         Run on a Dask cluster instead (see :func:`contactlab.study.execution.run_tasks`).
     chunksize : int, optional
@@ -289,15 +387,18 @@ def run_grid(
         for i in range(len(points))
     ]
     tasks = [(setup, point, f) for point, f in zip(points, factors, strict=True)]
-    results = run_tasks(
-        _point_task,
-        tasks,
-        workers=workers,
-        client=client,
-        chunksize=chunksize,
-        progress=progress,
-        desc="impacts",
-    )
+    if isinstance(setup.law, LinearViscoelastic):
+        results = simulate_points(tasks, client=client, progress=progress)
+    else:
+        results = run_tasks(
+            _point_task,
+            tasks,
+            workers=workers,
+            client=client,
+            chunksize=chunksize,
+            progress=progress,
+            desc="impacts",
+        )
     grid_columns = {name: setup.column(name) for name in names}
     frames = []
     for i, (point, result) in enumerate(zip(points, results, strict=True)):
