@@ -169,12 +169,12 @@ def _solve_linear(frame, client, progress):
         return dask_linear_impacts(frame, client)
     bar = progress_bar(len(frame), progress, "impacts", unit="impact")
     if bar is None:
-        return linear_impacts(frame)
+        return linear_impacts(frame, threads=None)
     parts = []
     with bar:
         size = max(1, math.ceil(len(frame) / LINEAR_BLOCKS))
         for lo in range(0, len(frame), size):
-            parts.append(linear_impacts(frame.iloc[lo : lo + size]))
+            parts.append(linear_impacts(frame.iloc[lo : lo + size], threads=None))
             bar.update(len(parts[-1]))
     return pd.concat(parts)
 
@@ -183,10 +183,11 @@ def simulate_points(tasks, *, client=None, progress=None):
     """:func:`simulate_point` of every ``(setup, overrides, factors)`` task.
 
     A linear (Kelvin-Voigt) law is solved for all tasks at once by
-    :func:`contactlab.batch.linear_impacts` (on ``client``'s Dask cluster when one is
-    given, partitioned by rows), which gives the single solver's numbers (to 1e-9,
-    ``docs/batch.md``) and reads the sensor lobe exactly instead of on an output grid;
-    any other law goes through :func:`simulate_point`, task by task, here.
+    :func:`contactlab.batch.linear_impacts` (on every core of this machine, or on
+    ``client``'s Dask cluster when one is given, partitioned by rows), which gives the
+    single solver's numbers (to 1e-9, ``docs/batch.md``) and reads the sensor lobe exactly
+    instead of on an output grid; any other law goes through :func:`simulate_point`,
+    task by task, here.
 
     Parameters
     ----------

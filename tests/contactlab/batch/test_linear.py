@@ -214,3 +214,18 @@ def test_dask_partitions_give_the_same_frame(dask_client):
     bad.iloc[50, 3] = -1.0
     with pytest.raises(ParameterError, match=r"row 50 "):
         dask_linear_impacts(bad, dask_client, partitions=3)
+
+
+def test_threads_give_the_same_frame():
+    """Rows are independent: solving chunks on threads changes nothing, bit for bit."""
+    frame = random_frame(np.random.default_rng(11), 400)
+    serial = linear_impacts(frame, chunk=50)
+    threaded = linear_impacts(frame, chunk=50, threads=2)
+    pd.testing.assert_frame_equal(threaded, serial, check_exact=True)
+    assert linear_impacts(frame.iloc[:3], threads=None).shape == (3, len(frame.columns) + 6)
+
+
+@pytest.mark.parametrize("threads", [0, 1.5, "2"])
+def test_bad_thread_count_is_named(threads):
+    with pytest.raises(ParameterError, match="threads"):
+        linear_impacts(paper_frame(2), threads=threads)
