@@ -493,9 +493,6 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
 
 @njit(cache=True, error_model="numpy", nogil=True)
 def solve_rows(m1, k1, c1, m2, k2, c2, v0, out, status):
-    """Solve every row: ``out`` (rows, OUTPUTS), ``status`` (rows,).
-
-    Runs without Python's global interpreter lock, so threads solve chunks side by side.
-    """
+    """Solve every row: ``out`` (rows, OUTPUTS), ``status`` (rows,); GIL released."""
     for i in range(m1.size):
         status[i] = solve_row(m1[i], k1[i], c1[i], m2[i], k2[i], c2[i], v0[i], out[i])
