@@ -19,7 +19,7 @@ Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656. DOI 10.1007/s10035-011-
 import math
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_number
+from contactlab.validation import check_number, check_poisson_ratio
 
 __all__ = [
     "SOLID_SPHERE_INERTIA",
@@ -31,10 +31,6 @@ __all__ = [
 
 SOLID_SPHERE_INERTIA = 0.4
 """``I / (m R**2)`` of a homogeneous solid sphere [-]."""
-
-
-def _poisson(name, value):
-    return check_number(name, value, low=-1.0, high=0.5, high_open=False)
 
 
 def effective_shear_modulus(
@@ -70,11 +66,11 @@ def effective_shear_modulus(
     Mindlin R.D. (1949) J. Appl. Mech. 16, 259-268.
     """
     e1 = check_number("youngs_modulus", youngs_modulus, low=0.0, unit="Pa")
-    nu1 = _poisson("poisson_ratio", poisson_ratio)
+    nu1 = check_poisson_ratio("poisson_ratio", poisson_ratio)
     e2 = check_number(
         "other_youngs_modulus", other_youngs_modulus, low=0.0, unit="Pa", allow_inf=True
     )
-    nu2 = _poisson("other_poisson_ratio", other_poisson_ratio)
+    nu2 = check_poisson_ratio("other_poisson_ratio", other_poisson_ratio)
     compliance = 2.0 * (2.0 - nu1) * (1.0 + nu1) / e1 + 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2
     return 1.0 / compliance
 
