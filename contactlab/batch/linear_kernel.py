@@ -6,7 +6,7 @@ in modal form (modes in the force-scaled coordinates of
 :func:`contactlab.solver.system.force_scales`), each event found by scanning its exact
 expression on the same points (:func:`contactlab.solver.propagators.first_event`, step
 :func:`contactlab.solver.system.scan_step`) and located by Brent's method to the same
-tolerance (:mod:`contactlab.batch.roots`), the same window
+tolerance (:mod:`contactlab.solver.brent`), the same window
 (:func:`contactlab.solver.impact.auto_window` after each separation) and the same contact
 cap. While it goes, the kernel reads the headline numbers as
 :class:`contactlab.ImpactResult` defines them: the sensor signal's first lobe from the
@@ -28,8 +28,8 @@ import math
 import numpy as np
 from numba import njit
 
-from contactlab.batch.roots import WORK_SIZE, brent_next, brent_start
 from contactlab.roots import SIDE_STEPS
+from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
 from contactlab.solver.impact import (
     FIRST_CONTACT_HORIZON,
     MAX_CONTACTS,

@@ -30,7 +30,7 @@ import numpy as np
 
 from contactlab.validation import KeywordChecked
 
-__all__ = ["Branch", "ContactLaw", "Exit", "SmoothLaw", "use_wall_solver"]
+__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw", "use_wall_solver"]
 
 
 def one_sided(overlap, raw):
@@ -98,6 +98,35 @@ def overlap_reaches(level, target):
 
 
 @dataclass(frozen=True)
+class PowerForm:
+    """A force of the form ``a sign(d) |d|**p + b D(d) d'`` with ``D(d) = |d|**q``
+    (``sign(d) |d|**q`` when ``signed_damping``), the raw formula of every Hertz-family law.
+
+    The solvers compile this one formula (:mod:`contactlab.solver.power_rhs`) instead of
+    calling the law's Python function at every stage of every step.
+
+    Attributes
+    ----------
+    stiffness : float
+        ``a`` [N/m**p].
+    exponent : float
+        ``p`` [-].
+    damping : float
+        ``b`` [N*s/m**(1+q)].
+    damping_exponent : float
+        ``q`` [-].
+    signed_damping : bool
+        Whether the damping term carries the sign of the overlap (Hunt-Crossley).
+    """
+
+    stiffness: float
+    exponent: float
+    damping: float = 0.0
+    damping_exponent: float = 0.0
+    signed_damping: bool = False
+
+
+@dataclass(frozen=True)
 class Branch:
     """One smooth piece of a law, as the solvers see it.
 
@@ -114,6 +143,8 @@ class Branch:
         Conditions that end the branch.
     loading : bool
         Whether the largest overlap follows the overlap on this branch.
+    power : PowerForm or None
+        The formula as a :class:`PowerForm` when it is one (compiled adaptive solver).
     """
 
     name: str
@@ -121,6 +152,7 @@ class Branch:
     linear: tuple | None = None
     exits: tuple = ()
     loading: bool = True
+    power: PowerForm | None = None
 
 
 def use_wall_solver(wall_impact):
@@ -270,8 +302,14 @@ class SmoothLaw(ContactLaw):
         """``(k, c, f0)`` if the formula is ``k d + c d' + f0``, else None."""
         return None
 
+    def power_form(self):
+        """The formula as a :class:`PowerForm`, or None if it is not of that form."""
+        return None
+
     def _force(self, overlap, rate, max_overlap):
         return self._raw(overlap, rate)
 
     def branch(self, name, max_overlap=0.0):
-        return Branch("load", self._raw, linear=self._linear(), loading=False)
+        return Branch(
+            "load", self._raw, linear=self._linear(), loading=False, power=self.power_form()
+        )

@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import SmoothLaw, one_sided, signed_power
+from contactlab.laws.base import PowerForm, SmoothLaw, one_sided, signed_power
 from contactlab.validation import (
     check_non_negative,
     check_number,
@@ -176,6 +176,9 @@ class Hertz(SmoothLaw):
     def _raw(self, overlap, rate):
         return _hertz_raw(overlap, self.k_hertz)
 
+    def power_form(self):
+        return PowerForm(self.k_hertz, 1.5)
+
 
 class HertzDamped(SmoothLaw):
     """Damped Hertz contact of Tsuji et al. (EDEM, LIGGGHTS): ``kH d**1.5 + eta d**0.25 d'``.
@@ -246,6 +249,9 @@ class HertzDamped(SmoothLaw):
     def _raw(self, overlap, rate):
         return _hertz_damped_raw(overlap, rate, self.k_hertz, self.damping)
 
+    def power_form(self):
+        return PowerForm(self.k_hertz, 1.5, self.damping, 0.25)
+
 
 class KuwabaraKono(SmoothLaw):
     """Viscoelastic Hertz contact (Kuwabara-Kono, Brilliantov): ``kH (d**1.5 + 1.5 A d**0.5 d')``.
@@ -271,6 +277,9 @@ class KuwabaraKono(SmoothLaw):
 
     def _raw(self, overlap, rate):
         return _kuwabara_kono_raw(overlap, rate, self.k_hertz, self.dissipation)
+
+    def power_form(self):
+        return PowerForm(self.k_hertz, 1.5, 1.5 * self.k_hertz * self.dissipation, 0.5)
 
 
 class HuntCrossley(SmoothLaw):
@@ -304,3 +313,7 @@ class HuntCrossley(SmoothLaw):
 
     def _raw(self, overlap, rate):
         return _hunt_crossley_raw(overlap, rate, self.stiffness, self.exponent, self.damping)
+
+    def power_form(self):
+        k, n = self.stiffness, self.exponent
+        return PowerForm(k, n, 1.5 * k * self.damping, n, signed_damping=True)

@@ -3,7 +3,7 @@
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import SmoothLaw, one_sided
+from contactlab.laws.base import PowerForm, SmoothLaw, one_sided
 from contactlab.validation import check_choice, check_non_negative, check_positive
 
 __all__ = ["LinearViscoelastic", "linear_viscoelastic_force"]
@@ -101,6 +101,9 @@ class LinearViscoelastic(SmoothLaw):
 
     def _raw(self, overlap, rate):
         return _linear_raw(overlap, rate, self.stiffness, self.damping)
+
+    def power_form(self):
+        return PowerForm(self.stiffness, 1.0, self.damping, 0.0)
 
     def _linear(self):
         return (self.stiffness, self.damping, 0.0)

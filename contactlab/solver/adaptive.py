@@ -3,8 +3,10 @@
 import numpy as np
 
 from contactlab.roots import crosses, earliest_root
+from contactlab.solver import power_piece
 from contactlab.solver.dop853 import DenseSteps, Stepper, interpolate
 from contactlab.solver.pieces import DenseStates
+from contactlab.solver.power_rhs import pack
 from contactlab.solver.segment import Segment
 from contactlab.solver.system import clipped, event_directions
 
@@ -25,6 +27,9 @@ def adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     in ``s``, so the integrator needs a few steps there instead of a dozen shrinking
     ones. It returns to ``t`` once a step in ``s`` spans less time than has elapsed
     (:func:`_warp_stops_paying`).
+
+    A branch whose force is a :class:`~contactlab.laws.base.PowerForm` (every
+    Hertz-family law) runs the same method compiled (:func:`compiled_piece`).
     """
     force = branch.force
     directions = event_directions(branch)
@@ -39,9 +44,14 @@ def adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     atol = 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
     y = np.asarray(y0, dtype=float)
     touch = y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0
-    start, steps, switch, hit = integrate_piece(
-        system.rhs(force), t0, y, tau_max, rtol, atol, event_values, directions, touch
-    )
+    if branch.power is not None and not branch.exits:
+        start, steps, switch, hit = compiled_piece(
+            system, branch.power, t0, y, tau_max, rtol, atol, touch
+        )
+    else:
+        start, steps, switch, hit = integrate_piece(
+            system.rhs(force), t0, y, tau_max, rtol, atol, event_values, directions, touch
+        )
     t_end = t0 + tau_max if hit is None else hit[0]
     event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
     states = DenseStates(t0, steps, start, switch)
@@ -93,6 +103,31 @@ def integrate_piece(fun, t0, y0, tau_max, rtol, atol, event_values, directions, 
         stepper = Stepper(fun, t0 + switch, y, rtol, atol, first_step=first)
         steps, hit = _run(stepper, t0 + tau_max, event_values, directions)
     return start, steps, switch, hit
+
+
+def compiled_piece(system, form, t0, y0, tau_max, rtol, atol, touch):
+    """:func:`integrate_piece` for a :class:`~contactlab.laws.base.PowerForm` force, compiled
+    (:func:`contactlab.solver.power_piece.integrate`); same returns, the only event being
+    the contact's end (index 0)."""
+    par = pack(form, system.m1, system.k1, system.c1, system.m2, system.rigid)
+    status, warp, steps, switch, hit = power_piece.integrate(
+        par, t0, y0, tau_max, rtol, atol, touch
+    )
+    if status != power_piece.STATUS_OK:
+        raise RuntimeError(f"adaptive integration failed after t = {t0:.6g}")
+    return (
+        _dense(warp),
+        _dense(steps),
+        switch,
+        None if np.isnan(hit) else (hit, 0),
+    )
+
+
+def _dense(steps):
+    count, t_old, h, y_old, F = steps
+    if count == 0:
+        return None
+    return DenseSteps(t_old[:count], h[:count], y_old[:count], F[:count])
 
 
 def _warped(fun):

@@ -21,6 +21,8 @@ import math
 import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
+from contactlab.solver.dop853_kernel import dense_states
+
 __all__ = ["DenseSteps", "Stepper", "interpolate"]
 
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
@@ -168,6 +170,7 @@ class DenseSteps:
         self._h = np.asarray(h, dtype=float)
         self._y_old = np.asarray(y_old, dtype=float)
         self._F = np.ascontiguousarray(np.moveaxis(np.asarray(F, dtype=float), 1, 0))
+        self._y_old = np.ascontiguousarray(self._y_old)
         self._starts = self._t_old.tolist()
 
     @property
@@ -181,19 +184,10 @@ class DenseSteps:
         return interpolate(self._F[:, i], self._y_old[i], (t - self._t_old[i]) / self._h[i])
 
     def __call__(self, t, out=None):
-        """States (len(t), n) at times ``t`` [s] (any order), into ``out`` if given."""
+        """States (len(t), n) at times ``t`` [s] (any order), into ``out`` if given
+        (compiled: :func:`contactlab.solver.dop853_kernel.dense_states`)."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
-        which = np.searchsorted(self._t_old, t, side="right") - 1
-        np.clip(which, 0, self._h.size - 1, out=which)
-        x = ((t - self._t_old[which]) / self._h[which])[:, None]
-        factors = (x, 1.0 - x)
-        y = np.zeros((t.size, self._y_old.shape[1]))  # row-major like the gathered rows
-        rows = np.empty_like(y)
-        for k, table in enumerate(self._F[::-1]):
-            y += np.take(table, which, axis=0, out=rows)
-            y *= factors[k % 2]
-        y += np.take(self._y_old, which, axis=0, out=rows)
         if out is None:
-            return y
-        out[...] = y
+            out = np.empty((t.size, self._y_old.shape[1]))
+        dense_states(self._t_old, self._h, self._y_old, self._F, t, out)
         return out

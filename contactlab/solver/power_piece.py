@@ -1,0 +1,176 @@
+"""A compiled contact piece under a power-law contact: DOP853 with event location.
+
+:func:`integrate` is :func:`contactlab.solver.adaptive.integrate_piece` compiled for the
+laws of :class:`contactlab.laws.base.PowerForm` (every Hertz-family law): the same
+stepper (:mod:`contactlab.solver.dop853_kernel`), the same start in
+``s = tau**(1/4)`` at a touch and hand-over to time, the same event (the contact force
+falling through zero, located by Brent's method on the step's interpolant to the
+solver's tolerance and taken on its crossed side, :func:`contactlab.roots.crossed_side`).
+It serves :func:`~contactlab.solver.adaptive.adaptive_contact` (one impact) and the
+batch kernel (:mod:`contactlab.batch.hertz_kernel`, thousands of impacts).
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from contactlab.roots import SIDE_STEPS
+from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
+from contactlab.solver.dop853_kernel import STAGES, initial_step, interpolant, interpolate, step
+from contactlab.solver.power_rhs import force, rhs
+
+__all__ = ["STATUS_OK", "STATUS_UNDERFLOW", "integrate"]
+
+STATUS_OK, STATUS_UNDERFLOW = 0, 1
+"""Outcome of :func:`integrate`: done, or the step size underflowed."""
+
+_ROWS = STAGES + 4  # stages, the slope at the step's end, three dense-output stages
+_DENSE = 7  # interpolant coefficient rows
+_FIRST_CAPACITY = 64
+
+
+@njit(cache=True, error_model="numpy")
+def _grow(t_old, h, y_old, F):
+    size = 2 * t_old.size
+    t2, h2 = np.empty(size), np.empty(size)
+    y2, F2 = np.empty((size, y_old.shape[1])), np.empty((size, _DENSE, y_old.shape[1]))
+    t2[: t_old.size], h2[: h.size] = t_old, h
+    y2[: y_old.shape[0]], F2[: F.shape[0]] = y_old, F
+    return t2, h2, y2, F2
+
+
+@njit(cache=True, error_model="numpy")
+def _event(z, par):
+    """The contact-end event function: the force formula at the state's overlap and rate."""
+    return force(z[2] - z[0], z[3] - z[1], par)
+
+
+@njit(cache=True, error_model="numpy")
+def _event_on_step(t, t_old, h, after, F, y_old, par, tmp):
+    """Event value at ``t`` inside a step: its end value at the step's end."""
+    if t == t_old + h:
+        return after
+    interpolate(F, y_old, (t - t_old) / h, tmp)
+    return _event(tmp, par)
+
+
+@njit(cache=True, error_model="numpy")
+def _locate(t_old, h, before, after, F, y_old, par, tmp, work):
+    """The crossing in a step (Brent, then its crossed side)."""
+    lo, hi = t_old, t_old + h
+    x, done = brent_start(work, lo, before, hi, after)
+    while not done:
+        x, done = brent_next(work, _event_on_step(x, t_old, h, after, F, y_old, par, tmp))
+    t = x
+    for _ in range(SIDE_STEPS):
+        if t >= hi:
+            return hi
+        if _event_on_step(t, t_old, h, after, F, y_old, par, tmp) <= 0.0:
+            return t
+        t = np.nextafter(t, math.inf)
+    return hi
+
+
+@njit(cache=True, error_model="numpy")
+def _run(t, y, h_try, end, rtol, atol, par, warped):
+    """Steps from ``(t, y)`` until ``end``, the event, or (warped) the hand-over.
+
+    Returns (status, n_steps, t_old, h, y_old, F, hit, t, y, t_old_last): ``hit`` is the
+    event time (nan if none); ``t, y`` the last step's end; ``t_old_last`` its start.
+    """
+    n = y.size
+    t_old, hs = np.empty(_FIRST_CAPACITY), np.empty(_FIRST_CAPACITY)
+    y_old, F = np.empty((_FIRST_CAPACITY, n)), np.empty((_FIRST_CAPACITY, _DENSE, n))
+    K, f, y_new, f_new = np.empty((_ROWS, n)), np.empty(n), np.empty(n), np.empty(n)
+    tmp, work = np.empty(n), np.empty(WORK_SIZE)
+    rhs(y, par, warped, f)
+    y = y.copy()
+    before, hit, count, last_start = _event(y, par), math.nan, 0, t
+    while t < end:
+        ok, t_new, h_next, h = step(t, y, f, h_try, end, rtol, atol, par, warped, K, y_new, f_new)
+        if not ok:
+            return STATUS_UNDERFLOW, count, t_old, hs, y_old, F, hit, t, y, last_start
+        if count == t_old.size:
+            t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
+        t_old[count], hs[count], y_old[count] = t, h, y
+        interpolant(K, h, y, y_new, f_new, par, warped, F[count])
+        after = _event(y_new, par)
+        last_start, step_h = t, h
+        count += 1
+        y[:] = y_new
+        f[:] = f_new
+        t, h_try = t_new, h_next
+        if before > 0.0 and after <= 0.0:
+            hit = _locate(
+                last_start, step_h, before, after, F[count - 1], y_old[count - 1], par, tmp, work
+            )
+            break
+        if warped and last_start > 0.0 and t**4 - last_start**4 < last_start**4:
+            break  # adaptive._warp_stops_paying: steps in time do as well from here
+        before = after
+    return STATUS_OK, count, t_old, hs, y_old, F, hit, t, y, last_start
+
+
+@njit(cache=True, error_model="numpy")
+def integrate(par, t0, y0, tau_max, rtol, atol, touch):
+    """A contact piece from ``(t0, y0)`` until the force falls to zero or ``t0 + tau_max``.
+
+    Parameters
+    ----------
+    par : numpy.ndarray
+        Packed law and system (:func:`contactlab.solver.power_rhs.pack`).
+    t0 : float
+        Start [s].
+    y0 : numpy.ndarray
+        State ``[x1, v1, x2, v2]`` at the start.
+    tau_max : float
+        Longest piece [s].
+    rtol : float
+        Relative tolerance.
+    atol : numpy.ndarray
+        Absolute tolerances of the four states.
+    touch : bool
+        Whether the piece starts at a touch (warped start in ``s = tau**(1/4)``).
+
+    Returns
+    -------
+    tuple
+        ``(status, warped steps, steps, switch, hit)``: each ``steps`` is
+        ``(count, t_old, h, y_old, F)`` (warped ones in ``s`` with five components,
+        count 0 if none); ``switch`` the local time [s] where the warped steps hand over;
+        ``hit`` the event time [s] (nan if the piece reached ``t0 + tau_max``).
+    """
+    n = y0.size
+    empty_w = (0, np.empty(0), np.empty(0), np.empty((0, n + 1)), np.empty((0, _DENSE, n + 1)))
+    empty_t = (0, np.empty(0), np.empty(0), np.empty((0, n)), np.empty((0, _DENSE, n)))
+    warp, switch, y, hit, first = empty_w, 0.0, y0.copy(), math.nan, -1.0
+    if touch:
+        f0 = np.empty(n)
+        rhs(y, par, False, f0)
+        first_in_s = initial_step(y, f0, rtol, atol, par, False) ** 0.25
+        z0, z_tol = np.append(y, 0.0), np.append(atol, 1.0)
+        status, count, t_o, hs, y_o, F, hit_s, s, z, s_old = _run(
+            0.0, z0, first_in_s, tau_max**0.25, rtol, z_tol, par, True
+        )
+        if status != STATUS_OK:
+            return status, warp, empty_t, switch, hit
+        warp = (count, t_o, hs, y_o, F)
+        switch, y = s**4, z[:n].copy()
+        first = switch - s_old**4
+        if not math.isnan(hit_s):
+            hit = t0 + hit_s**4
+    steps = empty_t
+    if math.isnan(hit) and switch < tau_max:
+        t_start = t0 + switch
+        if first < 0.0:
+            f0 = np.empty(n)
+            rhs(y, par, False, f0)
+            first = initial_step(y, f0, rtol, atol, par, False)
+        status, count, t_o, hs, y_o, F, hit, _, _, _ = _run(
+            t_start, y, first, t0 + tau_max, rtol, atol, par, False
+        )
+        if status != STATUS_OK:
+            return status, warp, empty_t, switch, hit
+        steps = (count, t_o, hs, y_o, F)
+    return STATUS_OK, warp, steps, switch, hit

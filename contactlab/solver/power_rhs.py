@@ -1,0 +1,114 @@
+"""Compiled (numba) contact force and right-hand side of the two-mass system under a
+power-law contact.
+
+Every Hertz-family law of :mod:`contactlab.laws` is one formula in overlap ``d`` [m] and
+rate ``d'`` [m/s] (:class:`contactlab.laws.base.PowerForm`)::
+
+    S2 = a sign(d) |d|**p + b D(d) d',   D(d) = |d|**q  (or sign(d) |d|**q if signed)
+
+so one compiled right-hand side serves elastic Hertz (``b = 0``), Tsuji's damped Hertz
+(``q = 1/4``), Kuwabara-Kono (``q = 1/2``) and Hunt-Crossley (``q = p``, signed). The
+parameters travel as one float array (:func:`pack`), which keeps every compiled function
+cacheable on disk (a compiled function that takes another function as an argument is
+not).
+
+State ``y = [x1, v1, x2, v2]`` as everywhere in :mod:`contactlab.solver`; a warped
+state carries ``s = tau**(1/4)`` as a fifth component (see
+:func:`contactlab.solver.adaptive.adaptive_contact`).
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+__all__ = ["PARAMETERS", "force", "pack", "rhs"]
+
+PARAMETERS = ("a", "p", "b", "q", "signed", "m1", "k1", "c1", "m2", "rigid")
+"""Fields of the packed parameter array, in order (:func:`pack`)."""
+
+_A, _P, _B, _Q, _SIGNED, M1, K1, C1, M2, RIGID = range(len(PARAMETERS))
+
+
+def pack(form, m1, k1, c1, m2, rigid):
+    """Parameter array of the compiled functions.
+
+    Parameters
+    ----------
+    form : contactlab.laws.base.PowerForm
+        The contact law's formula.
+    m1, k1, c1 : float
+        Sensor moving mass [kg], stiffness [N/m], damping [N*s/m] (unused on a wall).
+    m2 : float
+        Grain mass [kg].
+    rigid : bool
+        Immovable wall (``x1 = v1 = 0`` throughout).
+
+    Returns
+    -------
+    numpy.ndarray
+        float64, ordered as :data:`PARAMETERS`.
+    """
+    return np.array(
+        [
+            form.stiffness,
+            form.exponent,
+            form.damping,
+            form.damping_exponent,
+            1.0 if form.signed_damping else 0.0,
+            m1,
+            k1,
+            c1,
+            m2,
+            1.0 if rigid else 0.0,
+        ]
+    )
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def _power(d, ad, p, signed):
+    """``|d|**p``, or ``sign(d) |d|**p`` if signed, with the common exponents by roots."""
+    if p == 0.0:
+        value = 1.0
+    elif p == 1.0:
+        value = ad
+    elif p == 0.5:
+        value = math.sqrt(ad)
+    elif p == 0.25:
+        value = math.sqrt(math.sqrt(ad))
+    elif p == 1.5:
+        value = ad * math.sqrt(ad)
+    else:
+        value = ad**p
+    return math.copysign(value, d) if signed else value
+
+
+@njit(cache=True, error_model="numpy")
+def force(d, r, par):
+    """Contact-force formula [N] at overlap ``d`` [m] and rate ``r`` [m/s], not clipped
+    (it turns negative where the contact would pull: the contact ends there)."""
+    ad = abs(d)
+    elastic = par[_A] * _power(d, ad, par[_P], True)
+    if par[_B] == 0.0:
+        return elastic
+    return elastic + par[_B] * _power(d, ad, par[_Q], par[_SIGNED] > 0.0) * r
+
+
+@njit(cache=True, error_model="numpy")
+def rhs(z, par, warped, out):
+    """Right-hand side into ``out``: ``y' = f(y)``, or ``dz/ds`` in the warped variable
+    (``dy/ds = 4 s**3 f(y)``, ``ds/ds = 1``)."""
+    x1, v1, x2, v2 = z[0], z[1], z[2], z[3]
+    s2 = force(x2 - x1, v2 - v1, par)
+    if par[RIGID] > 0.0:
+        out[0], out[1] = 0.0, 0.0
+    else:
+        out[0] = v1
+        out[1] = (s2 - par[K1] * x1 - par[C1] * v1) / par[M1]
+    out[2] = v2
+    out[3] = -s2 / par[M2]
+    if warped:
+        w = 4.0 * z[4] ** 3
+        for c in range(4):
+            out[c] *= w
+        out[4] = 1.0
