@@ -3,11 +3,24 @@
 * :func:`linear_impacts`: exact linear (Kelvin-Voigt) impacts with the single-impact
   solver's numbers, tens of thousands per second in one process
   (:mod:`contactlab.batch.linear`, compiled kernel :mod:`contactlab.batch.linear_kernel`);
-* :func:`dask_linear_impacts`: the same on a Dask cluster, partitioned by rows
-  (:mod:`contactlab.batch.dask`).
+* :func:`hertz_impacts`: damped-Hertz (Tsuji) impacts on the single solver's compiled
+  contact pieces, thousands per second (:mod:`contactlab.batch.hertz`, kernel
+  :mod:`contactlab.batch.hertz_kernel`);
+* :func:`dask_linear_impacts`, :func:`dask_hertz_impacts`: the same on a Dask cluster,
+  partitioned by rows (:mod:`contactlab.batch.dask`).
 """
 
-from contactlab.batch.dask import dask_linear_impacts
-from contactlab.batch.linear import LINEAR_INPUTS, RESULT_COLUMNS, linear_impacts
+from contactlab.batch.dask import dask_hertz_impacts, dask_linear_impacts
+from contactlab.batch.hertz import HERTZ_INPUTS, hertz_impacts
+from contactlab.batch.linear import LINEAR_INPUTS, linear_impacts
+from contactlab.batch.rows import RESULT_COLUMNS
 
-__all__ = ["LINEAR_INPUTS", "RESULT_COLUMNS", "dask_linear_impacts", "linear_impacts"]
+__all__ = [
+    "HERTZ_INPUTS",
+    "LINEAR_INPUTS",
+    "RESULT_COLUMNS",
+    "dask_hertz_impacts",
+    "dask_linear_impacts",
+    "hertz_impacts",
+    "linear_impacts",
+]

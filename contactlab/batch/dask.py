@@ -1,22 +1,25 @@
 """Batched impacts on a Dask cluster: the frame split by rows, one task per partition.
 
-Every partition is solved by :func:`contactlab.batch.linear_impacts` on a worker and the
-results are put back in the input order, so the cluster never changes a number: the
-result equals ``linear_impacts(frame)`` exactly. The frame is checked here first, so a
-bad row is named by its position in the whole frame, not in a partition.
+Every partition is solved by :func:`contactlab.batch.linear_impacts` (or
+:func:`~contactlab.batch.hertz_impacts`) on a worker and the results are put back in
+the input order, so the cluster never changes a number: the result equals
+``linear_impacts(frame)`` exactly. The frame is checked here first, so a bad row is
+named by its position in the whole frame, not in a partition.
 """
 
 import contextlib
+import functools
 import math
 
 import pandas as pd
 
 from contactlab.batch.frame import check_frame, chunk_bounds
+from contactlab.batch.hertz import DEFAULT_RTOL, HERTZ_INPUTS, hertz_impacts
 from contactlab.batch.linear import LINEAR_INPUTS, linear_impacts
 from contactlab.errors import ParameterError
-from contactlab.validation import check_count
+from contactlab.validation import check_count, check_number
 
-__all__ = ["connected_client", "dask_linear_impacts"]
+__all__ = ["connected_client", "dask_hertz_impacts", "dask_linear_impacts"]
 
 PARTITIONS_PER_THREAD = 2
 """Partitions per worker thread by default (a little balancing, little overhead)."""
@@ -42,6 +45,22 @@ def connected_client(client):
         )
 
 
+def _on_cluster(impacts, columns, frame, client, partitions):
+    """``impacts(frame)`` on a cluster: row partitions, results in the input order."""
+    check_frame(frame, columns)
+    with connected_client(client) as connected:
+        if partitions is None:
+            threads = max(1, sum(connected.nthreads().values()))
+            partitions = max(1, min(len(frame), PARTITIONS_PER_THREAD * threads))
+        partitions = check_count("partitions", partitions)
+        size = max(1, math.ceil(len(frame) / partitions))
+        pieces = [frame.iloc[lo:hi] for lo, hi in chunk_bounds(len(frame), size)]
+        if not pieces:
+            return impacts(frame)
+        futures = connected.map(impacts, pieces, pure=False)
+        return pd.concat(connected.gather(futures))
+
+
 def dask_linear_impacts(frame, client, *, partitions=None):
     """:func:`~contactlab.batch.linear_impacts` on a Dask cluster, partitioned by rows.
 
@@ -59,15 +78,28 @@ def dask_linear_impacts(frame, client, *, partitions=None):
     pandas.DataFrame
         Exactly ``linear_impacts(frame)``.
     """
-    check_frame(frame, LINEAR_INPUTS)
-    with connected_client(client) as connected:
-        if partitions is None:
-            threads = max(1, sum(connected.nthreads().values()))
-            partitions = max(1, min(len(frame), PARTITIONS_PER_THREAD * threads))
-        partitions = check_count("partitions", partitions)
-        size = max(1, math.ceil(len(frame) / partitions))
-        pieces = [frame.iloc[lo:hi] for lo, hi in chunk_bounds(len(frame), size)]
-        if not pieces:
-            return linear_impacts(frame)
-        futures = connected.map(linear_impacts, pieces, pure=False)
-        return pd.concat(connected.gather(futures))
+    return _on_cluster(linear_impacts, LINEAR_INPUTS, frame, client, partitions)
+
+
+def dask_hertz_impacts(frame, client, *, rtol=DEFAULT_RTOL, partitions=None):
+    """:func:`~contactlab.batch.hertz_impacts` on a Dask cluster, partitioned by rows.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        Input frame of :func:`~contactlab.batch.hertz_impacts`.
+    client : dask.distributed.Client or str
+        The cluster, or its scheduler's address (connected and closed here).
+    rtol : float, default 1e-8
+        Relative tolerance of the integrator.
+    partitions : int, optional
+        Number of row partitions; default two per worker thread (at most one per row).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Exactly ``hertz_impacts(frame, rtol=rtol)``.
+    """
+    rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
+    impacts = functools.partial(hertz_impacts, rtol=rtol)
+    return _on_cluster(impacts, HERTZ_INPUTS, frame, client, partitions)

@@ -10,28 +10,14 @@ close to critical damping for the modal form, a grain that settles on the plate 
 :func:`contactlab.simulate_impact` itself, so every row gets the single solver's answer.
 """
 
-import math
-import os
-import warnings
-from concurrent.futures import ThreadPoolExecutor
-
 import numpy as np
 
-from contactlab.batch.frame import Column, check_frame, chunk_bounds
-from contactlab.batch.linear_kernel import OUTPUTS, STATUS_OK, solve_rows
-from contactlab.bodies import Grain, Sensor
-from contactlab.errors import ParameterError
+from contactlab.batch.frame import Column
+from contactlab.batch.linear_kernel import STATUS_OK, solve_rows
+from contactlab.batch.rows import DEFAULT_CHUNK, RESULT_COLUMNS, single_impact, solve_frame
 from contactlab.laws import LinearViscoelastic
-from contactlab.solver import simulate_impact
-from contactlab.validation import check_count
 
-__all__ = [
-    "LINEAR_INPUTS",
-    "RESULT_COLUMNS",
-    "check_threads",
-    "linear_impacts",
-    "solve_linear",
-]
+__all__ = ["LINEAR_INPUTS", "RESULT_COLUMNS", "linear_impacts", "solve_linear"]
 
 LINEAR_INPUTS = (
     Column("m1 [kg]", "sensor moving mass", allow_inf=True),
@@ -44,48 +30,6 @@ LINEAR_INPUTS = (
 )
 """Input columns of :func:`linear_impacts`."""
 
-RESULT_COLUMNS = (
-    "contact_time [s]",
-    "response_time [s]",
-    "peak_contact_force [N]",
-    "peak_sensor_force [N]",
-    "restitution [-]",
-    "contacts [-]",
-)
-"""Columns :func:`linear_impacts` adds, in the order of the kernel's outputs."""
-
-DEFAULT_CHUNK = 100_000
-"""Rows solved per call of the kernel: bounds the working memory (about 100 bytes a row
-beyond the output columns) whatever the frame's length."""
-
-
-def _check_sensor_pairs(arrays, frame):
-    """An infinite mass needs an infinite stiffness and back (as :class:`Sensor` asks)."""
-    m1, k1 = arrays["m1 [kg]"], arrays["k1 [N/m]"]
-    bad = np.flatnonzero(np.isinf(m1) & ~np.isinf(k1))
-    if bad.size:
-        i = int(bad[0])
-        raise ParameterError(
-            f"column 'm1 [kg]' is inf only for an immovable wall (k1 = inf); row {i} "
-            f"(index {frame.index[i]!r}) has k1 = {k1[i]!r}"
-        )
-
-
-def _single(row, threshold=0.0):
-    """One row by :func:`contactlab.simulate_impact` (rows the kernel hands back)."""
-    m1, k1, c1, m2, k2, c2, v0 = row
-    sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
-    law = LinearViscoelastic(stiffness=k2, damping=c2)
-    res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, threshold=threshold)
-    return (
-        res.contact_time,
-        res.sensor_response_time,
-        res.peak_contact_force,
-        res.peak_sensor_force,
-        res.restitution,
-        len(res.contact_intervals),
-    )
-
 
 def solve_linear(arrays, lo, hi, out):
     """Solve rows ``lo:hi`` of checked input arrays into ``out`` (hi - lo, 6).
@@ -97,38 +41,9 @@ def solve_linear(arrays, lo, hi, out):
     solve_rows(*columns, out, status)
     handed = np.flatnonzero(status != STATUS_OK)
     for i in handed:
-        out[i] = _single([float(col[i]) for col in columns])
+        m1, k1, c1, m2, k2, c2, v0 = (float(col[i]) for col in columns)
+        out[i] = single_impact(m1, k1, c1, m2, LinearViscoelastic(k2, c2), v0)
     return handed.size
-
-
-CHUNKS_PER_THREAD = 4
-"""Chunks per thread when several threads share a frame (rows differ in cost: the
-scan follows the sensor's resonance, so a few chunks each keep the threads busy)."""
-
-
-def check_threads(threads):
-    """Threads to use: an int >= 1, or None for every core of this machine."""
-    if threads is None:
-        return os.cpu_count() or 1
-    return check_count("threads", threads)
-
-
-def _solve_chunks(arrays, results, chunk, threads):
-    """Solve every row of the checked arrays into ``results``, ``threads`` at a time."""
-    rows = len(results)
-    if threads > 1:
-        chunk = max(1, min(chunk, math.ceil(rows / (CHUNKS_PER_THREAD * threads))))
-    bounds = chunk_bounds(rows, chunk)
-    with warnings.catch_warnings():
-        warnings.simplefilter("always")
-        if threads == 1 or len(bounds) == 1:
-            for lo, hi in bounds:
-                solve_linear(arrays, lo, hi, results[lo:hi])
-            return
-        with ThreadPoolExecutor(max_workers=threads) as pool:
-            jobs = [pool.submit(solve_linear, arrays, lo, hi, results[lo:hi]) for lo, hi in bounds]
-            for job in jobs:
-                job.result()
 
 
 def linear_impacts(frame, *, chunk=DEFAULT_CHUNK, threads=1):
@@ -187,13 +102,4 @@ def linear_impacts(frame, *, chunk=DEFAULT_CHUNK, threads=1):
     >>> round(linear_impacts(frame)["contacts [-]"].iloc[0])
     1
     """
-    chunk = check_count("chunk", chunk)
-    threads = check_threads(threads)
-    arrays = check_frame(frame, LINEAR_INPUTS, chunk)
-    _check_sensor_pairs(arrays, frame)
-    results = np.empty((len(frame), OUTPUTS))
-    _solve_chunks(arrays, results, chunk, threads)
-    out = frame.copy()
-    for j, name in enumerate(RESULT_COLUMNS):
-        out[name] = results[:, j]
-    return out
+    return solve_frame(frame, LINEAR_INPUTS, solve_linear, chunk=chunk, threads=threads)

@@ -1,0 +1,283 @@
+"""Compiled kernel of :func:`contactlab.batch.hertz_impacts`: one damped-Hertz impact per row.
+
+Each row is solved as :func:`contactlab.simulate_impact` solves a grain on a sensor (or a
+wall) through :class:`~contactlab.laws.HertzDamped` (Tsuji's ``kH d**1.5 + eta d**0.25
+d'``) with ``method="adaptive"``: every contact piece by the compiled DOP853 piece of the
+single solver (:func:`contactlab.solver.power_piece.integrate`: warped start at the
+touch, the contact's end located on the step's interpolant), every free flight exactly
+in modal form (:func:`contactlab.batch.modal_kernel.free_flight`), the same window and
+contact cap.
+
+The headline numbers are read on the dense solution as
+:class:`contactlab.ImpactResult` defines them: each contact step is sampled at
+:data:`SAMPLES_PER_STEP` points; a fall of a signal's slope through zero between two of
+them is a local maximum, located by Brent's method on the slope and read there, and a
+fall of the sensor signal through zero ends its first lobe. A DOP853 step spans well
+under a quarter of the fastest period it resolves, so a sample interval holds at most
+one turn of either signal.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from contactlab.batch.modal_kernel import (
+    COND_LIMIT,
+    SENSOR,
+    conjugates_once,
+    fastest,
+    free_flight,
+    quadratic_modes,
+    row_parameters,
+    signal,
+)
+from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
+from contactlab.solver.dop853_kernel import interpolate
+from contactlab.solver.impact import (
+    FIRST_CONTACT_HORIZON,
+    MAX_CONTACTS,
+    RINGING_PERIODS,
+    WINDOW_PER_CONTACT,
+)
+from contactlab.solver.power_piece import STATUS_OK as PIECE_OK
+from contactlab.solver.power_piece import integrate
+from contactlab.solver.power_rhs import C1, K1, M1, M2, PARAMETERS, RIGID, force
+
+__all__ = ["OUTPUTS", "SAMPLES_PER_STEP", "STATUS_FALLBACK", "STATUS_OK", "solve_rows"]
+
+OUTPUTS = 6
+"""contact time, response time, peak contact force, peak sensor force, restitution,
+contacts (the order of ``out``, as :mod:`contactlab.batch.linear_kernel`)."""
+
+STATUS_OK, STATUS_FALLBACK = 0, 1
+"""Row status: solved; to be solved by :func:`contactlab.simulate_impact` (a first
+contact that does not end, a step size that underflows, a plate too close to critical
+damping for the modal form, or :data:`contactlab.solver.impact.MAX_CONTACTS` contacts)."""
+
+SAMPLES_PER_STEP = 8
+"""Sample intervals per integrator step in which the signals' turns are looked for."""
+
+_S2, _S2_SLOPE, _S1, _S1_SLOPE = range(4)
+_A, _P, _B, _Q = (PARAMETERS.index(field) for field in ("a", "p", "b", "q"))
+
+_STEEP = np.finfo(np.float64).max
+"""The contact force's slope at the touch, where it is infinite for a damped Hertz law
+(``d**0.25``): the largest float keeps Brent's interpolation finite."""
+
+
+@njit(cache=True, error_model="numpy")
+def _signals(z, par, out):
+    """Contact force S2 (clipped), its slope, sensor signal S1 and its slope, in time."""
+    d, r = z[2] - z[0], z[3] - z[1]
+    raw = force(d, r, par)
+    s1 = 0.0 if par[RIGID] > 0.0 else par[K1] * z[0] + par[C1] * z[1]
+    a1 = 0.0 if par[RIGID] > 0.0 else (raw - s1) / par[M1]
+    rate_of_rate = -raw / par[M2] - a1
+    out[_S2] = 0.0 if d < 0.0 else max(raw, 0.0)
+    if d > 0.0:
+        p, q = par[_P], par[_Q]
+        slope = par[_A] * p * d ** (p - 1.0) * r
+        if par[_B] != 0.0:
+            slope += par[_B] * (q * d ** (q - 1.0) * r * r + d**q * rate_of_rate)
+        out[_S2_SLOPE] = slope
+    else:
+        out[_S2_SLOPE] = _STEEP if r > 0.0 else 0.0
+    out[_S1] = s1
+    out[_S1_SLOPE] = 0.0 if par[RIGID] > 0.0 else par[K1] * z[1] + par[C1] * a1
+
+
+@njit(cache=True, error_model="numpy")
+def _at(u, a, h, F, y_old, par, z, values):
+    """Signals at step variable ``u`` of the step starting at ``a`` of length ``h``."""
+    interpolate(F, y_old, (u - a) / h, z)
+    _signals(z, par, values)
+
+
+@njit(cache=True, error_model="numpy")
+def _root(kind, lo, f_lo, hi, f_hi, a, h, F, y_old, par, z, values, work):
+    """Where signal ``kind`` crosses zero on [lo, hi] inside one step (Brent)."""
+    x, done = brent_start(work, lo, f_lo, hi, f_hi)
+    while not done:
+        _at(x, a, h, F, y_old, par, z, values)
+        x, done = brent_next(work, values[kind])
+    return x
+
+
+@njit(cache=True, error_model="numpy")
+def _to_time(u, t0, warped):
+    return t0 + u**4 if warped else u
+
+
+@njit(cache=True, error_model="numpy")
+def _read_steps(steps, warped, t0, u_end, par, track, best, z, work):
+    """Read the signals' turns on a run of steps up to step variable ``u_end``.
+
+    ``track`` and ``best`` as in :func:`contactlab.batch.modal_kernel.scan`: [0] the
+    sensor lobe is open, [1] the contact force's peak is wanted; best [0] sensor peak
+    [N], [1] contact-force peak [N], [2] lobe end (absolute time [s]).
+    """
+    count, t_old, h, y_old, F = steps
+    prev, cur = np.empty(4), np.empty(4)
+    for j in range(count):
+        a, hj = t_old[j], h[j]
+        if a >= u_end:
+            return
+        Fj, yj = F[j], y_old[j]
+        u_prev = a
+        _at(a, a, hj, Fj, yj, par, z, prev)
+        for i in range(1, SAMPLES_PER_STEP + 1):
+            u = min(a + hj * i / SAMPLES_PER_STEP, u_end)
+            _at(u, a, hj, Fj, yj, par, z, cur)
+            if track[1]:
+                best[1] = max(best[1], cur[_S2])
+                if prev[_S2_SLOPE] > 0.0 and cur[_S2_SLOPE] <= 0.0:
+                    top = _root(
+                        _S2_SLOPE, u_prev, prev[_S2_SLOPE], u, cur[_S2_SLOPE], a, hj, Fj, yj,
+                        par, z, np.empty(4), work,
+                    )  # fmt: skip
+                    _at(top, a, hj, Fj, yj, par, z, np.empty(4))
+                    best[1] = max(best[1], max(force(z[2] - z[0], z[3] - z[1], par), 0.0))
+            if track[0]:
+                _read_lobe(u_prev, prev, u, cur, a, hj, Fj, yj, par, z, track, best, work)
+                if not track[0]:
+                    best[2] = _to_time(best[2], t0, warped)
+            prev[:] = cur
+            u_prev = u
+            if u >= u_end:
+                return
+
+
+@njit(cache=True, error_model="numpy")
+def _read_lobe(u_prev, prev, u, cur, a, hj, Fj, yj, par, z, track, best, work):
+    """The sensor lobe on one sample interval: its peaks, its end (in the step variable)."""
+    values = np.empty(4)
+    end = u
+    if prev[_S1] > 0.0 and cur[_S1] <= 0.0:
+        end = _root(_S1, u_prev, prev[_S1], u, cur[_S1], a, hj, Fj, yj, par, z, values, work)
+    elif prev[_S1_SLOPE] < 0.0 and cur[_S1_SLOPE] >= 0.0:
+        # a dip inside the interval: its bottom decides whether the lobe ends there
+        low = _root(
+            _S1_SLOPE, u_prev, prev[_S1_SLOPE], u, cur[_S1_SLOPE], a, hj, Fj, yj, par, z,
+            values, work,
+        )  # fmt: skip
+        _at(low, a, hj, Fj, yj, par, z, values)
+        if values[_S1] <= 0.0:
+            bottom = values[_S1]
+            end = _root(_S1, u_prev, prev[_S1], low, bottom, a, hj, Fj, yj, par, z, values, work)
+    if prev[_S1_SLOPE] > 0.0 and cur[_S1_SLOPE] <= 0.0:
+        top = _root(
+            _S1_SLOPE, u_prev, prev[_S1_SLOPE], u, cur[_S1_SLOPE], a, hj, Fj, yj, par, z,
+            values, work,
+        )  # fmt: skip
+        if top <= end:
+            _at(top, a, hj, Fj, yj, par, z, values)
+            best[0] = max(best[0], values[_S1])
+    if end < u or cur[_S1] <= 0.0:
+        best[2] = end
+        track[0] = False
+    else:
+        best[0] = max(best[0], cur[_S1])
+
+
+@njit(cache=True, error_model="numpy")
+def _state_at(steps, u, y):
+    """State at step variable ``u`` on a run of steps (the step holding ``u``)."""
+    count, t_old, h, y_old, F = steps
+    j = min(max(np.searchsorted(t_old[:count], u, side="right") - 1, 0), count - 1)
+    z = np.empty(y_old.shape[1])
+    interpolate(F[j], y_old[j], (u - t_old[j]) / h[j], z)
+    y[:] = z[:4]
+
+
+@njit(cache=True, error_model="numpy")
+def _contact(par, t, y, horizon, rtol, atol, track, best, work):
+    """One contact piece from ``(t, y)``; returns its end time [s] (nan: none within
+    ``horizon``) or -1 on a step-size underflow. ``y`` becomes the state at the end."""
+    touch = y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0
+    status, warp, steps, switch, hit = integrate(par, t, y, horizon, rtol, atol, touch)
+    if status != PIECE_OK:
+        return -1.0
+    end = t + horizon if math.isnan(hit) else hit
+    z = np.empty(5)
+    if warp[0] > 0:
+        u_end = (end - t) ** 0.25 if end - t < switch or steps[0] == 0 else math.inf
+        _read_steps(warp, True, t, u_end, par, track, best, z, work)
+    if steps[0] > 0:
+        _read_steps(steps, False, t, end, par, track, best, z, work)
+    if steps[0] > 0 and end - t >= switch:
+        _state_at(steps, end, y)
+    else:
+        _state_at(warp, (end - t) ** 0.25, y)
+    return hit
+
+
+@njit(cache=True, error_model="numpy")
+def solve_row(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out):
+    """Solve one impact; write the six outputs into ``out``; return the row status."""
+    rigid = math.isinf(k1)
+    par = row_parameters(k_hertz, 1.5, damping, 0.25, m1, k1, c1, m2, rigid)
+    lam_f, vec_f = np.zeros(2, np.complex128), np.zeros((4, 2), np.complex128)
+    inv_f = np.zeros((2, 4), np.complex128)
+    nm_f = 0
+    if not rigid:
+        nm_f = 2
+        if not quadratic_modes(m1, c1, k1, 0, lam_f, vec_f, inv_f) < COND_LIMIT:
+            return STATUS_FALLBACK
+    rate_f = fastest(lam_f, nm_f)
+    nm_f = conjugates_once(lam_f, vec_f, inv_f, nm_f)
+    free_modes = (lam_f, vec_f, inv_f, nm_f, rate_f)
+    ringing = 0.0 if rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(k1 / m1)
+    scale = v0 * 1e-6  # as contactlab.solver.adaptive.adaptive_contact
+    atol = 1e-3 * rtol * np.array([scale, v0, scale, v0])
+    y, work = np.array([0.0, 0.0, 0.0, v0]), np.zeros(WORK_SIZE)
+    track = np.array([not rigid, True])
+    best = np.array([0.0, 0.0, math.nan])
+    t, limit, contacts, contact_time, rebound = 0.0, math.inf, 0, math.nan, math.nan
+    while True:
+        par[-1] = 1.0
+        if track[0]:  # a piece's start is a candidate for the sensor's peak
+            best[0] = max(best[0], signal(SENSOR, y, par))
+        horizon = (FIRST_CONTACT_HORIZON if contacts == 0 else limit) - t
+        end = _contact(par, t, y, horizon, rtol, atol, track, best, work)
+        if end < 0.0 or (math.isnan(end) and contacts == 0):
+            return STATUS_FALLBACK
+        if math.isnan(end):  # the window ends in this contact
+            break
+        t = end
+        if contacts == 0:
+            contact_time = t
+            track[1] = False
+        limit = max(WINDOW_PER_CONTACT * t, t + ringing)  # auto_window, after every contact
+        contacts += 1
+        rebound = -y[3]
+        if contacts >= MAX_CONTACTS:
+            return STATUS_FALLBACK
+        if limit - t <= 0.0:
+            break
+        lobe_open = track[0]
+        tau = free_flight(y, limit - t, free_modes, par, track, best, work)
+        if lobe_open and not track[0]:
+            best[2] += t
+        if tau < 0.0:  # free until the window ends
+            break
+        t += tau
+    if track[0]:  # the lobe is still open at the window's end
+        best[0] = max(best[0], signal(SENSOR, y, par))
+    out[0] = contact_time
+    out[2] = best[1]
+    if rigid:
+        out[1], out[3] = contact_time, best[1]
+    else:
+        out[1], out[3] = best[2], best[0]
+    out[4] = rebound / v0
+    out[5] = contacts
+    return STATUS_OK
+
+
+@njit(cache=True, error_model="numpy", nogil=True)
+def solve_rows(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out, status):
+    """Solve every row: ``out`` (rows, OUTPUTS), ``status`` (rows,); GIL released."""
+    for i in range(m1.size):
+        row = (m1[i], k1[i], c1[i], m2[i], k_hertz[i], damping[i], v0[i])
+        status[i] = solve_row(*row, rtol, out[i])

@@ -1,0 +1,135 @@
+"""Running a batch: chunks on threads, the single solver for handed-back rows, the result.
+
+The batch solvers (:mod:`contactlab.batch.linear`, :mod:`contactlab.batch.hertz`) share
+everything but their kernel: the frame is checked (:func:`contactlab.batch.frame.check_frame`),
+solved in chunks that bound the working memory, several at a time on threads (the
+compiled kernels release Python's global interpreter lock), rows a kernel hands back
+are solved by :func:`contactlab.simulate_impact` (:func:`single_impact`), and the
+headline numbers are added to a copy of the frame (:data:`RESULT_COLUMNS`).
+"""
+
+import math
+import os
+import warnings
+from concurrent.futures import ThreadPoolExecutor
+
+import numpy as np
+
+from contactlab.batch.frame import check_frame, chunk_bounds
+from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ParameterError
+from contactlab.solver import simulate_impact
+from contactlab.validation import check_count
+
+__all__ = [
+    "CHUNKS_PER_THREAD",
+    "DEFAULT_CHUNK",
+    "RESULT_COLUMNS",
+    "check_threads",
+    "single_impact",
+    "solve_frame",
+]
+
+RESULT_COLUMNS = (
+    "contact_time [s]",
+    "response_time [s]",
+    "peak_contact_force [N]",
+    "peak_sensor_force [N]",
+    "restitution [-]",
+    "contacts [-]",
+)
+"""Columns a batch solver adds, in the order of its kernel's outputs."""
+
+DEFAULT_CHUNK = 100_000
+"""Rows solved per call of a kernel: bounds the working memory (about 100 bytes a row
+beyond the output columns) whatever the frame's length."""
+
+CHUNKS_PER_THREAD = 4
+"""Chunks per thread when several threads share a frame (rows differ in cost: the
+scan follows the sensor's resonance, so a few chunks each keep the threads busy)."""
+
+
+def check_threads(threads):
+    """Threads to use: an int >= 1, or None for every core of this machine."""
+    if threads is None:
+        return os.cpu_count() or 1
+    return check_count("threads", threads)
+
+
+def _check_sensor_pairs(arrays, frame):
+    """An infinite mass needs an infinite stiffness and back (as :class:`Sensor` asks)."""
+    m1, k1 = arrays["m1 [kg]"], arrays["k1 [N/m]"]
+    bad = np.flatnonzero(np.isinf(m1) & ~np.isinf(k1))
+    if bad.size:
+        i = int(bad[0])
+        raise ParameterError(
+            f"column 'm1 [kg]' is inf only for an immovable wall (k1 = inf); row {i} "
+            f"(index {frame.index[i]!r}) has k1 = {k1[i]!r}"
+        )
+
+
+def single_impact(m1, k1, c1, m2, law, v0, **options):
+    """One row by :func:`contactlab.simulate_impact`: the six headline numbers, in the
+    order of :data:`RESULT_COLUMNS` (``k1 = inf``: an immovable wall)."""
+    sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
+    res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
+    return (
+        res.contact_time,
+        res.sensor_response_time,
+        res.peak_contact_force,
+        res.peak_sensor_force,
+        res.restitution,
+        len(res.contact_intervals),
+    )
+
+
+def _solve_chunks(solve, arrays, results, chunk, threads):
+    """Solve every row of the checked arrays into ``results``, ``threads`` at a time."""
+    rows = len(results)
+    if threads > 1:
+        chunk = max(1, min(chunk, math.ceil(rows / (CHUNKS_PER_THREAD * threads))))
+    bounds = chunk_bounds(rows, chunk)
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        if threads == 1 or len(bounds) == 1:
+            for lo, hi in bounds:
+                solve(arrays, lo, hi, results[lo:hi])
+            return
+        with ThreadPoolExecutor(max_workers=threads) as pool:
+            jobs = [pool.submit(solve, arrays, lo, hi, results[lo:hi]) for lo, hi in bounds]
+            for job in jobs:
+                job.result()
+
+
+def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
+    """Check a batch frame, solve it chunk by chunk, return it with the results added.
+
+    Parameters
+    ----------
+    frame : pandas.DataFrame
+        One row per impact.
+    columns : sequence of contactlab.batch.frame.Column
+        The input columns (``m1 [kg]`` and ``k1 [N/m]`` among them).
+    solve : callable
+        ``solve(arrays, lo, hi, out)``: rows ``lo:hi`` of the checked arrays into ``out``
+        (hi - lo, 6).
+    chunk : int
+        Rows solved at a time.
+    threads : int or None
+        Threads (None: every core).
+
+    Returns
+    -------
+    pandas.DataFrame
+        A copy of ``frame`` with :data:`RESULT_COLUMNS` added.
+    """
+    chunk = check_count("chunk", chunk)
+    threads = check_threads(threads)
+    arrays = check_frame(frame, columns, chunk)
+    _check_sensor_pairs(arrays, frame)
+    results = np.empty((len(frame), len(RESULT_COLUMNS)))
+    _solve_chunks(solve, arrays, results, chunk, threads)
+    out = frame.copy()
+    for j, name in enumerate(RESULT_COLUMNS):
+        out[name] = results[:, j]
+    return out
