@@ -22,7 +22,7 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["PARAMETERS", "force", "pack", "rhs"]
+__all__ = ["PARAMETERS", "force", "pack", "power", "rhs"]
 
 PARAMETERS = ("a", "p", "b", "q", "signed", "m1", "k1", "c1", "m2", "rigid")
 """Fields of the packed parameter array, in order (:func:`pack`)."""
@@ -66,7 +66,7 @@ def pack(form, m1, k1, c1, m2, rigid):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _power(d, ad, p, signed):
+def power(d, ad, p, signed):
     """``|d|**p``, or ``sign(d) |d|**p`` if signed, with the common exponents by roots."""
     if p == 0.0:
         value = 1.0
@@ -88,10 +88,10 @@ def force(d, r, par):
     """Contact-force formula [N] at overlap ``d`` [m] and rate ``r`` [m/s], not clipped
     (it turns negative where the contact would pull: the contact ends there)."""
     ad = abs(d)
-    elastic = par[_A] * _power(d, ad, par[_P], True)
+    elastic = par[_A] * power(d, ad, par[_P], True)
     if par[_B] == 0.0:
         return elastic
-    return elastic + par[_B] * _power(d, ad, par[_Q], par[_SIGNED] > 0.0) * r
+    return elastic + par[_B] * power(d, ad, par[_Q], par[_SIGNED] > 0.0) * r
 
 
 @njit(cache=True, error_model="numpy")
