@@ -290,6 +290,8 @@ def quadratic_modes(mass, damping, stiffness, row, lam, vec, inv):
     else:
         im = 0.5 * math.sqrt(-disc) / mass
         lam[0], lam[1] = complex(-0.5 * damping / mass, im), complex(-0.5 * damping / mass, -im)
+    if lam[0] == lam[1]:  # critical damping: one defective mode, no modal form
+        return math.inf
     a0 = 1.0 / math.sqrt(1.0 + abs(lam[0]) ** 2)
     a1 = 1.0 / math.sqrt(1.0 + abs(lam[1]) ** 2)
     det = a0 * a1 * (lam[1] - lam[0])
