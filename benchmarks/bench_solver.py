@@ -6,11 +6,15 @@
    rtol 1e-10 on the same equations and grid and (b) the paper's explicit Euler at
    dt = 1e-10 s (a 5 us run, extrapolated linearly in the number of steps, as printed).
 2. One damped-Hertz impact (EDEM/Tsuji law from the grain's material, e = 0.5) on the
-   same sensor and grid at 1e-6 relative accuracy on contact time; target median <= 5 ms.
+   same sensor and grid at 1e-6 relative accuracy on contact time; target median <= 2 ms
+   (the issue's target for one Hertz-family ``simulate_impact`` at rtol 1e-6).
    The tolerance is the loosest of rtol = 1e-4, 1e-5, 1e-6 whose contact time is within
    1e-6 of a reference solved at rtol = 1e-13 in this run; the errors of the other
    headline numbers at that tolerance are printed beside it, and so is the time at
-   rtol = 1e-6, where every headline number is within 1e-6.
+   rtol = 1e-6, where every headline number is within 1e-6. Its contact pieces run
+   compiled (:mod:`contactlab.solver.power_piece`); the same impact on the Python stepper
+   (the same law without its ``PowerForm``) is timed in the same run at rtol = 1e-6, with
+   the ratio compiled / Python.
 
 Medians of repeated runs: this machine is shared, so minima would flatter and single runs
 would mislead. Headline numbers are timed too (``+ metrics``): a study reads them all.
@@ -93,11 +97,19 @@ def relative_errors(res, ref):
     return {name: abs(getattr(res, name) / getattr(ref, name) - 1.0) for name in HEADLINE}
 
 
+class PythonStepperHertzDamped(cl.laws.HertzDamped):
+    """Damped Hertz without its ``PowerForm``: the solver steps it in Python."""
+
+    def power_form(self):
+        return None
+
+
 def hertz_case(grain, sensor):
     e, nu, r = grain.material()
     law = cl.laws.HertzDamped.from_material(e, nu, r, 0.5, grain.mass)
+    python_law = PythonStepperHertzDamped(**law.parameters())
 
-    def run(rtol):
+    def run(rtol, law=law):
         return cl.simulate_impact(grain, sensor, law, 2.0, WINDOW, rtol=rtol)
 
     ref = run(1e-13)
@@ -108,13 +120,25 @@ def hertz_case(grain, sensor):
     for rtol, err in errors.items():
         text = "  ".join(f"{name} {value:.1e}" for name, value in err.items())
         print(f"   rtol {rtol:.0e}: {text}")
+    times = {}
     for rtol, label in ((chosen, "1e-6 on contact time"), (1e-6, "1e-6 on every number")):
         t_run = median_time(lambda rtol=rtol: run(rtol))
         t_metrics = median_time(lambda rtol=rtol: with_metrics(run(rtol)))
+        times[rtol] = t_run, t_metrics
         print(
             f"   rtol {rtol:.0e} ({label}): {t_run * 1e3:.2f} ms, + metrics "
-            f"{t_metrics * 1e3:.2f} ms   (target <= 5 ms)"
+            f"{t_metrics * 1e3:.2f} ms   (target <= 2 ms)"
         )
+    t_run, t_metrics = times[1e-6]
+    python_errors = relative_errors(run(1e-6, python_law), run(1e-6))
+    t_python = median_time(lambda: run(1e-6, python_law))
+    t_python_metrics = median_time(lambda: with_metrics(run(1e-6, python_law)))
+    print(
+        f"   rtol 1e-06 on the Python stepper: {t_python * 1e3:.2f} ms, + metrics "
+        f"{t_python_metrics * 1e3:.2f} ms   compiled / Python {t_run / t_python:.2f} "
+        f"(+ metrics {t_metrics / t_python_metrics:.2f}); headline numbers apart by at most "
+        f"{max(python_errors.values()):.0e}"
+    )
 
 
 def main():
