@@ -3,8 +3,8 @@
 from contactlab.advisor.species import load_species
 from contactlab.bodies import Grain, Sensor
 from contactlab.laws import Hertz
+from contactlab.study.points import simulate_points
 from contactlab.study.setup import Scatter, StudySetup
-from contactlab.study.sweep import simulate_point
 from contactlab.validation import check_number
 
 __all__ = [
@@ -75,15 +75,20 @@ def sensor_errors(
     list of dict
         Per grain: ``diameter [m]``, ``density [kg/m^3]``, ``youngs_modulus [Pa]``,
         ``contact_time [s]``, ``time_error [%]``, ``force_error [%]`` (signed).
+
+    Notes
+    -----
+    The grains' impacts (elastic Hertz from each grain's material) are solved together
+    by :func:`contactlab.batch.hertz_impacts` (:func:`contactlab.study.points.simulate_points`).
     """
     species = load_species(species)
     resonance = check_number("resonance", resonance, low=0.0, unit="Hz")
     setup = _setup(species, velocity, sensor_mass, damping_ratio)
+    grains = species.grains(cases)
+    overrides = [{f"grain.{k}": v for k, v in grain.items()} for grain in grains]
+    tasks = [(setup, {**point, "sensor.resonance": resonance}, [1.0]) for point in overrides]
     rows = []
-    for grain in species.grains(cases):
-        overrides = {f"grain.{k}": v for k, v in grain.items()}
-        overrides["sensor.resonance"] = resonance
-        out = simulate_point(setup, overrides, [1.0])
+    for grain, out in zip(grains, simulate_points(tasks), strict=True):
         rows.append(
             {
                 "diameter [m]": grain["diameter"],

@@ -1,6 +1,7 @@
 """The Monte Carlo error study of Keska et al. (2021) and general parameter sweeps.
 
 * :mod:`contactlab.study.setup`: the base impact, the stiffness scatter, grid parameters;
+* :mod:`contactlab.study.points`: the impacts of grid points, one by one or batched;
 * :mod:`contactlab.study.sweep`: sweeps and their per-point error statistics;
 * :mod:`contactlab.study.execution`: serial, process-parallel and Dask execution;
 * :mod:`contactlab.study.paper`: the paper's Figures 5-12 and its conclusions 2-5;

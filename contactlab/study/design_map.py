@@ -9,11 +9,11 @@ signal's first lobe instead of the true force:
 * ``time_error [%] = 100 (response time / contact time - 1)``.
 
 These are the definitions of :func:`contactlab.study.simulate_point`
-(:func:`~contactlab.study.sweep.error_percent`). A linear law
+(:func:`~contactlab.study.points.error_percent`). A linear law
 (the paper's) is solved for the whole map at once by
 :func:`contactlab.batch.linear_impacts` (exact, the single solver's numbers to 1e-9);
 any other law goes through :func:`contactlab.study.simulate_point` point by point (both
-through :func:`contactlab.study.sweep.simulate_points`).
+through :func:`contactlab.study.points.simulate_points`).
 """
 
 from dataclasses import dataclass
@@ -22,8 +22,8 @@ import numpy as np
 import pandas as pd
 
 from contactlab.errors import ParameterError
+from contactlab.study.points import simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.study.sweep import simulate_points
 from contactlab.validation import check_number
 
 __all__ = [

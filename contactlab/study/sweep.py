@@ -22,12 +22,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from contactlab import analytic
-from contactlab.batch import dask_linear_impacts, linear_impacts
 from contactlab.errors import ParameterError
-from contactlab.laws import LinearViscoelastic
-from contactlab.solver import simulate_impact
-from contactlab.study.execution import progress_bar, run_tasks
+from contactlab.study.execution import run_tasks
+from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
 from contactlab.validation import check_count
 
@@ -46,189 +43,9 @@ __all__ = [
 ERRORS = ("time", "force")
 """The two errors of the study: contact time and peak force."""
 
-_IMPACT_COLUMNS = (
-    "contact_time [s]",
-    "sensor_response_time [s]",
-    "peak_contact_force [N]",
-    "peak_sensor_force [N]",
-    "time_error [%]",
-    "force_error [%]",
-)
-
-
-_CLOSED_FORMS = {
-    "linear": lambda law, m, v: analytic.linear_contact_time(
-        law.stiffness, law.damping, m, convention="force"
-    ),
-    "hertz": lambda law, m, v: analytic.hertz_contact_time(law.k_hertz, m, v),
-    "plastic_trapezoid": lambda law, m, v: law.contact_time,
-}
-"""Rigid-wall contact times in closed form [s]; other laws simulate the wall impact."""
-
-
-def _rigid_contact_time(law, mass, velocity):
-    """Contact time of the law on an immovable wall [s]."""
-    closed = _CLOSED_FORMS.get(law.name)
-    return law.contact_time(mass, velocity) if closed is None else closed(law, mass, velocity)
-
-
-def error_percent(reading, truth):
-    """Error of a reading against the truth [%]: ``100 (reading / truth - 1)``.
-
-    Works on floats and arrays; a reading above the truth gives a positive error.
-    """
-    return 100.0 * (reading / truth - 1.0)
-
-
-def simulate_point(setup, overrides, factors):
-    """Simulate the repetitions of one grid point.
-
-    Parameters
-    ----------
-    setup : StudySetup
-        The base set-up.
-    overrides : dict
-        Grid parameter name -> value at this point.
-    factors : array_like
-        Scatter factors [-] of the ``setup.varied`` parameters, one impact each.
-
-    Returns
-    -------
-    dict
-        Column name -> list of per-impact values: the scattered law parameters
-        (``stiffness [N/m]`` ...) and ``contact_time [s]``, ``sensor_response_time [s]``,
-        ``peak_contact_force [N]``, ``peak_sensor_force [N]``, ``time_error [%]``,
-        ``force_error [%]``.
-
-    Notes
-    -----
-    The window is the solver's default (the whole first contact and five sensor periods
-    of ringing after it, in which the sensor's first lobe has long ended); the output
-    grid has ``setup.samples_per_period`` samples per the shortest of the sensor period
-    and the rigid-wall contact times of the two extreme draws (the contact time is
-    monotone in a scattered stiffness, damping or pulse length, so one of them is the
-    shortest of all draws).
-    """
-    grain, sensor, law, velocity = setup.at(overrides)
-    extremes = {float(np.min(factors)), float(np.max(factors))}
-    shortest = min(
-        sensor.period,
-        *(_rigid_contact_time(setup.scattered(law, f), grain.mass, velocity) for f in extremes),
-    )
-    sample_rate = setup.samples_per_period / shortest
-    columns = setup.varied_columns()
-    out = {name: [] for name in (*columns, *_IMPACT_COLUMNS)}
-    for factor in factors:
-        drawn = setup.scattered(law, float(factor))
-        res = simulate_impact(grain, sensor, drawn, velocity, sample_rate=sample_rate)
-        params = drawn.parameters()
-        for name, column in zip(setup.varied, columns, strict=True):
-            out[column].append(params[name])
-        out["contact_time [s]"].append(res.contact_time)
-        out["sensor_response_time [s]"].append(res.sensor_response_time)
-        out["peak_contact_force [N]"].append(res.peak_contact_force)
-        out["peak_sensor_force [N]"].append(res.peak_sensor_force)
-        out["time_error [%]"].append(error_percent(res.sensor_response_time, res.contact_time))
-        out["force_error [%]"].append(error_percent(res.peak_sensor_force, res.peak_contact_force))
-    return out
-
 
 def _point_task(task):
     return simulate_point(*task)
-
-
-def _linear_frame(tasks):
-    """The batch solver's input rows of every impact of the tasks, and the drawn laws."""
-    rows, laws = [], []
-    for setup, overrides, factors in tasks:
-        grain, sensor, law, velocity = setup.at(overrides)
-        for factor in factors:
-            drawn = setup.scattered(law, float(factor))
-            laws.append(drawn)
-            rows.append(
-                {
-                    "m1 [kg]": sensor.mass,
-                    "k1 [N/m]": sensor.stiffness,
-                    "c1 [N*s/m]": sensor.damping,
-                    "m2 [kg]": grain.mass,
-                    "k2 [N/m]": drawn.stiffness,
-                    "c2 [N*s/m]": drawn.damping,
-                    "v0 [m/s]": velocity,
-                }
-            )
-    return pd.DataFrame(rows), laws
-
-
-LINEAR_BLOCKS = 20
-"""Blocks a batched sweep is solved in when a progress bar is shown (one update each)."""
-
-
-def _solve_linear(frame, client, progress):
-    """``linear_impacts(frame)``: on a Dask cluster, or here in blocks under a bar."""
-    if client is not None:
-        return dask_linear_impacts(frame, client)
-    bar = progress_bar(len(frame), progress, "impacts", unit="impact")
-    if bar is None:
-        return linear_impacts(frame, threads=None)
-    parts = []
-    with bar:
-        size = max(1, math.ceil(len(frame) / LINEAR_BLOCKS))
-        for lo in range(0, len(frame), size):
-            parts.append(linear_impacts(frame.iloc[lo : lo + size], threads=None))
-            bar.update(len(parts[-1]))
-    return pd.concat(parts)
-
-
-def simulate_points(tasks, *, client=None, progress=None):
-    """:func:`simulate_point` of every ``(setup, overrides, factors)`` task.
-
-    A linear (Kelvin-Voigt) law is solved for all tasks at once by
-    :func:`contactlab.batch.linear_impacts` (on every core of this machine, or on
-    ``client``'s Dask cluster when one is given, partitioned by rows), which gives the
-    single solver's numbers (to 1e-9, ``docs/batch.md``) and reads the sensor lobe exactly
-    instead of on an output grid; any other law goes through :func:`simulate_point`,
-    task by task, here.
-
-    Parameters
-    ----------
-    tasks : iterable of (StudySetup, dict, array_like)
-        Set-up, grid-point overrides and scatter factors, as :func:`simulate_point` takes.
-    client : dask.distributed.Client or str, optional
-        Dask cluster for a linear law.
-    progress : bool, optional
-        tqdm progress bar (default: only on an interactive terminal).
-
-    Returns
-    -------
-    list of dict
-        One :func:`simulate_point` dict per task.
-    """
-    tasks = list(tasks)
-    if not tasks or not all(isinstance(t[0].law, LinearViscoelastic) for t in tasks):
-        return [simulate_point(*task) for task in tasks]
-    frame, laws = _linear_frame(tasks)
-    solved = _solve_linear(frame, client, progress)
-    results, start = [], 0
-    for setup, _, factors in tasks:
-        stop = start + len(factors)
-        part = solved.iloc[start:stop]
-        out = {
-            column: [law.parameters()[name] for law in laws[start:stop]]
-            for name, column in zip(setup.varied, setup.varied_columns(), strict=True)
-        }
-        out["contact_time [s]"] = part["contact_time [s]"].tolist()
-        out["sensor_response_time [s]"] = part["response_time [s]"].tolist()
-        out["peak_contact_force [N]"] = part["peak_contact_force [N]"].tolist()
-        out["peak_sensor_force [N]"] = part["peak_sensor_force [N]"].tolist()
-        out["time_error [%]"] = error_percent(
-            part["response_time [s]"], part["contact_time [s]"]
-        ).tolist()
-        out["force_error [%]"] = error_percent(
-            part["peak_sensor_force [N]"], part["peak_contact_force [N]"]
-        ).tolist()
-        results.append(out)
-        start = stop
-    return results
 
 
 def point_statistics(impacts, by):
@@ -365,9 +182,9 @@ def run_grid(
         ``i``-th child of ``SeedSequence(seed).spawn``), so results do not depend on the
         execution order, the number of workers or the backend.
     workers : int, default 1
-        Local worker processes. A linear law is solved by the batch solver instead
-        (:func:`simulate_points`: compiled, in this process or on ``client``), which
-        needs no workers.
+        Local worker processes. A linear, Hertz or damped-Hertz law is solved by the
+        batch solvers instead (:func:`simulate_points`: compiled, in this process or on
+        ``client``), which need no workers.
     client : dask.distributed.Client or str, optional
         Run on a Dask cluster instead (see :func:`contactlab.study.execution.run_tasks`).
     chunksize : int, optional
@@ -388,7 +205,7 @@ def run_grid(
         for i in range(len(points))
     ]
     tasks = [(setup, point, f) for point, f in zip(points, factors, strict=True)]
-    if isinstance(setup.law, LinearViscoelastic):
+    if batched(setup.law):
         results = simulate_points(tasks, client=client, progress=progress)
     else:
         results = run_tasks(

@@ -271,7 +271,7 @@ def test_vary_is_checked_and_normalised(setup):
 
 def test_output_grid_follows_the_shortest_draw(setup, monkeypatch):
     """Scattering a pulse length, the shortest contact is the smallest factor's draw."""
-    from contactlab.study import sweep
+    from contactlab.study import points
 
     rates = []
 
@@ -279,10 +279,10 @@ def test_output_grid_follows_the_shortest_draw(setup, monkeypatch):
         rates.append(sample_rate)
         return cl.simulate_impact(*args, sample_rate=sample_rate, **kwargs)
 
-    monkeypatch.setattr(sweep, "simulate_impact", recording)
+    monkeypatch.setattr(points, "simulate_impact", recording)
     varied = replace(setup, law=PlasticTrapezoid(70e-6, 7e-6), vary="contact_time")
     # 20 kHz: a 50 us period, between the draws' contact times of 35 and 105 us
-    sweep.simulate_point(varied, {"sensor.resonance": 20e3}, [0.5, 1.5])
+    points.simulate_point(varied, {"sensor.resonance": 20e3}, [0.5, 1.5])
     assert rates == [varied.samples_per_period / 35e-6] * 2
 
 

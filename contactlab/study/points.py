@@ -1,0 +1,237 @@
+"""One grid point of a sweep: its impacts, one by one or all points at once in a batch.
+
+:func:`simulate_point` simulates the repetitions of one grid point with
+:func:`contactlab.simulate_impact` and reads the two errors of the study (the sensor's
+first lobe against the contact time, its peak against the contact force's);
+:func:`simulate_points` does the same for many points, handing a linear or Hertz-family
+law to the batch solvers (:mod:`contactlab.batch`) in one call.
+"""
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from contactlab import analytic
+from contactlab.batch import (
+    dask_hertz_impacts,
+    dask_linear_impacts,
+    hertz_impacts,
+    linear_impacts,
+)
+from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
+from contactlab.solver import simulate_impact
+from contactlab.study.execution import progress_bar
+
+__all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
+
+_IMPACT_COLUMNS = (
+    "contact_time [s]",
+    "sensor_response_time [s]",
+    "peak_contact_force [N]",
+    "peak_sensor_force [N]",
+    "time_error [%]",
+    "force_error [%]",
+)
+
+
+_CLOSED_FORMS = {
+    "linear": lambda law, m, v: analytic.linear_contact_time(
+        law.stiffness, law.damping, m, convention="force"
+    ),
+    "hertz": lambda law, m, v: analytic.hertz_contact_time(law.k_hertz, m, v),
+    "plastic_trapezoid": lambda law, m, v: law.contact_time,
+}
+"""Rigid-wall contact times in closed form [s]; other laws simulate the wall impact."""
+
+
+def _rigid_contact_time(law, mass, velocity):
+    """Contact time of the law on an immovable wall [s]."""
+    closed = _CLOSED_FORMS.get(law.name)
+    return law.contact_time(mass, velocity) if closed is None else closed(law, mass, velocity)
+
+
+def error_percent(reading, truth):
+    """Error of a reading against the truth [%]: ``100 (reading / truth - 1)``.
+
+    Works on floats and arrays; a reading above the truth gives a positive error.
+    """
+    return 100.0 * (reading / truth - 1.0)
+
+
+def simulate_point(setup, overrides, factors):
+    """Simulate the repetitions of one grid point.
+
+    Parameters
+    ----------
+    setup : StudySetup
+        The base set-up.
+    overrides : dict
+        Grid parameter name -> value at this point.
+    factors : array_like
+        Scatter factors [-] of the ``setup.varied`` parameters, one impact each.
+
+    Returns
+    -------
+    dict
+        Column name -> list of per-impact values: the scattered law parameters
+        (``stiffness [N/m]`` ...) and ``contact_time [s]``, ``sensor_response_time [s]``,
+        ``peak_contact_force [N]``, ``peak_sensor_force [N]``, ``time_error [%]``,
+        ``force_error [%]``.
+
+    Notes
+    -----
+    The window is the solver's default (the whole first contact and five sensor periods
+    of ringing after it, in which the sensor's first lobe has long ended); the output
+    grid has ``setup.samples_per_period`` samples per the shortest of the sensor period
+    and the rigid-wall contact times of the two extreme draws (the contact time is
+    monotone in a scattered stiffness, damping or pulse length, so one of them is the
+    shortest of all draws).
+    """
+    grain, sensor, law, velocity = setup.at(overrides)
+    extremes = {float(np.min(factors)), float(np.max(factors))}
+    shortest = min(
+        sensor.period,
+        *(_rigid_contact_time(setup.scattered(law, f), grain.mass, velocity) for f in extremes),
+    )
+    sample_rate = setup.samples_per_period / shortest
+    columns = setup.varied_columns()
+    out = {name: [] for name in (*columns, *_IMPACT_COLUMNS)}
+    for factor in factors:
+        drawn = setup.scattered(law, float(factor))
+        res = simulate_impact(grain, sensor, drawn, velocity, sample_rate=sample_rate)
+        params = drawn.parameters()
+        for name, column in zip(setup.varied, columns, strict=True):
+            out[column].append(params[name])
+        out["contact_time [s]"].append(res.contact_time)
+        out["sensor_response_time [s]"].append(res.sensor_response_time)
+        out["peak_contact_force [N]"].append(res.peak_contact_force)
+        out["peak_sensor_force [N]"].append(res.peak_sensor_force)
+        out["time_error [%]"].append(error_percent(res.sensor_response_time, res.contact_time))
+        out["force_error [%]"].append(error_percent(res.peak_sensor_force, res.peak_contact_force))
+    return out
+
+
+def _linear_columns(law):
+    return {"k2 [N/m]": law.stiffness, "c2 [N*s/m]": law.damping}
+
+
+def _hertz_columns(law):
+    damping = law.damping if isinstance(law, HertzDamped) else 0.0
+    return {"k_hertz [N/m**1.5]": law.k_hertz, "damping [N*s/m**1.25]": damping}
+
+
+_BATCHED = {
+    LinearViscoelastic: (_linear_columns, linear_impacts, dask_linear_impacts),
+    HertzDamped: (_hertz_columns, hertz_impacts, dask_hertz_impacts),
+    Hertz: (_hertz_columns, hertz_impacts, dask_hertz_impacts),
+}
+"""Laws a sweep hands to a batch solver: the law's batch columns, the solver, its Dask
+twin (elastic Hertz is the damped-Hertz batch with zero damping)."""
+
+
+def _batch_frame(tasks, law_columns):
+    """The batch solver's input rows of every impact of the tasks, and the drawn laws."""
+    rows, laws = [], []
+    for setup, overrides, factors in tasks:
+        grain, sensor, law, velocity = setup.at(overrides)
+        for factor in factors:
+            drawn = setup.scattered(law, float(factor))
+            laws.append(drawn)
+            rows.append(
+                {
+                    "m1 [kg]": sensor.mass,
+                    "k1 [N/m]": sensor.stiffness,
+                    "c1 [N*s/m]": sensor.damping,
+                    "m2 [kg]": grain.mass,
+                    **law_columns(drawn),
+                    "v0 [m/s]": velocity,
+                }
+            )
+    return pd.DataFrame(rows), laws
+
+
+BATCH_BLOCKS = 20
+"""Blocks a batched sweep is solved in when a progress bar is shown (one update each)."""
+
+
+def _solve_batch(frame, impacts, on_dask, client, progress):
+    """``impacts(frame)``: on a Dask cluster, or here in blocks under a bar."""
+    if client is not None:
+        return on_dask(frame, client)
+    bar = progress_bar(len(frame), progress, "impacts", unit="impact")
+    if bar is None:
+        return impacts(frame, threads=None)
+    parts = []
+    with bar:
+        size = max(1, math.ceil(len(frame) / BATCH_BLOCKS))
+        for lo in range(0, len(frame), size):
+            parts.append(impacts(frame.iloc[lo : lo + size], threads=None))
+            bar.update(len(parts[-1]))
+    return pd.concat(parts)
+
+
+def batched(law):
+    """Whether a sweep hands impacts with this law to a batch solver."""
+    return type(law) in _BATCHED
+
+
+def _batch_kind(tasks):
+    """The :data:`_BATCHED` entry every task's law shares, or None."""
+    kinds = {type(task[0].law) for task in tasks}
+    return _BATCHED.get(kinds.pop()) if len(kinds) == 1 else None
+
+
+def simulate_points(tasks, *, client=None, progress=None):
+    """:func:`simulate_point` of every ``(setup, overrides, factors)`` task.
+
+    A linear (Kelvin-Voigt), elastic Hertz or damped Hertz (Tsuji) law is solved for
+    all tasks at once by :func:`contactlab.batch.linear_impacts` or
+    :func:`contactlab.batch.hertz_impacts` (on every core of this machine, or on
+    ``client``'s Dask cluster when one is given, partitioned by rows), which give the
+    single solver's numbers (``docs/batch.md``) and read the sensor lobe on the exact or
+    dense solution instead of an output grid; any other law goes through
+    :func:`simulate_point`, task by task, here.
+
+    Parameters
+    ----------
+    tasks : iterable of (StudySetup, dict, array_like)
+        Set-up, grid-point overrides and scatter factors, as :func:`simulate_point` takes.
+    client : dask.distributed.Client or str, optional
+        Dask cluster for a batched law.
+    progress : bool, optional
+        tqdm progress bar (default: only on an interactive terminal).
+
+    Returns
+    -------
+    list of dict
+        One :func:`simulate_point` dict per task.
+    """
+    tasks = list(tasks)
+    kind = _batch_kind(tasks) if tasks else None
+    if kind is None:
+        return [simulate_point(*task) for task in tasks]
+    law_columns, impacts, on_dask = kind
+    frame, laws = _batch_frame(tasks, law_columns)
+    solved = _solve_batch(frame, impacts, on_dask, client, progress)
+    results, start = [], 0
+    for setup, _, factors in tasks:
+        stop = start + len(factors)
+        part = solved.iloc[start:stop]
+        out = {
+            column: [law.parameters()[name] for law in laws[start:stop]]
+            for name, column in zip(setup.varied, setup.varied_columns(), strict=True)
+        }
+        out["contact_time [s]"] = part["contact_time [s]"].tolist()
+        out["sensor_response_time [s]"] = part["response_time [s]"].tolist()
+        out["peak_contact_force [N]"] = part["peak_contact_force [N]"].tolist()
+        out["peak_sensor_force [N]"] = part["peak_sensor_force [N]"].tolist()
+        out["time_error [%]"] = error_percent(
+            part["response_time [s]"], part["contact_time [s]"]
+        ).tolist()
+        out["force_error [%]"] = error_percent(
+            part["peak_sensor_force [N]"], part["peak_contact_force [N]"]
+        ).tolist()
+        results.append(out)
+        start = stop
+    return results
