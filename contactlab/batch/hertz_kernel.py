@@ -75,7 +75,7 @@ _STEEP = np.finfo(np.float64).max
 (``d**0.25``): the largest float keeps Brent's interpolation finite."""
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _signals(z, par, out):
     """Contact force S2 (clipped), its slope, sensor signal S1 and its slope, in time."""
     d, r = z[2] - z[0], z[3] - z[1]
@@ -97,7 +97,7 @@ def _signals(z, par, out):
     out[_S1_SLOPE] = 0.0 if par[RIGID] > 0.0 else par[K1] * z[1] + par[C1] * a1
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _at(u, a, h, F, y_old, par, z, values):
     """Signals at step variable ``u`` of the step starting at ``a`` of length ``h``."""
     interpolate(F, y_old, (u - a) / h, z)
@@ -114,7 +114,20 @@ def _root(kind, lo, f_lo, hi, f_hi, a, h, F, y_old, par, z, values, work):
     return x
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
+def _may_exceed(value, slope, best, dt):
+    """Whether a turn inside a sample interval of ``dt`` [s] can reach ``best``.
+
+    About a maximum the signal is concave, so on the interval it stays below
+    ``S(a) + S'(a) dt``; about a minimum convex, so above it. Twice the slope term is
+    kept as a margin (as :func:`contactlab.batch.modal_kernel.scan` does). Refining
+    only the turns that can matter (a higher peak, a dip to zero) saves the root
+    searches on the many lower ripples of a ringing sensor.
+    """
+    return value + 2.0 * slope * dt >= best
+
+
+@njit(cache=True, error_model="numpy", inline="always")
 def _to_time(u, t0, warped):
     return t0 + u**4 if warped else u
 
@@ -141,14 +154,18 @@ def _read_steps(steps, warped, t0, u_end, par, floor, track, best, z, work):
         if a >= u_end:
             return
         Fj, yj = F[j], y_old[j]
-        u_prev = a
-        _at(a, a, hj, Fj, yj, par, z, prev)
+        u_prev, t_prev = a, _to_time(a, t0, warped)
+        if j == 0:  # later steps start where the last one's final sample ended
+            _at(a, a, hj, Fj, yj, par, z, prev)
         for i in range(1, SAMPLES_PER_STEP + 1):
             u = min(a + hj * i / SAMPLES_PER_STEP, u_end)
             _at(u, a, hj, Fj, yj, par, z, cur)
+            t_now = _to_time(u, t0, warped)
+            dt = t_now - t_prev
             if track[1]:
                 best[1] = max(best[1], cur[_S2])
-                if prev[_S2_SLOPE] > 0.0 and cur[_S2_SLOPE] <= 0.0:
+                turns = prev[_S2_SLOPE] > 0.0 and cur[_S2_SLOPE] <= 0.0
+                if turns and _may_exceed(prev[_S2], prev[_S2_SLOPE], best[1], dt):
                     top = _root(
                         _S2_SLOPE, u_prev, prev[_S2_SLOPE], u, cur[_S2_SLOPE], a, hj, Fj, yj,
                         par, z, values, work,
@@ -158,23 +175,26 @@ def _read_steps(steps, warped, t0, u_end, par, floor, track, best, z, work):
             if track[2] and cur[_S1] > floor:
                 track[2], track[0] = False, True  # the lobe, started at the touch, is open
             elif track[0]:
-                _read_lobe(u_prev, prev, u, cur, a, hj, Fj, yj, par, z, values, track, best, work)
+                interval = (u_prev, prev, u, cur, dt)
+                _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work)
                 if not track[0]:
                     best[2] = _to_time(best[2], t0, warped)
-            prev[:] = cur
-            u_prev = u
+            prev, cur = cur, prev
+            u_prev, t_prev = u, t_now
             if u >= u_end:
                 return
 
 
-@njit(cache=True, error_model="numpy")
-def _read_lobe(u_prev, prev, u, cur, a, hj, Fj, yj, par, z, values, track, best, work):
-    """The sensor lobe on one sample interval: its peaks, its end (in the step variable);
-    ``values`` is scratch space."""
+@njit(cache=True, error_model="numpy", inline="always")
+def _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work):
+    """The sensor lobe on one sample interval ``(u_prev, prev, u, cur, dt)`` (``dt`` its
+    length [s]): its peaks, its end (in the step variable); ``values`` is scratch."""
+    u_prev, prev, u, cur, dt = interval
     end = u
+    reach = prev[_S1] + 2.0 * prev[_S1_SLOPE] * dt  # see _may_exceed
     if prev[_S1] > 0.0 and cur[_S1] <= 0.0:
         end = _root(_S1, u_prev, prev[_S1], u, cur[_S1], a, hj, Fj, yj, par, z, values, work)
-    elif prev[_S1_SLOPE] < 0.0 and cur[_S1_SLOPE] >= 0.0:
+    elif prev[_S1_SLOPE] < 0.0 and cur[_S1_SLOPE] >= 0.0 and reach <= 0.0:
         # a dip inside the interval: its bottom decides whether the lobe ends there
         low = _root(
             _S1_SLOPE, u_prev, prev[_S1_SLOPE], u, cur[_S1_SLOPE], a, hj, Fj, yj, par, z,
@@ -184,7 +204,7 @@ def _read_lobe(u_prev, prev, u, cur, a, hj, Fj, yj, par, z, values, track, best,
         if values[_S1] <= 0.0:
             bottom = values[_S1]
             end = _root(_S1, u_prev, prev[_S1], low, bottom, a, hj, Fj, yj, par, z, values, work)
-    if prev[_S1_SLOPE] > 0.0 and cur[_S1_SLOPE] <= 0.0:
+    if prev[_S1_SLOPE] > 0.0 and cur[_S1_SLOPE] <= 0.0 and reach >= best[0]:
         top = _root(
             _S1_SLOPE, u_prev, prev[_S1_SLOPE], u, cur[_S1_SLOPE], a, hj, Fj, yj, par, z,
             values, work,

@@ -23,10 +23,25 @@ from scipy.integrate import DOP853 as _SCIPY
 
 from contactlab.solver.power_rhs import rhs
 
-__all__ = ["STAGES", "dense_states", "initial_step", "interpolant", "interpolate", "step"]
+__all__ = [
+    "STAGES",
+    "WORK_ROWS",
+    "dense_states",
+    "initial_step",
+    "interpolant",
+    "interpolate",
+    "step",
+]
 
 STAGES = _SCIPY.n_stages
 """Stages of a DOP853 step (12); three more make the dense output."""
+
+_DENSE_STAGES = STAGES + 1 + _SCIPY.A_EXTRA.shape[0]
+"""Rows of the stage array: the stages, the slope at the step's end, three extra."""
+
+WORK_ROWS = _DENSE_STAGES + 2
+"""Rows of the work array ``K`` of :func:`step` and :func:`interpolant`: the stages
+(:data:`STAGES` + 4) and two scratch rows, so that no step allocates memory."""
 
 _A = np.ascontiguousarray(_SCIPY.A, dtype=np.float64)
 _B = np.ascontiguousarray(_SCIPY.B, dtype=np.float64)
@@ -95,7 +110,8 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new):
     """One accepted step from ``(t, y)`` with ``f = f(y)``, not beyond ``t_bound``.
 
     Writes the new state and its slope into ``y_new`` and ``f_new`` and the stages into
-    ``K`` (rows 0..12, kept for :func:`interpolant`).
+    ``K`` ((:data:`WORK_ROWS`, n): rows 0..12 kept for :func:`interpolant`, the last two
+    scratch).
 
     Returns
     -------
@@ -107,8 +123,7 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new):
     min_step = 10.0 * abs(np.nextafter(t, math.inf) - t)
     h = max(h_try, min_step)
     rejected = False
-    tmp = np.empty(n)
-    scale = np.empty(n)
+    tmp, scale = K[_DENSE_STAGES], K[_DENSE_STAGES + 1]
     while True:
         if h < min_step:
             return False, t, h, 0.0
@@ -140,7 +155,7 @@ def interpolant(K, h, y_old, y, f_new, par, warped, F):
     """The step's 7th-order interpolant coefficients into ``F`` (7, n), as
     :meth:`Stepper.interpolant` (three extra stages into ``K``)."""
     n = y.size
-    tmp = np.empty(n)
+    tmp = K[_DENSE_STAGES]
     for i in range(_EXTRA):
         stage = STAGES + 1 + i
         _stage_state(y_old, h, _A_EXTRA[i], K, stage, tmp)
@@ -152,7 +167,7 @@ def interpolant(K, h, y_old, y, f_new, par, warped, F):
         F[2, c] = 2.0 * delta - h * (f_new[c] + K[0, c])
         for row in range(_D.shape[0]):
             acc = 0.0
-            for s in range(K.shape[0]):
+            for s in range(_DENSE_STAGES):
                 acc += _D[row, s] * K[s, c]
             F[3 + row, c] = h * acc
 

@@ -17,7 +17,7 @@ from numba import njit
 
 from contactlab.roots import SIDE_STEPS
 from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
-from contactlab.solver.dop853_kernel import STAGES, initial_step, interpolant, interpolate, step
+from contactlab.solver.dop853_kernel import WORK_ROWS, initial_step, interpolant, interpolate, step
 from contactlab.solver.power_rhs import force, rhs
 
 __all__ = ["STATUS_OK", "STATUS_UNDERFLOW", "integrate"]
@@ -25,7 +25,6 @@ __all__ = ["STATUS_OK", "STATUS_UNDERFLOW", "integrate"]
 STATUS_OK, STATUS_UNDERFLOW = 0, 1
 """Outcome of :func:`integrate`: done, or the step size underflowed."""
 
-_ROWS = STAGES + 4  # stages, the slope at the step's end, three dense-output stages
 _DENSE = 7  # interpolant coefficient rows
 _FIRST_CAPACITY = 64
 
@@ -82,7 +81,7 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
     n = y.size
     t_old, hs = np.empty(_FIRST_CAPACITY), np.empty(_FIRST_CAPACITY)
     y_old, F = np.empty((_FIRST_CAPACITY, n)), np.empty((_FIRST_CAPACITY, _DENSE, n))
-    K, f, y_new, f_new = np.empty((_ROWS, n)), np.empty(n), np.empty(n), np.empty(n)
+    K, f, y_new, f_new = np.empty((WORK_ROWS, n)), np.empty(n), np.empty(n), np.empty(n)
     tmp, work = np.empty(n), np.empty(WORK_SIZE)
     rhs(y, par, warped, f)
     y = y.copy()
