@@ -9,11 +9,12 @@ in modal form (:func:`contactlab.batch.modal_kernel.free_flight`), the same wind
 contact cap.
 
 The headline numbers are read on the dense solution as
-:class:`contactlab.ImpactResult` defines them: each contact step is sampled at
-:data:`SAMPLES_PER_STEP` points; a fall of a signal's slope through zero between two of
-them is a local maximum, located by Brent's method on the slope and read there, and a
-fall of the sensor signal through zero ends its first lobe; a sample interval holds at
-most one turn of either signal (:data:`SAMPLES_PER_STEP`).
+:class:`contactlab.ImpactResult` defines them: each contact step is sampled at points
+no further apart than :data:`INTERVAL_PER_PERIOD` of a bound on the system's fastest
+period (so a sample interval holds at most one turn of either signal); a fall of a
+signal's slope through zero between two of them is a local maximum, located by Brent's
+method on the slope and read there, and a fall of the sensor signal through zero ends
+its first lobe.
 """
 
 import math
@@ -43,7 +44,7 @@ from contactlab.solver.power_piece import STATUS_OK as PIECE_OK
 from contactlab.solver.power_piece import integrate
 from contactlab.solver.power_rhs import C1, K1, M1, M2, PARAMETERS, RIGID, force, power
 
-__all__ = ["OUTPUTS", "SAMPLES_PER_STEP", "STATUS_FALLBACK", "STATUS_OK", "solve_rows"]
+__all__ = ["INTERVAL_PER_PERIOD", "OUTPUTS", "STATUS_FALLBACK", "STATUS_OK", "solve_rows"]
 
 OUTPUTS = 6
 """contact time, response time, peak contact force, peak sensor force, restitution,
@@ -54,14 +55,22 @@ STATUS_OK, STATUS_FALLBACK = 0, 1
 contact that does not end, a step size that underflows, a plate too close to critical
 damping for the modal form, or :data:`contactlab.solver.impact.MAX_CONTACTS` contacts)."""
 
-SAMPLES_PER_STEP = 8
-"""Sample intervals per integrator step in which the signals' turns are looked for.
+INTERVAL_PER_PERIOD = 0.18
+"""Longest sample interval in which the signals' turns are looked for, as a fraction of
+the shortest period the contact can have (:func:`_shortest_period`).
 
-Measured on 400 random rows (the tests' domain): a contact step spans up to 1.44
-periods of the fastest mode of the linearised two-mass system at rtol 1e-6 (1.27 at
-1e-8), where that mode is barely excited. Eight samples keep an interval under 0.18 of
-that period, and a signal's turns are half a period apart; with two samples (0.72)
-turns were missed and sensor peaks moved by up to 3e-4."""
+A signal's turns are half a period apart, so an interval well under half a period holds
+at most one. Measured on 400 random rows (the tests' domain), an integrator step spans
+up to 1.44 periods of the fastest mode of the linearised two-mass system (where that
+mode is barely excited): a fixed two samples per step (0.72 period) missed turns and
+moved sensor peaks by up to 3e-4; eight (0.18) did not. Sampling at 0.18 of the bound
+(:func:`_shortest_period`) instead of a count gives the same numbers as at 0.03 of it on
+3 000 random rows at rtol 1e-9 to 1.4e-7, and at rtol 1e-6 to 3e-4: the finer sampling
+then finds wiggles of the interpolant on overdamped plates, peaks 3e-4 above the
+converged one where the coarser reading is within 3e-5 (the single solver's zoom finds
+them too). On the benchmark's rows (sensor 10-300 kHz) the steps are mostly shorter
+than the interval, and one thread solves 8 300 rows/s against 3 500 with eight samples
+a step."""
 
 _S2, _S2_SLOPE, _S1, _S1_SLOPE = range(4)
 _A, _P, _B, _Q = (PARAMETERS.index(field) for field in ("a", "p", "b", "q"))
@@ -127,19 +136,39 @@ def _may_exceed(value, slope, best, dt):
     return value + 2.0 * slope * dt >= best
 
 
+@njit(cache=True, error_model="numpy")
+def _shortest_period(par, v0):
+    """A lower bound on the periods of the contact's oscillations [s].
+
+    The overlap never exceeds the elastic one on a rigid wall, ``d_max = (5 m2 v0**2 /
+    (4 kH))**(2/5)`` (the plate and the damper only take energy), so the contact
+    stiffness ``1.5 kH d**0.5`` stays below ``kc``; the eigenvalues of ``M**-1 K`` of the
+    linearised two-mass system are below their Gershgorin bound
+    ``max((k1 + 2 kc) / m1, 2 kc / m2)`` (on a wall ``kc / m2``).
+    """
+    d_max = (5.0 * par[M2] * v0 * v0 / (4.0 * par[_A])) ** 0.4
+    kc = 1.5 * par[_A] * math.sqrt(d_max)
+    if par[RIGID] > 0.0:
+        omega2 = kc / par[M2]
+    else:
+        omega2 = max((par[K1] + 2.0 * kc) / par[M1], 2.0 * kc / par[M2])
+    return 2.0 * math.pi / math.sqrt(omega2)
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def _to_time(u, t0, warped):
     return t0 + u**4 if warped else u
 
 
 @njit(cache=True, error_model="numpy")
-def _read_steps(steps, warped, t0, u_end, par, floor, track, best, z, work):
+def _read_steps(steps, warped, t0, u_end, par, limits, track, best, z, work):
     """Read the signals' turns on a run of steps up to step variable ``u_end``.
 
     ``track`` and ``best`` as in :func:`contactlab.batch.modal_kernel.scan`, with one
     more: track [0] the sensor lobe is open, [1] the contact force's peak is wanted,
     [2] the signal has not yet risen above ``floor`` [N]; best [0] sensor peak [N], [1]
-    contact-force peak [N], [2] lobe end (absolute time [s]).
+    contact-force peak [N], [2] lobe end (absolute time [s]). ``limits`` is
+    ``(floor, spacing)``: the noise floor [N] and the longest sample interval [s].
 
     The signal starts at zero at the touch (the plate at rest) and rises: its lobe
     starts there, as :func:`contactlab.metrics.first_lobe` reads it. Until it rises
@@ -148,6 +177,7 @@ def _read_steps(steps, warped, t0, u_end, par, floor, track, best, z, work):
     ``t**1.5``, the plate's signal like ``t**2.5``), so crossings there are not read.
     """
     count, t_old, h, y_old, F = steps
+    floor, spacing = limits
     prev, cur, values = np.empty(4), np.empty(4), np.empty(4)
     for j in range(count):
         a, hj = t_old[j], h[j]
@@ -157,8 +187,10 @@ def _read_steps(steps, warped, t0, u_end, par, floor, track, best, z, work):
         u_prev, t_prev = a, _to_time(a, t0, warped)
         if j == 0:  # later steps start where the last one's final sample ended
             _at(a, a, hj, Fj, yj, par, z, prev)
-        for i in range(1, SAMPLES_PER_STEP + 1):
-            u = min(a + hj * i / SAMPLES_PER_STEP, u_end)
+        span = 4.0 * (a + hj) ** 3 * hj if warped else hj  # longest time the step covers
+        samples = max(1, math.ceil(span / spacing))
+        for i in range(1, samples + 1):
+            u = min(a + hj * i / samples, u_end)
             _at(u, a, hj, Fj, yj, par, z, cur)
             t_now = _to_time(u, t0, warped)
             dt = t_now - t_prev
@@ -230,7 +262,7 @@ def _state_at(steps, u, y):
 
 
 @njit(cache=True, error_model="numpy")
-def _contact(par, t, y, horizon, rtol, atol, floor, track, best, work):
+def _contact(par, t, y, horizon, rtol, atol, limits, track, best, work):
     """One contact piece from ``(t, y)``; returns its end time [s] (nan: none within
     ``horizon``) or -1 on a step-size underflow. ``y`` becomes the state at the end."""
     touch = y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0
@@ -242,9 +274,9 @@ def _contact(par, t, y, horizon, rtol, atol, floor, track, best, work):
     reading = track[0] or track[1] or track[2]
     if reading and warp[0] > 0:
         u_end = (end - t) ** 0.25 if end - t < switch or steps[0] == 0 else math.inf
-        _read_steps(warp, True, t, u_end, par, floor, track, best, z, work)
+        _read_steps(warp, True, t, u_end, par, limits, track, best, z, work)
     if reading and steps[0] > 0:
-        _read_steps(steps, False, t, end, par, floor, track, best, z, work)
+        _read_steps(steps, False, t, end, par, limits, track, best, z, work)
     if steps[0] > 0 and end - t >= switch:
         _state_at(steps, end, y)
     else:
@@ -274,13 +306,14 @@ def solve_row(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out):
     track = np.array([False, True, not rigid])
     best = np.array([0.0, 0.0, math.nan])
     floor = 0.0 if rigid else _NOISE * (k1 * atol[0] + c1 * atol[1])
+    limits = (floor, INTERVAL_PER_PERIOD * _shortest_period(par, v0))
     t, limit, contacts, contact_time, rebound = 0.0, math.inf, 0, math.nan, math.nan
     while True:
         par[-1] = 1.0
         if track[0]:  # a piece's start is a candidate for the sensor's peak
             best[0] = max(best[0], signal(SENSOR, y, par))
         horizon = (FIRST_CONTACT_HORIZON if contacts == 0 else limit) - t
-        end = _contact(par, t, y, horizon, rtol, atol, floor, track, best, work)
+        end = _contact(par, t, y, horizon, rtol, atol, limits, track, best, work)
         if end < 0.0 or (math.isnan(end) and contacts == 0):
             return STATUS_FALLBACK
         if math.isnan(end):  # the window ends in this contact
