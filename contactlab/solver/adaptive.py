@@ -114,12 +114,22 @@ def compiled_piece(system, form, t0, y0, tau_max, rtol, atol, touch):
         par, t0, y0, tau_max, rtol, atol, touch
     )
     if status != power_piece.STATUS_OK:
-        raise RuntimeError(f"adaptive integration failed after t = {t0:.6g}")
+        raise RuntimeError(underflow_message(hit, rtol))
     return (
         _dense(warp),
         _dense(steps),
         switch,
         None if np.isnan(hit) else (hit, 0),
+    )
+
+
+def underflow_message(t, rtol):
+    """What failed when no step could meet the tolerance, and what to try."""
+    return (
+        f"adaptive integration failed at t = {t:.6g} s: the step size fell below 10 floats "
+        f"of t before a step met rtol = {rtol:.3g}; the contact is not resolvable at this "
+        "tolerance there (loosen rtol, or check the parameters for a contact far stiffer "
+        "or longer than intended)"
     )
 
 
@@ -159,7 +169,7 @@ def _run(stepper, end, event_values, directions, stop=None):
     steps, hit, before = [], None, event_values(stepper.y)
     while stepper.t < end:
         if not stepper.step(end):
-            raise RuntimeError(f"adaptive integration failed at t = {stepper.t:.6g}")
+            raise RuntimeError(underflow_message(stepper.t, stepper.rtol))
         steps.append(
             (stepper.t_old, stepper.t - stepper.t_old, stepper.y_old, stepper.interpolant())
         )

@@ -69,6 +69,11 @@ class Stepper:
         self._K = np.empty((_SCIPY.A_EXTRA.shape[0] + _STAGES + 1, self.y.size))
         self._h = self.initial_step() if first_step is None else first_step
 
+    @property
+    def rtol(self):
+        """Relative tolerance [-]."""
+        return self._rtol
+
     def _norm(self, x, scale):
         x = x / scale
         return math.sqrt(float(x @ x) / x.size)

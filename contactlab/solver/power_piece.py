@@ -138,7 +138,8 @@ def integrate(par, t0, y0, tau_max, rtol, atol, touch):
         ``(status, warped steps, steps, switch, hit)``: each ``steps`` is
         ``(count, t_old, h, y_old, F)`` (warped ones in ``s`` with five components,
         count 0 if none); ``switch`` the local time [s] where the warped steps hand over;
-        ``hit`` the event time [s] (nan if the piece reached ``t0 + tau_max``).
+        ``hit`` the event time [s] (nan if the piece reached ``t0 + tau_max``), or, with
+        ``STATUS_UNDERFLOW``, the time [s] at which the step size underflowed.
     """
     n = y0.size
     empty_w = (0, np.empty(0), np.empty(0), np.empty((0, n + 1)), np.empty((0, _DENSE, n + 1)))
@@ -153,7 +154,7 @@ def integrate(par, t0, y0, tau_max, rtol, atol, touch):
             0.0, z0, first_in_s, tau_max**0.25, rtol, z_tol, par, True
         )
         if status != STATUS_OK:
-            return status, warp, empty_t, switch, hit
+            return status, warp, empty_t, switch, t0 + s**4
         warp = (count, t_o, hs, y_o, F)
         switch, y = s**4, z[:n].copy()
         first = switch - s_old**4
@@ -166,10 +167,10 @@ def integrate(par, t0, y0, tau_max, rtol, atol, touch):
             f0 = np.empty(n)
             rhs(y, par, False, f0)
             first = initial_step(y, f0, rtol, atol, par, False)
-        status, count, t_o, hs, y_o, F, hit, _, _, _ = _run(
+        status, count, t_o, hs, y_o, F, hit, t_stop, _, _ = _run(
             t_start, y, first, t0 + tau_max, rtol, atol, par, False
         )
         if status != STATUS_OK:
-            return status, warp, empty_t, switch, hit
+            return status, warp, empty_t, switch, t_stop
         steps = (count, t_o, hs, y_o, F)
     return STATUS_OK, warp, steps, switch, hit
