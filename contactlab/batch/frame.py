@@ -104,7 +104,7 @@ def check_frame(frame, columns, chunk=1_000_000):
                 position = lo + int(bad[0])
                 raise ParameterError(
                     f"column {column.name!r} ({column.meaning}) must be {column.rule()}; "
-                    f"{_row_label(frame, position)} holds {values[position]!r}"
+                    f"{_row_label(frame, position)} holds {float(values[position])!r}"
                 )
         arrays[column.name] = values
     return arrays

@@ -1,37 +1,19 @@
 """The ``contactlab`` command line: each command parses, calls one library function, reports."""
 
 import argparse
-import json
 import os
 import sys
 from pathlib import Path
 
-import numpy as np
-
+from contactlab.cli.batch import add_batch_parser
+from contactlab.cli.inverse import add_inverse_parsers
+from contactlab.cli.output import dump
 from contactlab.errors import ParameterError
 
 __all__ = ["main"]
 
 EVERY_CORE = os.cpu_count() or 1
 """Default worker processes of the study and the demo: every core of this machine."""
-
-
-def _json_default(obj):
-    if isinstance(obj, np.generic):
-        return obj.item()
-    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
-
-
-def _dump(data):
-    return json.dumps(data, indent=2, default=_json_default)
-
-
-def _print_summary(summary):
-    for key, value in summary.items():
-        if isinstance(value, float):
-            print(f"{key:32s} {value:.6g}")
-        elif not isinstance(value, dict):
-            print(f"{key:32s} {value}")
 
 
 def _simulate(args):
@@ -42,7 +24,7 @@ def _simulate(args):
     if args.plot:
         fig, _ = result.plot()
         fig.savefig(args.plot, dpi=150)
-    print(_dump(result.summary()) if args.json else repr(result))
+    print(dump(result.summary()) if args.json else repr(result))
 
 
 def _demo(args):
@@ -76,7 +58,7 @@ def _study(args):
         tolerance=args.tolerance,
     )
     if args.json:
-        print(_dump(result.summary()))
+        print(dump(result.summary()))
         return
     for path in result.files:
         print(f"wrote {path}")
@@ -99,7 +81,7 @@ def _map(args):
     fig, _ = result.plot(tolerance=args.tolerance)
     files = [csv, *save_figure(fig, out / "design_map")]
     if args.json:
-        print(_dump({"points": len(result.table), "files": [str(p) for p in files]}))
+        print(dump({"points": len(result.table), "files": [str(p) for p in files]}))
         return
     for path in files:
         print(f"wrote {path}")
@@ -152,178 +134,7 @@ def _advise(args):
         damping_ratio=args.damping_ratio,
         cases=args.cases,
     )
-    print(_dump(advice.to_dict()) if args.json else advice.format_text())
-
-
-# --- inverse methods: identify-sensor, reconstruct, fit, export-dem -------------------
-
-
-def _read_trace(args, force=True):
-    """The trace named on the command line, in newtons unless ``force`` is False."""
-    from dem_check.traces import TraceFormatError, read_trace
-
-    try:
-        trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)
-    except FileNotFoundError:
-        raise ParameterError(f"trace file not found: {args.trace}") from None
-    except TraceFormatError as exc:
-        raise ParameterError(str(exc)) from None
-    if force and trace.unit != "N":
-        raise ParameterError(
-            f"{args.trace} is in {trace.unit}, not N: give --sensitivity [V/N] to convert it"
-        )
-    return trace
-
-
-def _save_plot(fig, path):
-    import matplotlib.pyplot as plt
-
-    fig.savefig(path, dpi=150)
-    plt.close(fig)
-    print(f"wrote {path}", file=sys.stderr)
-
-
-def _identify_sensor(args):
-    from contactlab.inverse import identify_sensor, plot_identification
-
-    trace = _read_trace(args, force=False)
-    ident = identify_sensor(trace.t, trace.values, window=args.window)
-    if args.plot:
-        _save_plot(plot_identification(trace.t, trace.values, ident)[0], args.plot)
-    print(_dump(ident.to_dict()) if args.json else repr(ident))
-
-
-def _inverse_sensor(args):
-    from contactlab.bodies import Sensor
-    from contactlab.config import load_config
-
-    if (args.sensor_config is None) == (args.resonance is None):
-        raise ParameterError("give --resonance F --damping-ratio Z or --sensor-config CONFIG.toml")
-    if args.sensor_config is not None:
-        return load_config(args.sensor_config).sensor
-    if args.sensor_mass is None or args.damping_ratio is None:
-        raise ParameterError("--resonance needs --sensor-mass M [kg] and --damping-ratio Z [-]")
-    return Sensor.from_resonance(
-        args.resonance, mass=args.sensor_mass, damping_ratio=args.damping_ratio
-    )
-
-
-def _reconstruct(args):
-    from contactlab.inverse import reconstruct_force
-
-    sensor = _inverse_sensor(args)
-    trace = _read_trace(args)
-    rec = reconstruct_force(
-        trace.t,
-        trace.values,
-        sensor,
-        args.method,
-        baseline_window=args.baseline,
-        regularization=args.regularization,
-        cutoff=args.cutoff,
-    )
-    if args.plot:
-        _save_plot(rec.plot()[0], args.plot)
-    print(_dump(rec.summary()) if args.json else repr(rec))
-
-
-def _fit(args):
-    from contactlab.config import load_config
-    from contactlab.inverse import fit_contact
-
-    model = load_config(args.model)
-    trace = _read_trace(args)
-    fit = fit_contact(
-        trace.t,
-        trace.values,
-        model.grain,
-        model.sensor,
-        args.law,
-        velocity=args.velocity,
-        baseline_window=args.baseline,
-    )
-    if args.out:
-        fit.to_json(args.out)
-        print(f"wrote {args.out}", file=sys.stderr)
-    if args.plot:
-        _save_plot(fit.plot()[0], args.plot)
-    print(_dump(fit.to_dict()) if args.json else repr(fit))
-
-
-def _export_dem(args):
-    from contactlab.inverse import export_dem, read_fit
-
-    text = export_dem(
-        read_fit(args.fit),
-        args.to,
-        source=str(args.fit),
-        poisson_ratio=args.poisson_ratio,
-        friction=args.friction,
-    )
-    if args.out:
-        Path(args.out).write_text(text, encoding="utf-8")
-        print(f"wrote {args.out}", file=sys.stderr)
-    else:
-        print(text, end="")
-
-
-def _add_trace_arguments(p):
-    p.add_argument("trace", help="trace file (any format dem_check.read_trace reads)")
-    p.add_argument("--channel", help="channel name or 0-based index (multi-channel files)")
-    p.add_argument("--sensitivity", type=float, help="sensor sensitivity [V/N] for a volt trace")
-
-
-def _add_inverse_parsers(sub):
-    from contactlab.inverse.export import DEM_CODES
-    from contactlab.inverse.fit_models import FIT_MODELS
-    from contactlab.inverse.reconstruct import CRITERIA, METHODS
-
-    window = {"nargs": 2, "type": float, "metavar": ("T0", "T1")}
-    p = sub.add_parser(
-        "identify-sensor", help="sensor resonance and damping ratio from free ringing"
-    )
-    _add_trace_arguments(p)
-    p.add_argument("--window", **window, help="ringing window [s] (default: automatic)")
-    p.add_argument("--plot", metavar="PNG", help="write the trace and fitted ringing")
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_identify_sensor)
-
-    p = sub.add_parser("reconstruct", help="the true contact force from a sensor trace")
-    _add_trace_arguments(p)
-    p.add_argument("--sensor-mass", type=float, help="sensor moving mass [kg]")
-    p.add_argument("--resonance", type=float, help="sensor resonance [Hz]")
-    p.add_argument("--damping-ratio", type=float, help="sensor damping ratio [-]")
-    p.add_argument("--sensor-config", help="TOML impact config whose [sensor] is used")
-    p.add_argument(
-        "--method", choices=tuple(METHODS), default="tikhonov", help="(default tikhonov)"
-    )
-    p.add_argument("--regularization", choices=tuple(CRITERIA), help="tikhonov (default gcv)")
-    p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
-    p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
-    p.add_argument("--plot", metavar="PNG", help="write signal and reconstructed force")
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_reconstruct)
-
-    p = sub.add_parser("fit", help="fit a contact law to a trace through the two-mass model")
-    _add_trace_arguments(p)
-    p.add_argument("--law", required=True, choices=tuple(FIT_MODELS), help="law to fit")
-    p.add_argument("--model", required=True, help="TOML impact config: its grain and sensor")
-    p.add_argument("--velocity", type=float, help="measured impact velocity [m/s] (fixed)")
-    p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
-    p.add_argument("--out", metavar="FIT.json", help="write the fit as JSON")
-    p.add_argument("--plot", metavar="PNG", help="write trace, fitted signal and force")
-    p.add_argument("--json", action="store_true", help="print the fit as JSON")
-    p.set_defaults(func=_fit)
-
-    p = sub.add_parser(
-        "export-dem", help="a fitted law as LAMMPS/LIGGGHTS/MercuryDPM/YADE/EDEM input"
-    )
-    p.add_argument("fit", help="FIT.json written by 'contactlab fit --out'")
-    p.add_argument("--to", required=True, choices=tuple(DEM_CODES), help="target code")
-    p.add_argument("--out", metavar="FILE", help="write the snippet here (default: print)")
-    p.add_argument("--poisson-ratio", type=float, help="grain Poisson ratio [-] (Hertz laws)")
-    p.add_argument("--friction", type=float, help="friction coefficient [-] (not fitted)")
-    p.set_defaults(func=_export_dem)
+    print(dump(advice.to_dict()) if args.json else advice.format_text())
 
 
 def _build_parser():
@@ -449,7 +260,8 @@ def _build_parser():
     )
     p.set_defaults(func=_benchmark)
 
-    _add_inverse_parsers(sub)
+    add_batch_parser(sub)
+    add_inverse_parsers(sub)
     return parser
 
 
