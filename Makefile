@@ -5,7 +5,7 @@ PY := $(VENV)/bin/python
 STAMP_DEMO := $(VENV)/.installed-demo
 STAMP_TEST := $(VENV)/.installed-test
 
-.PHONY: demo test lint bench clean
+.PHONY: demo test lint bench clean clean-numba
 
 $(PY):
 	@command -v $(PYTHON) >/dev/null 2>&1 || { echo "error: $(PYTHON) not found; run 'make PYTHON=python3 ...'"; exit 1; }
@@ -34,5 +34,9 @@ test: lint
 bench: $(STAMP_DEMO)
 	for f in benchmarks/bench_*.py; do $(PY) $$f || exit 1; done
 
-clean:
+# numba checks a cached function against its own source only, not its callees'
+clean-numba:
+	find contactlab -name '*.nbi' -delete -o -name '*.nbc' -delete
+
+clean: clean-numba
 	rm -rf $(VENV) results .pytest_cache .ruff_cache
