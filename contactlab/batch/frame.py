@@ -14,7 +14,7 @@ import pandas as pd
 
 from contactlab.errors import ParameterError
 
-__all__ = ["Column", "check_frame", "chunk_bounds"]
+__all__ = ["Column", "check_frame", "chunk_bounds", "impact_columns"]
 
 
 @dataclass(frozen=True)
@@ -113,3 +113,16 @@ def check_frame(frame, columns, chunk=1_000_000):
 def chunk_bounds(rows, chunk):
     """``(start, stop)`` of consecutive chunks of at most ``chunk`` rows."""
     return [(lo, min(lo + chunk, rows)) for lo in range(0, rows, chunk)]
+
+
+def impact_columns(*law):
+    """A batch's input columns: the sensor and the grain, the law's ``law`` columns, the
+    impact speed (in that order, the order of the kernels' arguments)."""
+    return (
+        Column("m1 [kg]", "sensor moving mass", allow_inf=True),
+        Column("k1 [N/m]", "sensor stiffness, inf for an immovable wall", allow_inf=True),
+        Column("c1 [N*s/m]", "sensor damping", low_open=False),
+        Column("m2 [kg]", "grain mass"),
+        *law,
+        Column("v0 [m/s]", "impact speed"),
+    )

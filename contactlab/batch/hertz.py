@@ -11,22 +11,18 @@ contact pieces; rows it hands back are solved by :func:`contactlab.simulate_impa
 
 import numpy as np
 
-from contactlab.batch.frame import Column
-from contactlab.batch.hertz_kernel import STATUS_OK, solve_rows
+from contactlab.batch.frame import Column, impact_columns
+from contactlab.batch.hertz_kernel import solve_rows
+from contactlab.batch.modal_kernel import STATUS_OK
 from contactlab.batch.rows import DEFAULT_CHUNK, single_impact, solve_frame
 from contactlab.laws import HertzDamped
 from contactlab.validation import check_number
 
 __all__ = ["DEFAULT_RTOL", "HERTZ_INPUTS", "hertz_impacts"]
 
-HERTZ_INPUTS = (
-    Column("m1 [kg]", "sensor moving mass", allow_inf=True),
-    Column("k1 [N/m]", "sensor stiffness, inf for an immovable wall", allow_inf=True),
-    Column("c1 [N*s/m]", "sensor damping", low_open=False),
-    Column("m2 [kg]", "grain mass"),
+HERTZ_INPUTS = impact_columns(
     Column("k_hertz [N/m**1.5]", "Hertz stiffness"),
     Column("damping [N*s/m**1.25]", "Tsuji damping coefficient", low_open=False),
-    Column("v0 [m/s]", "impact speed"),
 )
 """Input columns of :func:`hertz_impacts`."""
 

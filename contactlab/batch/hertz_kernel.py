@@ -25,6 +25,8 @@ from numba import njit
 from contactlab.batch.modal_kernel import (
     COND_LIMIT,
     SENSOR,
+    STATUS_FALLBACK,
+    STATUS_OK,
     conjugates_once,
     fastest,
     free_flight,
@@ -44,16 +46,7 @@ from contactlab.solver.power_piece import STATUS_OK as PIECE_OK
 from contactlab.solver.power_piece import integrate
 from contactlab.solver.power_rhs import C1, K1, M1, M2, PARAMETERS, RIGID, force, power
 
-__all__ = ["INTERVAL_PER_PERIOD", "OUTPUTS", "STATUS_FALLBACK", "STATUS_OK", "solve_rows"]
-
-OUTPUTS = 6
-"""contact time, response time, peak contact force, peak sensor force, restitution,
-contacts (the order of ``out``, as :mod:`contactlab.batch.linear_kernel`)."""
-
-STATUS_OK, STATUS_FALLBACK = 0, 1
-"""Row status: solved; to be solved by :func:`contactlab.simulate_impact` (a first
-contact that does not end, a step size that underflows, a plate too close to critical
-damping for the modal form, or :data:`contactlab.solver.impact.MAX_CONTACTS` contacts)."""
+__all__ = ["INTERVAL_PER_PERIOD", "solve_rows"]
 
 INTERVAL_PER_PERIOD = 0.18
 """Longest sample interval in which the signals' turns are looked for, as a fraction of
@@ -353,7 +346,7 @@ def solve_row(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out):
 
 @njit(cache=True, error_model="numpy", nogil=True)
 def solve_rows(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out, status):
-    """Solve every row: ``out`` (rows, OUTPUTS), ``status`` (rows,); GIL released."""
+    """Solve every row: ``out`` (rows, 6), ``status`` (rows,); GIL released."""
     for i in range(m1.size):
         row = (m1[i], k1[i], c1[i], m2[i], k_hertz[i], damping[i], v0[i])
         status[i] = solve_row(*row, rtol, out[i])

@@ -12,21 +12,17 @@ close to critical damping for the modal form, a grain that settles on the plate 
 
 import numpy as np
 
-from contactlab.batch.frame import Column
-from contactlab.batch.linear_kernel import STATUS_OK, solve_rows
+from contactlab.batch.frame import Column, impact_columns
+from contactlab.batch.linear_kernel import solve_rows
+from contactlab.batch.modal_kernel import STATUS_OK
 from contactlab.batch.rows import DEFAULT_CHUNK, RESULT_COLUMNS, single_impact, solve_frame
 from contactlab.laws import LinearViscoelastic
 
 __all__ = ["LINEAR_INPUTS", "RESULT_COLUMNS", "linear_impacts", "solve_linear"]
 
-LINEAR_INPUTS = (
-    Column("m1 [kg]", "sensor moving mass", allow_inf=True),
-    Column("k1 [N/m]", "sensor stiffness, inf for an immovable wall", allow_inf=True),
-    Column("c1 [N*s/m]", "sensor damping", low_open=False),
-    Column("m2 [kg]", "grain mass"),
+LINEAR_INPUTS = impact_columns(
     Column("k2 [N/m]", "contact stiffness"),
     Column("c2 [N*s/m]", "contact damping", low_open=False),
-    Column("v0 [m/s]", "impact speed"),
 )
 """Input columns of :func:`linear_impacts`."""
 

@@ -31,6 +31,8 @@ from contactlab.batch.modal_kernel import (
     M1,
     M2,
     SENSOR,
+    STATUS_FALLBACK,
+    STATUS_OK,
     conjugates_once,
     fastest,
     free_flight,
@@ -50,16 +52,7 @@ from contactlab.solver.impact import (
     WINDOW_PER_CONTACT,
 )
 
-__all__ = ["OUTPUTS", "STATUS_FALLBACK", "STATUS_MAX_CONTACTS", "STATUS_OK", "solve_rows"]
-
-OUTPUTS = 6
-"""contact time, response time, peak contact force, peak sensor force, restitution,
-contacts (the order of ``out``)."""
-
-STATUS_OK, STATUS_FALLBACK, STATUS_MAX_CONTACTS = 0, 1, 2
-"""Row status: solved; to be solved by :func:`contactlab.simulate_impact` (modes too
-close to defective for the modal form, or a first contact that does not end); stopped
-at :data:`contactlab.solver.impact.MAX_CONTACTS` contacts as the single solver stops."""
+__all__ = ["solve_rows"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -185,6 +178,6 @@ def solve_row(m1, k1, c1, m2, k2, c2, v0, out):
 
 @njit(cache=True, error_model="numpy", nogil=True)
 def solve_rows(m1, k1, c1, m2, k2, c2, v0, out, status):
-    """Solve every row: ``out`` (rows, OUTPUTS), ``status`` (rows,); GIL released."""
+    """Solve every row: ``out`` (rows, 6), ``status`` (rows,); GIL released."""
     for i in range(m1.size):
         status[i] = solve_row(m1[i], k1[i], c1[i], m2[i], k2[i], c2[i], v0[i], out[i])

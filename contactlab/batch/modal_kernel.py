@@ -37,6 +37,8 @@ __all__ = [
     "CONTACT_END",
     "RECONTACT",
     "SENSOR",
+    "STATUS_FALLBACK",
+    "STATUS_OK",
     "free_flight",
     "quadratic_modes",
     "row_parameters",
@@ -45,6 +47,13 @@ __all__ = [
     "signal",
     "state",
 ]
+
+STATUS_OK, STATUS_FALLBACK = 0, 1
+"""Row status of a batch kernel: solved; or handed to :func:`contactlab.simulate_impact`
+(a row the kernel cannot take: modes too close to defective for the modal form, a first
+contact that does not end, :data:`contactlab.solver.impact.MAX_CONTACTS` contacts, a step
+size that underflows). A kernel writes the six numbers of
+:data:`contactlab.batch.rows.RESULT_COLUMNS` for a solved row."""
 
 COND_LIMIT = 1e7
 """Largest ``|V|_F |V**-1|_F`` (an upper bound of the eigenvector condition number) for

@@ -179,18 +179,6 @@ def test_rows_keep_order_and_index_whatever_the_chunk_and_threads():
     pd.testing.assert_frame_equal(whole[frame.columns], frame)
 
 
-@pytest.fixture(scope="module")
-def dask_client():
-    distributed = pytest.importorskip("dask.distributed")
-    with (
-        distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
-        ) as cluster,
-        distributed.Client(cluster) as client,
-    ):
-        yield client
-
-
 def test_dask_partitions_give_the_same_frame(dask_client):
     frame = random_frame(np.random.default_rng(4), 60)
     local = hertz_impacts(frame, rtol=1e-9)

@@ -191,19 +191,6 @@ def test_working_memory_follows_the_chunk_not_the_frame():
     assert peak < 2.5 * output, (peak, output)
 
 
-@pytest.fixture(scope="module")
-def dask_client():
-    distributed = pytest.importorskip("dask.distributed")
-    # threads in this process: quick to start; dashboard off (no port to bind)
-    with (
-        distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
-        ) as cluster,
-        distributed.Client(cluster) as client,
-    ):
-        yield client
-
-
 def test_dask_partitions_give_the_same_frame(dask_client):
     frame = random_frame(np.random.default_rng(4), 90)
     local = linear_impacts(frame)
