@@ -25,6 +25,7 @@ LAYERS = (
         "results and metrics",
         (
             "contactlab.metrics",
+            "contactlab.signals",
             "contactlab.result",
             "contactlab.oblique_result",
             "contactlab.plotting",
