@@ -25,6 +25,7 @@ LAYERS = (
         "results and metrics",
         (
             "contactlab.metrics",
+            "contactlab.signals",
             "contactlab.result",
             "contactlab.oblique_result",
             "contactlab.plotting",
@@ -149,6 +150,39 @@ def test_laws_never_simulate():
         if dep.startswith(("contactlab.solver", "contactlab.result"))
     }
     assert not reach, f"contactlab.laws imports {sorted(reach)}"
+
+
+def _core_imports_of_dem_check(graph):
+    """``"module imports dep"`` for each import of dem_check by contactlab below its
+    applications layer."""
+    applications = len(LAYERS) - 1
+    return [
+        f"{name} imports {dep}"
+        for name, deps in graph.items()
+        if name.split(".")[0] == "contactlab" and _layer(name) < applications
+        for dep in sorted(deps)
+        if dep.split(".")[0] == "dem_check"
+    ]
+
+
+def test_core_never_imports_dem_check():
+    """dem_check builds on contactlab; below the applications, contactlab stands alone."""
+    reach = _core_imports_of_dem_check(GRAPH)
+    assert not reach, "\n".join(reach)
+
+
+def test_core_check_catches_a_function_level_import(tmp_path):
+    """The check itself: a lazy import inside a function of contactlab.inverse is found,
+    and the applications layer may import dem_check."""
+    source = tmp_path / "module.py"
+    source.write_text("def f():\n    from dem_check.traces import Trace\n", encoding="utf-8")
+    graph = {
+        name: _imports(name, source)
+        for name in ("contactlab.inverse.reconstruct", "contactlab.cli.inverse")
+    }
+    assert _core_imports_of_dem_check(graph) == [
+        "contactlab.inverse.reconstruct imports dem_check.traces"
+    ]
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))

@@ -2,12 +2,13 @@
 
 A signal is a pair ``(t, y)`` of 1-D arrays: time [s], strictly increasing and uniformly
 sampled, and the sensor's output (force [N] after the sensitivity conversion). Baseline,
-noise and onset are read as :mod:`dem_check.traces.prepare` reads them (imported lazily:
-``dem_check`` builds on ``contactlab``), so a trace and an array give the same answer.
+noise and onset are read by :mod:`contactlab.signals`, as :mod:`dem_check.traces.prepare`
+reads a measured trace, so a trace and an array give the same answer.
 """
 
 import numpy as np
 
+from contactlab import signals
 from contactlab.errors import ParameterError
 from contactlab.metrics import _as_signal
 from contactlab.validation import check_number
@@ -68,7 +69,7 @@ def check_window(name, window):
 
 
 def baseline(t, y, window=None, k=5.0):
-    """Baseline mean, noise and onset of a pulse, as :mod:`dem_check.traces.prepare` reads them.
+    """Baseline mean, noise and onset of a pulse (:mod:`contactlab.signals`).
 
     Parameters
     ----------
@@ -97,22 +98,19 @@ def baseline(t, y, window=None, k=5.0):
         Fewer than :data:`BASELINE_MIN_SAMPLES` samples in the window, or no sample
         above the threshold.
     """
-    from dem_check.traces import Trace, detect_onset, noise_level
-
     window = (float(t[0]), 0.0) if window is None else check_window("baseline_window", window)
-    mask = (t >= window[0]) & (t < window[1])
-    if mask.sum() < BASELINE_MIN_SAMPLES:
+    count = int(signals.in_window(t, window).sum())
+    if count < BASELINE_MIN_SAMPLES:
         raise ParameterError(
-            f"baseline window {window} s holds {int(mask.sum())} samples; need at least "
+            f"baseline window {window} s holds {count} samples; need at least "
             f"{BASELINE_MIN_SAMPLES} pre-trigger samples (record a pre-trigger or pass "
             "baseline_window=(start, end) [s], --baseline T0 T1 on the command line)"
         )
-    trace = Trace(t, y, "N", {"trigger_time": None})
-    noise = noise_level(trace, window)
+    mean, noise, _ = signals.baseline(t, y, window, name="baseline_window")
     if noise == 0.0:
         raise ParameterError(f"the baseline window {window} s is exactly constant (no noise)")
-    onset = detect_onset(trace, k, window)
-    return float(np.mean(y[mask])), noise, onset, window
+    onset = signals.detect_onset(t, y, window, k, name="baseline_window")
+    return mean, noise, onset, window
 
 
 def lobe_around_peak(t, y, reference=0.0):

@@ -26,6 +26,7 @@ import numpy as np
 from scipy import linalg
 from scipy.optimize import brentq, minimize_scalar, nnls
 
+from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import baseline, check_window, lobe_around_peak, uniform_signal
@@ -300,12 +301,10 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
 def _inverse(t, y, dt, sensor, noise, window, options):
     from scipy.signal import cont2discrete, lfilter
 
-    from dem_check.traces import Trace, lowpass
-
     cutoff = options["cutoff"]
     if cutoff is None:
         cutoff = DEFAULT_CUTOFF_FACTOR * sensor.resonance
-    smooth = lowpass(Trace(t, y, "N", {"sample_interval": dt}), cutoff).values
+    smooth = signals.lowpass(y, dt, cutoff)
     lag_time = 2.0 * sensor.damping_ratio / sensor.angular_frequency
     if lag_time > 0.0:
         # x1 = S1 / (c1 s + k1), up to the factor 1/k1: a first-order lag, exact for

@@ -1,7 +1,10 @@
 """Preparing a measured trace: baseline, noise, onset, alignment, low-pass, force units.
 
 Every function that changes a trace returns a new :class:`~dem_check.traces.trace.Trace`
-and appends a record of itself (name and parameters) to ``metadata["history"]``.
+and appends a record of itself (name and parameters) to ``metadata["history"]``. The
+arithmetic is :mod:`contactlab.signals` on the trace's arrays (the inverse methods use the
+same functions); this module chooses the window, checks what a ``Trace`` adds (uniform
+sampling, units) and keeps the history.
 
 The baseline is the pre-trigger part of the trace: by default the samples before
 ``metadata["trigger_time"]``, or before t = 0 when the file does not give a trigger time
@@ -10,44 +13,33 @@ The baseline is the pre-trigger part of the trace: by default the samples before
 first rise of a pulse that starts before the trigger.
 """
 
-import numpy as np
-from scipy import signal
-
+from contactlab import signals
 from contactlab.errors import ParameterError
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_number
 from dem_check.traces.checks import uniform_interval
 
 __all__ = ["align", "detect_onset", "lowpass", "noise_level", "remove_baseline", "to_force"]
 
 
-def _baseline(trace, pre_trigger):
-    """Mean, standard deviation, window [s] and sample count of the baseline."""
-    t = trace.t
+def _window(trace, pre_trigger):
+    """The baseline window ``(start, end)`` [s]: from ``pre_trigger`` or the trigger."""
     if pre_trigger is None:
         trigger = trace.metadata.get("trigger_time")
         end = 0.0 if trigger is None else float(trigger)
-        window = (float(t[0]), end)
-        mask = t < end
-    else:
-        try:
-            start, end = pre_trigger
-        except (TypeError, ValueError):
-            raise ParameterError(
-                f"pre_trigger must be (start, end) [s]; got {pre_trigger!r}"
-            ) from None
-        start = check_number("pre_trigger start", start, unit="s")
-        end = check_number("pre_trigger end", end, low=start, unit="s")
-        window = (start, end)
-        mask = (t >= start) & (t < end)
-    samples = trace.values[mask]
-    if samples.size < 2:
-        raise ParameterError(
-            f"the baseline window {window} s holds {samples.size} samples; need at least 2 "
-            "(pass pre_trigger=(start, end) [s])"
-        )
-    if not np.isfinite(samples).all():
-        raise ParameterError(f"the baseline window {window} s holds overrange samples")
-    return float(samples.mean()), float(samples.std(ddof=1)), window, int(samples.size)
+        return float(trace.t[0]), end
+    try:
+        start, end = pre_trigger
+    except (TypeError, ValueError):
+        raise ParameterError(f"pre_trigger must be (start, end) [s]; got {pre_trigger!r}") from None
+    start = check_number("pre_trigger start", start, unit="s")
+    end = check_number("pre_trigger end", end, low=start, unit="s")
+    return start, end
+
+
+def _baseline(trace, pre_trigger):
+    """The baseline window [s] and its statistics (:class:`contactlab.signals.Baseline`)."""
+    window = _window(trace, pre_trigger)
+    return window, signals.baseline(trace.t, trace.values, window, name="pre_trigger")
 
 
 def noise_level(trace, pre_trigger=None):
@@ -63,7 +55,7 @@ def noise_level(trace, pre_trigger=None):
     -------
     float
     """
-    return _baseline(trace, pre_trigger)[1]
+    return _baseline(trace, pre_trigger)[1].noise
 
 
 def remove_baseline(trace, pre_trigger=None):
@@ -79,7 +71,7 @@ def remove_baseline(trace, pre_trigger=None):
     -------
     Trace
     """
-    mean, _, window, samples = _baseline(trace, pre_trigger)
+    window, (mean, _, samples) = _baseline(trace, pre_trigger)
     step = {"step": "remove_baseline", "window [s]": window, "baseline": mean, "samples": samples}
     return trace.derive(step, values=trace.values - mean)
 
@@ -109,20 +101,9 @@ def detect_onset(trace, k=5.0, pre_trigger=None):
     ParameterError
         If no sample exceeds the threshold.
     """
-    k = check_number("k", k, low=0.0)
-    mean, std, _, _ = _baseline(trace, pre_trigger)
-    level = k * std
-    deviation = np.abs(trace.values - mean)
-    above = deviation > level
-    if not above.any():
-        raise ParameterError(f"no sample deviates from the baseline by more than {k} sigma")
-    i = int(np.argmax(above))
-    if i == 0:
-        return float(trace.t[0])
-    t0, t1, d0, d1 = trace.t[i - 1], trace.t[i], deviation[i - 1], deviation[i]
-    if np.isinf(d1):
-        return float(t1)
-    return float(t0 + (level - d0) * (t1 - t0) / (d1 - d0))
+    k = check_number("k", k, low=0.0)  # named before a bad window, as in signals.detect_onset
+    window = _window(trace, pre_trigger)
+    return signals.detect_onset(trace.t, trace.values, window, k, name="pre_trigger")
 
 
 def align(trace, onset):
@@ -151,10 +132,10 @@ def lowpass(trace, cutoff, order=4):
     """Zero-phase Butterworth low-pass filter.
 
     A Butterworth filter of ``order`` with -3 dB frequency ``cutoff`` is applied forward
-    and backward (``scipy.signal.sosfiltfilt``), so there is no phase shift (a pulse's
-    timing is kept) and the magnitude response is squared:
-    ``|H(f)|^2 = 1 / (1 + (f / cutoff)^(2 order))``, which is 1/2 (-6 dB) at the cutoff
-    and ``1 - (f / cutoff)^(2 order)`` to first order in the passband.
+    and backward (``scipy.signal.sosfiltfilt``, through :func:`contactlab.signals.lowpass`,
+    which gives the exact response), so there is no phase shift (a pulse's timing is kept)
+    and the magnitude response is squared: ``|H(f)|^2`` is 1/2 (-6 dB) at the cutoff and
+    ``1 - (f / cutoff)^(2 order)`` to first order in the passband.
 
     Parameters
     ----------
@@ -170,22 +151,14 @@ def lowpass(trace, cutoff, order=4):
     Trace
     """
     interval = uniform_interval(trace, "lowpass needs uniform sampling")
-    nyquist = 0.5 / interval
-    cutoff = check_number("cutoff", cutoff, low=0.0, high=nyquist, high_open=True, unit="Hz")
-    order = check_count("order", order)
-    if not np.isfinite(trace.values).all():
-        raise ParameterError("lowpass needs finite samples; the trace holds overrange samples")
-    sos = signal.butter(order, cutoff, btype="low", output="sos", fs=1.0 / interval)
-    pad = 3 * (2 * len(sos) + 1)
-    if len(trace) <= pad:
-        raise ParameterError(f"lowpass of order {order} needs more than {pad} samples")
+    values = signals.lowpass(trace.values, interval, cutoff, order)
     step = {
         "step": "lowpass",
-        "cutoff [Hz]": cutoff,
+        "cutoff [Hz]": float(cutoff),
         "order": int(order),
         "filter": "Butterworth, zero-phase (sosfiltfilt)",
     }
-    return trace.derive(step, values=signal.sosfiltfilt(sos, trace.values))
+    return trace.derive(step, values=values)
 
 
 def to_force(trace, sensitivity):

@@ -1,0 +1,165 @@
+"""contactlab.signals on arrays, against closed forms: baseline statistics of known
+samples, onsets of ramps and steps, the digital Butterworth response of the low-pass."""
+
+import math
+
+import numpy as np
+import pytest
+
+from contactlab import signals
+from contactlab.errors import ParameterError
+
+DT = 2.0**-20
+"""Sample interval [s] (about 0.95 us), a power of two so that sample times and windows
+on them are exact."""
+
+
+def _alternating(n_base, n_after, a=1e-3):
+    """``n_base`` samples of +-a before t = 0, then zeros: a baseline of known statistics."""
+    t = np.arange(-n_base, n_after) * DT
+    y = np.where(t < 0, np.where(np.arange(t.size) % 2 == 0, a, -a), 0.0)
+    return t, y
+
+
+def test_baseline_of_alternating_samples():
+    n, a = 1000, 1e-3
+    t, y = _alternating(n, 500, a)
+    y = y + 0.25
+    mean, noise, samples = signals.baseline(t, y, (t[0], 0.0))
+    assert samples == n  # [start, end): t = 0 is excluded
+    # +-a in equal numbers: mean 0.25, std a sqrt(n / (n - 1)); rounding only (~1e-16).
+    assert mean == pytest.approx(0.25, rel=1e-14)
+    assert noise == pytest.approx(a * math.sqrt(n / (n - 1)), rel=1e-13)
+    assert signals.noise_level(t, y, (t[0], 0.0)) == noise
+    # the window's start is included: from the second sample, n - 1 samples
+    assert signals.baseline(t, y, (t[1], 0.0)).samples == n - 1
+
+
+def test_noise_level_of_gaussian_noise():
+    sigma, n = 0.01, 20_000
+    rng = np.random.default_rng(3)
+    t = np.arange(-n, 0) * DT
+    noise = signals.noise_level(t, rng.normal(0.5, sigma, n), (t[0], 0.0))
+    # The standard error of a sample std is sigma / sqrt(2 (n - 1)) (0.5 %); allow 5 of them.
+    assert noise == pytest.approx(sigma, rel=5 / np.sqrt(2 * (n - 1)))
+
+
+def test_onset_of_a_ramp_is_exact():
+    a, slope, t_start = 1e-3, 50.0, 2e-5  # [V], [V/s], [s]
+    t, y = _alternating(1000, 2000, a)
+    y = np.where(t < t_start, y, slope * (t - t_start))
+    sigma = a * math.sqrt(1000 / 999)
+    expected = t_start + 5 * sigma / slope
+    # A linear ramp is interpolated exactly; only rounding of t and y remains.
+    assert signals.detect_onset(t, y, (t[0], 0.0), k=5) == pytest.approx(expected, abs=1e-15)
+
+
+@pytest.mark.parametrize("height", [0.5, -0.5])
+def test_onset_of_a_step_interpolates_between_its_samples(height):
+    a, j = 1e-3, 1300  # the step's first sample
+    t, y = _alternating(1000, 1000, a)
+    y[j:] = height
+    k = 5.0
+    level = k * a * math.sqrt(1000 / 999)
+    onset = signals.detect_onset(t, y, (t[0], 0.0), k=k)
+    # |y - mean| goes from 0 to |height| over one sample: crossing of the level on that line
+    expected = t[j - 1] + level / abs(height) * DT
+    assert onset == pytest.approx(expected, abs=1e-18)  # rounding of t (~1e-20 s)
+    assert t[j - 1] < onset < t[j]
+
+
+def test_onset_at_the_first_sample_and_at_an_overrange_sample():
+    t, y = _alternating(1000, 1000)
+    first = y.copy()
+    first[0] = 1.0  # outside the window below, above the threshold
+    assert signals.detect_onset(t, first, (t[10], 0.0)) == t[0]
+    clipped = y.copy()
+    clipped[1500] = np.inf  # an overrange sample has no value to interpolate
+    assert signals.detect_onset(t, clipped, (t[0], 0.0)) == t[1500]
+
+
+def test_baseline_errors_name_the_window():
+    t, y = _alternating(100, 100)
+    with pytest.raises(ParameterError, match=r"holds 1 samples; need at least 2 \(pass pre="):
+        signals.baseline(t, y, (t[0], t[1]), name="pre")
+    # a reversed window holds nothing
+    with pytest.raises(ParameterError, match=r"holds 0 samples.*\(pass window=\(start, end\)"):
+        signals.noise_level(t, y, (0.0, t[0]))
+    for window in (1e-5, (0.0, 1e-5, 2e-5), ("a", 0.0), (True, 0.0)):
+        with pytest.raises(ParameterError, match=r"baseline_window must be \(start, end\) \[s\]"):
+            signals.baseline(t, y, window, name="baseline_window")
+    overrange = y.copy()
+    overrange[3] = -np.inf
+    with pytest.raises(ParameterError, match="holds overrange samples"):
+        signals.baseline(t, overrange, (t[0], 0.0))
+    with pytest.raises(ParameterError, match="1-D arrays of equal length"):
+        signals.baseline(t, y[:-1], (t[0], 0.0))
+
+
+def test_onset_errors():
+    t, y = _alternating(100, 100)
+    with pytest.raises(ParameterError, match="k must be a finite number > 0"):
+        signals.detect_onset(t, y, (t[0], 0.0), k=0.0)
+    # the alternating baseline is the whole deviation: nothing exceeds 2 sigma
+    with pytest.raises(ParameterError, match=r"no sample deviates .* more than 2\.0 sigma"):
+        signals.detect_onset(t, y, (t[0], 0.0), k=2.0)
+
+
+def _sine_response(f, cutoff, order, n=20_000):
+    """In-phase and quadrature amplitudes of the low-passed ``sin(2 pi f t)``, fitted over
+    the middle half of the record (away from the filter's edge transients)."""
+    t = np.arange(n) * DT
+    out = signals.lowpass(np.sin(2 * np.pi * f * t), DT, cutoff, order)
+    middle = slice(n // 4, 3 * n // 4)
+    basis = np.column_stack([np.sin(2 * np.pi * f * t[middle]), np.cos(2 * np.pi * f * t[middle])])
+    (in_phase, quadrature), *_ = np.linalg.lstsq(basis, out[middle], rcond=None)
+    return in_phase, quadrature
+
+
+@pytest.mark.parametrize("order", [1, 2, 4, 7])
+@pytest.mark.parametrize("ratio", [0.1, 0.25, 1.0, 3.0])
+def test_lowpass_gain_is_the_squared_digital_butterworth_response(ratio, order):
+    cutoff = 20e3  # [Hz]
+    f = ratio * cutoff
+    in_phase, quadrature = _sine_response(f, cutoff, order)
+    # Bilinear transform prewarped at the cutoff, applied twice: |H|^2 in closed form,
+    # exactly 1/2 at the cutoff whatever the order.
+    warp = math.tan(math.pi * f * DT) / math.tan(math.pi * cutoff * DT)
+    gain = 1.0 / (1.0 + warp ** (2 * order))
+    if ratio == 1.0:
+        assert gain == 0.5
+    # Least squares over 10^4 samples of a sine: rounding only (observed ~1e-14); the
+    # edge transients have decayed below it by the middle of the record.
+    assert in_phase == pytest.approx(gain, abs=1e-12)
+    assert quadrature == pytest.approx(0.0, abs=1e-12)  # zero phase, same rounding
+
+
+def test_lowpass_keeps_a_symmetric_pulse_in_place():
+    n = 3000
+    t = np.arange(n) * DT
+    centre = t[1500]
+    pulse = np.exp(-(((t - centre) / 20e-6) ** 2))
+    smooth = signals.lowpass(pulse, DT, 20e3)
+    # Zero phase: a pulse symmetric about a sample keeps its peak on that sample.
+    assert t[np.argmax(smooth)] == centre
+    assert smooth.max() < pulse.max()  # and the filter did act on it
+
+
+def test_lowpass_errors():
+    y = np.zeros(100)
+    nyquist = 0.5 / DT
+    for cutoff in (nyquist, -1.0, np.nan):
+        with pytest.raises(ParameterError, match=rf"cutoff .*< {nyquist:g} \[Hz\]"):
+            signals.lowpass(y, DT, cutoff)
+    with pytest.raises(ParameterError, match="interval must be a finite number > 0"):
+        signals.lowpass(y, 0.0, 1e3)
+    with pytest.raises(ParameterError, match="order must be an integer >= 1"):
+        signals.lowpass(y, DT, 1e3, order=2.0)
+    with pytest.raises(ParameterError, match="overrange"):
+        signals.lowpass(np.where(np.arange(100) == 50, np.inf, 0.0), DT, 1e3)
+    # order 4: two second-order sections, edge padding 3 (2 * 2 + 1) = 15 samples
+    with pytest.raises(ParameterError, match="order 4 needs more than 15 samples"):
+        signals.lowpass(y[:15], DT, 1e3)
+    assert signals.lowpass(y[:16], DT, 1e3).shape == (16,)
+    with pytest.raises(ParameterError, match="1-D array"):
+        signals.lowpass(y.reshape(10, 10), DT, 1e3)
