@@ -65,7 +65,7 @@ def pack(form, m1, k1, c1, m2, rigid):
     )
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy")
 def power(d, ad, p, signed):
     """``|d|**p``, or ``sign(d) |d|**p`` if signed, with the common exponents by roots."""
     if p == 0.0:
