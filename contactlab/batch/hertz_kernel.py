@@ -43,7 +43,7 @@ from contactlab.solver.impact import (
     WINDOW_PER_CONTACT,
 )
 from contactlab.solver.power_piece import STATUS_OK as PIECE_OK
-from contactlab.solver.power_piece import integrate
+from contactlab.solver.power_piece import contact_tolerances, integrate
 from contactlab.solver.power_rhs import C1, K1, M1, M2, PARAMETERS, RIGID, force, power
 
 __all__ = ["INTERVAL_PER_PERIOD", "solve_rows"]
@@ -293,8 +293,7 @@ def solve_row(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out):
     nm_f = conjugates_once(lam_f, vec_f, inv_f, nm_f)
     free_modes = (lam_f, vec_f, inv_f, nm_f, rate_f)
     ringing = 0.0 if rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(k1 / m1)
-    scale = v0 * 1e-6  # as contactlab.solver.adaptive.adaptive_contact
-    atol = 1e-3 * rtol * np.array([scale, v0, scale, v0])
+    atol = contact_tolerances(rtol, v0)
     y, work = np.array([0.0, 0.0, 0.0, v0]), np.zeros(WORK_SIZE)
     track = np.array([False, True, not rigid])
     best = np.array([0.0, 0.0, math.nan])

@@ -40,8 +40,7 @@ def adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
         d, r = x2 - x1, v2 - v1
         return [float(force(d, r))] + [value(d, r) for value in exits]
 
-    scale = velocity * 1e-6  # displacement scale [m]: 1 us of travel at impact speed
-    atol = 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
+    atol = power_piece.contact_tolerances(rtol, velocity)
     y = np.asarray(y0, dtype=float)
     touch = y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0
     if branch.power is not None and not branch.exits:

@@ -22,6 +22,7 @@ import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
 from contactlab.solver.dop853_kernel import dense_states
+from contactlab.solver.dop853_kernel import interpolate as interpolate_into
 
 __all__ = ["DenseSteps", "Stepper", "interpolate"]
 
@@ -149,12 +150,11 @@ class Stepper:
 
 
 def interpolate(F, y_old, x):
-    """One step's interpolant (:meth:`Stepper.interpolant`) at ``x = (t - t_old) / h``."""
-    y = np.zeros(y_old.size)
-    for k, coefficients in enumerate(F[::-1]):
-        y += coefficients
-        y *= x if k % 2 == 0 else 1.0 - x
-    return y + y_old
+    """One step's interpolant (:meth:`Stepper.interpolant`) at ``x = (t - t_old) / h``
+    (the compiled :func:`contactlab.solver.dop853_kernel.interpolate`, into a new array)."""
+    out = np.empty(y_old.size)
+    interpolate_into(F, y_old, float(x), out)
+    return out
 
 
 class DenseSteps:
@@ -173,9 +173,8 @@ class DenseSteps:
     def __init__(self, t_old, h, y_old, F):
         self._t_old = np.asarray(t_old, dtype=float)
         self._h = np.asarray(h, dtype=float)
-        self._y_old = np.asarray(y_old, dtype=float)
+        self._y_old = np.ascontiguousarray(y_old, dtype=float)
         self._F = np.ascontiguousarray(np.moveaxis(np.asarray(F, dtype=float), 1, 0))
-        self._y_old = np.ascontiguousarray(self._y_old)
         self._starts = self._t_old.tolist()
 
     @property

@@ -198,7 +198,7 @@ def dense_states(t_old, h, y_old, F, times, out):
     for i in range(times.size):
         j = min(max(np.searchsorted(t_old, times[i], side="right") - 1, 0), last)
         x = (times[i] - t_old[j]) / h[j]
-        for c in range(n):
+        for c in range(n):  # interpolate(F[:, j], ...) inlined: a view a sample is slow
             acc = 0.0
             for k in range(rows):
                 acc += F[rows - 1 - k, j, c]

@@ -20,13 +20,25 @@ from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
 from contactlab.solver.dop853_kernel import WORK_ROWS, initial_step, interpolant, interpolate, step
 from contactlab.solver.power_rhs import force, rhs
 
-__all__ = ["STATUS_OK", "STATUS_UNDERFLOW", "integrate"]
+__all__ = ["STATUS_OK", "STATUS_UNDERFLOW", "contact_tolerances", "integrate"]
 
 STATUS_OK, STATUS_UNDERFLOW = 0, 1
 """Outcome of :func:`integrate`: done, or the step size underflowed."""
 
 _DENSE = 7  # interpolant coefficient rows
 _FIRST_CAPACITY = 64
+
+
+@njit(cache=True, error_model="numpy")
+def contact_tolerances(rtol, velocity):
+    """Absolute tolerances of a contact piece's ``[x1, v1, x2, v2]``.
+
+    ``1e-3 rtol`` of one microsecond of travel at the impact speed [m] for the
+    displacements, of the impact speed [m/s] for the velocities: the adaptive solver's
+    and the batch kernel's choice alike.
+    """
+    scale = velocity * 1e-6
+    return 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
 
 
 @njit(cache=True, error_model="numpy")
@@ -95,14 +107,14 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
         t_old[count], hs[count], y_old[count] = t, h, y
         interpolant(K, h, y, y_new, f_new, par, warped, F[count])
         after = _event(y_new, par)
-        last_start, step_h = t, h
+        last_start = t
         count += 1
         y[:] = y_new
         f[:] = f_new
         t, h_try = t_new, h_next
         if before > 0.0 and after <= 0.0:
             hit = _locate(
-                last_start, step_h, before, after, F[count - 1], y_old[count - 1], par, tmp, work
+                last_start, h, before, after, F[count - 1], y_old[count - 1], par, tmp, work
             )
             break
         if warped and last_start > 0.0 and t**4 - last_start**4 < last_start**4:
