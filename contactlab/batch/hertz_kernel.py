@@ -24,12 +24,15 @@ from numba import njit
 
 from contactlab.batch.modal_kernel import (
     COND_LIMIT,
+    IN_CONTACT,
     SENSOR,
     STATUS_FALLBACK,
     STATUS_OK,
     conjugates_once,
+    falls,
     fastest,
     free_flight,
+    may_exceed,
     quadratic_modes,
     row_parameters,
     signal,
@@ -44,7 +47,19 @@ from contactlab.solver.impact import (
 )
 from contactlab.solver.power_piece import STATUS_OK as PIECE_OK
 from contactlab.solver.power_piece import contact_tolerances, integrate
-from contactlab.solver.power_rhs import C1, K1, M1, M2, PARAMETERS, RIGID, force, power
+from contactlab.solver.power_rhs import (
+    C1,
+    DAMPING,
+    DAMPING_EXPONENT,
+    EXPONENT,
+    K1,
+    M1,
+    M2,
+    RIGID,
+    STIFFNESS,
+    force,
+    power,
+)
 
 __all__ = ["INTERVAL_PER_PERIOD", "solve_rows"]
 
@@ -66,7 +81,6 @@ than the interval, and one thread solves 8 300 rows/s against 3 500 with eight s
 a step."""
 
 _S2, _S2_SLOPE, _S1, _S1_SLOPE = range(4)
-_A, _P, _B, _Q = (PARAMETERS.index(field) for field in ("a", "p", "b", "q"))
 
 _NOISE = 100.0
 """Sensor signal below this many times the integrator's absolute tolerance (in the
@@ -87,11 +101,11 @@ def _signals(z, par, out):
     rate_of_rate = -raw / par[M2] - a1
     out[_S2] = 0.0 if d < 0.0 else max(raw, 0.0)
     if d > 0.0:
-        d_p = power(d, d, par[_P], False)
-        slope = par[_A] * par[_P] * d_p / d * r
-        if par[_B] != 0.0:
-            d_q = power(d, d, par[_Q], False)
-            slope += par[_B] * d_q * (par[_Q] * r * r / d + rate_of_rate)
+        d_p = power(d, d, par[EXPONENT], False)
+        slope = par[STIFFNESS] * par[EXPONENT] * d_p / d * r
+        if par[DAMPING] != 0.0:
+            d_q = power(d, d, par[DAMPING_EXPONENT], False)
+            slope += par[DAMPING] * d_q * (par[DAMPING_EXPONENT] * r * r / d + rate_of_rate)
         out[_S2_SLOPE] = slope
     else:
         out[_S2_SLOPE] = _STEEP if r > 0.0 else 0.0
@@ -116,19 +130,6 @@ def _root(kind, lo, f_lo, hi, f_hi, a, h, F, y_old, par, z, values, work):
     return x
 
 
-@njit(cache=True, error_model="numpy", inline="always")
-def _may_exceed(value, slope, best, dt):
-    """Whether a turn inside a sample interval of ``dt`` [s] can reach ``best``.
-
-    About a maximum the signal is concave, so on the interval it stays below
-    ``S(a) + S'(a) dt``; about a minimum convex, so above it. Twice the slope term is
-    kept as a margin (as :func:`contactlab.batch.modal_kernel.scan` does). Refining
-    only the turns that can matter (a higher peak, a dip to zero) saves the root
-    searches on the many lower ripples of a ringing sensor.
-    """
-    return value + 2.0 * slope * dt >= best
-
-
 @njit(cache=True, error_model="numpy")
 def _shortest_period(par, v0):
     """A lower bound on the periods of the contact's oscillations [s].
@@ -139,8 +140,8 @@ def _shortest_period(par, v0):
     linearised two-mass system are below their Gershgorin bound
     ``max((k1 + 2 kc) / m1, 2 kc / m2)`` (on a wall ``kc / m2``).
     """
-    d_max = (5.0 * par[M2] * v0 * v0 / (4.0 * par[_A])) ** 0.4
-    kc = 1.5 * par[_A] * math.sqrt(d_max)
+    d_max = (5.0 * par[M2] * v0 * v0 / (4.0 * par[STIFFNESS])) ** 0.4
+    kc = 1.5 * par[STIFFNESS] * math.sqrt(d_max)
     if par[RIGID] > 0.0:
         omega2 = kc / par[M2]
     else:
@@ -189,8 +190,8 @@ def _read_steps(steps, warped, t0, u_end, par, limits, track, best, z, work):
             dt = t_now - t_prev
             if track[1]:
                 best[1] = max(best[1], cur[_S2])
-                turns = prev[_S2_SLOPE] > 0.0 and cur[_S2_SLOPE] <= 0.0
-                if turns and _may_exceed(prev[_S2], prev[_S2_SLOPE], best[1], dt):
+                turns = falls(prev[_S2_SLOPE], cur[_S2_SLOPE])
+                if turns and may_exceed(prev[_S2], prev[_S2_SLOPE], best[1], dt):
                     top = _root(
                         _S2_SLOPE, u_prev, prev[_S2_SLOPE], u, cur[_S2_SLOPE], a, hj, Fj, yj,
                         par, z, values, work,
@@ -216,8 +217,8 @@ def _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work):
     length [s]): its peaks, its end (in the step variable); ``values`` is scratch."""
     u_prev, prev, u, cur, dt = interval
     end = u
-    reach = prev[_S1] + 2.0 * prev[_S1_SLOPE] * dt  # see _may_exceed
-    if prev[_S1] > 0.0 and cur[_S1] <= 0.0:
+    reach = prev[_S1] + 2.0 * prev[_S1_SLOPE] * dt  # the bound of may_exceed, both ways
+    if falls(prev[_S1], cur[_S1]):
         end = _root(_S1, u_prev, prev[_S1], u, cur[_S1], a, hj, Fj, yj, par, z, values, work)
     elif prev[_S1_SLOPE] < 0.0 and cur[_S1_SLOPE] >= 0.0 and reach <= 0.0:
         # a dip inside the interval: its bottom decides whether the lobe ends there
@@ -229,7 +230,7 @@ def _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work):
         if values[_S1] <= 0.0:
             bottom = values[_S1]
             end = _root(_S1, u_prev, prev[_S1], low, bottom, a, hj, Fj, yj, par, z, values, work)
-    if prev[_S1_SLOPE] > 0.0 and cur[_S1_SLOPE] <= 0.0 and reach >= best[0]:
+    if falls(prev[_S1_SLOPE], cur[_S1_SLOPE]) and reach >= best[0]:
         top = _root(
             _S1_SLOPE, u_prev, prev[_S1_SLOPE], u, cur[_S1_SLOPE], a, hj, Fj, yj, par, z,
             values, work,
@@ -301,7 +302,7 @@ def solve_row(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out):
     limits = (floor, INTERVAL_PER_PERIOD * _shortest_period(par, v0))
     t, limit, contacts, contact_time, rebound = 0.0, math.inf, 0, math.nan, math.nan
     while True:
-        par[-1] = 1.0
+        par[IN_CONTACT] = 1.0
         if track[0]:  # a piece's start is a candidate for the sensor's peak
             best[0] = max(best[0], signal(SENSOR, y, par))
         horizon = (FIRST_CONTACT_HORIZON if contacts == 0 else limit) - t

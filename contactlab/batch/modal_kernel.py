@@ -29,7 +29,17 @@ from numba import njit
 
 from contactlab.roots import SIDE_STEPS
 from contactlab.solver.brent import brent_next, brent_start
-from contactlab.solver.power_rhs import PARAMETERS, force
+from contactlab.solver.power_rhs import (
+    C1,
+    DAMPING,
+    K1,
+    M1,
+    M2,
+    PARAMETERS,
+    RIGID,
+    STIFFNESS,
+    force,
+)
 from contactlab.solver.system import SCAN_STEPS_PER_RADIAN
 
 __all__ = [
@@ -39,7 +49,9 @@ __all__ = [
     "SENSOR",
     "STATUS_FALLBACK",
     "STATUS_OK",
+    "falls",
     "free_flight",
+    "may_exceed",
     "quadratic_modes",
     "row_parameters",
     "scan",
@@ -69,8 +81,7 @@ _TINY = np.finfo(np.float64).tiny
 # signals the scans and root searches read off a state
 CONTACT_END, RECONTACT, SENSOR, _SENSOR_SLOPE, _FORCE_SLOPE = range(5)
 # fields of the row's parameter array
-_FIELDS = ("a", "b", "m1", "k1", "c1", "m2", "rigid")
-K2, C2, M1, K1, C1, M2, RIGID = (PARAMETERS.index(field) for field in _FIELDS)
+K2, C2 = STIFFNESS, DAMPING  # a linear contact's stiffness and damping, as in row_parameters
 IN_CONTACT = len(PARAMETERS)
 
 
@@ -175,7 +186,7 @@ def _read(event, y, par, track, values):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _may_exceed(value, slope, best, h):
+def may_exceed(value, slope, best, h):
     """Whether a local maximum inside a scan interval of length ``h`` [s] can beat ``best``.
 
     The signal is concave about a maximum found between two scan points (31 per period
@@ -187,7 +198,7 @@ def _may_exceed(value, slope, best, h):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _falls(before, after):
+def falls(before, after):
     """Crossing from positive to non-positive (contactlab.roots.crosses, direction -1)."""
     return before > 0.0 and after <= 0.0
 
@@ -236,7 +247,7 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
             hit = -1.0
             if event >= 0:
                 if direction < 0:
-                    crossed = _falls(prev[0], cur[0])
+                    crossed = falls(prev[0], cur[0])
                 else:
                     crossed = prev[0] < 0.0 and cur[0] >= 0.0
                 if crossed:
@@ -244,12 +255,12 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     hit = _crossed_side(event, direction, hit, tau, piece, par, y)
             upto = tau if hit < 0.0 else hit
             h = tau - t_prev
-            if track[0] and _falls(prev[2], cur[2]) and _may_exceed(prev[1], prev[2], best[0], h):
+            if track[0] and falls(prev[2], cur[2]) and may_exceed(prev[1], prev[2], best[0], h):
                 t_max = _root(_SENSOR_SLOPE, t_prev, prev[2], tau, cur[2], piece, par, y, work)
                 if t_max <= upto:
                     state(t_max, lam, vec, coef, nm, base, slope, y0, y)
                     best[0] = max(best[0], signal(SENSOR, y, par))
-            if track[0] and _falls(prev[1], cur[1]):
+            if track[0] and falls(prev[1], cur[1]):
                 t_end = _root(SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:
                     best[2] = t_end
@@ -262,7 +273,7 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                 if t_min <= upto and bottom <= 0.0:
                     best[2] = _root(SENSOR, t_prev, prev[1], t_min, bottom, piece, par, y, work)
                     track[0] = False
-            if track[1] and _falls(prev[3], cur[3]) and _may_exceed(prev[4], prev[3], best[1], h):
+            if track[1] and falls(prev[3], cur[3]) and may_exceed(prev[4], prev[3], best[1], h):
                 t_max = _root(_FORCE_SLOPE, t_prev, prev[3], tau, cur[3], piece, par, y, work)
                 if t_max <= upto:
                     state(t_max, lam, vec, coef, nm, base, slope, y0, y)

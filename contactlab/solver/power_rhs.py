@@ -22,12 +22,31 @@ import math
 import numpy as np
 from numba import njit
 
-__all__ = ["PARAMETERS", "force", "pack", "power", "rhs"]
+__all__ = [
+    "C1",
+    "DAMPING",
+    "DAMPING_EXPONENT",
+    "EXPONENT",
+    "K1",
+    "M1",
+    "M2",
+    "PARAMETERS",
+    "RIGID",
+    "SIGNED_DAMPING",
+    "STIFFNESS",
+    "force",
+    "pack",
+    "power",
+    "rhs",
+]
 
 PARAMETERS = ("a", "p", "b", "q", "signed", "m1", "k1", "c1", "m2", "rigid")
 """Fields of the packed parameter array, in order (:func:`pack`)."""
 
-_A, _P, _B, _Q, _SIGNED, M1, K1, C1, M2, RIGID = range(len(PARAMETERS))
+STIFFNESS, EXPONENT, DAMPING, DAMPING_EXPONENT, SIGNED_DAMPING, M1, K1, C1, M2, RIGID = range(
+    len(PARAMETERS)
+)
+"""Indices of the fields of :data:`PARAMETERS` in the packed array."""
 
 
 def pack(form, m1, k1, c1, m2, rigid):
@@ -88,10 +107,11 @@ def force(d, r, par):
     """Contact-force formula [N] at overlap ``d`` [m] and rate ``r`` [m/s], not clipped
     (it turns negative where the contact would pull: the contact ends there)."""
     ad = abs(d)
-    elastic = par[_A] * power(d, ad, par[_P], True)
-    if par[_B] == 0.0:
+    elastic = par[STIFFNESS] * power(d, ad, par[EXPONENT], True)
+    if par[DAMPING] == 0.0:
         return elastic
-    return elastic + par[_B] * power(d, ad, par[_Q], par[_SIGNED] > 0.0) * r
+    signed = par[SIGNED_DAMPING] > 0.0
+    return elastic + par[DAMPING] * power(d, ad, par[DAMPING_EXPONENT], signed) * r
 
 
 @njit(cache=True, error_model="numpy")
