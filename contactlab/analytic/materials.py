@@ -9,6 +9,7 @@ from contactlab.validation import (
 )
 
 __all__ = [
+    "check_elastic_pair",
     "contact_modulus_radius",
     "effective_mass",
     "effective_modulus",
@@ -98,13 +99,25 @@ def effective_modulus(
     .. [1] K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985.
        DOI: 10.1017/CBO9781139171731
     """
+    e1, nu1, e2, nu2 = check_elastic_pair(
+        youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio
+    )
+    return 1.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)
+
+
+def check_elastic_pair(youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio):
+    """Check the elastic data of two bodies in contact; return them as floats.
+
+    ``youngs_modulus`` [Pa] > 0, ``other_youngs_modulus`` [Pa] > 0 or ``inf`` (a rigid
+    body), Poisson ratios in (-1, 0.5] [-]; a bad value raises ParameterError naming it.
+    """
     e1 = check_positive("youngs_modulus", youngs_modulus, "Pa")
     nu1 = check_poisson_ratio("poisson_ratio", poisson_ratio)
     e2 = check_number(
         "other_youngs_modulus", other_youngs_modulus, low=0.0, unit="Pa", allow_inf=True
     )
     nu2 = check_poisson_ratio("other_poisson_ratio", other_poisson_ratio)
-    return 1.0 / ((1.0 - nu1**2) / e1 + (1.0 - nu2**2) / e2)
+    return e1, nu1, e2, nu2
 
 
 def hertz_stiffness(effective_modulus, effective_radius):

@@ -18,8 +18,9 @@ Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656. DOI 10.1007/s10035-011-
 
 import math
 
+from contactlab.analytic.materials import check_elastic_pair
 from contactlab.errors import ParameterError
-from contactlab.validation import check_number, check_poisson_ratio
+from contactlab.validation import check_number
 
 __all__ = [
     "SOLID_SPHERE_INERTIA",
@@ -65,12 +66,9 @@ def effective_shear_modulus(
     ----------
     Mindlin R.D. (1949) J. Appl. Mech. 16, 259-268.
     """
-    e1 = check_number("youngs_modulus", youngs_modulus, low=0.0, unit="Pa")
-    nu1 = check_poisson_ratio("poisson_ratio", poisson_ratio)
-    e2 = check_number(
-        "other_youngs_modulus", other_youngs_modulus, low=0.0, unit="Pa", allow_inf=True
+    e1, nu1, e2, nu2 = check_elastic_pair(
+        youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio
     )
-    nu2 = check_poisson_ratio("other_poisson_ratio", other_poisson_ratio)
     compliance = 2.0 * (2.0 - nu1) * (1.0 + nu1) / e1 + 2.0 * (2.0 - nu2) * (1.0 + nu2) / e2
     return 1.0 / compliance
 
