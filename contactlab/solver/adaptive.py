@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from contactlab.roots import crosses, earliest_root
+from contactlab.roots import crosses, departure_root, earliest_root, has_happened, waits
 from contactlab.solver import power_piece
 from contactlab.solver.dop853 import DenseSteps, Stepper, interpolate
 from contactlab.solver.pieces import DenseStates
@@ -166,6 +166,7 @@ def _run(stepper, end, event_values, directions, stop=None):
     ``hit`` is ``(time, index)`` of the first event crossing, or None.
     """
     steps, hit, before = [], None, event_values(stepper.y)
+    armed = [bool(waits(v, d)) for v, d in zip(before, directions, strict=True)]
     while stepper.t < end:
         if not stepper.step(end):
             raise RuntimeError(underflow_message(stepper.t, stepper.rtol))
@@ -173,24 +174,37 @@ def _run(stepper, end, event_values, directions, stop=None):
             (stepper.t_old, stepper.t - stepper.t_old, stepper.y_old, stepper.interpolant())
         )
         after = event_values(stepper.y)
-        hit = _first_crossing(steps[-1], before, after, directions, event_values)
+        hit = _first_crossing(steps[-1], before, after, directions, event_values, armed)
         if hit is not None or (stop is not None and stop(stepper.t_old, stepper.t)):
             break
+        armed = [a or bool(waits(v, d)) for a, v, d in zip(armed, after, directions, strict=True)]
         before = after
     return DenseSteps(*zip(*steps, strict=True)), hit
 
 
-def _first_crossing(step, before, after, directions, event_values):
+def _first_crossing(step, before, after, directions, event_values, armed):
     """Earliest event crossing inside one step ``(t_old, h, y_old, F)``: (time, index) or
     None. At the step's end the events take their end values (``after``), so an event
-    that lands exactly on zero there is found there."""
+    that lands exactly on zero there is found there.
+
+    ``armed[j]`` says whether event ``j`` has waited (:func:`contactlab.roots.waits`)
+    since the piece started. An event that has not (it started the piece at zero, such
+    as the Coulomb limit at a touch, or a rounding past it) and is found happened at the
+    step's end crossed inside the step after leaving zero: it is located by
+    :func:`contactlab.roots.departure_root` instead of being ignored.
+    """
     t_old, h, y_old, F = step
     events = [
         j
-        for j, (a, b, d) in enumerate(zip(before, after, directions, strict=True))
-        if crosses(a, b, d)
+        for j, (a, b, d, ready) in enumerate(zip(before, after, directions, armed, strict=True))
+        if ready and crosses(a, b, d)
     ]
-    if not events:
+    departures = [
+        j
+        for j, (b, d, ready) in enumerate(zip(after, directions, armed, strict=True))
+        if not ready and has_happened(b, d)
+    ]
+    if not events and not departures:
         return None
 
     def value(t, j):
@@ -198,4 +212,8 @@ def _first_crossing(step, before, after, directions, event_values):
             return after[j]
         return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
 
-    return earliest_root(events, value, t_old, t_old + h, directions)
+    found = [earliest_root(events, value, t_old, t_old + h, directions)] if events else []
+    for j in departures:
+        fn = lambda t, j=j: value(t, j)  # noqa: E731
+        found.append((departure_root(fn, t_old, t_old + h, directions[j]), j))
+    return min(found)
