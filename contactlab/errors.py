@@ -5,6 +5,7 @@ All errors derive from standard bases so callers can catch them generically
 """
 
 __all__ = [
+    "AuditWarning",
     "ContactlabWarning",
     "ParameterError",
     "ResolutionWarning",
@@ -39,3 +40,9 @@ class WindowWarning(ContactlabWarning):
 
 class ResolutionWarning(ContactlabWarning):
     """The output sample rate cannot resolve the signal; the message gives the minimum rate."""
+
+
+class AuditWarning(ContactlabWarning):
+    """A result breaks a physical invariant (one-sided normal force, Coulomb's limit, energy,
+    momentum) beyond the solver's tolerance; the message names the check, its worst value,
+    the tolerance and when (see :mod:`contactlab.audit`)."""

@@ -7,28 +7,13 @@ from functools import cached_property
 import numpy as np
 
 from contactlab import metrics
+from contactlab.quadrature import gauss_rule
 from contactlab.roots import ROOT_RTOL, locate_root
 
 __all__ = ["ImpactResult", "ImpactSignals"]
 
-_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
-"""Gauss-Legendre rule for impulse, work and energy integrals over each smooth piece."""
-
-
 _ZOOMS = 5
 """Zoom levels of the peak search (:meth:`ImpactResult._refined_max`)."""
-
-_GRADING = np.array([0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2, 0.1, 0.4])
-"""Relative panel edges near the start of a contact piece (geometric grading)."""
-
-
-def _panel_edges(length, period, graded):
-    """Relative panel edges on [0, 1] for :meth:`ImpactResult._integrate`."""
-    n = max(1, math.ceil(length / period)) if math.isfinite(period) else 1
-    uniform = np.linspace(0.0, 1.0, n + 1)
-    if not graded:
-        return uniform
-    return np.union1d(_GRADING, uniform)
 
 
 def _crossing(signal, level, lo, hi):
@@ -261,13 +246,10 @@ class ImpactResult(ImpactSignals):
             lo, hi = max(seg.t0, start), min(seg.t1, end)
             if hi <= lo:
                 continue
-            edges = lo + (hi - lo) * _panel_edges(hi - lo, period, seg.kind == "contact")
-            half, mid = 0.5 * np.diff(edges), 0.5 * (edges[1:] + edges[:-1])
-            # every panel's nodes in one evaluation of the piece
-            tau = (mid[:, None] + half[:, None] * _GAUSS_NODES - seg.t0).ravel()
+            nodes, weights = gauss_rule(lo, hi, period, graded=seg.kind == "contact")
+            tau = nodes - seg.t0  # every panel's nodes in one evaluation of the piece
             st = seg.states(tau)
-            values = integrand(st, seg.force(tau, st)).reshape(half.size, -1)
-            total += float(half @ (values @ _GAUSS_WEIGHTS))
+            total += float(weights @ integrand(st, seg.force(tau, st)))
         return total
 
     def _system_period(self):

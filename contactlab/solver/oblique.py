@@ -36,6 +36,7 @@ import warnings
 import numpy as np
 
 from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
+from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, WindowWarning
 from contactlab.laws import SmoothLaw, TangentialLaw
@@ -273,6 +274,7 @@ def simulate_oblique(
     sample_rate=None,
     rtol=1e-9,
     inertia_factor=SOLID_SPHERE_INERTIA,
+    audit=True,
 ):
     """Simulate a spinning sphere striking a flat or a force sensor at an angle.
 
@@ -306,6 +308,11 @@ def simulate_oblique(
         Relative tolerance of the DOP853 integration.
     inertia_factor : float, default 0.4
         ``I / (m R**2)`` [-] (0.4: a homogeneous solid sphere).
+    audit : bool, default True
+        Run the cheap audit (:meth:`ObliqueResult.audit` with ``full=False``: energy and
+        angular momentum from the end states, one-sided force and Coulomb on the output
+        grid) and issue an :class:`~contactlab.errors.AuditWarning` if an invariant the
+        model keeps fails beyond tolerance.
 
     Returns
     -------
@@ -356,7 +363,7 @@ def simulate_oblique(
         )
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
-    return ObliqueResult(
+    result = ObliqueResult(
         grain=grain,
         sensor=sensor,
         normal_law=normal_law,
@@ -370,4 +377,8 @@ def simulate_oblique(
         final_state=y_end,
         duration=window,
         sample_rate=sample_rate,
+        rtol=rtol,
     )
+    if audit:
+        warn_if_broken(result.audit(full=False), "simulate_oblique's result")
+    return result
