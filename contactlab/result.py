@@ -153,10 +153,13 @@ class ImpactResult(ImpactSignals):
         events,
         system,
         threshold=0.0,
+        rtol=None,
+        time_step=None,
     ):
         self.grain, self.sensor, self.law = grain, sensor, law
         self.velocity, self.duration, self.sample_rate = velocity, duration, sample_rate
-        self.method, self.threshold = method, threshold
+        self.method, self.threshold, self.rtol = method, threshold, rtol
+        self.time_step = time_step if method == "euler" else None
         self.segments = segments
         self.contact_intervals = list(contact_intervals)
         self.events = list(events)
@@ -391,6 +394,24 @@ class ImpactResult(ImpactSignals):
     def grain_work(self):
         """Work done by the contact force on the grain, ``-integral S2 v2 dt`` [J]."""
         return self._integrate(lambda st, f: -f * st[:, 3], 0.0, self.duration)
+
+    def audit(self, full=True):
+        """Energy ledger and invariants over the first contact (:mod:`contactlab.audit`).
+
+        Parameters
+        ----------
+        full : bool, default True
+            With the ledger, the one-sided force, the damper's work and the momentum
+            balance; False: the ``energy`` check alone, which
+            :func:`contactlab.simulate_impact` runs by default.
+
+        Returns
+        -------
+        contactlab.audit.Audit
+        """
+        from contactlab.impact_audit import audit_impact
+
+        return audit_impact(self, full)
 
     # -- output ----------------------------------------------------------------
     def summary(self):

@@ -29,6 +29,7 @@ import warnings
 
 import numpy as np
 
+from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.laws import ContactLaw, PlasticTrapezoid
@@ -176,6 +177,7 @@ def simulate_impact(
     rtol=1e-10,
     time_step=1e-10,
     threshold=0.0,
+    audit=True,
 ):
     """Simulate a grain striking a force sensor (or an immovable wall).
 
@@ -211,6 +213,11 @@ def simulate_impact(
     threshold : float, default 0
         Level [N] at which the sensor signal's first lobe is read
         (``result.sensor_response_time``).
+    audit : bool, default True
+        Check that the rebound carries no more energy than came in
+        (:meth:`ImpactResult.audit` with ``full=False``) and issue an
+        :class:`~contactlab.errors.AuditWarning` if it does beyond the method's tolerance
+        (an Euler step too coarse for the contact creates energy).
 
     Returns
     -------
@@ -270,7 +277,11 @@ def simulate_impact(
         events=log,
         system=system,
         threshold=threshold,
+        rtol=rtol,
+        time_step=time_step,
     )
+    if audit:
+        warn_if_broken(result.audit(full=False), f"simulate_impact's result (method={method!r})")
     if verify:
         result.verification = _verify(result, rtol, time_step)
     return result
