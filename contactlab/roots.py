@@ -18,6 +18,7 @@ __all__ = [
     "departure_root",
     "earliest_root",
     "has_happened",
+    "is_past",
     "locate_root",
     "waits",
 ]
@@ -70,6 +71,13 @@ def has_happened(value, direction):
     return value <= 0 if direction < 0 else value >= 0
 
 
+def is_past(value, direction):
+    """Whether an event function is strictly beyond zero on its crossed side: ``value < 0``
+    falling, ``value > 0`` rising (an event that stays exactly at zero, such as the
+    Coulomb limit of a contact without slip or friction, is not past)."""
+    return value < 0 if direction < 0 else value > 0
+
+
 DEPARTURE_SAMPLES = 60
 """Halvings of the bracket, towards its start, at which :func:`departure_root` looks for
 the point where an event leaves zero (a touch at ``2**-60`` of the first step is below
@@ -93,7 +101,7 @@ def departure_root(fn, lo, hi, direction):
     fn : callable
         Event function of time [s].
     lo, hi : float
-        Bracket [s]; ``fn(hi)`` is on the happened side (:func:`has_happened`).
+        Bracket [s]; ``fn(hi)`` is past zero (:func:`is_past`).
     direction : int
         Crossing direction, as in :func:`crosses`.
 
