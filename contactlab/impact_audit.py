@@ -19,7 +19,12 @@ __all__ = ["EULER_ENERGY", "audit_impact", "energy_tolerance"]
 
 EXACT_ROUNDING = 1e-9
 """Tolerance [-] of the ``energy`` check of the exact solver (modal solutions and roots to
-machine precision; measured <= 1e-13), and of ``one_sided`` (a root's rounding)."""
+machine precision; measured <= 1e-13)."""
+
+PULL_ROUNDING = 1e-8
+"""Tolerance [-] of ``one_sided``, of the peak force: a branch formula such as
+``k (d - d0)`` cancels digits where the overlap is large against the force (a 0.05 N force
+cap flowing to 0.4 m of overlap: 1.7e-9, the worst measured over the matrix)."""
 
 ADAPTIVE_ROUNDING = 100.0
 """``energy`` tolerance of the adaptive solver in units of its ``rtol``: the end states carry
@@ -170,4 +175,4 @@ def _one_sided(result, start, end):
     if not worst:
         return None
     value, at = max(worst)
-    return Check("one_sided", value, EXACT_ROUNDING, "peak contact force", at)
+    return Check("one_sided", value, PULL_ROUNDING, "peak contact force", at)

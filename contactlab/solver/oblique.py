@@ -161,13 +161,14 @@ class ObliqueModel:
                 x1, v1, x2, v2 = y[:4].tolist()
                 n = normal(x2 - x1, v2 - v1)
                 force = self.tangential_force(STICK, y[:7].tolist())
-                return [n, force - mu * n, -force - mu * n]
+                return [_contact_value(n, x2 - x1), force - mu * n, -force - mu * n]
 
             return values, [-1, +1, +1]
 
         def values(y):
             x1, v1, x2, v2 = y[:4].tolist()
-            return [normal(x2 - x1, v2 - v1), self.slide_exit(phase, y.tolist())]
+            n = normal(x2 - x1, v2 - v1)
+            return [_contact_value(n, x2 - x1), self.slide_exit(phase, y.tolist())]
 
         return values, [-1, -1]
 
@@ -193,6 +194,19 @@ class ObliqueModel:
         if abs(force) <= cap:
             return STICK
         return +1 if force > 0.0 else -1
+
+
+def _contact_value(normal_force, overlap):
+    """Contact-end event value: the normal force while the overlap is positive, a negative
+    value once it is not (one-sided contact: no force at ``d <= 0``).
+
+    The raw formulas keep their sign change at ``d = 0`` through signed powers, but
+    Hunt-Crossley's ``k d**n (1 + 1.5 chi d')`` has its second factor decay towards zero
+    exponentially on unloading (it never reaches it while ``d > 0``); with that factor a
+    rounding below zero, both factors change sign at ``d = 0`` and the force stays
+    positive, so the contact end was missed (found by the audit matrix, issue 21).
+    """
+    return normal_force if overlap > 0.0 else min(normal_force, 0.0) + overlap
 
 
 class ContactPiece:

@@ -359,7 +359,9 @@ def oblique_impacts(draw, normal=None, sensor_resonance=(5e3, 300e3), spin_ratio
     :func:`contactlab.simulate_oblique`.
 
     Grains 1-10 mm (:func:`grains`), a flat or a sensor of 5-300 kHz (:func:`sensors`),
-    a normal law of :func:`restitution_laws` (restitution 0.05-1), a tangential law of
+    a normal law of :func:`restitution_laws` (restitution 0.05-1 in a normal impact at the
+    impact speed: near grazing incidence the normal speed is far smaller, and a
+    Hunt-Crossley damping set for it would be absurd), a tangential law of
     :func:`tangential_laws` (friction 0-1), speed 0.1-10 m/s, incidence in [0, 90) deg and
     spin up to ``spin_ratio`` times ``V / R`` either way.
 
@@ -385,7 +387,7 @@ def oblique_impacts(draw, normal=None, sensor_resonance=(5e3, 300e3), spin_ratio
     return {
         "grain": grain,
         "sensor": draw(sensors(resonance=sensor_resonance, rigid=True)),
-        "normal_law": draw(restitution_laws(grain, velocity * math.cos(angle) or velocity, normal)),
+        "normal_law": draw(restitution_laws(grain, velocity, normal)),
         "tangential_law": draw(tangential_laws(grain)),
         "velocity": velocity,
         "angle": angle,
