@@ -176,15 +176,24 @@ class ObliqueModel:
         """Phase at a touch: the limit ``t -> 0+`` of LAMMPS' rule.
 
         The history starts at the touch and the force is capped only once the trial force
-        exceeds ``mu N``: the contact sticks unless the trial force along a sticking path
-        from the touch's state already exceeds the cap there. That path is followed for
-        one short DOP853 step (a millionth of the first step); the ratio of trial force
-        to cap is a power of time near the touch (constant for Hertz-Mindlin, growing
-        for a damped normal force), so the probe's length does not matter.
+        exceeds ``mu N``. A trial force already above the cap at the touch itself (a
+        damped spring's ``-eta s`` against a cap that starts at zero) slides. Otherwise
+        the contact sticks unless the trial force along a sticking path from the touch's
+        state exceeds the cap just after it: that path is followed for one short DOP853
+        step (a millionth of the first step); the ratio of an elastic trial force to the
+        cap is a power of time near the touch (constant for Hertz-Mindlin, growing for a
+        damped normal force), so the probe's length does not matter. (Reading a damped
+        spring at the probe instead chose sticking wherever the cap had outgrown
+        ``eta s`` by then, and broke Coulomb before it: issue 21's matrix.)
         """
         slip = y0[4] - self.radius * y0[5]
         if slip == 0.0:
             return STICK
+        start = list(y0)
+        force = self.tangential_force(STICK, start)
+        cap = self.law.friction * max(self.normal(start[2] - start[0], start[3] - start[1]), 0.0)
+        if abs(force) > cap:
+            return +1 if force > 0.0 else -1
         probe_time = _PROBE * first_step
         stepper = Stepper(self.rhs(STICK), 0.0, y0, rtol, atol, first_step=probe_time)
         stepper.step(probe_time)

@@ -129,3 +129,29 @@ def test_departure_root_at_the_start_when_the_event_never_waits():
     """An event already on its crossed side everywhere happened at the start."""
     assert departure_root(lambda t: t, 0.0, 1.0, +1) == 0.0
     assert departure_root(lambda t: -t, 2.0, 3.0, -1) == 2.0
+
+
+def test_a_weakly_damped_spring_slides_at_the_touch():
+    """Found by the audit matrix: a spring with a tiny damping (``eta s`` = 5e-8 N) under a
+    damped Hertz cap. The touch phase was read at a probe where the cap had already
+    outgrown ``eta s``, so the contact stuck from the touch with ``|T| > mu N`` before the
+    probe (8e-6 of the peak normal force). A trial force above the cap at the touch
+    itself now slides, for an instant (the damped cap outgrows it), then sticks."""
+    diameter, mass = 1.909e-3, 6.182e-6
+    grain = cl.Grain(
+        diameter=diameter,
+        density=mass / (math.pi / 6 * diameter**3),
+        youngs_modulus=2.377e6,
+        poisson_ratio=0.2,
+    )
+    res = cl.simulate_oblique(
+        grain,
+        cl.Sensor.rigid(),
+        cl.laws.HertzDamped(102213.0, 0.173198),
+        TangentialSpring(23199.6, 0.37409, 4.51439e-8),
+        1.1,
+        1.464243757077285,
+        spin=2304.5697042792963,
+    )
+    assert [p[2] for p in res.phases] == ["slide+", "stick", "slide+"]
+    assert res.audit()["coulomb"].worst <= COULOMB_ROUNDING
