@@ -22,11 +22,10 @@ import time
 import warnings
 
 from hypothesis import HealthCheck, Phase, given, seed, settings
-from hypothesis import strategies as st
 
 import contactlab as cl
 from contactlab import analytic
-from contactlab.testing.strategies import grains, impact_velocities, laws, oblique_impacts, sensors
+from contactlab.testing.strategies import normal_impacts, oblique_impacts
 
 MIN_FRICTION = 0.01
 """Smallest friction at which the gross-sliding impulse ratio is read: below it the
@@ -118,21 +117,16 @@ def run_impact(examples, seed_value):
 
     @seed(seed_value)
     @settings(**SETTINGS, max_examples=examples)
-    @given(
-        grain=grains(diameter=(1e-3, 10e-3)),
-        sensor=sensors(resonance=(5e3, 300e3), rigid=True),
-        law=st.one_of(laws(), laws("plastic_trapezoid")),
-        velocity=impact_velocities(0.1, 10.0),
-    )
-    def one(grain, sensor, law, velocity):
+    @given(case=normal_impacts())
+    def one(case):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             try:
-                res = cl.simulate_impact(grain, sensor, law, velocity, audit=False)
+                res = cl.simulate_impact(**case, audit=False)
             except RuntimeError as error:
-                worst.failures.append(((grain, sensor, law, velocity), [str(error)]))
+                worst.failures.append((case, [str(error)]))
                 return
-        worst.add(res.audit(), (type(law).__name__,), (grain, sensor, law, velocity))
+        worst.add(res.audit(), (type(case["law"]).__name__,), case)
 
     one()
     return worst

@@ -39,7 +39,15 @@ import numpy as np
 from contactlab.errors import AuditWarning
 from contactlab.quadrature import gauss_rule
 
-__all__ = ["Audit", "Check", "EnergyLedger", "elastic_energy", "grid_checks", "warn_if_broken"]
+__all__ = [
+    "Audit",
+    "Check",
+    "EnergyLedger",
+    "elastic_energy",
+    "energy_check",
+    "grid_checks",
+    "warn_if_broken",
+]
 
 LEDGER_KEYS = (
     "kinetic_in",
@@ -198,6 +206,13 @@ class Audit:
             "checks": {c.name: c.as_dict() for c in self.checks},
             "ok": self.ok,
         }
+
+
+def energy_check(ledger, tolerance, model_property=""):
+    """The ``energy`` check of a ledger: what the bodies hold after the contact over what
+    came in, minus one [-] (> 0: energy created)."""
+    gain = (ledger.kinetic_out - ledger.kinetic_in) / ledger.kinetic_in
+    return Check("energy", gain, tolerance, "impact energy", math.nan, model_property)
 
 
 def warn_if_broken(audit, what, stacklevel=3):

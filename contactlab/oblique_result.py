@@ -5,7 +5,15 @@ from functools import cached_property
 
 import numpy as np
 
-from contactlab.audit import Audit, Check, EnergyLedger, elastic_energy, grid_checks, worst_of
+from contactlab.audit import (
+    Audit,
+    Check,
+    EnergyLedger,
+    elastic_energy,
+    energy_check,
+    grid_checks,
+    worst_of,
+)
 from contactlab.quadrature import gauss_rule
 
 __all__ = ["ObliqueResult"]
@@ -282,9 +290,8 @@ class ObliqueResult:
     def _end_checks(self):
         """``energy`` and ``momentum_angular`` from the states before and after the contact."""
         ledger, rtol = self._end_energies(), self.rtol
-        gain = (ledger.kinetic_out - ledger.kinetic_in) / ledger.kinetic_in
         allowed = MINDLIN_ENERGY if self.tangential_law.name == "mindlin" else ""
-        yield Check("energy", gain, ENERGY_ROUNDING * rtol, "impact energy", math.nan, allowed)
+        yield energy_check(ledger, ENERGY_ROUNDING * rtol, allowed)
         m, radius, inertia = self.grain.mass, self.grain.radius, self._model.inertia
         change = inertia * (self.angular_velocity - self.spin) + m * radius * (
             self.tangential_velocity - self.incident_tangential_velocity

@@ -43,6 +43,7 @@ __all__ = [
     "laws",
     "linear_laws",
     "linear_plastic_laws",
+    "normal_impacts",
     "oblique_impacts",
     "plastic_trapezoid_laws",
     "restitution_laws",
@@ -393,3 +394,24 @@ def oblique_impacts(draw, normal=None, sensor_resonance=(5e3, 300e3), spin_ratio
         "angle": angle,
         "spin": draw(st.floats(-ratio, ratio)) * velocity / grain.radius,
     }
+
+
+def normal_impacts(sensor_resonance=(5e3, 300e3)):
+    """Normal impacts over the ranges users have, as keyword arguments of
+    :func:`contactlab.simulate_impact`: grains 1-10 mm, a flat or a sensor of
+    ``sensor_resonance`` [Hz], every law of :data:`LAW_STRATEGIES` (the prescribed pulse
+    included), 0.1-10 m/s.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of dicts with ``grain``, ``sensor``, ``law`` and ``velocity`` [m/s].
+    """
+    return st.fixed_dictionaries(
+        {
+            "grain": grains(diameter=(1e-3, 10e-3)),
+            "sensor": sensors(resonance=sensor_resonance, rigid=True),
+            "law": st.one_of(laws(), laws("plastic_trapezoid")),
+            "velocity": impact_velocities(0.1, 10.0),
+        }
+    )

@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from contactlab.audit import Audit, Check, EnergyLedger
+from contactlab.audit import Audit, Check, EnergyLedger, energy_check
 from contactlab.oblique_result import MINDLIN_ENERGY
 
 __all__ = ["audit_engine", "audit_oblique_rebound"]
@@ -76,12 +76,7 @@ def audit_engine(result):
     pull = float((-force / peak).max())
     impulse = dt * float(force.sum())
     checks = (
-        Check(
-            "energy",
-            (ledger.kinetic_out - ledger.kinetic_in) / ledger.kinetic_in,
-            energy_tolerance,
-            "impact energy",
-        ),
+        energy_check(ledger, energy_tolerance),
         Check(
             "one_sided",
             pull,
@@ -147,13 +142,8 @@ def audit_oblique_rebound(
     tangential_impulse = m * (out_t - vt)
     change = inertia * (out_w - spin) + m * radius * (out_t - vt)
     checks = (
-        Check(
-            "energy",
-            (ledger.kinetic_out - ledger.kinetic_in) / ledger.kinetic_in,
-            energy_tolerance,
-            "impact energy",
-            math.nan,
-            MINDLIN_ENERGY if tangential_law.name == "mindlin" else "",
+        energy_check(
+            ledger, energy_tolerance, MINDLIN_ENERGY if tangential_law.name == "mindlin" else ""
         ),
         Check(
             "momentum_angular",

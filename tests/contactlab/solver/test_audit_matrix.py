@@ -23,13 +23,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab.batch import hertz_impacts, linear_impacts
 from contactlab.errors import WindowWarning
-from contactlab.testing.strategies import (
-    grains,
-    impact_velocities,
-    laws,
-    oblique_impacts,
-    sensors,
-)
+from contactlab.testing.strategies import normal_impacts, oblique_impacts
 
 MATRIX = settings(
     max_examples=25,
@@ -57,14 +51,9 @@ def test_oblique_impacts_audit_clean(case):
 
 
 @MATRIX
-@given(
-    grain=grains(diameter=(1e-3, 10e-3)),
-    sensor=sensors(resonance=(5e3, 300e3), rigid=True),
-    law=st.one_of(laws(), laws("plastic_trapezoid")),
-    velocity=impact_velocities(0.1, 10.0),
-)
-def test_normal_impacts_audit_clean(grain, sensor, law, velocity):
-    res = _solved(cl.simulate_impact, grain, sensor, law, velocity)
+@given(case=normal_impacts())
+def test_normal_impacts_audit_clean(case):
+    res = _solved(cl.simulate_impact, **case)
     audit = res.audit()
     assert audit.ok, [c.describe() for c in audit.failures]
 
