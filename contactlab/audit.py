@@ -210,9 +210,18 @@ class Audit:
 
 def energy_check(ledger, tolerance, model_property=""):
     """The ``energy`` check of a ledger: what the bodies hold after the contact over what
-    came in, minus one [-] (> 0: energy created)."""
+    came in, minus one [-] (> 0: energy created). No model allows a non-finite energy
+    (an overflow in the solution): it always fails."""
     gain = (ledger.kinetic_out - ledger.kinetic_in) / ledger.kinetic_in
-    return Check("energy", gain, tolerance, "impact energy", math.nan, model_property)
+    allowed = model_property if math.isfinite(gain) else ""
+    return Check(
+        "energy",
+        gain if math.isfinite(gain) else math.inf,
+        tolerance,
+        "impact energy",
+        math.nan,
+        allowed,
+    )
 
 
 def warn_if_broken(audit, what, stacklevel=3):

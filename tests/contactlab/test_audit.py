@@ -120,3 +120,14 @@ def test_impact_audit_ledger_against_closed_forms():
     elastic = cl.simulate_impact(GRAIN, cl.Sensor.rigid(), cl.laws.Hertz(K_HERTZ), 2.0).audit()
     assert elastic.ledger.normal_elastic_left == 0.0
     assert abs(elastic.ledger.normal_damper) < 1e-7 * elastic.ledger.kinetic_in  # quadrature
+
+
+def test_an_overflowing_pulse_is_reported():
+    """Found by the audit matrix: a prescribed trapezoid with a ramp of 1e-224 s overflows in
+    the sensor's particular solution (slope 1e224 N/s); the model's own energy allowance
+    (a prescribed force) does not cover a non-finite energy, so the solver warns."""
+    grain = cl.Grain(diameter=2.243e-3, density=530.0)
+    sensor = cl.Sensor.from_resonance(82.91e3, mass=1.089e-4, damping_ratio=0.0217)
+    pulse = cl.laws.PlasticTrapezoid(2.58889e-4, 1.48354e-224)
+    with pytest.warns(AuditWarning, match="energy: inf"):
+        cl.simulate_impact(grain, sensor, pulse, 5.45)
