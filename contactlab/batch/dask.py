@@ -16,6 +16,7 @@ import pandas as pd
 from contactlab.batch.frame import check_frame, chunk_bounds
 from contactlab.batch.hertz import DEFAULT_RTOL, HERTZ_INPUTS, hertz_impacts
 from contactlab.batch.linear import LINEAR_INPUTS, linear_impacts
+from contactlab.batch.rows import warn_implausible
 from contactlab.errors import ParameterError
 from contactlab.validation import check_count, check_number
 
@@ -47,7 +48,7 @@ def connected_client(client):
 
 def _on_cluster(impacts, columns, frame, client, partitions):
     """``impacts(frame)`` on a cluster: row partitions, results in the input order."""
-    check_frame(frame, columns)
+    warn_implausible(check_frame(frame, columns), frame)
     with connected_client(client) as connected:
         if partitions is None:
             threads = max(1, sum(connected.nthreads().values()))

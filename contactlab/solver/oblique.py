@@ -45,7 +45,7 @@ from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import DEFAULT_SAMPLES, auto_window
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
-from contactlab.validation import check_number
+from contactlab.validation import check_number, keyword_checked
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
@@ -260,6 +260,7 @@ def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, sp
     return velocity, angle, spin
 
 
+@keyword_checked
 def simulate_oblique(
     grain,
     sensor,
