@@ -175,6 +175,18 @@ def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
         unknown = [k for k in kwargs if k not in valid]
         if unknown:
             problem = f"unknown {noun}(s) {', '.join(_named(k, valid) for k in unknown)}"
+            given = len(args) - skip
+            missing = [
+                name
+                for i, name in enumerate(valid)
+                if i >= given
+                and name not in kwargs
+                and signature.parameters[name].default is inspect.Parameter.empty
+                and signature.parameters[name].kind
+                not in (inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD)
+            ]
+            if missing:
+                problem += f"; missing required {noun}(s) {', '.join(map(repr, missing))}"
         else:
             problem = str(exc)
         raise UnknownParameterError(

@@ -83,13 +83,21 @@ MATERIAL = "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
     ("old", "new", "message"),
     [
         # a key the sensor's constructor does not take: named, with the valid ones
-        ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "[sensor]: got an unexpec"),
+        (
+            "damping_ratio = 0.02",
+            "damping_ratio = 0.02\ncolour = 1",
+            "[sensor]: unknown key(s) 'colour'",
+        ),
         ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "valid keys are resonance"),
-        ("damping_ratio = 0.02", "thickness = 2e-3", "missing a required argument: 'diameter'"),
+        ("damping_ratio = 0.02", "thickness = 2e-3", "missing required key(s) 'diameter'"),
         # a flag given as a string would be truthy: refused, not guessed
         ("resonance = 40.0e3", 'rigid = "false"\nresonance = 40.0e3', "rigid must be true or"),
         (LINEAR, 'law = "hertz"\nfrom_material = "no"', "from_material must be true or false"),
-        (LINEAR, 'law = "hertz"\nfrom_material = true\nradus = 1', "argument 'radus'"),
+        (
+            LINEAR,
+            'law = "hertz"\nfrom_material = true\nradus = 1',
+            "unknown key(s) 'radus'",
+        ),
         (f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n", "grain = 5\n", "grain must be a table"),
     ],
 )

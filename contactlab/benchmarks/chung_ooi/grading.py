@@ -15,6 +15,7 @@ Tolerances (on the error defined in :func:`row`):
 """
 
 import contactlab as cl
+from contactlab.plausibility import internal
 
 __all__ = ["LAMMPS_TOLERANCE", "TOLERANCE", "engine_row", "grain", "rebound", "row"]
 
@@ -26,13 +27,18 @@ LAMMPS_TOLERANCE = 1e-3
 
 
 def grain(material, radius):
-    """A :class:`contactlab.Grain` of ``material`` and ``radius`` [m]."""
-    return cl.Grain(
-        diameter=2 * radius,
-        density=material.density,
-        youngs_modulus=material.youngs_modulus,
-        poisson_ratio=material.poisson_ratio,
-    )
+    """A :class:`contactlab.Grain` of ``material`` and ``radius`` [m].
+
+    The benchmark's spheres (radius 0.1 m, alumina and aluminium alloy) are far larger
+    and heavier than grains: built without a plausibility warning.
+    """
+    with internal():
+        return cl.Grain(
+            diameter=2 * radius,
+            density=material.density,
+            youngs_modulus=material.youngs_modulus,
+            poisson_ratio=material.poisson_ratio,
+        )
 
 
 def rebound(result):
