@@ -30,8 +30,8 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.metrics import first_lobe, impulse
-from dem_check.campaign.plausibility import physics_status
 from dem_check.campaign.detection import ONSET_SIGMAS
+from dem_check.campaign.plausibility import physics_status
 
 __all__ = ["GALLERY_PERIODS", "ImpactTraces", "analyse_impact", "window_row"]
 

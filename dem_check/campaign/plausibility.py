@@ -34,5 +34,5 @@ def physics_status(row, grain):
     problems = physics_problems(grain, row["peak_contact_force [N]"], row["velocity_change [m/s]"])
     if not problems:
         return {}
-    reason = "; ".join(problems + [row["reason"]] if row["reason"] else problems)
+    reason = "; ".join([*problems, row["reason"]] if row["reason"] else problems)
     return {"status": IMPLAUSIBLE, "reason": reason}

@@ -18,7 +18,7 @@ from contactlab.analytic import hertz_max_force, hertz_stiffness
 from contactlab.plausibility import RANGES
 from contactlab.validation import check_number
 
-__all__ = ["STIFFEST_CONTACT_MODULUS", "SIGNAL_OVERSHOOT", "impact_limits", "physics_problems"]
+__all__ = ["SIGNAL_OVERSHOOT", "STIFFEST_CONTACT_MODULUS", "impact_limits", "physics_problems"]
 
 STIFFEST_CONTACT_MODULUS = 210e9 / (1.0 - 0.3**2)
 """Contact modulus of a rigid sphere on a steel face [Pa] (E = 210 GPa, nu = 0.3)."""
