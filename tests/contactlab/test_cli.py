@@ -137,7 +137,14 @@ def test_config_from_material(tmp_path):
 
 def test_demo_writes_figure_and_summary(tmp_path, capsys):
     assert contactlab_main(["demo", "--out", str(tmp_path), "--quick"]) == 0
-    summary = json.loads((tmp_path / "summary.json").read_text())
+
+    def refuse(name):  # json.loads accepts NaN and Infinity; strict JSON does not
+        raise ValueError(f"summary.json holds {name}")
+
+    summary = json.loads((tmp_path / "summary.json").read_text(), parse_constant=refuse)
+    # the rigid wall's resonance is infinite: null, with the reason beside it
+    assert summary["base_case_rigid_wall"]["sensor"]["resonance [Hz]"] is None
+    assert "inf" in summary["null_reasons"]["base_case_rigid_wall.sensor.resonance [Hz]"]
     assert summary["base_case_rigid_wall"]["contact_time [s]"] > 0
     assert (tmp_path / "base_case.png").stat().st_size > 10_000
     assert summary["engine_check"]["passed"] is True
