@@ -71,7 +71,7 @@ RANGES = {
         0.1e-3,
         50e-3,
         ((1e-3, "mm"), (1e-2, "cm"), (1e-6, "um")),
-        source="fine sand 0.1 mm; rapeseed 1.6-2.0 mm to maize 8-10 mm (species presets); beans "
+        source="fine sand 0.1 mm; rapeseed 1.6-2.0 mm to maize 6.2-7.6 mm (species presets); beans "
         "and calibration balls up to 25-50 mm",
     ),
     "grain_density": Range(

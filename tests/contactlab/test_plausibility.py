@@ -173,3 +173,16 @@ def test_misspelt_keywords_are_named_with_a_suggestion(call, message):
         call()
     if info.type is UnknownParameterError:
         assert isinstance(info.value, ValueError)
+
+
+def test_the_documented_table_is_the_module_table():
+    from pathlib import Path
+
+    from contactlab.plausibility import _number
+
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "plausibility.md").read_text()
+    rows = {line.split("|")[1].strip(" `"): line for line in doc.splitlines() if "| `" in line}
+    for key, spec in RANGES.items():
+        cells = [c.strip() for c in rows[key].split("|")[1:-1]]
+        assert cells[2:5] == [_number(spec.low), _number(spec.high), spec.unit], key
+        assert cells[6] == spec.source, key
