@@ -1,9 +1,9 @@
 """The numba-compiled solvers, compiled once and cached: check the cache, warm it.
 
 The Hertz-family contact pieces of :func:`contactlab.simulate_impact` and both batch
-kernels are compiled with numba on first use (about 30 s on a 2-core machine) and cached
-as ``*.nbi``/``*.nbc`` files in the ``__pycache__`` folders beside their sources; a new
-process then loads them in about 0.1 s. ``make demo`` and ``make test`` pay the compile
+kernels are compiled with numba on first use (20-50 s on a free 2-core machine, 156 s
+measured on a busy one) and cached as ``*.nbi``/``*.nbc`` files in the ``__pycache__``
+folders beside their sources; a new process then loads them in about 0.1 s. ``make demo`` and ``make test`` pay the compile
 through :func:`warm_up` (``contactlab warm-up``), so no timed command hides it.
 """
 
@@ -69,7 +69,7 @@ def warm_up():
     Returns
     -------
     float
-        Seconds taken: about 30 s into an empty cache, a fraction of a second from a
+        Seconds taken: 20 s to a few minutes into an empty cache, a fraction of a second from a
         warm one.
     """
     from contactlab.batch.hertz import hertz_impacts

@@ -159,7 +159,8 @@ def test_piping_into_head_ends_quietly(tmp_path):
     rows = "\n".join(f"1.233e-3,7.79e7,12.4,5e-5,1e5,1.0,{1 + i / 5000}" for i in range(5000))
     table = tmp_path / "rows.csv"
     table.write_text("m1 [kg],k1 [N/m],c1 [N*s/m],m2 [kg],k2 [N/m],c2 [N*s/m],v0 [m/s]\n" + rows)
-    code = f"from contactlab.cli import main; raise SystemExit(main(['batch', {str(table)!r}, '--law', 'linear']))"
+    argv = ["batch", str(table), "--law", "linear"]
+    code = f"from contactlab.cli import main; raise SystemExit(main({argv!r}))"
     run = subprocess.run(
         f'{sys.executable} -c "{code}" | head -n 2',
         shell=True,
