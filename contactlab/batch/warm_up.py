@@ -3,8 +3,9 @@
 The Hertz-family contact pieces of :func:`contactlab.simulate_impact` and both batch
 kernels are compiled with numba on first use (20-50 s on a free 2-core machine, 156 s
 measured on a busy one) and cached as ``*.nbi``/``*.nbc`` files in the ``__pycache__``
-folders beside their sources; a new process then loads them in about 0.1 s. ``make demo`` and ``make test`` pay the compile
-through :func:`warm_up` (``contactlab warm-up``), so no timed command hides it.
+folders beside their sources; a new process then loads them in about 0.1 s. ``make demo``
+and ``make test`` pay the compile through :func:`warm_up` (``contactlab warm-up``), so no
+timed command hides it.
 """
 
 import importlib

@@ -92,7 +92,7 @@ def test_every_species_preset_lies_inside_the_ranges(name):
     for corner in species.grains("corners"):
         _no_warning(lambda corner=corner: cl.Grain(**corner, poisson_ratio=0.3))
         for key, value in zip(
-            ("grain_diameter", "grain_density", "youngs_modulus"), corner.values()
+            ("grain_diameter", "grain_density", "youngs_modulus"), corner.values(), strict=True
         ):
             spec = RANGES[key]
             assert spec.low <= value <= spec.high, (name, key, value)
