@@ -3,8 +3,8 @@
 * Bad input (:class:`~contactlab.errors.ParameterError`, a trace file that cannot be
   read, a missing file) ends with ``PROG: error: MESSAGE`` and exit code 2, never a
   traceback.
-* A warning is one line, ``PROG: warning: MESSAGE``, without the source line Python
-  prints; ``--strict`` turns the toolkit's warnings (a value outside what real grains
+* A warning is one line, ``PROG: warning: MESSAGE``, printed once, without the source
+  line Python prints; ``--strict`` turns the toolkit's warnings (a value outside what real grains
   and sensors span, a window too short, ...) into errors (exit code 2).
 * Messages speak in flags: a Python parameter name the library used (``damping_ratio``,
   ``window=``) is shown as the command's flag (``--damping-ratio``, ``--window``).
@@ -126,9 +126,14 @@ def run(prog, parser, argv=None):
     args = parser.parse_args(argv)
     flags = _flags(parser, getattr(args, "command", None))
 
+    shown = set()  # once each: code that catches warnings resets Python's own registry
+
     def one_line(message, category, filename, lineno, file=None, line=None):
         kind = "warning" if issubclass(category, ContactlabWarning) else category.__name__
-        print(f"{prog}: {kind}: {in_flags(str(message), flags)}", file=sys.stderr)
+        text = f"{prog}: {kind}: {in_flags(str(message), flags)}"
+        if text not in shown:
+            shown.add(text)
+            print(text, file=sys.stderr)
 
     with warnings.catch_warnings():
         warnings.simplefilter("default")

@@ -209,3 +209,23 @@ def test_batch_reports_compile_and_solve_times_apart(tmp_path, capsys):
     assert contactlab_main(["batch", str(table), "--law", "linear"]) == 0
     err = capsys.readouterr().err
     assert "1 impacts solved in" in err and "compiled or loaded before, in" in err
+
+
+def test_a_repeated_warning_is_printed_once(capsys):
+    import warnings
+
+    from contactlab.cli.running import Parser, add_strict, run
+    from contactlab.errors import PlausibilityWarning
+
+    def twice(args):
+        for _ in range(2):  # a catch_warnings block between resets Python's own registry
+            with warnings.catch_warnings():
+                pass
+            warnings.warn("sensitivity = 11.24 V/N is odd", PlausibilityWarning, stacklevel=1)
+
+    parser = Parser(prog="demo")
+    sub = parser.add_subparsers(dest="command", required=True)
+    sub.add_parser("go").set_defaults(func=twice, compiles=False)
+    add_strict(parser)
+    assert run("demo", parser, ["go"]) == 0
+    assert capsys.readouterr().err == "demo: warning: sensitivity = 11.24 V/N is odd\n"
