@@ -142,6 +142,11 @@ def _named(name, valid):
     return f"{name!r} (did you mean {close[0]!r}?)" if close else repr(name)
 
 
+@functools.cache
+def _signature(function):
+    return inspect.signature(function)
+
+
 def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
     """Bind ``args, kwargs`` to ``function``'s signature; a bad call raises, naming the
     unknown names with the nearest valid one (:mod:`difflib`).
@@ -167,7 +172,7 @@ def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
         An unknown name (with a suggestion), a missing required one, or too many
         positional arguments; the message lists the valid names.
     """
-    signature = inspect.signature(function)
+    signature = _signature(function)
     try:
         signature.bind(*args, **kwargs)
     except TypeError as exc:
@@ -201,8 +206,11 @@ def keyword_checked(function):
 
     @functools.wraps(function)
     def checked(*args, **kwargs):
-        unknown_keywords(function.__name__, function, args, kwargs)
-        return function(*args, **kwargs)
+        try:
+            return function(*args, **kwargs)
+        except TypeError:  # a bad call, or a TypeError from inside: binding tells which
+            unknown_keywords(function.__name__, function, args, kwargs)
+            raise
 
     return checked
 
