@@ -26,7 +26,7 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import LAWS
 from contactlab.solver import simulate_impact
-from contactlab.validation import check_choice, unknown_keywords
+from contactlab.validation import check_choice, unknown_keywords, with_suggestion
 
 __all__ = [
     "PRESET_DIR",
@@ -106,7 +106,8 @@ def _sensor(table):
 def _parse(data, where):
     unknown = sorted(set(data) - set(_TABLES))
     if unknown:
-        raise ParameterError(f"{where}: unknown table(s) {unknown}; valid are {list(_TABLES)}")
+        named = ", ".join(with_suggestion(t, _TABLES) for t in unknown)
+        raise ParameterError(f"{where}: unknown table(s) {named}; valid are {list(_TABLES)}")
     missing = [t for t in ("grain", "contact", "sensor") if t not in data]
     if missing:
         raise ParameterError(f"{where}: missing table(s) {missing}")
@@ -116,8 +117,9 @@ def _parse(data, where):
     simulation = dict(data.get("simulation", {}))
     bad = sorted(set(simulation) - set(_SIMULATION_KEYS))
     if bad:
+        named = ", ".join(with_suggestion(k, _SIMULATION_KEYS) for k in bad)
         raise ParameterError(
-            f"{where}: unknown key(s) {bad} in [simulation]; valid are {list(_SIMULATION_KEYS)}"
+            f"{where}: unknown key(s) {named} in [simulation]; valid are {list(_SIMULATION_KEYS)}"
         )
     if "velocity" not in simulation:
         raise ParameterError(f"{where}: [simulation] needs velocity [m/s]")

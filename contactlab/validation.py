@@ -25,6 +25,7 @@ __all__ = [
     "check_probability",
     "keyword_checked",
     "unknown_keywords",
+    "with_suggestion",
 ]
 
 
@@ -137,8 +138,10 @@ def check_choice(name, value, choices):
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
 
 
-def _named(name, valid):
-    close = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
+def with_suggestion(name, valid):
+    """``'name'``, followed by ``(did you mean 'nearest'?)`` when a valid name is close
+    (:func:`difflib.get_close_matches`, cutoff 0.6)."""
+    close = difflib.get_close_matches(str(name), [str(v) for v in valid], n=1, cutoff=0.6)
     return f"{name!r} (did you mean {close[0]!r}?)" if close else repr(name)
 
 
@@ -179,7 +182,7 @@ def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
         valid = list(signature.parameters)[skip:]
         unknown = [k for k in kwargs if k not in valid]
         if unknown:
-            problem = f"unknown {noun}(s) {', '.join(_named(k, valid) for k in unknown)}"
+            problem = f"unknown {noun}(s) {', '.join(with_suggestion(k, valid) for k in unknown)}"
             given = len(args) - skip
             missing = [
                 name

@@ -61,11 +61,11 @@ def test_presets_run(name, capsys):
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "dampin"),
-        (GOOD.replace("[simulation]", "[simulaton]"), "simulaton"),
+        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "'dampin' (did you mean 'damping'?)"),
+        (GOOD.replace("[simulation]", "[simulaton]"), "'simulaton' (did you mean 'simulation'?)"),
         (GOOD.replace('law = "linear"', 'law = "lineer"'), "Did you mean 'linear'"),
         (GOOD.replace("velocity = 2.0", "velocity = -2.0"), "velocity"),
-        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "durration"),
+        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "(did you mean 'duration'?)"),
     ],
 )
 def test_config_errors_name_the_key(tmp_path, capsys, text, message):
