@@ -6,8 +6,8 @@ import time
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.solver import wall_impact
 from contactlab.validation import check_number, check_positive
+from dem_check.engines import steps as engine_steps
 from dem_check.engines.lammps.read import read_steps, recorded_columns, sensor_signal
 from dem_check.engines.lammps.scene import drop_deck
 from dem_check.engines.lammps.session import LammpsSession
@@ -44,16 +44,11 @@ TAIL = 20e-6
 [s], unless ``duration`` is given."""
 
 
-def _wall_contact_time(grain, law, velocity):
-    return wall_impact(law, grain.mass, velocity).contact_time
-
-
 def default_time_step(grain, sensor, law, velocity):
     """Default LAMMPS step [s]: ``min(t_c / 1000, T1 / 200)``.
 
-    ``t_c`` is the contact time of the law on an immovable wall at ``velocity``
-    (:func:`contactlab.solver.wall_impact`; a Hertz contact's duration depends on it) and
-    ``T1`` the sensor period.
+    ``t_c`` is the contact time of the law on an immovable wall at ``velocity`` and ``T1``
+    the sensor period (:func:`dem_check.engines.steps.default_time_step`).
 
     Parameters
     ----------
@@ -67,24 +62,20 @@ def default_time_step(grain, sensor, law, velocity):
     -------
     float
     """
-    steps = [_wall_contact_time(grain, law, velocity) / STEPS_PER_CONTACT]
-    if not sensor.is_rigid:
-        steps.append(sensor.period / STEPS_PER_PERIOD)
-    return min(steps)
+    return engine_steps.default_time_step(
+        grain, sensor, law, velocity, STEPS_PER_CONTACT, STEPS_PER_PERIOD
+    )
 
 
 def _check_time_step(time_step, grain, sensor, law, velocity):
-    if time_step is None:
-        return default_time_step(grain, sensor, law, velocity)
-    limit = _wall_contact_time(grain, law, velocity) / MIN_STEPS
-    if not sensor.is_rigid:
-        limit = min(limit, sensor.period / MIN_STEPS)
-    return check_number(
-        "time_step",
+    return engine_steps.check_time_step(
         time_step,
-        low=0.0,
-        high=limit,
-        unit=f"s; {MIN_STEPS} steps per contact and per sensor period",
+        grain,
+        sensor,
+        law,
+        velocity,
+        MIN_STEPS,
+        lambda: default_time_step(grain, sensor, law, velocity),
     )
 
 
@@ -176,7 +167,11 @@ def drop_test(
     threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
     dt = _check_time_step(time_step, grain, sensor, law, velocity)
     if duration is None:
-        after = 10.0 * _wall_contact_time(grain, law, velocity) + 20.0 * sensor.period + TAIL
+        after = (
+            10.0 * engine_steps.wall_contact_time(grain, law, velocity)
+            + 20.0 * sensor.period
+            + TAIL
+        )
         stop = math.ceil(TAIL / dt)
     else:
         after = check_number("duration", duration, low=0.0, unit="s")
