@@ -21,6 +21,7 @@ __all__ = [
     "TAIL",
     "default_time_step",
     "drop_test",
+    "impact_over",
 ]
 
 STEPS_PER_CONTACT = 1000
@@ -79,7 +80,7 @@ def _check_time_step(time_step, grain, sensor, law, velocity):
     )
 
 
-def _impact_over(deck, columns, stop):
+def impact_over(deck, columns, stop):
     """Whether ``stop`` steps have passed since the last contact and the first lobe's end."""
     force = columns[3]
     touching = np.flatnonzero(force > 0.0)
@@ -195,7 +196,7 @@ def drop_test(
             session.command(f"run {chunk} post no", "the run")
             steps += chunk
             columns = recorded_columns(session)
-            if stop is not None and _impact_over(deck, columns, stop):
+            if stop is not None and impact_over(deck, columns, stop):
                 complete = True
                 break
         wall = time.perf_counter() - clock

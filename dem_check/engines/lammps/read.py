@@ -19,7 +19,13 @@ from dem_check.engines.intervals import contact_intervals
 from dem_check.engines.lammps.scene import COLUMNS, RECORD
 from dem_check.engines.result import EngineResult
 
-__all__ = ["contact_intervals", "read_steps", "recorded_columns", "sensor_signal"]
+__all__ = [
+    "contact_intervals",
+    "model_coordinates",
+    "read_steps",
+    "recorded_columns",
+    "sensor_signal",
+]
 
 
 def recorded_columns(session):
@@ -27,8 +33,13 @@ def recorded_columns(session):
     return session.fix_vector_columns(RECORD, len(COLUMNS))
 
 
-def _model_coordinates(deck, columns):
-    """``(x1, v1, x2, v2, S2)`` in the model's axis (x down, into the sensor)."""
+def model_coordinates(deck, columns):
+    """``(x1, v1, x2, v2, S2)`` in the model's axis (x down, into the sensor).
+
+    ``deck`` needs ``grain``, ``sensor`` and ``plate_radius`` (the plate sphere's centre
+    at ``z = -plate_radius`` at rest); ``columns`` are :data:`COLUMNS` (z up). The Kratos
+    engine records the same columns (:mod:`dem_check.engines.kratos.drop`).
+    """
     _, z2, vz2, fz2, z1, vz1 = columns
     plate = 0.0 if deck.sensor.is_rigid else deck.plate_radius
     x1 = np.zeros_like(z1) if deck.sensor.is_rigid else -(z1 + plate)
@@ -37,7 +48,7 @@ def _model_coordinates(deck, columns):
 
 def sensor_signal(deck, columns):
     """S1 [N] per recorded step: ``k1 x1 + c1 v1``, or S2 on a rigid sensor."""
-    x1, v1, _, _, force = _model_coordinates(deck, columns)
+    x1, v1, _, _, force = model_coordinates(deck, columns)
     if deck.sensor.is_rigid:
         return force.copy()
     return deck.sensor.stiffness * x1 + deck.sensor.damping * v1
@@ -45,7 +56,7 @@ def sensor_signal(deck, columns):
 
 def read_steps(deck, columns, threshold, complete, wall, version):
     """The :class:`EngineResult` of the recorded columns of a :class:`DropDeck`."""
-    x1, v1, x2, v2, force = _model_coordinates(deck, columns)
+    x1, v1, x2, v2, force = model_coordinates(deck, columns)
     steps = columns[0] * deck.time_step
     intervals = contact_intervals(deck.law, steps, x2 - x1, v2 - v1)
     if not intervals:

@@ -1,0 +1,273 @@
+"""The Kratos DEM drop test: one impact of the reduced model run in Kratos' DEM application."""
+
+import json
+import math
+import tempfile
+import time
+import warnings
+
+import numpy as np
+
+from contactlab.errors import ParameterError, WindowWarning
+from contactlab.validation import check_number, check_positive
+from dem_check.engines import steps as engine_steps
+from dem_check.engines.intervals import contact_intervals
+from dem_check.engines.kratos.scene import drop_scene
+from dem_check.engines.kratos.session import kratos_version, load_kratos, quiet_stdout
+from dem_check.engines.lammps.drop import impact_over
+from dem_check.engines.lammps.read import model_coordinates, sensor_signal
+from dem_check.engines.result import EngineResult
+
+__all__ = [
+    "CHUNK_STEPS",
+    "MAX_STEPS",
+    "MIN_STEPS",
+    "STEPS_PER_CONTACT",
+    "STEPS_PER_PERIOD",
+    "TAIL",
+    "default_time_step",
+    "drop_test",
+]
+
+STEPS_PER_CONTACT = 1000
+"""Default steps per contact (the grain on an immovable wall), as for LAMMPS."""
+
+STEPS_PER_PERIOD = 200
+"""Default steps per sensor period, as for LAMMPS."""
+
+MIN_STEPS = 20
+"""Fewest steps per contact and per sensor period accepted for ``time_step``."""
+
+MAX_STEPS = 200_000
+"""Most steps one drop test runs (Kratos steps from Python, ~0.1 ms each: 20 s)."""
+
+CHUNK_STEPS = 500
+"""Steps between two looks for the end of the impact."""
+
+TAIL = 20e-6
+"""Time simulated after the last contact and the end of the sensor signal's first lobe
+[s], unless ``duration`` is given."""
+
+
+def default_time_step(grain, sensor, law, velocity):
+    """Default Kratos step [s]: ``min(t_c / 1000, T1 / 200)``, as LAMMPS'.
+
+    See :func:`dem_check.engines.steps.default_time_step`.
+    """
+    return engine_steps.default_time_step(
+        grain, sensor, law, velocity, STEPS_PER_CONTACT, STEPS_PER_PERIOD
+    )
+
+
+def _set_gamma(km, dem, model_part, gamma):
+    """Write ``DAMPING_GAMMA`` into every material and material relation of a model part.
+
+    Kratos' Hertz law reads it from the contact's sub-properties, its linear law from the
+    particles' properties (:mod:`~dem_check.engines.kratos.laws`); both are set.
+    """
+    for properties in model_part.Properties:
+        properties[dem.DAMPING_GAMMA] = gamma
+        for sub in properties.GetSubProperties():
+            sub[dem.DAMPING_GAMMA] = gamma
+
+
+class _Stepper:
+    """A Kratos analysis of one :class:`DropScene`, stepped and recorded from Python."""
+
+    def __init__(self, scene, folder):
+        kratos = load_kratos()
+        self.km, self.scene = kratos.KM, scene
+        scene.write(folder)
+
+        class Stage(kratos.stage):
+            def GetMainPath(self):  # Kratos' name: the folder it reads the case from
+                return str(folder)
+
+        parameters = kratos.KM.Parameters(json.dumps(scene.parameters()))
+        with quiet_stdout():
+            self.stage = Stage(kratos.KM.Model(), parameters)
+            self.stage.Initialize()
+        spheres = self.stage.spheres_model_part
+        for part in (spheres, self.stage.rigid_face_model_part):
+            _set_gamma(kratos.KM, kratos.DEM, part, scene.contact.gamma)
+        self.solver = self.stage._GetSolver()
+        self.grain = spheres.GetNode(1)
+        self.plate = None if scene.sensor.is_rigid else spheres.GetNode(2)
+        self.time = 0.0
+        self.rows = []
+
+    def _plate_state(self):
+        if self.plate is None:
+            return 0.0, 0.0
+        return self.plate.Z, self.plate.GetSolutionStepValue(self.km.VELOCITY_Z)
+
+    def run(self, count):
+        """Run ``count`` steps, recording each step's start state and its contact force."""
+        km, solver, grain, plate = self.km, self.solver, self.grain, self.plate
+        sensor, rest = self.scene.sensor, -self.scene.plate_radius
+        for _ in range(count):
+            z1, vz1 = self._plate_state()
+            if plate is not None:
+                spring = -sensor.stiffness * (z1 - rest) - sensor.damping * vz1
+                plate.SetSolutionStepValue(km.EXTERNAL_APPLIED_FORCE, [0.0, 0.0, spring])
+            row = [len(self.rows), grain.Z, grain.GetSolutionStepValue(km.VELOCITY_Z)]
+            self.time = solver.AdvanceInTime(self.time)
+            solver.InitializeSolutionStep()
+            solver.Predict()
+            solver.SolveSolutionStep()
+            solver.FinalizeSolutionStep()
+            row += [grain.GetSolutionStepValue(km.TOTAL_FORCES_Z), z1, vz1]
+            self.rows.append(row)
+
+    def columns(self):
+        """The recorded rows as ``(6, steps)`` columns (step, z2, vz2, fz2, z1, vz1)."""
+        return np.array(self.rows, dtype=float).T
+
+    def close(self):
+        with quiet_stdout():
+            self.stage.Finalize()
+
+
+def drop_test(
+    grain,
+    sensor,
+    law,
+    velocity,
+    time_step=None,
+    *,
+    gap=None,
+    duration=None,
+    threshold=0.0,
+    plate_radius=None,
+):
+    """Drop the grain on the sensor in Kratos DEM and read the impact like the reduced model.
+
+    Parameters
+    ----------
+    grain : Grain
+        The grain (a sphere of its diameter and mass).
+    sensor : Sensor
+        ``Sensor.rigid()`` is a rigid plane (a Kratos wall); a real sensor is a plate
+        sphere of mass ``m1`` on a spring ``k1`` and damper ``c1``
+        (:mod:`~dem_check.engines.kratos.scene`).
+    law : LinearViscoelastic, Hertz or HertzDamped
+        Grain-sensor contact, mapped exactly (:mod:`~dem_check.engines.kratos.laws`);
+        other laws raise ParameterError.
+    velocity : float
+        Grain speed towards the sensor at release [m/s] (no gravity: the impact speed).
+    time_step : float, optional
+        Kratos step [s]; default :func:`default_time_step`. At most 1/20 of the contact
+        (on an immovable wall) and of the sensor period.
+    gap : float, optional
+        Distance between grain and sensor at release [m]; default 3.5 steps of travel.
+    duration : float, optional
+        Time simulated after the first touch [s]. Default: until :data:`TAIL` after both
+        the last contact and the end of the sensor signal's first lobe.
+    threshold : float, default 0
+        Level [N] at which the sensor signal's first lobe is read.
+    plate_radius : float, optional
+        Radius of the sensor plate sphere [m]; default ten grain radii.
+
+    Returns
+    -------
+    EngineResult
+        ``method`` is ``"kratos"``; ``metadata`` holds the Kratos version, the step, the
+        Kratos law, Young's modulus and ``DAMPING_GAMMA``, the steps run and their wall
+        time. Kratos runs in a temporary folder, removed afterwards.
+
+    Raises
+    ------
+    ParameterError
+        For a law Kratos cannot hold, a time step too coarse, or bad numbers (each named).
+    ImportError
+        Without the ``kratos`` extra (``pip install 'contactlab[kratos]'``).
+    """
+    velocity = check_positive("velocity", velocity, "m/s")
+    threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    dt = engine_steps.check_time_step(
+        time_step,
+        grain,
+        sensor,
+        law,
+        velocity,
+        MIN_STEPS,
+        lambda: default_time_step(grain, sensor, law, velocity),
+    )
+    contact = engine_steps.wall_contact_time(grain, law, velocity)
+    if duration is None:
+        after = 10.0 * contact + 20.0 * sensor.period + TAIL
+        stop = math.ceil(TAIL / dt)
+    else:
+        after = check_number("duration", duration, low=0.0, unit="s")
+        stop = None
+    scene = drop_scene(grain, sensor, law, velocity, dt, gap, plate_radius)
+    step_limit = math.ceil((scene.approach_time + after) / dt) + 1
+    if step_limit > MAX_STEPS:
+        raise ParameterError(
+            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {step_limit} Kratos "
+            f"steps; the bench runs at most {MAX_STEPS}: shorten duration or lengthen "
+            "time_step"
+        )
+    with tempfile.TemporaryDirectory(prefix="contactlab-kratos-") as folder:
+        clock = time.perf_counter()
+        stepper = _Stepper(scene, folder)
+        complete = False
+        try:
+            while len(stepper.rows) < step_limit:
+                stepper.run(min(CHUNK_STEPS, step_limit - len(stepper.rows)))
+                if stop is not None and impact_over(scene, stepper.columns(), stop):
+                    complete = True
+                    break
+        finally:
+            stepper.close()
+        wall = time.perf_counter() - clock
+    return _result(scene, stepper.columns(), threshold, complete or stop is None, wall)
+
+
+def _result(scene, columns, threshold, complete, wall):
+    """The :class:`EngineResult` of the recorded columns of a :class:`DropScene`."""
+    x1, v1, x2, v2, force = model_coordinates(scene, columns)
+    steps = columns[0] * scene.time_step
+    intervals = contact_intervals(scene.law, steps, x2 - x1, v2 - v1)
+    if not intervals:
+        raise ParameterError(
+            f"the grain did not reach the sensor in {steps[-1]:.4g} s; check velocity and gap"
+        )
+    touch = intervals[0][0]
+    t = steps - touch
+    intervals = [(a - touch, b - touch) for a, b in intervals]
+    if not complete or math.isnan(intervals[-1][1]):
+        warnings.warn(
+            f"the Kratos window ({t[-1]:.4g} s after touch) ended before the contact and the "
+            "sensor signal's first lobe were over; give a longer duration",
+            WindowWarning,
+            stacklevel=3,
+        )
+    contact = scene.contact
+    metadata = {
+        "engine": f"Kratos DEM {kratos_version()}",
+        "time_step [s]": scene.time_step,
+        "numerical_damping [N*s/m]": 0.0,
+        "steps": int(columns[0][-1]) + 1,
+        "touch_time [s]": touch,
+        "kratos_law": contact.name,
+        "young_modulus [Pa]": contact.young,
+        "damping_gamma [-]": contact.gamma,
+        "effective_mass [kg]": contact.effective_mass,
+        "effective_radius [m]": contact.effective_radius,
+        "plate_radius [m]": scene.plate_radius,
+        "gap [m]": scene.gap,
+        "wall_time [s]": wall,
+    }
+    return EngineResult(
+        method="kratos",
+        grain=scene.grain,
+        sensor=scene.sensor,
+        law=scene.law,
+        velocity=scene.velocity,
+        t=t,
+        signals=(x1, v1, x2, v2, force, sensor_signal(scene, columns)),
+        intervals=intervals,
+        metadata=metadata,
+        threshold=threshold,
+    )
