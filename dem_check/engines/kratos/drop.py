@@ -5,6 +5,7 @@ import math
 import tempfile
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 
@@ -59,7 +60,7 @@ def default_time_step(grain, sensor, law, velocity):
     )
 
 
-def _set_gamma(km, dem, model_part, gamma):
+def _set_gamma(dem, model_part, gamma):
     """Write ``DAMPING_GAMMA`` into every material and material relation of a model part.
 
     Kratos' Hertz law reads it from the contact's sub-properties, its linear law from the
@@ -74,22 +75,27 @@ def _set_gamma(km, dem, model_part, gamma):
 class _Stepper:
     """A Kratos analysis of one :class:`DropScene`, stepped and recorded from Python."""
 
-    def __init__(self, scene, folder):
+    def __init__(self, scene, folder, materials=None):
         kratos = load_kratos()
         self.km, self.scene = kratos.KM, scene
         scene.write(folder)
+        settings = scene.parameters()
+        if materials is not None:  # the user's file, read by Kratos as it is
+            import_settings = settings["solver_settings"]["material_import_settings"]
+            import_settings["materials_filename"] = str(Path(materials).resolve())
 
         class Stage(kratos.stage):
             def GetMainPath(self):  # Kratos' name: the folder it reads the case from
                 return str(folder)
 
-        parameters = kratos.KM.Parameters(json.dumps(scene.parameters()))
+        parameters = kratos.KM.Parameters(json.dumps(settings))
         with quiet_stdout():
             self.stage = Stage(kratos.KM.Model(), parameters)
             self.stage.Initialize()
         spheres = self.stage.spheres_model_part
-        for part in (spheres, self.stage.rigid_face_model_part):
-            _set_gamma(kratos.KM, kratos.DEM, part, scene.contact.gamma)
+        if materials is None:
+            for part in (spheres, self.stage.rigid_face_model_part):
+                _set_gamma(kratos.DEM, part, scene.contact.gamma)
         self.solver = self.stage._GetSolver()
         self.grain = spheres.GetNode(1)
         self.plate = None if scene.sensor.is_rigid else spheres.GetNode(2)
@@ -139,6 +145,7 @@ def drop_test(
     duration=None,
     threshold=0.0,
     plate_radius=None,
+    materials=None,
 ):
     """Drop the grain on the sensor in Kratos DEM and read the impact like the reduced model.
 
@@ -167,6 +174,11 @@ def drop_test(
         Level [N] at which the sensor signal's first lobe is read.
     plate_radius : float, optional
         Radius of the sensor plate sphere [m]; default ten grain radii.
+    materials : str or pathlib.Path, optional
+        A ``MaterialsDEM.json`` (e.g. ``contactlab export-dem --to kratos``) to run instead
+        of the exact mapping of ``law``, as Kratos reads it (its restitution turned into
+        ``DAMPING_GAMMA`` by Kratos itself); for a rigid sensor, its materials assigned to
+        ``SpheresPart`` and ``RigidFacePart``. ``law`` still marks the contact's end.
 
     Returns
     -------
@@ -210,7 +222,7 @@ def drop_test(
         )
     with tempfile.TemporaryDirectory(prefix="contactlab-kratos-") as folder:
         clock = time.perf_counter()
-        stepper = _Stepper(scene, folder)
+        stepper = _Stepper(scene, folder, materials)
         complete = False
         try:
             while len(stepper.rows) < step_limit:
