@@ -1,6 +1,5 @@
 """The Kratos DEM drop test: one impact of the reduced model run in Kratos' DEM application."""
 
-import json
 import math
 import tempfile
 import time
@@ -14,7 +13,8 @@ from contactlab.validation import check_number, check_positive
 from dem_check.engines import steps as engine_steps
 from dem_check.engines.intervals import contact_intervals
 from dem_check.engines.kratos.scene import drop_scene
-from dem_check.engines.kratos.session import kratos_version, load_kratos, quiet_stdout
+from dem_check.engines.kratos.session import kratos_version
+from dem_check.engines.kratos.stage import KratosRun
 from dem_check.engines.lammps.drop import impact_over
 from dem_check.engines.lammps.read import model_coordinates, sensor_signal
 from dem_check.engines.result import EngineResult
@@ -60,46 +60,21 @@ def default_time_step(grain, sensor, law, velocity):
     )
 
 
-def _set_gamma(dem, model_part, gamma):
-    """Write ``DAMPING_GAMMA`` into every material and material relation of a model part.
-
-    Kratos' Hertz law reads it from the contact's sub-properties, its linear law from the
-    particles' properties (:mod:`~dem_check.engines.kratos.laws`); both are set.
-    """
-    for properties in model_part.Properties:
-        properties[dem.DAMPING_GAMMA] = gamma
-        for sub in properties.GetSubProperties():
-            sub[dem.DAMPING_GAMMA] = gamma
-
-
 class _Stepper:
     """A Kratos analysis of one :class:`DropScene`, stepped and recorded from Python."""
 
     def __init__(self, scene, folder, materials=None):
-        kratos = load_kratos()
-        self.km, self.scene = kratos.KM, scene
         scene.write(folder)
         settings = scene.parameters()
+        gamma = scene.contact.gamma
         if materials is not None:  # the user's file, read by Kratos as it is
             import_settings = settings["solver_settings"]["material_import_settings"]
             import_settings["materials_filename"] = str(Path(materials).resolve())
-
-        class Stage(kratos.stage):
-            def GetMainPath(self):  # Kratos' name: the folder it reads the case from
-                return str(folder)
-
-        parameters = kratos.KM.Parameters(json.dumps(settings))
-        with quiet_stdout():
-            self.stage = Stage(kratos.KM.Model(), parameters)
-            self.stage.Initialize()
-        spheres = self.stage.spheres_model_part
-        if materials is None:
-            for part in (spheres, self.stage.rigid_face_model_part):
-                _set_gamma(kratos.DEM, part, scene.contact.gamma)
-        self.solver = self.stage._GetSolver()
-        self.grain = spheres.GetNode(1)
-        self.plate = None if scene.sensor.is_rigid else spheres.GetNode(2)
-        self.time = 0.0
+            gamma = None
+        self.run_ = KratosRun(folder, settings, gamma)
+        self.km, self.scene = self.run_.KM, scene
+        self.grain = self.run_.spheres.GetNode(1)
+        self.plate = None if scene.sensor.is_rigid else self.run_.spheres.GetNode(2)
         self.rows = []
 
     def _plate_state(self):
@@ -109,7 +84,7 @@ class _Stepper:
 
     def run(self, count):
         """Run ``count`` steps, recording each step's start state and its contact force."""
-        km, solver, grain, plate = self.km, self.solver, self.grain, self.plate
+        km, grain, plate = self.km, self.grain, self.plate
         sensor, rest = self.scene.sensor, -self.scene.plate_radius
         for _ in range(count):
             z1, vz1 = self._plate_state()
@@ -117,11 +92,7 @@ class _Stepper:
                 spring = -sensor.stiffness * (z1 - rest) - sensor.damping * vz1
                 plate.SetSolutionStepValue(km.EXTERNAL_APPLIED_FORCE, [0.0, 0.0, spring])
             row = [len(self.rows), grain.Z, grain.GetSolutionStepValue(km.VELOCITY_Z)]
-            self.time = solver.AdvanceInTime(self.time)
-            solver.InitializeSolutionStep()
-            solver.Predict()
-            solver.SolveSolutionStep()
-            solver.FinalizeSolutionStep()
+            self.run_.step()
             row += [grain.GetSolutionStepValue(km.TOTAL_FORCES_Z), z1, vz1]
             self.rows.append(row)
 
@@ -130,8 +101,7 @@ class _Stepper:
         return np.array(self.rows, dtype=float).T
 
     def close(self):
-        with quiet_stdout():
-            self.stage.Finalize()
+        self.run_.close()
 
 
 def drop_test(
