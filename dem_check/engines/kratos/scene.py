@@ -38,6 +38,9 @@ __all__ = [
     "DropScene",
     "drop_scene",
     "materials",
+    "plane_lines",
+    "sphere_density",
+    "sphere_lines",
 ]
 
 PROBLEM = "drop"
@@ -61,14 +64,14 @@ _ROLLING_MODEL = "DEMRollingFrictionModelBounded"
 rolling friction: ``ROLLING_FRICTION`` 0)."""
 
 
-def _relation(names, ids, law_name, restitution):
+def _relation(names, ids, law_name, restitution, friction):
     return {
         "material_names_list": list(names),
         "material_ids_list": list(ids),
         "Variables": {
             "COEFFICIENT_OF_RESTITUTION": restitution,
-            "STATIC_FRICTION": 0.0,
-            "DYNAMIC_FRICTION": 0.0,
+            "STATIC_FRICTION": friction,
+            "DYNAMIC_FRICTION": friction,
             "FRICTION_DECAY": 500.0,
             "ROLLING_FRICTION": 0.0,
             "ROLLING_FRICTION_WITH_WALLS": 0.0,
@@ -78,7 +81,15 @@ def _relation(names, ids, law_name, restitution):
     }
 
 
-def materials(grain_density, young, law_name, restitution=1.0, plate_density=None):
+def materials(
+    grain_density,
+    young,
+    law_name,
+    restitution=1.0,
+    plate_density=None,
+    poisson_ratio=0.0,
+    friction=0.0,
+):
     """A ``MaterialsDEM.json``-style dict: grain (id 1) and sensor (id 2), one relation each.
 
     Parameters
@@ -94,14 +105,22 @@ def materials(grain_density, young, law_name, restitution=1.0, plate_density=Non
         the drop test then writes the exact ``gamma``).
     plate_density : float, optional
         The plate sphere's density [kg/m**3]; ``None`` makes material 2 a rigid wall's.
+    poisson_ratio : float, default 0
+        ``POISSON_RATIO`` of both [-] (it enters only the tangential stiffness).
+    friction : float, default 0
+        ``STATIC_FRICTION`` and ``DYNAMIC_FRICTION`` of every relation [-].
 
     Returns
     -------
     dict
         Keys ``materials``, ``material_relations``, ``material_assignation_table``.
     """
-    grain = {"PARTICLE_DENSITY": grain_density, "YOUNG_MODULUS": young, "POISSON_RATIO": 0.0}
-    sensor = {"YOUNG_MODULUS": young, "POISSON_RATIO": 0.0}
+    grain = {
+        "PARTICLE_DENSITY": grain_density,
+        "YOUNG_MODULUS": young,
+        "POISSON_RATIO": poisson_ratio,
+    }
+    sensor = {"YOUNG_MODULUS": young, "POISSON_RATIO": poisson_ratio}
     if plate_density is None:
         sensor["COMPUTE_WEAR"] = False
     else:
@@ -115,7 +134,7 @@ def materials(grain_density, young, law_name, restitution=1.0, plate_density=Non
             {"material_name": "sensor", "material_id": 2, "Variables": sensor},
         ],
         "material_relations": [
-            _relation(names, ids, law_name, restitution) for names, ids in pairs
+            _relation(names, ids, law_name, restitution, friction) for names, ids in pairs
         ],
         "material_assignation_table": [
             [f"SpheresPart.{GRAIN_PART}", "grain"],
@@ -124,7 +143,9 @@ def materials(grain_density, young, law_name, restitution=1.0, plate_density=Non
     }
 
 
-def _sphere_lines(node, props, z, radius, vz, part):
+def sphere_lines(node, props, z, radius, vz, part):
+    """``.mdpa`` lines of one sphere (node and element ``node``, properties ``props``) at
+    ``(0, 0, z)`` [m] of ``radius`` [m], velocity ``vz`` [m/s], in sub-model part ``part``."""
     return [
         f"Begin Properties {props}",
         "End Properties",
@@ -151,7 +172,9 @@ def _sphere_lines(node, props, z, radius, vz, part):
     ]
 
 
-def _plane_lines(size):
+def plane_lines(size):
+    """``.mdpa`` lines of a rigid triangle in ``z = 0`` (properties 2) covering a square of
+    side ``size`` [m] around the origin."""
     return [
         "Begin Properties 2",
         "End Properties",
@@ -180,7 +203,9 @@ def _plane_lines(size):
     ]
 
 
-def _sphere_density(mass, radius):
+def sphere_density(mass, radius):
+    """Density [kg/m**3] of a sphere of ``mass`` [kg] and ``radius`` [m] (Kratos computes a
+    particle's mass from its density)."""
     return mass / (4.0 / 3.0 * math.pi * radius**3)
 
 
@@ -220,20 +245,20 @@ class DropScene:
         """Write the model parts and the materials into ``folder`` (an existing folder)."""
         folder = Path(folder)
         r2 = self.grain.radius
-        spheres = _sphere_lines(1, 1, r2 + self.gap, r2, -self.velocity, GRAIN_PART)
+        spheres = sphere_lines(1, 1, r2 + self.gap, r2, -self.velocity, GRAIN_PART)
         rigid = self.sensor.is_rigid
         if rigid:
             (folder / f"{PROBLEM}DEM_FEM_boundary.mdpa").write_text(
-                "\n".join(_plane_lines(10.0 * r2)) + "\n"
+                "\n".join(plane_lines(10.0 * r2)) + "\n"
             )
             plate_density = None
         else:
             rp = self.plate_radius
-            spheres += _sphere_lines(2, 2, -rp, rp, 0.0, PLATE_PART)
-            plate_density = _sphere_density(self.sensor.mass, rp)
+            spheres += sphere_lines(2, 2, -rp, rp, 0.0, PLATE_PART)
+            plate_density = sphere_density(self.sensor.mass, rp)
         (folder / f"{PROBLEM}DEM.mdpa").write_text("\n".join(spheres) + "\n")
         table = materials(
-            _sphere_density(self.grain.mass, r2),
+            sphere_density(self.grain.mass, r2),
             self.contact.young,
             self.contact.name,
             plate_density=plate_density,
