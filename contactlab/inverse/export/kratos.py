@@ -216,4 +216,3 @@ def write(c):
         },
     }
     return json.dumps(document, indent=2, allow_nan=False).split("\n")
-
