@@ -53,6 +53,7 @@ from contactlab.inverse.export.rebound import realised_rebound
 __all__ = [
     "KRATOS_STEPS_PER_CONTACT",
     "kratos_hertz_restitution",
+    "material_relation",
     "thornton_gamma",
     "write",
 ]
@@ -128,9 +129,12 @@ def kratos_hertz_restitution(gamma):
     return brentq(lambda e: thornton_gamma(e) - gamma, low, high, xtol=1e-15, rtol=1e-15)
 
 
-def _relation(ids, restitution, law_name, friction):
+def material_relation(names, ids, law_name, restitution, friction):
+    """One ``material_relations`` entry of a ``MaterialsDEM.json``: the two materials' names
+    and ids, Kratos' law name, the restitution and the friction [-] (no rolling friction,
+    Kratos' default rolling model named so it does not warn)."""
     return {
-        "material_names_list": [["grain", "plate"][i - 1] for i in ids],
+        "material_names_list": list(names),
         "material_ids_list": list(ids),
         "Variables": {
             "COEFFICIENT_OF_RESTITUTION": restitution,
@@ -200,8 +204,8 @@ def write(c):
             },
         ],
         "material_relations": [
-            _relation((1, 1), restitution, law_name, friction),
-            _relation((1, 2), restitution, law_name, friction),
+            material_relation(("grain", "grain"), (1, 1), law_name, restitution, friction),
+            material_relation(("grain", "plate"), (1, 2), law_name, restitution, friction),
         ],
         "material_assignation_table": [["SpheresPart", "grain"], ["RigidFacePart", "plate"]],
         "contactlab_export": {

@@ -23,14 +23,13 @@ so :func:`dem_check.compare` takes it). Kratos is the ``kratos`` extra (``pip in
 from dem_check.engines.kratos.check import convergence_study, engine_check
 from dem_check.engines.kratos.drop import default_time_step, drop_test
 from dem_check.engines.kratos.laws import ENGINE_LAWS, KratosContact, kratos_contact
-from dem_check.engines.kratos.oblique import KratosOblique, kratos_oblique
+from dem_check.engines.kratos.oblique import kratos_oblique
 from dem_check.engines.kratos.session import EXTRA, kratos_version, load_kratos
 
 __all__ = [
     "ENGINE_LAWS",
     "EXTRA",
     "KratosContact",
-    "KratosOblique",
     "convergence_study",
     "default_time_step",
     "drop_test",

@@ -3,21 +3,16 @@
 import math
 import tempfile
 import time
-import warnings
 from pathlib import Path
 
 import numpy as np
 
-from contactlab.errors import ParameterError, WindowWarning
-from contactlab.validation import check_number, check_positive
+from contactlab.errors import ParameterError
 from dem_check.engines import steps as engine_steps
-from dem_check.engines.intervals import contact_intervals
 from dem_check.engines.kratos.scene import drop_scene
 from dem_check.engines.kratos.session import kratos_version
 from dem_check.engines.kratos.stage import KratosRun
-from dem_check.engines.lammps.drop import impact_over
-from dem_check.engines.lammps.read import model_coordinates, sensor_signal
-from dem_check.engines.result import EngineResult
+from dem_check.engines.record import drop_plan, engine_result, impact_over
 
 __all__ = [
     "CHUNK_STEPS",
@@ -25,7 +20,6 @@ __all__ = [
     "MIN_STEPS",
     "STEPS_PER_CONTACT",
     "STEPS_PER_PERIOD",
-    "TAIL",
     "default_time_step",
     "drop_test",
 ]
@@ -44,10 +38,6 @@ MAX_STEPS = 200_000
 
 CHUNK_STEPS = 500
 """Steps between two looks for the end of the impact."""
-
-TAIL = 20e-6
-"""Time simulated after the last contact and the end of the sensor signal's first lobe
-[s], unless ``duration`` is given."""
 
 
 def default_time_step(grain, sensor, law, velocity):
@@ -138,7 +128,8 @@ def drop_test(
     gap : float, optional
         Distance between grain and sensor at release [m]; default 3.5 steps of travel.
     duration : float, optional
-        Time simulated after the first touch [s]. Default: until :data:`TAIL` after both
+        Time simulated after the first touch [s]. Default: until
+        :data:`~dem_check.engines.record.TAIL` (20 us) after both
         the last contact and the end of the sensor signal's first lobe.
     threshold : float, default 0
         Level [N] at which the sensor signal's first lobe is read.
@@ -164,24 +155,18 @@ def drop_test(
     ImportError
         Without the ``kratos`` extra (``pip install 'contactlab[kratos]'``).
     """
-    velocity = check_positive("velocity", velocity, "m/s")
-    threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
-    dt = engine_steps.check_time_step(
-        time_step,
+    plan = drop_plan(
         grain,
         sensor,
         law,
         velocity,
-        MIN_STEPS,
+        time_step,
+        duration,
+        threshold,
         lambda: default_time_step(grain, sensor, law, velocity),
+        MIN_STEPS,
     )
-    contact = engine_steps.wall_contact_time(grain, law, velocity)
-    if duration is None:
-        after = 10.0 * contact + 20.0 * sensor.period + TAIL
-        stop = math.ceil(TAIL / dt)
-    else:
-        after = check_number("duration", duration, low=0.0, unit="s")
-        stop = None
+    velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     scene = drop_scene(grain, sensor, law, velocity, dt, gap, plate_radius)
     step_limit = math.ceil((scene.approach_time + after) / dt) + 1
     if step_limit > MAX_STEPS:
@@ -203,35 +188,17 @@ def drop_test(
         finally:
             stepper.close()
         wall = time.perf_counter() - clock
-    return _result(scene, stepper.columns(), threshold, complete or stop is None, wall)
+    return _result(scene, stepper.columns(), plan.threshold, complete or stop is None, wall)
 
 
 def _result(scene, columns, threshold, complete, wall):
     """The :class:`EngineResult` of the recorded columns of a :class:`DropScene`."""
-    x1, v1, x2, v2, force = model_coordinates(scene, columns)
-    steps = columns[0] * scene.time_step
-    intervals = contact_intervals(scene.law, steps, x2 - x1, v2 - v1)
-    if not intervals:
-        raise ParameterError(
-            f"the grain did not reach the sensor in {steps[-1]:.4g} s; check velocity and gap"
-        )
-    touch = intervals[0][0]
-    t = steps - touch
-    intervals = [(a - touch, b - touch) for a, b in intervals]
-    if not complete or math.isnan(intervals[-1][1]):
-        warnings.warn(
-            f"the Kratos window ({t[-1]:.4g} s after touch) ended before the contact and the "
-            "sensor signal's first lobe were over; give a longer duration",
-            WindowWarning,
-            stacklevel=3,
-        )
     contact = scene.contact
     metadata = {
         "engine": f"Kratos DEM {kratos_version()}",
         "time_step [s]": scene.time_step,
         "numerical_damping [N*s/m]": 0.0,
         "steps": int(columns[0][-1]) + 1,
-        "touch_time [s]": touch,
         "kratos_law": contact.name,
         "young_modulus [Pa]": contact.young,
         "damping_gamma [-]": contact.gamma,
@@ -241,15 +208,4 @@ def _result(scene, columns, threshold, complete, wall):
         "gap [m]": scene.gap,
         "wall_time [s]": wall,
     }
-    return EngineResult(
-        method="kratos",
-        grain=scene.grain,
-        sensor=scene.sensor,
-        law=scene.law,
-        velocity=scene.velocity,
-        t=t,
-        signals=(x1, v1, x2, v2, force, sensor_signal(scene, columns)),
-        intervals=intervals,
-        metadata=metadata,
-        threshold=threshold,
-    )
+    return engine_result("kratos", "Kratos", scene, columns, threshold, complete, metadata)

@@ -22,7 +22,6 @@ So its rebound is reported beside contactlab's and LAMMPS', not graded against t
 import json
 import math
 import tempfile
-from dataclasses import dataclass
 from pathlib import Path
 
 from contactlab.errors import ParameterError
@@ -34,57 +33,26 @@ from dem_check.engines.kratos.scene import (
     GRAIN_PART,
     MATERIALS,
     PROBLEM,
-    DropScene,
     materials,
     plane_lines,
+    project_parameters,
     sphere_density,
     sphere_lines,
 )
 from dem_check.engines.kratos.stage import KratosRun
+from dem_check.engines.rebound import ObliqueRebound
+from dem_check.engines.record import GAP_STEPS
 
-__all__ = ["STEPS_PER_CONTACT", "KratosOblique", "kratos_oblique", "mindlin_poisson_ratio"]
+__all__ = ["STEPS_PER_CONTACT", "kratos_oblique", "mindlin_poisson_ratio"]
 
 STEPS_PER_CONTACT = 2000
 """Default steps per (wall) contact time, as LAMMPS' oblique impact."""
-
-_GAP_STEPS = 3.5
-"""Release gap: the normal travel of 3.5 steps."""
 
 _CHUNK = 1.6
 """Contact times run before the rebound is first read (more chunks if still touching)."""
 
 _MAX_CHUNKS = 20
 """Chunks after which the contact is declared not to end."""
-
-
-@dataclass(frozen=True)
-class KratosOblique:
-    """Kratos' rebound of one oblique impact (signs as :class:`contactlab.ObliqueResult`).
-
-    Attributes
-    ----------
-    velocity, angle, spin : float
-        Impact speed [m/s], angle from the normal [rad], initial spin [rad/s].
-    radius : float
-        Grain radius [m].
-    rebound_normal_velocity, tangential_velocity, angular_velocity : float
-        After the impact: normal speed away from the wall [m/s], tangential velocity
-        [m/s], spin [rad/s].
-    time_step : float
-        Kratos' step [s].
-    steps : int
-        Steps run.
-    """
-
-    velocity: float
-    angle: float
-    spin: float
-    radius: float
-    rebound_normal_velocity: float
-    tangential_velocity: float
-    angular_velocity: float
-    time_step: float
-    steps: int
 
 
 def mindlin_poisson_ratio(k_hertz, k_mindlin):
@@ -127,7 +95,8 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
 
     Returns
     -------
-    KratosOblique
+    ObliqueRebound
+        With ``time_step`` and ``steps``.
 
     Raises
     ------
@@ -156,9 +125,8 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
     if time_step is None:
         time_step = contact_time / STEPS_PER_CONTACT
     time_step = check_number("time_step", time_step, low=0.0, high=contact_time / 20, unit="s")
-    gap = _GAP_STEPS * vn * time_step
+    gap = GAP_STEPS * vn * time_step
     r = grain.radius
-    scene = DropScene(grain, None, normal_law, vn, contact, time_step, gap, math.nan)
     with tempfile.TemporaryDirectory(prefix="contactlab-kratos-") as name:
         folder = Path(name)
         lines = sphere_lines(1, 1, r + gap, r, -vn, GRAIN_PART)
@@ -174,7 +142,7 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
             friction=tangential_law.friction,
         )
         (folder / MATERIALS).write_text(json.dumps(table) + "\n")
-        run = KratosRun(folder, scene.parameters(), contact.gamma)
+        run = KratosRun(folder, project_parameters(time_step), contact.gamma)
         km = run.KM
         node = run.spheres.GetNode(1)
         node.SetSolutionStepValue(km.VELOCITY_X, vt)
@@ -190,7 +158,7 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
                     break
             else:
                 raise RuntimeError(f"the contact lasted more than {steps} steps")
-            result = KratosOblique(
+            result = ObliqueRebound(
                 velocity=velocity,
                 angle=angle,
                 spin=spin,

@@ -26,9 +26,9 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from contactlab.validation import check_number
+from contactlab.inverse.export.kratos import material_relation
 from dem_check.engines.kratos.laws import kratos_contact
-from dem_check.engines.lammps.scene import PLATE_RADIUS_FACTOR
+from dem_check.engines.record import drop_geometry
 
 __all__ = [
     "GRAIN_PART",
@@ -39,6 +39,7 @@ __all__ = [
     "drop_scene",
     "materials",
     "plane_lines",
+    "project_parameters",
     "sphere_density",
     "sphere_lines",
 ]
@@ -55,30 +56,6 @@ GRAIN_PART = "grain"
 
 PLATE_PART = "plate"
 """Sub-model part of the spheres holding the sensor plate (sphere 2)."""
-
-_GAP_STEPS = 3.5
-"""Default release gap: the travel of 3.5 steps (the grain touches during step 4)."""
-
-_ROLLING_MODEL = "DEMRollingFrictionModelBounded"
-"""Kratos' default rolling friction model, named so Kratos does not warn about it (no
-rolling friction: ``ROLLING_FRICTION`` 0)."""
-
-
-def _relation(names, ids, law_name, restitution, friction):
-    return {
-        "material_names_list": list(names),
-        "material_ids_list": list(ids),
-        "Variables": {
-            "COEFFICIENT_OF_RESTITUTION": restitution,
-            "STATIC_FRICTION": friction,
-            "DYNAMIC_FRICTION": friction,
-            "FRICTION_DECAY": 500.0,
-            "ROLLING_FRICTION": 0.0,
-            "ROLLING_FRICTION_WITH_WALLS": 0.0,
-            "DEM_ROLLING_FRICTION_MODEL_NAME": _ROLLING_MODEL,
-            "DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME": law_name,
-        },
-    }
 
 
 def materials(
@@ -134,7 +111,7 @@ def materials(
             {"material_name": "sensor", "material_id": 2, "Variables": sensor},
         ],
         "material_relations": [
-            _relation(names, ids, law_name, restitution, friction) for names, ids in pairs
+            material_relation(names, ids, law_name, restitution, friction) for names, ids in pairs
         ],
         "material_assignation_table": [
             [f"SpheresPart.{GRAIN_PART}", "grain"],
@@ -209,6 +186,39 @@ def sphere_density(mass, radius):
     return mass / (4.0 / 3.0 * math.pi * radius**3)
 
 
+def project_parameters(time_step):
+    """Kratos' project parameters for a step [s]: a dict for ``KratosMultiphysics.Parameters``.
+
+    No gravity, no output files, one neighbour search per step, symplectic Euler and
+    direct rotational integration (Kratos' defaults), the materials from :data:`MATERIALS`.
+    """
+    return {
+        "problem_name": PROBLEM,
+        "do_print_results_option": False,
+        "Dimension": 3,
+        "BoundingBoxOption": False,
+        "dem_inlet_option": False,
+        "GravityX": 0.0,
+        "GravityY": 0.0,
+        "GravityZ": 0.0,
+        "RotationOption": True,
+        "solver_settings": {
+            "RemoveBallsInitiallyTouchingWalls": False,
+            "strategy": "sphere_strategy",
+            "material_import_settings": {"materials_filename": MATERIALS},
+        },
+        "TranslationalIntegrationScheme": "Symplectic_Euler",
+        "RotationalIntegrationScheme": "Direct_Integration",
+        "ElementType": "SphericPartDEMElement3D",
+        "MaxTimeStep": time_step,
+        "FinalTime": 1.0,
+        "NeighbourSearchFrequency": 1,
+        "GraphExportFreq": 1.0,
+        "VelTrapGraphExportFreq": 1.0,
+        "OutputTimeStep": 1.0,
+    }
+
+
 @dataclass(frozen=True)
 class DropScene:
     """One drop test as Kratos input (build it with :func:`drop_scene`).
@@ -266,32 +276,8 @@ class DropScene:
         (folder / MATERIALS).write_text(json.dumps(table, indent=2) + "\n")
 
     def parameters(self):
-        """Kratos' project parameters (a dict for ``KratosMultiphysics.Parameters``)."""
-        return {
-            "problem_name": PROBLEM,
-            "do_print_results_option": False,
-            "Dimension": 3,
-            "BoundingBoxOption": False,
-            "dem_inlet_option": False,
-            "GravityX": 0.0,
-            "GravityY": 0.0,
-            "GravityZ": 0.0,
-            "RotationOption": True,
-            "solver_settings": {
-                "RemoveBallsInitiallyTouchingWalls": False,
-                "strategy": "sphere_strategy",
-                "material_import_settings": {"materials_filename": MATERIALS},
-            },
-            "TranslationalIntegrationScheme": "Symplectic_Euler",
-            "RotationalIntegrationScheme": "Direct_Integration",
-            "ElementType": "SphericPartDEMElement3D",
-            "MaxTimeStep": self.time_step,
-            "FinalTime": 1.0,
-            "NeighbourSearchFrequency": 1,
-            "GraphExportFreq": 1.0,
-            "VelTrapGraphExportFreq": 1.0,
-            "OutputTimeStep": 1.0,
-        }
+        """Kratos' project parameters (:func:`project_parameters` of the step)."""
+        return project_parameters(self.time_step)
 
 
 def drop_scene(grain, sensor, law, velocity, time_step, gap=None, plate_radius=None):
@@ -317,16 +303,10 @@ def drop_scene(grain, sensor, law, velocity, time_step, gap=None, plate_radius=N
     ParameterError
         For a law Kratos cannot hold, or a gap or plate radius not > 0.
     """
-    r2 = grain.radius
-    if gap is None:
-        gap = _GAP_STEPS * velocity * time_step
-    gap = check_number("gap", gap, low=0.0, unit="m")
-    if sensor.is_rigid:
-        plate, mass, radius = math.nan, grain.mass, r2
-    else:
-        plate = PLATE_RADIUS_FACTOR * r2 if plate_radius is None else plate_radius
-        plate = check_number("plate_radius", plate, low=0.0, unit="m")
-        mass = grain.mass * sensor.mass / (grain.mass + sensor.mass)
-        radius = r2 * plate / (r2 + plate)
-    contact = kratos_contact(law, mass, radius, wall=sensor.is_rigid)
-    return DropScene(grain, sensor, law, velocity, contact, time_step, gap, plate)
+    geometry = drop_geometry(grain, sensor, velocity, time_step, gap, plate_radius)
+    contact = kratos_contact(
+        law, geometry.effective_mass, geometry.effective_radius, wall=sensor.is_rigid
+    )
+    return DropScene(
+        grain, sensor, law, velocity, contact, time_step, geometry.gap, geometry.plate_radius
+    )
