@@ -23,6 +23,7 @@ from contactlab.benchmarks.chung_ooi import normal, oblique, pairs
 from contactlab.benchmarks.chung_ooi.cases import CASES, DISAGREEMENTS
 from contactlab.benchmarks.chung_ooi.figures import DRAW, save_figure
 from contactlab.benchmarks.chung_ooi.grading import ENGINES
+from contactlab.validation import check_choice
 
 __all__ = ["EngineRunner", "run_chung_ooi"]
 
@@ -68,7 +69,7 @@ def _run_case(case, material, lammps, engines):
     return pairs.unequal_pair_test(case, material)
 
 
-def run_chung_ooi(out=None, lammps=None, engines=None):
+def run_chung_ooi(out=None, lammps=None, engines=None, tests=None):
     """Run the tests; write one figure per test and ``chung_ooi.csv`` into ``out``.
 
     Parameters
@@ -81,6 +82,8 @@ def run_chung_ooi(out=None, lammps=None, engines=None):
     engines : dict, optional
         ``{name: EngineRunner}`` for names of
         :data:`~contactlab.benchmarks.chung_ooi.grading.ENGINES`.
+    tests : iterable of int, optional
+        The test numbers to run (default all nine).
 
     Returns
     -------
@@ -94,7 +97,10 @@ def run_chung_ooi(out=None, lammps=None, engines=None):
     rows, not_run, figures = [], {}, []
     if out is not None:
         Path(out).mkdir(parents=True, exist_ok=True)
+    chosen = None if tests is None else {check_choice("tests", n, range(1, 10)) for n in tests}
     for case in CASES:
+        if chosen is not None and case.number not in chosen:
+            continue
         if case.not_run:
             not_run[case.number] = case.not_run
             continue

@@ -58,13 +58,20 @@ class _Stepper:
         settings = scene.parameters()
         gamma = scene.contact.gamma
         if materials is not None:  # the user's file, read by Kratos as it is
+            if not scene.sensor.is_rigid:
+                raise ParameterError(
+                    "materials: a MaterialsDEM.json assigns its materials to SpheresPart and "
+                    "RigidFacePart, a rigid sensor's parts; give sensor=Sensor.rigid()"
+                )
+            if not Path(materials).is_file():
+                raise ParameterError(f"materials: no such file {str(materials)!r}")
             import_settings = settings["solver_settings"]["material_import_settings"]
             import_settings["materials_filename"] = str(Path(materials).resolve())
             gamma = None
-        self.run_ = KratosRun(folder, settings, gamma)
-        self.km, self.scene = self.run_.KM, scene
-        self.grain = self.run_.spheres.GetNode(1)
-        self.plate = None if scene.sensor.is_rigid else self.run_.spheres.GetNode(2)
+        self.kratos = KratosRun(folder, settings, gamma)
+        self.km, self.scene = self.kratos.KM, scene
+        self.grain = self.kratos.spheres.GetNode(1)
+        self.plate = None if scene.sensor.is_rigid else self.kratos.spheres.GetNode(2)
         self.rows = []
 
     def _plate_state(self):
@@ -82,7 +89,7 @@ class _Stepper:
                 spring = -sensor.stiffness * (z1 - rest) - sensor.damping * vz1
                 plate.SetSolutionStepValue(km.EXTERNAL_APPLIED_FORCE, [0.0, 0.0, spring])
             row = [len(self.rows), grain.Z, grain.GetSolutionStepValue(km.VELOCITY_Z)]
-            self.run_.step()
+            self.kratos.step()
             row += [grain.GetSolutionStepValue(km.TOTAL_FORCES_Z), z1, vz1]
             self.rows.append(row)
 
@@ -91,7 +98,7 @@ class _Stepper:
         return np.array(self.rows, dtype=float).T
 
     def close(self):
-        self.run_.close()
+        self.kratos.close()
 
 
 def drop_test(

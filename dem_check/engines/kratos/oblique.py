@@ -48,11 +48,14 @@ __all__ = ["STEPS_PER_CONTACT", "kratos_oblique", "mindlin_poisson_ratio"]
 STEPS_PER_CONTACT = 2000
 """Default steps per (wall) contact time, as LAMMPS' oblique impact."""
 
-_CHUNK = 1.6
-"""Contact times run before the rebound is first read (more chunks if still touching)."""
+_FIRST = 1.05
+"""Contact times run (after the approach) before the rebound is first read."""
 
-_MAX_CHUNKS = 20
-"""Chunks after which the contact is declared not to end."""
+_CHUNK = 0.05
+"""Contact times run between later reads (Kratos steps from Python: no step is wasted)."""
+
+_MAX_CHUNKS = 60
+"""Later chunks after which the contact is declared not to end (four contact times)."""
 
 
 def mindlin_poisson_ratio(k_hertz, k_mindlin):
@@ -147,15 +150,16 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
         node = run.spheres.GetNode(1)
         node.SetSolutionStepValue(km.VELOCITY_X, vt)
         node.SetSolutionStepValue(km.ANGULAR_VELOCITY_Y, spin)
-        chunk = math.ceil((gap / vn + _CHUNK * contact_time) / time_step)
+        first = math.ceil((gap / vn + _FIRST * contact_time) / time_step)
+        chunk = math.ceil(_CHUNK * contact_time / time_step)
         steps = 0
         try:
-            for _ in range(_MAX_CHUNKS):
-                for _ in range(chunk):
+            for count in (first, *[chunk] * _MAX_CHUNKS):
+                for _ in range(count):
                     run.step()
-                steps += chunk
+                steps += count
                 if node.Z > r and node.GetSolutionStepValue(km.VELOCITY_Z) > 0.0:
-                    break
+                    break  # left the wall, moving away
             else:
                 raise RuntimeError(f"the contact lasted more than {steps} steps")
             result = ObliqueRebound(

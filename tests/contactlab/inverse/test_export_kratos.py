@@ -123,3 +123,13 @@ def test_only_numbers_and_fixed_keys_reach_the_file():
         "material_assignation_table",
         "contactlab_export",
     }
+
+
+def test_the_file_carries_the_step_and_the_fitted_rebound():
+    law, fit = _hertz_fit(0.5)
+    extra = json.loads(export_dem(fit, "kratos"))["contactlab_export"]
+    exact = law.impact(GRAIN.mass, VELOCITY)
+    # contact time of the fitted law on a rigid plate over 200 (rounding only)
+    assert extra["MaxTimeStep [s]"] == pytest.approx(exact.contact_time / 200, rel=1e-9)
+    # the force-zero closed form (0.5503 for Tsuji e = 0.5) against the exact solver
+    assert extra["fitted_rebound [-]"] == pytest.approx(exact.restitution, rel=1e-8)

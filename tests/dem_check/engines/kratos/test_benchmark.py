@@ -17,12 +17,13 @@ NORMAL_TESTS = {1, 2, 3, 9}
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
+    """The tests with engine columns; LAMMPS' tests 4-6 (``lammps=``) are test_oblique.py's,
+    the contactlab-only tests 5-8 test_chung_ooi.py's."""
     from contactlab.cli import _benchmark_engines
-    from dem_check.engines.lammps.oblique import lammps_oblique
 
     out = tmp_path_factory.mktemp("chung_ooi_engines")
     engines = _benchmark_engines(["lammps", "kratos"])
-    return run_chung_ooi(out, lammps=lammps_oblique, engines=engines)
+    return run_chung_ooi(out, engines=engines, tests=(1, 2, 3, 4, 9))
 
 
 def test_every_row_passes_and_both_engines_grade_the_normal_tests(report):
@@ -66,6 +67,12 @@ def test_kratos_spin_in_gross_sliding_is_lower_by_its_lever_arm(report):
     # mean of d/R over the contact, a few 1e-3 for aluminium oxide at 3.9 m/s
     assert 1e-3 < 1.0 - ratio < 5e-3
     assert theirs.tangential_velocity == pytest.approx(ours.tangential_velocity, rel=1e-9)
+
+
+def test_only_the_tests_asked_for_run(report):
+    assert {r["test"] for r in report["rows"]} == {1, 2, 3, 4, 9}
+    with pytest.raises(ParameterError, match="tests"):
+        run_chung_ooi(tests=[10])
 
 
 def test_an_unknown_engine_is_refused(capsys):

@@ -15,6 +15,7 @@ import pytest
 import contactlab as cl
 from contactlab import analytic
 from contactlab.cli import main
+from contactlab.errors import ParameterError
 from contactlab.inverse import export_dem
 from contactlab.solver import wall_impact
 from dem_check.engines.kratos import drop_test
@@ -116,3 +117,13 @@ def test_thornton_gamma_is_kratos_own_function():
     for e in (0.0005, 0.01, 0.2, 0.5, 0.77, 0.98, 0.9995):
         # the same arithmetic in the same order: equal to the last bit
         assert thornton_gamma(e) == ExplicitStrategy.GammaForHertzThornton(None, e)
+
+
+def test_a_materials_file_needs_a_rigid_sensor_and_must_exist(tmp_path, paper_sensor):
+    law, fit = _fits(0.5)["hertz_damped"]
+    path = tmp_path / "MaterialsDEM.json"
+    path.write_text(export_dem(fit, "kratos"), encoding="utf-8")
+    with pytest.raises(ParameterError, match="materials"):
+        drop_test(GRAIN, paper_sensor, law, VELOCITY, materials=path)
+    with pytest.raises(ParameterError, match="materials: no such file"):
+        drop_test(GRAIN, cl.Sensor.rigid(), law, VELOCITY, materials=tmp_path / "none.json")
