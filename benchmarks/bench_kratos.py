@@ -12,7 +12,8 @@ and the attribution of Kratos' test-4 differences rule by rule (issue 27).
    incremental without rescaling; history total), contactlab's two Mindlin forms and
    LAMMPS' (``benchmarks/kratos_rules.py``); with ``--damped`` the same at Kratos' own
    e = 0.98, where the tied tangential damping acts. Printed as a Markdown table (the one
-   in ``docs/dem-conventions.md``).
+   in ``docs/dem-conventions.md``); ``--figure PATH`` also draws it (vt'/vt and spin
+   against the angle, one curve per rule switched).
 """
 
 import math
@@ -21,6 +22,8 @@ import sys
 import tempfile
 import time
 from pathlib import Path
+
+import numpy as np
 
 import contactlab as cl
 from contactlab import analytic
@@ -116,7 +119,7 @@ def benchmark_times():
     )
 
 
-def attribution(restitution=1.0):
+def attribution(restitution=1.0, figure=None):
     case = next(c for c in CASES if c.number == 4)
     body = grain(case.materials[0], case.inputs["radius [m]"])
     mu, speed = case.inputs["friction [-]"], case.inputs["speed [m/s]"]
@@ -138,6 +141,8 @@ def attribution(restitution=1.0):
         "total history": Rules(history="total"),
         "no tangential damping": Rules(damping="none"),
     }
+    curves = {name: [] for name in [*variants, "contactlab total", "contactlab incremental"]}
+    curves["LAMMPS mindlin/force"] = []
     print(f"Test 4, e = {restitution:g}: vt'/vt and spin [rad/s]")
     heads = [*variants, "contactlab total", "contactlab incremental", "LAMMPS mindlin/force"]
     print("| angle | " + " | ".join(heads) + " |")
@@ -155,13 +160,51 @@ def attribution(restitution=1.0):
             )
         cells.append(lammps.lammps_oblique(body, normal, mindlin["incremental"], speed, angle))
         text = [f"{c.tangential_velocity / vt:.4f} / {c.angular_velocity:.1f}" for c in cells]
+        for name, cell in zip(curves, cells, strict=True):
+            curves[name].append((cell.tangential_velocity / vt, cell.angular_velocity))
         print(f"| {degrees} | " + " | ".join(text) + " |")
     print()
+    if figure is not None:
+        _draw(curves, restitution, figure)
+
+
+def _draw(curves, restitution, path):
+    """vt'/vt and spin against the angle, one curve per rule switched (test 4)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.2), layout="constrained")
+    kratos = np.array(curves["Kratos"])
+    for name, values in curves.items():
+        if name == "Kratos":
+            continue
+        values = np.array(values)
+        style = "--" if name.startswith(("contactlab", "LAMMPS")) else "o-"
+        axes[0].plot(ANGLES, values[:, 0] - kratos[:, 0], style, ms=3, label=name)
+        axes[1].plot(ANGLES, values[:, 1] / kratos[:, 1] - 1.0, style, ms=3, label=name)
+    axes[0].set_ylabel("vt'/vt minus Kratos' [-]")
+    axes[1].set_ylabel("spin over Kratos' - 1 [-]")
+    for ax in axes:
+        ax.axhline(0.0, color="k", lw=0.8)
+        ax.set_xlabel("incidence angle [deg]")
+    axes[0].legend(frameon=False, fontsize=7)
+    fig.suptitle(
+        f"Chung & Ooi test 4 (e = {restitution:g}): one of Kratos' rules switched, or "
+        "another code, against Kratos",
+        fontsize=9,
+    )
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    print(f"figure: {path}")
 
 
 if __name__ == "__main__":
-    drop_tests()
-    benchmark_times()
-    attribution()
+    figure = sys.argv[sys.argv.index("--figure") + 1] if "--figure" in sys.argv else None
+    if "--attribution-only" not in sys.argv:
+        drop_tests()
+        benchmark_times()
+    attribution(figure=figure)
     if "--damped" in sys.argv:
         attribution(0.98)
