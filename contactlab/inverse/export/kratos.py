@@ -20,7 +20,7 @@ hold it. Sources in ``applications/DEMApplication/`` of github.com/KratosMultiph
   so the file holds the restitution whose polynomial value is that ``gamma``
   (:func:`kratos_hertz_restitution`, solved to machine precision): the fitted law is
   realised exactly, and the number written is close to (within the polynomial's misfit,
-  ~1e-3), not equal to, the fitted law's own rebound.
+  up to 2.5e-4 at e = 0.2), not equal to, the fitted law's own rebound.
 * linear ``(k, c)``: ``DEM_D_Linear_viscous_Coulomb``, whose wall stiffness is ``Kn = pi
   0.31225 E* R`` (``InitializeContactWithFEM``): the grain's ``E`` is chosen for ``Kn =
   k`` with the grain radius of the fit (Poisson ratio 0; it enters only the tangential
