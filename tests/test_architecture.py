@@ -51,6 +51,7 @@ LAYERS = (
             "dem_check.traces",
             "dem_check.compare",
             "dem_check.engines",
+            "dem_check.engines.kratos",
             "dem_check.campaign",
             "contactlab.inverse",
         ),
