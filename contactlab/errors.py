@@ -8,6 +8,7 @@ __all__ = [
     "AuditWarning",
     "ContactlabWarning",
     "ParameterError",
+    "PlausibilityWarning",
     "ResolutionWarning",
     "TraceFormatError",
     "UnknownParameterError",
@@ -46,3 +47,11 @@ class AuditWarning(ContactlabWarning):
     """A result breaks a physical invariant (one-sided normal force, Coulomb's limit, energy,
     momentum) beyond the solver's tolerance; the message names the check, its worst value,
     the tolerance and when (see :mod:`contactlab.audit`)."""
+
+
+class PlausibilityWarning(ContactlabWarning):
+    """A value is legal but outside what real grains, seeds and sensors span.
+
+    The message names the likely unit slip; the ranges and their sources are in
+    ``contactlab.plausibility.RANGES`` and ``docs/plausibility.md``.
+    """
