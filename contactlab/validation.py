@@ -10,6 +10,7 @@ import functools
 import inspect
 import math
 import numbers
+import re
 
 from contactlab.errors import ParameterError, UnknownParameterError
 
@@ -22,6 +23,7 @@ __all__ = [
     "check_poisson_ratio",
     "check_positive",
     "check_probability",
+    "check_text",
 ]
 
 
@@ -134,6 +136,46 @@ def check_choice(name, value, choices):
     hint = f" Did you mean {close[0]!r}?" if close else ""
     valid = ", ".join(repr(c) for c in choices)
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
+
+
+TEXT_MAX_LENGTH = 1000
+"""Longest free text (a label, a file path) accepted into a written file [characters]."""
+
+_PYTHON_CODING = re.compile(r"coding[:=]")
+"""PEP 263 declaration: on a script's first two lines it changes how Python decodes it."""
+
+
+def check_text(name, value, max_length=TEXT_MAX_LENGTH):
+    """Return ``value`` after checking it is safe text for a comment in any input deck.
+
+    The text must be a ``str`` of printable characters (no line ends of any kind, no
+    control characters, see :meth:`str.isprintable`), at most ``max_length`` long, must not
+    end in a line continuation (``\\`` in C/C++, ``&`` in LAMMPS, which would pull the
+    next line into the comment) and must not hold a Python encoding declaration
+    (``coding:``). Text that fails is refused, never repaired.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name`` and the offending character.
+    """
+    if not isinstance(value, str):
+        raise ParameterError(f"{name} must be text (str); got {type(value).__name__}")
+    if len(value) > max_length:
+        raise ParameterError(f"{name} must be at most {max_length} characters; got {len(value)}")
+    for position, char in enumerate(value):
+        if not char.isprintable():
+            raise ParameterError(
+                f"{name} must be printable text on one line; character {position} is "
+                f"{char!r}: refused"
+            )
+    if value.rstrip().endswith(("\\", "&")):
+        raise ParameterError(
+            f"{name} must not end in {value.rstrip()[-1]!r} (a line continuation); got {value!r}"
+        )
+    if _PYTHON_CODING.search(value):
+        raise ParameterError(f"{name} must not hold an encoding declaration 'coding:'; got {value!r}")
+    return value
 
 
 class KeywordChecked:
