@@ -174,7 +174,9 @@ def check_text(name, value, max_length=TEXT_MAX_LENGTH):
             f"{name} must not end in {value.rstrip()[-1]!r} (a line continuation); got {value!r}"
         )
     if _PYTHON_CODING.search(value):
-        raise ParameterError(f"{name} must not hold an encoding declaration 'coding:'; got {value!r}")
+        raise ParameterError(
+            f"{name} must not hold an encoding declaration 'coding:'; got {value!r}"
+        )
     return value
 
 

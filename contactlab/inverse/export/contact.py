@@ -209,11 +209,7 @@ def contact_from_fit(
     law = get_law(law_name, **data["law_parameters"])
     common = {
         "law": law_name,
-        "fitted": {
-            k: v
-            for k, v in data["parameters"].items()
-            if k not in ("velocity", "onset")
-        },
+        "fitted": {k: v for k, v in data["parameters"].items() if k not in ("velocity", "onset")},
         "fixed": dict(data.get("fixed", {})),
         "source": source,
         "mass": mass,

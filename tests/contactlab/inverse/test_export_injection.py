@@ -69,7 +69,7 @@ FREE_TEXT_FIELDS = ("source", "quality key")
 ONE_LINE_PAYLOADS = [
     "shell touch /tmp/contactlab_injected",
     "include evil.lmp",
-    "*/ system(\"touch x\"); /*",
+    '*/ system("touch x"); /*',
     "'\"\"\") ; import os; os.system('touch x') #",
     "$(touch x) `touch x` ${x} & x",
 ]
