@@ -4,8 +4,12 @@ Channels are named ``"group/channel"``. Time follows NI's waveform properties:
 ``t = wf_start_offset + n * wf_increment`` [s] (``wf_start_offset`` defaults to 0 as NI
 defines it); a channel without ``wf_increment`` has no time axis and is an error. Units
 come from the ``unit_string`` property (``"V"``, ``"Volts"``, ``"mV"``, ``"N"``); a channel
-without one is an error.
+without one is an error. A declared ``wf_samples`` must equal the samples the file holds,
+and any warning npTDMS gives while reading (a truncated segment, a bad index) refuses the
+file: a cut file never reads as a shorter trace.
 """
+
+import warnings
 
 import numpy as np
 
@@ -42,9 +46,13 @@ def read(head, channel):
     nptdms = _nptdms()
     path = head.path
     try:
-        tdms = nptdms.TdmsFile.read(path)
-        found = {f"{g.name}/{c.name}": c for g in tdms.groups() for c in g.channels()}
-        names = [n for n, c in found.items() if len(c) and np.asarray(c[:1]).dtype.kind in "iuf"]
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # npTDMS warns of truncated segments: refuse
+            tdms = nptdms.TdmsFile.read(path)
+            found = {f"{g.name}/{c.name}": c for g in tdms.groups() for c in g.channels()}
+            names = [
+                n for n, c in found.items() if len(c) and np.asarray(c[:1]).dtype.kind in "iuf"
+            ]
     except Exception as exc:  # npTDMS reports corrupt segments through several types
         raise fail(path, "binary", f"not a readable TDMS file ({exc})") from exc
     if not names:
@@ -60,6 +68,15 @@ def read(head, channel):
     interval = header_number(path, where, "wf_increment", props["wf_increment"], positive=True)
     start = header_number(path, where, "wf_start_offset", props.get("wf_start_offset", 0.0))
     values = unit.to_si(np.asarray(found[name][:], dtype=np.float64))
+    if "wf_samples" in props:
+        declared = header_number(path, where, "wf_samples", props["wf_samples"], positive=True)
+        if declared != values.size:
+            raise fail(
+                path,
+                where,
+                f"wf_samples declares {declared:.0f} samples; the file holds "
+                f"{values.size} (cut short?)",
+            )
     t = np.arange(values.size) * interval
     t += start
     metadata = {

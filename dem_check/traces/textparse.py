@@ -21,6 +21,7 @@ __all__ = ["parse_block"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _WITH_UNIT = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*[A-Za-zµμ]+")
+_COMMA_HINT = " (decimal commas split a number into two cells; decimal points needed)"
 _BOOLEAN_WORDS = (b"true", b"false")
 """Words pandas' C parser turns into 1.0 and 0.0 (in any case) in a column made of them:
 a data block that holds one goes to the line parser, which refuses them as not numbers."""
@@ -67,7 +68,7 @@ def parse_block(head, block, offset, used):
         "lineterminator": "\n",
         "encoding": head.data_encoding,
     }
-    if block.n_fields is None:
+    if block.n_fields is None and block.max_fields is None:
         options["usecols"] = sorted(set(indices))
     try:
         with head.open_data() as fh:
@@ -80,6 +81,9 @@ def parse_block(head, block, offset, used):
     if frame is None:
         return _parse_lines(head, block, offset, used)
     if block.n_fields is not None and frame.shape[1] != block.n_fields:
+        return _parse_lines(head, block, offset, used)
+    too_many = block.max_fields is not None and frame.shape[1] > block.max_fields
+    if too_many or frame.shape[1] <= max(indices):
         return _parse_lines(head, block, offset, used)
     arrays = [frame[i].to_numpy() for i in indices]
     if any(np.isnan(a).any() for a in arrays):
@@ -128,7 +132,16 @@ def _parse_lines(head, block, offset, used):
                 raise head.fail(blank, "blank line inside the data")
             cells = text.split(block.delimiter)
             if block.n_fields is not None and len(cells) != block.n_fields:
-                raise head.fail(number, f"{len(cells)} cells where the header has {block.n_fields}")
+                raise head.fail(
+                    number,
+                    f"{len(cells)} cells where the header has {block.n_fields}{_COMMA_HINT}",
+                )
+            if block.max_fields is not None and len(cells) > block.max_fields:
+                raise head.fail(
+                    number,
+                    f"{len(cells)} cells where the layout has at most {block.max_fields}"
+                    f"{_COMMA_HINT}",
+                )
             for out, column in zip(columns, used, strict=True):
                 token = cells[column.index] if column.index < len(cells) else ""
                 try:
