@@ -68,7 +68,7 @@ def test_hdf5_external_storage_is_refused(tmp_path):
         tmp_path / "external.h5",
         lambda f: f.create_dataset(
             "trace/value", shape=(16,), dtype="f8", external=[(str(secret), 0, 128)]
-        ),  # fmt: skip
+        ),
     )
     with pytest.raises(TraceFormatError, match=r"'/trace/value'.*external files"):
         read_trace(path)
@@ -108,7 +108,7 @@ def test_hdf5_gzip_bomb_is_refused(tmp_path):
             chunks=(1 << 20,),
             compression="gzip",
             compression_opts=9,
-        ),  # fmt: skip
+        ),
     )
     # 32 MB of zeros in a file of ~40 kB: a ratio of ~800, over the limit of 200
     with pytest.raises(TraceFormatError, match="decompression bomb"):
