@@ -10,6 +10,29 @@ import pandas as pd
 __all__ = ["CampaignResult"]
 
 
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+"""First characters that make a spreadsheet read a CSV cell as a formula (OWASP, CSV
+injection)."""
+
+
+def spreadsheet_safe(table):
+    """A copy of ``table`` whose text cells cannot run as spreadsheet formulas.
+
+    A text cell starting with one of :data:`FORMULA_STARTS` (a file named
+    ``=HYPERLINK(...).csv``, a metadata entry) gets a leading ``'``, which spreadsheets
+    show as text; numbers are untouched (a negative number is a number, not text).
+    """
+
+    def neutral(cell):
+        return "'" + cell if isinstance(cell, str) and cell.startswith(FORMULA_STARTS) else cell
+
+    table = table.copy()
+    for column in table.columns[table.dtypes == object]:
+        table[column] = table[column].map(neutral)
+    table.columns = [neutral(str(c)) for c in table.columns]
+    return table
+
+
 def _json_ready(value):
     """Settings as JSON: floats that are not finite become null, tuples lists."""
     if isinstance(value, dict):
@@ -108,7 +131,7 @@ class CampaignResult:
         }
         written = []
         for name, table in tables.items():
-            table.to_csv(out / name, index=False)
+            spreadsheet_safe(table).to_csv(out / name, index=False)
             written.append(out / name)
         settings = {**_json_ready(self.settings), "timings [s]": self.timings}
         (out / "settings.json").write_text(json.dumps(settings, indent=2) + "\n", "utf-8")
