@@ -18,6 +18,7 @@ from dem_check.traces import read_trace, to_force
 
 __all__ = [
     "SIDECAR_SUFFIXES",
+    "SKIPPED_STATUSES",
     "InputProblem",
     "check_out_folder",
     "expand_paths",
@@ -32,6 +33,11 @@ SIDECAR_SUFFIXES = frozenset(
 )
 """Files that are never records: sidecar metadata (``daq.h5.json``), set-ups (``.toml``),
 notes, scripts, reports and figures. They are listed as ``skipped``, not read."""
+
+
+SKIPPED_STATUSES = ("skipped", "sub-folder", "duplicate")
+"""Rows that are no failure: a file that is not a record, a sub-folder not searched, a
+file already read under another name. The others (missing, unreadable, ...) are."""
 
 
 @dataclass(frozen=True)

@@ -7,6 +7,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from dem_check.campaign.inputs import SKIPPED_STATUSES
+
 __all__ = ["CampaignResult"]
 
 
@@ -27,8 +29,9 @@ def spreadsheet_safe(table):
         return "'" + cell if isinstance(cell, str) and cell.startswith(FORMULA_STARTS) else cell
 
     table = table.copy()
-    for column in table.columns[table.dtypes == object]:
-        table[column] = table[column].map(neutral)
+    for column in table.columns:
+        if not pd.api.types.is_numeric_dtype(table[column]):
+            table[column] = table[column].map(neutral)
     table.columns = [neutral(str(c)) for c in table.columns]
     return table
 
@@ -97,6 +100,7 @@ class CampaignResult:
         return {
             "files": len(self.files),
             "files_ok": int((self.files["status"] == "ok").sum()),
+            "files_skipped": int(self.files["status"].isin(SKIPPED_STATUSES).sum()),
             "file_status": self.files["status"].value_counts().to_dict(),
             "impacts": len(self.impacts),
             "impacts_ok": len(self.ok),
