@@ -67,7 +67,7 @@ def test_an_unreadable_folder_is_a_row_not_an_abort(tmp_path, monkeypatch):
 def test_out_holding_a_record_is_refused(tmp_path):
     setup = load_config(TRACES / "model_hard.toml")
     shutil.copy(TRACES / "generic.csv", tmp_path / "files.csv")  # a record named files.csv
-    with pytest.raises(ParameterError, match="out = .* holds the input"):
+    with pytest.raises(ParameterError, match=r"out = .* holds the input"):
         run_campaign(tmp_path, setup.sensor, setup.grain, out=tmp_path)
     assert (tmp_path / "files.csv").read_bytes() == (TRACES / "generic.csv").read_bytes()
 
@@ -86,7 +86,9 @@ def test_a_damaged_file_costs_no_other_file_its_rows(tmp_path, monkeypatch):
     result = run_campaign(
         ".", setup.sensor, setup.grain, sensitivity=SENSITIVITY, gallery=0, out=out
     )
-    status = dict(zip(result.files["file"].map(lambda f: Path(f).name), result.files["status"]))
+    status = dict(
+        zip(result.files["file"].map(lambda f: Path(f).name), result.files["status"], strict=True)
+    )
     assert status == {"=HYPERLINK(1).csv": "ok", "daq.h5": "unreadable", "notes.md": "skipped"}
     assert result.summary()["files_skipped"] == 1
     written = pd.read_csv(out / "files.csv")
@@ -101,4 +103,4 @@ def test_spreadsheet_safe_neutralises_text_only():
     safe = spreadsheet_safe(table)
     assert list(safe["file"]) == ["'=1+1", "'+A1", "'-2", "'@x", "'\tx", "plain"]
     assert list(safe["v"]) == list(range(-3, 3))  # negative numbers stay numbers
-    assert list(table["file"])[0] == "=1+1"  # the result's own table is untouched
+    assert table["file"].iloc[0] == "=1+1"  # the result's own table is untouched
