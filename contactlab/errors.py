@@ -8,6 +8,7 @@ __all__ = [
     "ContactlabWarning",
     "ParameterError",
     "ResolutionWarning",
+    "RowFailedWarning",
     "TraceFormatError",
     "UnknownParameterError",
     "WindowWarning",
@@ -39,3 +40,7 @@ class WindowWarning(ContactlabWarning):
 
 class ResolutionWarning(ContactlabWarning):
     """The output sample rate cannot resolve the signal; the message gives the minimum rate."""
+
+
+class RowFailedWarning(ContactlabWarning):
+    """Rows of a batch could not be solved: NaN there, the reason in the ``error`` column."""
