@@ -60,8 +60,9 @@ class Block:
     delimiter, a header beside the data) that are then not checked."""
     max_fields: int | None = None
     """Most cells a data row may have when ``n_fields`` is ``None`` (a trailing delimiter
-    included): a row with more is refused, since a decimal comma (``0,125``) splits a number
-    into two cells that would otherwise read as ``0`` and a stray cell."""
+    included), the cells after the last column being empty: a row with more cells, or a
+    value after the last column, is refused, since a decimal comma (``0,125``) splits a
+    number into two cells that would otherwise read as ``0`` and a stray cell."""
     delimiter: str = ","
     sequence: Sequence | None = None
     record_length: tuple | None = None

@@ -82,7 +82,10 @@ def parse_block(head, block, offset, used):
         return _parse_lines(head, block, offset, used)
     if block.n_fields is not None and frame.shape[1] != block.n_fields:
         return _parse_lines(head, block, offset, used)
-    too_many = block.max_fields is not None and frame.shape[1] > block.max_fields
+    too_many = block.max_fields is not None and (
+        frame.shape[1] > block.max_fields
+        or frame.iloc[:, _last(block) + 1 :].notna().any(axis=None)
+    )
     if too_many or frame.shape[1] <= max(indices):
         return _parse_lines(head, block, offset, used)
     arrays = [frame[i].to_numpy() for i in indices]
@@ -90,6 +93,11 @@ def parse_block(head, block, offset, used):
         return _parse_lines(head, block, offset, used)
     # Keep only the used columns alive (the frame's block may hold other channels).
     return [a if frame.shape[1] <= 2 else a.copy() for a in arrays]
+
+
+def _last(block):
+    """0-based index of the block's last column; cells after it must be empty."""
+    return max(c.index for c in (block.time, *block.channels))
 
 
 def _has_boolean_word(fh):
@@ -135,6 +143,11 @@ def _parse_lines(head, block, offset, used):
                 raise head.fail(
                     number,
                     f"{len(cells)} cells where the header has {block.n_fields}{_COMMA_HINT}",
+                )
+            if block.max_fields is not None and any(c.strip() for c in cells[_last(block) + 1 :]):
+                raise head.fail(
+                    number,
+                    f"a cell after the layout's last column is not empty{_COMMA_HINT}",
                 )
             if block.max_fields is not None and len(cells) > block.max_fields:
                 raise head.fail(
