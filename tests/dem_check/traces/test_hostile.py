@@ -160,3 +160,18 @@ def test_a_tdms_file_declaring_more_samples_than_it_holds_is_refused(tmp_path):
         writer.write_segment([nptdms.ChannelObject("trace", "value", [], {"wf_samples": 4000})])
     with pytest.raises(TraceFormatError, match="wf_samples declares 4000 samples"):
         read_trace(path)
+
+
+def test_a_cut_tdms_file_without_wf_samples_is_refused(tmp_path):
+    """npTDMS only logs "less data than expected": the log is read, not the short trace."""
+    import nptdms
+    import numpy as np
+
+    path = tmp_path / "nodeclared.tdms"
+    properties = {"wf_increment": 1e-6, "unit_string": "V"}
+    with nptdms.TdmsWriter(path) as writer:
+        writer.write_segment([nptdms.ChannelObject("g", "c", np.zeros(4000), properties)])
+    whole = path.read_bytes()
+    path.write_bytes(whole[: len(whole) // 2])
+    with pytest.raises(TraceFormatError, match="less data than expected"):
+        read_trace(path)
