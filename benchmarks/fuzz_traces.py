@@ -13,8 +13,8 @@ example of each kind printed:
 
 Run: ``.venv/bin/python benchmarks/fuzz_traces.py [copies per format and kind]``
 (default 1000: 28 000 files, about 2-3 minutes on 2 shared cores; 100 take 12-16 s).
-Exit status 1 if anything was misread or crashed. ``tests/dem_check/traces/test_fuzz.py`` runs the same properties with
-hypothesis at 150-200 examples each.
+Exit status 1 if anything was misread or crashed. ``tests/dem_check/traces/test_fuzz.py``
+runs the same properties with hypothesis at 150-200 examples each.
 """
 
 import re
