@@ -67,13 +67,23 @@ class Grain(KeywordChecked):
                 f"Grain needs exactly one of density [kg/m**3] or mass [kg]; "
                 f"got density={density!r}, mass={mass!r}"
             )
-        volume = math.pi * self.diameter**3 / 6.0
+        volume = math.pi / 6.0 * self.diameter * self.diameter * self.diameter
+        if not 0.0 < volume < math.inf:  # d**3 under- or overflows a float
+            raise ParameterError(
+                f"diameter = {self.diameter!r} m gives a volume of {volume!r} m**3, which a "
+                "float cannot hold; give the diameter in metres"
+            )
         if density is not None:
             self.density = check_number("density", density, low=0.0, unit="kg/m**3")
             self.mass = self.density * volume
         else:
             self.mass = check_number("mass", mass, low=0.0, unit="kg")
             self.density = self.mass / volume
+        if not (0.0 < self.mass < math.inf and 0.0 < self.density < math.inf):
+            raise ParameterError(
+                f"diameter = {self.diameter!r} m with mass {self.mass!r} kg and density "
+                f"{self.density!r} kg/m**3: a float cannot hold them; check the units"
+            )
         self.poisson_ratio = _optional(
             "poisson_ratio", poisson_ratio, low=-1.0, high=0.5, high_open=False
         )

@@ -61,6 +61,10 @@ RINGING_PERIODS = 5.0
 WINDOW_PER_CONTACT = 1.5
 """Default window: at least this many first-contact durations."""
 
+SPEED_OF_LIGHT = 299_792_458.0
+"""No impact is faster [m/s]: the bound that keeps a velocity's squares and products
+finite (a velocity of 1e157 m/s overflowed the free-flight horizon)."""
+
 MAX_OUTPUT_SAMPLES = 20_000_000
 """Most output samples of one impact (``duration * sample_rate + 1``): the result holds
 about ten arrays of them (1.6 GB at this limit); more is refused before allocating."""
@@ -69,6 +73,11 @@ about ten arrays of them (1.6 GB at this limit); more is refused before allocati
 def _check_output_size(duration, sample_rate):
     """Refuse a window and sample rate whose output grid would not fit in memory."""
     samples = duration * sample_rate + 1.0  # may overflow to inf: refused below too
+    if samples < 2.0:
+        raise ParameterError(
+            f"sample_rate = {sample_rate:.4g} Hz gives fewer than 2 samples in the "
+            f"{duration:.4g} s window; it must be at least {1.0 / duration:.4g} Hz"
+        )
     if not samples <= MAX_OUTPUT_SAMPLES:
         raise ParameterError(
             f"duration = {duration:.4g} s at sample_rate = {sample_rate:.4g} Hz asks for "
@@ -170,7 +179,7 @@ def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):
         raise ParameterError(
             f"law must be a contact law from contactlab.laws; got {type(law).__name__}"
         )
-    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    velocity = check_number("velocity", velocity, low=0.0, high=SPEED_OF_LIGHT, unit="m/s")
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
