@@ -35,6 +35,7 @@ from dem_check.traces.checks import (
     select_channel,
     uniform_interval,
 )
+from dem_check.traces.isolate import run_isolated
 from dem_check.traces.textwrite import output_units
 from dem_check.traces.trace import Trace
 from dem_check.traces.units import SI_VALUE_UNITS, parse_unit
@@ -132,12 +133,20 @@ def _time(path, dataset, n):
 def read(head, channel):
     """Read one channel of an HDF5 file (see the module docstring for the convention).
 
+    The HDF5 library runs in a child process (:func:`~dem_check.traces.isolate.run_isolated`):
+    a file that crashes it is refused instead of ending this process.
+
     Returns
     -------
     Trace
     """
+    _h5py()  # the ImportError for a missing extra comes from this process
+    return run_isolated(head.path, _read_path, head.path, channel)
+
+
+def _read_path(path, channel):
+    """Read one channel of the HDF5 file ``path`` (in the child process)."""
     h5py = _h5py()
-    path = head.path
     try:
         h5file = h5py.File(path, "r")
     except Exception as exc:  # h5py reports a corrupt file through several exception types

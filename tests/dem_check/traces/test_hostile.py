@@ -175,3 +175,22 @@ def test_a_cut_tdms_file_without_wf_samples_is_refused(tmp_path):
     path.write_bytes(whole[: len(whole) // 2])
     with pytest.raises(TraceFormatError, match="less data than expected"):
         read_trace(path)
+
+
+def test_a_crash_in_the_reading_library_is_a_refusal(tmp_path):
+    """A segmentation fault in the child (here forced) is a TraceFormatError, not our end."""
+    import ctypes
+
+    from dem_check.traces.isolate import run_isolated
+
+    path = str(tmp_path / "x.h5")
+    with pytest.raises(TraceFormatError, match="library crashed"):
+        run_isolated(path, ctypes.string_at, 0)  # reads address 0: SIGSEGV in the child
+
+
+def test_the_hdf5_file_that_crashed_h5py_is_refused():
+    """A byte-mutated daq-like file found by benchmarks/fuzz_traces.py (h5py 3, HDF5 1.14
+    segfault in an attribute read); whatever the library does with it, we refuse it."""
+    path = Path(__file__).parent / "hostile" / "segfault.h5"
+    with pytest.raises(TraceFormatError, match=re.escape(str(path))):
+        read_trace(path)
