@@ -8,6 +8,7 @@ campaign. :func:`run_isolated` reads in a forked child (copy-on-write, some 10-5
 and turns the child's death into a refusal naming the file.
 """
 
+import faulthandler
 import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from concurrent.futures.process import BrokenProcessPool
@@ -15,6 +16,13 @@ from concurrent.futures.process import BrokenProcessPool
 from dem_check.traces.checks import fail
 
 __all__ = ["run_isolated"]
+
+
+def _in_child(function, *args):
+    """Run in the child: a crash is reported by the parent, not dumped here (pytest and
+    ``python -X faulthandler`` enable the dump, which the fork inherits)."""
+    faulthandler.disable()
+    return function(*args)
 
 
 def run_isolated(path, function, *args):
@@ -45,7 +53,7 @@ def run_isolated(path, function, *args):
     context = multiprocessing.get_context("fork")
     with ProcessPoolExecutor(max_workers=1, mp_context=context) as pool:
         try:
-            return pool.submit(function, *args).result()
+            return pool.submit(_in_child, function, *args).result()
         except BrokenProcessPool:
             raise fail(
                 path,

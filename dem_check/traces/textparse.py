@@ -70,14 +70,14 @@ def parse_block(head, block, offset, used):
     }
     if block.n_fields is None and block.max_fields is None:
         options["usecols"] = sorted(set(indices))
-    try:
-        with head.open_data() as fh:
-            fh.seek(offset)
-            booleans = _has_boolean_word(fh)
-            fh.seek(offset)
+    with head.open_data() as fh:
+        fh.seek(offset)
+        booleans = _scan_block(head, block, fh)
+        fh.seek(offset)
+        try:
             frame = None if booleans else pd.read_csv(fh, **options)
-    except ValueError:  # pandas' ParserError, EmptyDataError and UnicodeDecodeError too
-        frame = None
+        except ValueError:  # pandas' ParserError, EmptyDataError and UnicodeDecodeError too
+            frame = None
     if frame is None:
         return _parse_lines(head, block, offset, used)
     if block.n_fields is not None and frame.shape[1] != block.n_fields:
@@ -100,15 +100,21 @@ def _last(block):
     return max(c.index for c in (block.time, *block.channels))
 
 
-def _has_boolean_word(fh):
-    """Whether the rest of ``fh`` holds ``true`` or ``false`` in any case (1 MiB chunks)."""
-    tail = b""
+def _scan_block(head, block, fh):
+    """One streaming pass over the rest of ``fh`` (1 MiB chunks, bounded memory): refuse a
+    NUL byte (no text layout has one: a zero-filled tail, a binary file), and say whether
+    the block holds ``true`` or ``false`` in any case."""
+    tail, booleans, lines = b"", False, 0
     while chunk := fh.read(1 << 20):
+        nul = chunk.find(b"\x00")
+        if nul >= 0:
+            line = block.first_line + lines + chunk.count(b"\n", 0, nul)
+            raise head.fail(line, "a NUL byte in the data (a zero-filled or binary tail)")
+        lines += chunk.count(b"\n")
         text = tail + chunk.lower()
-        if any(word in text for word in _BOOLEAN_WORDS):
-            return True
+        booleans = booleans or any(word in text for word in _BOOLEAN_WORDS)
         tail = text[-4:]  # "false" may straddle two chunks
-    return False
+    return booleans
 
 
 def _cell(token, specials):
@@ -142,7 +148,8 @@ def _parse_lines(head, block, offset, used):
             if block.n_fields is not None and len(cells) != block.n_fields:
                 raise head.fail(
                     number,
-                    f"{len(cells)} cells where the header has {block.n_fields}{_COMMA_HINT}",
+                    f"{len(cells)} cells where the header has {block.n_fields}"
+                    + (_COMMA_HINT if len(cells) > block.n_fields else ""),
                 )
             if block.max_fields is not None and any(c.strip() for c in cells[_last(block) + 1 :]):
                 raise head.fail(

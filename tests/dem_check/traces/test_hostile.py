@@ -194,3 +194,21 @@ def test_the_hdf5_file_that_crashed_h5py_is_refused():
     path = Path(__file__).parent / "hostile" / "segfault.h5"
     with pytest.raises(TraceFormatError, match=re.escape(str(path))):
         read_trace(path)
+
+
+def test_a_zero_filled_tail_is_refused_in_bounded_memory(tmp_path):
+    """A valid CSV followed by 64 MiB of NUL bytes (a preallocated file never filled):
+    refused from a streaming scan, naming the line, without parsing the tail."""
+    import resource
+
+    data = (DATA / "generic.csv").read_bytes()
+    path = tmp_path / "tail.csv"
+    with open(path, "wb") as fh:
+        fh.write(data)
+        fh.write(bytes(64 << 20))
+    first_tail_line = data.count(b"\n") + 1
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss  # [KiB] on Linux
+    with pytest.raises(TraceFormatError, match=rf"line {first_tail_line}\b.*NUL byte"):
+        read_trace(path)
+    grown = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
+    assert grown < 32 << 10  # < 32 MiB: streamed in 1 MiB chunks, never the 64 MiB whole
