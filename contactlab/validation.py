@@ -18,6 +18,7 @@ __all__ = [
     "KeywordChecked",
     "check_choice",
     "check_count",
+    "check_inertia_factor",
     "check_non_negative",
     "check_number",
     "check_poisson_ratio",
@@ -105,6 +106,19 @@ def check_non_negative(name, value, unit=""):
 def check_poisson_ratio(name, value):
     """Check a Poisson ratio in (-1, 0.5] [-]; return it as float."""
     return check_number(name, value, low=-1.0, high=0.5, unit="-")
+
+
+INERTIA_FACTOR_RANGE = (1e-3, 2.0 / 3.0)
+"""Allowed ``I / (m r**2)`` of a spherical grain [-]: at most 2/3 (all the mass on the
+surface, a thin shell: no sphere of non-negative density has more); at least 1e-3 (a
+core 30 times denser than its shell gives 0.1; below 1e-3 the spin is a mode so fast that
+the oblique solver's run time grows without bound: 1e-12 hung)."""
+
+
+def check_inertia_factor(name, value):
+    """Check a sphere's inertia factor ``I / (m r**2)`` in :data:`INERTIA_FACTOR_RANGE`."""
+    low, high = INERTIA_FACTOR_RANGE
+    return check_number(name, value, low=low, high=high, low_open=False, unit="-")
 
 
 def check_count(name, value, low=1):

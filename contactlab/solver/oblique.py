@@ -45,7 +45,7 @@ from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import DEFAULT_SAMPLES, auto_window
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
-from contactlab.validation import check_number
+from contactlab.validation import check_inertia_factor, check_number
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
@@ -323,7 +323,7 @@ def simulate_oblique(
         grain, sensor, normal_law, tangential_law, velocity, angle, spin
     )
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
-    kappa = check_number("inertia_factor", inertia_factor, low=0.0)
+    kappa = check_inertia_factor("inertia_factor", inertia_factor)
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:

@@ -1,5 +1,7 @@
 """Run-time and memory limits of simulate_impact (issue 24): refused before any work."""
 
+import math
+
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -49,3 +51,13 @@ def test_a_mode_too_fast_to_follow_is_refused_not_run_for_hours(monkeypatch):
         cl.simulate_impact(GRAIN, SENSOR, law, 2.0)
     monkeypatch.setattr(propagators, "MAX_SCAN_POINTS", 2_000_000)
     assert cl.simulate_impact(GRAIN, SENSOR, law, 2.0).contact_time > 0  # under the limit
+
+
+@pytest.mark.parametrize("kappa", [0.0, 1e-12, 9e-4, 0.67, 1.0, math.nan])
+def test_an_impossible_inertia_factor_is_refused(kappa):
+    """Outside [1e-3, 2/3]: no sphere has more than a thin shell's 2/3; 1e-12 hung the
+    oblique solver (a spin mode too fast to follow)."""
+    normal = cl.laws.HertzDamped(1.5e6, 4.0)
+    tangential = cl.laws.Mindlin.from_material(21.6e6, 0.2, GRAIN.radius, friction=0.5)
+    with pytest.raises(ParameterError, match="inertia_factor"):
+        cl.simulate_oblique(GRAIN, SENSOR, normal, tangential, 2.0, 0.5, inertia_factor=kappa)
