@@ -87,3 +87,39 @@ def test_simulate_impact_answers_any_value_with_parameter_error(name, value):
         if value > VALID[name] * 10:
             return
     _call(cl.simulate_impact, grain=GRAIN, sensor=SENSOR, law=LAW, **arguments)
+
+
+TRACE = __import__("pathlib").Path(__file__).parent.parent / "data" / "traces" / "generic.csv"
+
+
+@SETTINGS
+@given(
+    name=st.sampled_from(["format", "channel", "sensitivity"]),
+    value=st.one_of(ANY_VALUE, st.text(max_size=12)),
+)
+def test_read_trace_answers_any_argument_with_parameter_or_format_error(name, value):
+    from contactlab.errors import TraceFormatError
+    from dem_check.traces import read_trace
+
+    try:
+        read_trace(TRACE, **{name: value})
+    except (ParameterError, TraceFormatError):
+        pass
+
+
+OBLIQUE = {"velocity": 2.0, "angle": 0.5, "spin": 0.0, "duration": 5e-4, "rtol": 1e-9}
+
+
+@SETTINGS
+@given(name=st.sampled_from(sorted(OBLIQUE)), value=ANY_VALUE)
+def test_simulate_oblique_answers_any_value_with_parameter_error(name, value):
+    number = isinstance(value, int | float) and not isinstance(value, bool)
+    if name == "duration" and number and value > 10 * OBLIQUE["duration"]:
+        return  # a valid long window is a long run, not bad input
+    if name == "spin" and number and math.isfinite(value) and abs(value) < 1e6:
+        return  # a valid spin: a simulation, not the subject here
+    normal = cl.laws.HertzDamped(1.5e6, 4.0)
+    tangential = cl.laws.Mindlin.from_material(21.6e6, 0.2, GRAIN.radius, friction=0.5)
+    arguments = {**OBLIQUE, name: value}
+    _call(cl.simulate_oblique, grain=GRAIN, sensor=SENSOR, normal_law=normal,
+          tangential_law=tangential, **arguments)  # fmt: skip

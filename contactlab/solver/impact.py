@@ -70,7 +70,7 @@ MAX_OUTPUT_SAMPLES = 20_000_000
 about ten arrays of them (1.6 GB at this limit); more is refused before allocating."""
 
 
-def _check_output_size(duration, sample_rate):
+def check_output_size(duration, sample_rate):
     """Refuse a window and sample rate whose output grid would not fit in memory."""
     samples = duration * sample_rate + 1.0  # may overflow to inf: refused below too
     if samples < 2.0:
@@ -254,7 +254,7 @@ def simulate_impact(
         grain, sensor, law, velocity, duration, sample_rate
     )
     if duration is not None and sample_rate is not None:
-        _check_output_size(duration, sample_rate)  # before any work
+        check_output_size(duration, sample_rate)  # before any work
     method = check_choice("method", method, METHODS)
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
     if method == "auto":
@@ -282,7 +282,7 @@ def simulate_impact(
     _warn_window(intervals, log, window, duration)
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
-    _check_output_size(window, sample_rate)
+    check_output_size(window, sample_rate)
     _warn_resolution(sensor, intervals, sample_rate)
     result = ImpactResult(
         grain=grain,

@@ -42,7 +42,12 @@ from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.solver.adaptive import integrate_piece
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
-from contactlab.solver.impact import DEFAULT_SAMPLES, auto_window
+from contactlab.solver.impact import (
+    DEFAULT_SAMPLES,
+    SPEED_OF_LIGHT,
+    auto_window,
+    check_output_size,
+)
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
 from contactlab.validation import check_inertia_factor, check_number
@@ -212,6 +217,11 @@ def _solve_contact(model, y0, rtol, scale):
         * rtol
         * np.array([length, velocity, length, velocity, velocity, spin_scale, history_scale])
     )
+    if not (atol > 0.0).all():  # a velocity near 1e-300 m/s: its scales underflow to 0
+        raise ParameterError(
+            f"velocity = {velocity!r} m/s is too small for the integrator's absolute "
+            "tolerances, which scale with it (they underflow to 0)"
+        )
     first = Stepper(model.rhs(STICK), 0.0, y0, rtol, atol).initial_step()
     phase = model.touch_phase(y0, first, rtol, atol)
     pieces, t, y, touch = [], 0.0, np.asarray(y0, dtype=float), True
@@ -252,11 +262,16 @@ def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, sp
             "tangential_law must be a tangential law from contactlab.laws (TangentialSpring, "
             f"Mindlin); got {type(tangential_law).__name__}"
         )
-    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    velocity = check_number("velocity", velocity, low=0.0, high=SPEED_OF_LIGHT, unit="m/s")
     angle = check_number(
         "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
     )
     spin = check_number("spin", spin, unit="rad/s")
+    if abs(spin) * grain.radius > SPEED_OF_LIGHT:
+        raise ParameterError(
+            f"spin = {spin!r} rad/s moves the grain's surface faster than light (radius "
+            f"{grain.radius!r} m)"
+        )
     return velocity, angle, spin
 
 
@@ -356,6 +371,7 @@ def simulate_oblique(
         )
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
+    check_output_size(window, sample_rate)
     return ObliqueResult(
         grain=grain,
         sensor=sensor,
