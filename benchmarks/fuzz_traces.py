@@ -12,7 +12,10 @@ example of each kind printed:
 - ``crash``: any exception other than ``TraceFormatError``.
 
 Run: ``.venv/bin/python benchmarks/fuzz_traces.py [copies per format and kind]``
-(default 1000: 28 000 files, about 2-3 minutes on 2 shared cores; 100 take 12-16 s).
+(default 1000: 28 000 files, 343 s on 2 shared cores with HDF5 read in a child process;
+100 take about 30 s). Measured on this branch: 0 misread, 0 crash; 706 of 1000
+byte-mutated HDF5 and 727 TDMS copies read (the change hit a sample: undetectable without
+a checksum), every other damaged copy refused or read exactly.
 Exit status 1 if anything was misread or crashed. ``tests/dem_check/traces/test_fuzz.py``
 runs the same properties with hypothesis at 150-200 examples each.
 """
