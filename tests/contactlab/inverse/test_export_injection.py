@@ -62,6 +62,9 @@ PAYLOADS = [
 ]
 """Hostile strings; each holds a character or pattern the validator refuses."""
 
+TEXT_FREE_CODES = ("kratos",)
+"""Targets written by json.dumps from numbers and fixed keys: no comment, no label."""
+
 FREE_TEXT_FIELDS = ("source", "quality key")
 """Text the schema does not pin to a list: the label (a path), the quality entries' names
 (never written into a deck)."""
@@ -137,9 +140,11 @@ def test_hostile_text_is_refused_naming_the_field(code, field, payload):
 def test_one_line_commands_stay_in_the_comment(code, payload):
     text = export_dem(clean_fit(), code, source=payload)
     assert _code_lines(text, code) == _code_lines(export_dem(clean_fit(), code), code)
-    assert [line for line in text.splitlines() if payload in line] == [
-        ("//" if code == "mercurydpm" else "#") + f" source: {payload}"
-    ]
+    holding = [line for line in text.splitlines() if payload in line]
+    if code in TEXT_FREE_CODES:
+        assert holding == []  # no text of the fit reaches the file at all
+    else:
+        assert holding == [("//" if code == "mercurydpm" else "#") + f" source: {payload}"]
 
 
 @settings(max_examples=60, deadline=None, derandomize=True)  # fixed budget, ~1 s
