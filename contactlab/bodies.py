@@ -221,6 +221,15 @@ class Sensor(KeywordChecked):
             )
         if math.isinf(self.damping) and not self.is_rigid:
             raise ParameterError("damping must be finite for a moving sensor")
+        if not self.is_rigid and not (
+            0.0 < self.stiffness * self.mass < math.inf
+            and 0.0 < self.stiffness / self.mass < math.inf
+        ):
+            raise ParameterError(
+                f"mass = {self.mass!r} kg and stiffness = {self.stiffness!r} N/m: their "
+                "product or ratio (resonance, damping ratio) is beyond what a float holds; "
+                "check the units"
+            )
         if not self.is_rigid:
             check_plausible("sensor_mass", self.mass, "mass")
             check_plausible("sensor_resonance", self.resonance, "resonance sqrt(k1/m1)/(2 pi)")
