@@ -84,7 +84,12 @@ class Grain(KeywordChecked):
                 f"Grain needs exactly one of density [kg/m**3] or mass [kg]; "
                 f"got density={density!r}, mass={mass!r}"
             )
-        volume = math.pi * self.diameter**3 / 6.0
+        volume = math.pi / 6.0 * self.diameter * self.diameter * self.diameter
+        if not 0.0 < volume < math.inf:  # d**3 under- or overflows a float
+            raise ParameterError(
+                f"diameter = {self.diameter!r} m gives a volume of {volume!r} m**3, which a "
+                "float cannot hold; give the diameter in metres"
+            )
         if density is not None:
             self.density = check_number("density", density, low=0.0, unit="kg/m**3")
             check_plausible("grain_density", self.density, "density")
@@ -93,6 +98,12 @@ class Grain(KeywordChecked):
             self.mass = check_number("mass", mass, low=0.0, unit="kg")
             check_plausible("grain_mass", self.mass, "mass")
             self.density = self.mass / volume
+        if not (0.0 < self.mass < math.inf and 0.0 < self.density < math.inf):
+            raise ParameterError(
+                f"diameter = {self.diameter!r} m with mass {self.mass!r} kg and density "
+                f"{self.density!r} kg/m**3: a float cannot hold them; check the units"
+            )
+        if density is None:
             check_plausible(
                 "grain_density", self.density, f"density (mass / volume of a {diameter:g} m sphere)"
             )
@@ -210,6 +221,15 @@ class Sensor(KeywordChecked):
             )
         if math.isinf(self.damping) and not self.is_rigid:
             raise ParameterError("damping must be finite for a moving sensor")
+        if not self.is_rigid and not (
+            0.0 < self.stiffness * self.mass < math.inf
+            and 0.0 < self.stiffness / self.mass < math.inf
+        ):
+            raise ParameterError(
+                f"mass = {self.mass!r} kg and stiffness = {self.stiffness!r} N/m: their "
+                "product or ratio (resonance, damping ratio) is beyond what a float holds; "
+                "check the units"
+            )
         if not self.is_rigid:
             check_plausible("sensor_mass", self.mass, "mass")
             check_plausible("sensor_resonance", self.resonance, "resonance sqrt(k1/m1)/(2 pi)")

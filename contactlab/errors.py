@@ -10,6 +10,7 @@ __all__ = [
     "ParameterError",
     "PlausibilityWarning",
     "ResolutionWarning",
+    "RowFailedWarning",
     "TraceFormatError",
     "UnknownParameterError",
     "WindowWarning",
@@ -55,3 +56,7 @@ class PlausibilityWarning(ContactlabWarning):
     The message names the likely unit slip; the ranges and their sources are in
     ``contactlab.plausibility.RANGES`` and ``docs/plausibility.md``.
     """
+
+
+class RowFailedWarning(ContactlabWarning):
+    """Rows of a batch could not be solved: NaN there, the reason in the ``error`` column."""

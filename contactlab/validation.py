@@ -11,6 +11,7 @@ import functools
 import inspect
 import math
 import numbers
+import re
 
 from contactlab.errors import ParameterError, UnknownParameterError
 
@@ -18,11 +19,13 @@ __all__ = [
     "KeywordChecked",
     "check_choice",
     "check_count",
+    "check_inertia_factor",
     "check_non_negative",
     "check_number",
     "check_poisson_ratio",
     "check_positive",
     "check_probability",
+    "check_text",
     "keyword_checked",
     "unknown_keywords",
     "with_suggestion",
@@ -109,6 +112,19 @@ def check_poisson_ratio(name, value):
     return check_number(name, value, low=-1.0, high=0.5, unit="-")
 
 
+INERTIA_FACTOR_RANGE = (1e-3, 2.0 / 3.0)
+"""Allowed ``I / (m r**2)`` of a spherical grain [-]: at most 2/3 (all the mass on the
+surface, a thin shell: no sphere of non-negative density has more); at least 1e-3 (a
+core 30 times denser than its shell gives 0.1; below 1e-3 the spin is a mode so fast that
+the oblique solver's run time grows without bound: 1e-12 hung)."""
+
+
+def check_inertia_factor(name, value):
+    """Check a sphere's inertia factor ``I / (m r**2)`` in :data:`INERTIA_FACTOR_RANGE`."""
+    low, high = INERTIA_FACTOR_RANGE
+    return check_number(name, value, low=low, high=high, low_open=False, unit="-")
+
+
 def check_count(name, value, low=1):
     """Return ``value`` as an int after checking it is an integer >= ``low``.
 
@@ -136,6 +152,48 @@ def check_choice(name, value, choices):
     hint = f" Did you mean {close[0]!r}?" if close else ""
     valid = ", ".join(repr(c) for c in choices)
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
+
+
+TEXT_MAX_LENGTH = 1000
+"""Longest free text (a label, a file path) accepted into a written file [characters]."""
+
+_PYTHON_CODING = re.compile(r"coding[:=]")
+"""PEP 263 declaration: on a script's first two lines it changes how Python decodes it."""
+
+
+def check_text(name, value, max_length=TEXT_MAX_LENGTH):
+    """Return ``value`` after checking it is safe text for a comment in any input deck.
+
+    The text must be a ``str`` of printable characters (no line ends of any kind, no
+    control characters, see :meth:`str.isprintable`), at most ``max_length`` long, must not
+    end in a line continuation (``\\`` in C/C++, ``&`` in LAMMPS, which would pull the
+    next line into the comment) and must not hold a Python encoding declaration
+    (``coding:``). Text that fails is refused, never repaired.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name`` and the offending character.
+    """
+    if not isinstance(value, str):
+        raise ParameterError(f"{name} must be text (str); got {type(value).__name__}")
+    if len(value) > max_length:
+        raise ParameterError(f"{name} must be at most {max_length} characters; got {len(value)}")
+    for position, char in enumerate(value):
+        if not char.isprintable():
+            raise ParameterError(
+                f"{name} must be printable text on one line; character {position} is "
+                f"{char!r}: refused"
+            )
+    if value.rstrip().endswith(("\\", "&")):
+        raise ParameterError(
+            f"{name} must not end in {value.rstrip()[-1]!r} (a line continuation); got {value!r}"
+        )
+    if _PYTHON_CODING.search(value):
+        raise ParameterError(
+            f"{name} must not hold an encoding declaration 'coding:'; got {value!r}"
+        )
+    return value
 
 
 def with_suggestion(name, valid):

@@ -120,7 +120,7 @@ def _campaign(args):
     if args.out:
         print(f"wrote {args.out}/report.html (open it in a browser)", file=sys.stderr)
     summary = result.summary()
-    every_ok = summary["files_ok"] == summary["files"] and (
+    every_ok = summary["files_ok"] + summary["files_skipped"] == summary["files"] and (
         summary["impacts_ok"] == summary["impacts"]
     )
     return 0 if every_ok else 1

@@ -20,7 +20,7 @@ import math
 
 from contactlab.analytic.materials import check_elastic_pair
 from contactlab.errors import ParameterError
-from contactlab.validation import check_number
+from contactlab.validation import check_inertia_factor, check_number
 
 __all__ = [
     "SOLID_SPHERE_INERTIA",
@@ -90,7 +90,7 @@ def mindlin_stiffness_coefficient(effective_shear_modulus, effective_radius):
 
 def _slip_gain(inertia_factor):
     """Change of contact-point slip per unit of centre velocity change: ``1 + 1/kappa``."""
-    kappa = check_number("inertia_factor", inertia_factor, low=0.0)
+    kappa = check_inertia_factor("inertia_factor", inertia_factor)
     return 1.0 + 1.0 / kappa
 
 
@@ -185,7 +185,7 @@ def gross_sliding_rebound(
     vn, vt, w, r, e, mu = _impact_inputs(
         normal_velocity, tangential_velocity, spin, radius, restitution, friction
     )
-    kappa = check_number("inertia_factor", inertia_factor, low=0.0)
+    kappa = check_inertia_factor("inertia_factor", inertia_factor)
     if not slides_throughout(vn, vt, w, r, e, mu, kappa):
         raise ParameterError(
             f"the contact does not slide throughout: |vt - R spin| = {abs(vt - r * w):.6g} m/s "

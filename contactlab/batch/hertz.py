@@ -13,8 +13,7 @@ import numpy as np
 
 from contactlab.batch.frame import Column, impact_columns
 from contactlab.batch.hertz_kernel import solve_rows
-from contactlab.batch.modal_kernel import STATUS_OK
-from contactlab.batch.rows import DEFAULT_CHUNK, single_impact, solve_frame
+from contactlab.batch.rows import DEFAULT_CHUNK, fallback_row, run_kernel, solve_frame
 from contactlab.laws import HertzDamped
 from contactlab.validation import check_number
 
@@ -34,14 +33,13 @@ worst 7e-8 at 1e-9; 1.4e-6 at 1e-8 (a sensor peak on an overdamped plate, where
 
 
 def _solver(rtol):
-    def solve(arrays, lo, hi, out):
+    def solve(arrays, lo, hi, out, failures):
         columns = [np.ascontiguousarray(arrays[c.name][lo:hi]) for c in HERTZ_INPUTS]
-        status = np.empty(hi - lo, dtype=np.int64)
-        solve_rows(*columns, rtol, out, status)
-        for i in np.flatnonzero(status != STATUS_OK):
+        for i in run_kernel(solve_rows, columns, (rtol,), out):
             m1, k1, c1, m2, k_hertz, damping, v0 = (float(col[i]) for col in columns)
             law = HertzDamped(k_hertz, damping)
-            out[i] = single_impact(m1, k1, c1, m2, law, v0, method="adaptive", rtol=rtol)
+            options = {"method": "adaptive", "rtol": rtol}
+            fallback_row(out[i], failures, lo + i, m1, k1, c1, m2, law, v0, **options)
 
     return solve
 

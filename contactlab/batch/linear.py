@@ -14,8 +14,13 @@ import numpy as np
 
 from contactlab.batch.frame import Column, impact_columns
 from contactlab.batch.linear_kernel import solve_rows
-from contactlab.batch.modal_kernel import STATUS_OK
-from contactlab.batch.rows import DEFAULT_CHUNK, RESULT_COLUMNS, single_impact, solve_frame
+from contactlab.batch.rows import (
+    DEFAULT_CHUNK,
+    RESULT_COLUMNS,
+    fallback_row,
+    run_kernel,
+    solve_frame,
+)
 from contactlab.laws import LinearViscoelastic
 
 __all__ = ["LINEAR_INPUTS", "RESULT_COLUMNS", "linear_impacts", "solve_linear"]
@@ -27,18 +32,16 @@ LINEAR_INPUTS = impact_columns(
 """Input columns of :func:`linear_impacts`."""
 
 
-def solve_linear(arrays, lo, hi, out):
+def solve_linear(arrays, lo, hi, out, failures):
     """Solve rows ``lo:hi`` of checked input arrays into ``out`` (hi - lo, 6).
 
     Returns the number of rows the single solver took over.
     """
     columns = [np.ascontiguousarray(arrays[c.name][lo:hi]) for c in LINEAR_INPUTS]
-    status = np.empty(hi - lo, dtype=np.int64)
-    solve_rows(*columns, out, status)
-    handed = np.flatnonzero(status != STATUS_OK)
+    handed = run_kernel(solve_rows, columns, (), out)
     for i in handed:
         m1, k1, c1, m2, k2, c2, v0 = (float(col[i]) for col in columns)
-        out[i] = single_impact(m1, k1, c1, m2, LinearViscoelastic(k2, c2), v0)
+        fallback_row(out[i], failures, lo + i, m1, k1, c1, m2, LinearViscoelastic(k2, c2), v0)
     return handed.size
 
 

@@ -16,8 +16,9 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from contactlab.batch.frame import check_frame, chunk_bounds
+from contactlab.batch.modal_kernel import STATUS_OK
 from contactlab.bodies import Grain, Sensor
-from contactlab.errors import ParameterError
+from contactlab.errors import ParameterError, RowFailedWarning
 from contactlab.plausibility import implausible_rows, internal
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_count
@@ -25,8 +26,11 @@ from contactlab.validation import check_count
 __all__ = [
     "CHUNKS_PER_THREAD",
     "DEFAULT_CHUNK",
+    "ERROR_COLUMN",
     "RESULT_COLUMNS",
     "check_threads",
+    "fallback_row",
+    "run_kernel",
     "single_impact",
     "solve_frame",
     "warn_implausible",
@@ -41,6 +45,9 @@ RESULT_COLUMNS = (
     "contacts [-]",
 )
 """Columns a batch solver adds, in the order of its kernel's outputs."""
+
+ERROR_COLUMN = "error"
+"""Column added when a row could not be solved: its reason (empty for solved rows)."""
 
 DEFAULT_CHUNK = 100_000
 """Rows solved per call of a kernel: bounds the working memory (about 100 bytes a row
@@ -104,7 +111,42 @@ def single_impact(m1, k1, c1, m2, law, v0, **options):
     )
 
 
-def _solve_chunks(solve, arrays, results, chunk, threads):
+KERNEL_ERRORS = (ArithmeticError, ValueError, np.linalg.LinAlgError)
+"""What a compiled kernel raises on a row it cannot take (an overflowing matrix, a zero
+division): the chunk is then run row by row and only that row is handed back."""
+
+
+def run_kernel(kernel, columns, args, out):
+    """Run a compiled batch kernel on a chunk; return the rows to hand back (0-based).
+
+    ``kernel(*columns, *args, out, status)`` fills ``out`` and a status per row. If it
+    raises for the chunk, each row is run alone, and a row that raises again is handed
+    back with the others whose status is not :data:`STATUS_OK`.
+    """
+    status = np.empty(len(out), dtype=np.int64)
+    try:
+        kernel(*columns, *args, out, status)
+    except KERNEL_ERRORS:
+        for i in range(len(out)):
+            try:
+                kernel(*(c[i : i + 1] for c in columns), *args, out[i : i + 1], status[i : i + 1])
+            except KERNEL_ERRORS:
+                status[i] = -1
+    return np.flatnonzero(status != STATUS_OK)
+
+
+def fallback_row(out, failures, row, m1, k1, c1, m2, law, v0, **options):
+    """Solve one handed-back row by :func:`single_impact` into ``out``; if the single
+    solver refuses or fails, write NaN and record why in ``failures[row]`` (0-based row
+    of the frame), so that one unsolvable row never costs the others their numbers."""
+    try:
+        out[:] = single_impact(m1, k1, c1, m2, law, v0, **options)
+    except (ValueError, ArithmeticError, RuntimeError, np.linalg.LinAlgError) as exc:
+        out[:] = math.nan
+        failures[row] = f"{type(exc).__name__}: {exc}"
+
+
+def _solve_chunks(solve, arrays, results, chunk, threads, failures):
     """Solve every row of the checked arrays into ``results``, ``threads`` at a time."""
     rows = len(results)
     if threads > 1:
@@ -114,10 +156,12 @@ def _solve_chunks(solve, arrays, results, chunk, threads):
         warnings.simplefilter("always")
         if threads == 1 or len(bounds) == 1:
             for lo, hi in bounds:
-                solve(arrays, lo, hi, results[lo:hi])
+                solve(arrays, lo, hi, results[lo:hi], failures)
             return
         with ThreadPoolExecutor(max_workers=threads) as pool:
-            jobs = [pool.submit(solve, arrays, lo, hi, results[lo:hi]) for lo, hi in bounds]
+            jobs = [
+                pool.submit(solve, arrays, lo, hi, results[lo:hi], failures) for lo, hi in bounds
+            ]
             for job in jobs:
                 job.result()
 
@@ -132,8 +176,9 @@ def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
     columns : sequence of contactlab.batch.frame.Column
         The input columns (``m1 [kg]`` and ``k1 [N/m]`` among them).
     solve : callable
-        ``solve(arrays, lo, hi, out)``: rows ``lo:hi`` of the checked arrays into ``out``
-        (hi - lo, 6).
+        ``solve(arrays, lo, hi, out, failures)``: rows ``lo:hi`` of the checked arrays
+        into ``out`` (hi - lo, 6); a row no solver can solve gets NaN there and its reason
+        in ``failures`` (:func:`fallback_row`).
     chunk : int
         Rows solved at a time.
     threads : int or None
@@ -142,7 +187,9 @@ def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
     Returns
     -------
     pandas.DataFrame
-        A copy of ``frame`` with :data:`RESULT_COLUMNS` added.
+        A copy of ``frame`` with :data:`RESULT_COLUMNS` added. If a row could not be
+        solved, its numbers are NaN, an ``error`` column gives its reason (empty for the
+        other rows, which are all solved) and a :class:`RowFailedWarning` names the rows.
     """
     chunk = check_count("chunk", chunk)
     threads = check_threads(threads)
@@ -150,8 +197,20 @@ def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
     _check_sensor_pairs(arrays, frame)
     warn_implausible(arrays, frame)
     results = np.empty((len(frame), len(RESULT_COLUMNS)))
-    _solve_chunks(solve, arrays, results, chunk, threads)
+    failures = {}
+    _solve_chunks(solve, arrays, results, chunk, threads, failures)
     out = frame.copy()
     for j, name in enumerate(RESULT_COLUMNS):
         out[name] = results[:, j]
+    if failures:
+        rows = sorted(failures)
+        out[ERROR_COLUMN] = ""
+        out.iloc[rows, out.columns.get_loc(ERROR_COLUMN)] = [failures[i] for i in rows]
+        first = rows[0]
+        warnings.warn(
+            f"{len(rows)} of {len(frame)} rows could not be solved (NaN, reason in column "
+            f"{ERROR_COLUMN!r}); row {first} (index {frame.index[first]!r}): {failures[first]}",
+            RowFailedWarning,
+            stacklevel=3,
+        )
     return out

@@ -63,6 +63,30 @@ RINGING_PERIODS = 5.0
 WINDOW_PER_CONTACT = 1.5
 """Default window: at least this many first-contact durations."""
 
+SPEED_OF_LIGHT = 299_792_458.0
+"""No impact is faster [m/s]: the bound that keeps a velocity's squares and products
+finite (a velocity of 1e157 m/s overflowed the free-flight horizon)."""
+
+MAX_OUTPUT_SAMPLES = 20_000_000
+"""Most output samples of one impact (``duration * sample_rate + 1``): the result holds
+about ten arrays of them (1.6 GB at this limit); more is refused before allocating."""
+
+
+def check_output_size(duration, sample_rate):
+    """Refuse a window and sample rate whose output grid would not fit in memory."""
+    samples = duration * sample_rate + 1.0  # may overflow to inf: refused below too
+    if samples < 2.0:
+        raise ParameterError(
+            f"sample_rate = {sample_rate:.4g} Hz gives fewer than 2 samples in the "
+            f"{duration:.4g} s window; it must be at least {1.0 / duration:.4g} Hz"
+        )
+    if not samples <= MAX_OUTPUT_SAMPLES:
+        raise ParameterError(
+            f"duration = {duration:.4g} s at sample_rate = {sample_rate:.4g} Hz asks for "
+            f"{samples:.3g} output samples (limit {MAX_OUTPUT_SAMPLES:.3g}): shorten the "
+            "duration or lower the sample_rate"
+        )
+
 
 def _solve_pieces(system, law, velocity, window, contact_solver):
     """Alternate contact and free pieces until the window ends.
@@ -169,7 +193,9 @@ def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):
             f"law must be a contact law from contactlab.laws; got {type(law).__name__}"
         )
     velocity = check_plausible(
-        "impact_velocity", check_number("velocity", velocity, low=0.0, unit="m/s"), "velocity"
+        "impact_velocity",
+        check_number("velocity", velocity, low=0.0, high=SPEED_OF_LIGHT, unit="m/s"),
+        "velocity",
     )
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
@@ -252,6 +278,8 @@ def simulate_impact(
     velocity, duration, sample_rate = _check_inputs(
         grain, sensor, law, velocity, duration, sample_rate
     )
+    if duration is not None and sample_rate is not None:
+        check_output_size(duration, sample_rate)  # before any work
     method = check_choice("method", method, METHODS)
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
     if method == "auto":
@@ -281,6 +309,7 @@ def simulate_impact(
     _warn_window(intervals, log, window, duration)
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
+    check_output_size(window, sample_rate)
     _warn_resolution(sensor, intervals, sample_rate)
     result = ImpactResult(
         grain=grain,

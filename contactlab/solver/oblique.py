@@ -44,10 +44,15 @@ from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
-from contactlab.solver.impact import DEFAULT_SAMPLES, auto_window
+from contactlab.solver.impact import (
+    DEFAULT_SAMPLES,
+    SPEED_OF_LIGHT,
+    auto_window,
+    check_output_size,
+)
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
-from contactlab.validation import check_number, keyword_checked
+from contactlab.validation import check_inertia_factor, check_number, keyword_checked
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
@@ -254,6 +259,11 @@ def _solve_contact(model, y0, rtol, scale):
             ]
         )
     )
+    if not (atol > 0.0).all():  # a velocity near 1e-300 m/s: its scales underflow to 0
+        raise ParameterError(
+            f"velocity = {velocity!r} m/s is too small for the integrator's absolute "
+            "tolerances, which scale with it (they underflow to 0)"
+        )
     first = Stepper(model.rhs(STICK), 0.0, y0, rtol, atol).initial_step()
     phase = model.touch_phase(y0, first, rtol, atol)
     pieces, t, y, touch = [], 0.0, np.asarray(y0, dtype=float), True
@@ -294,12 +304,17 @@ def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, sp
             "tangential_law must be a tangential law from contactlab.laws (TangentialSpring, "
             f"Mindlin); got {type(tangential_law).__name__}"
         )
-    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    velocity = check_number("velocity", velocity, low=0.0, high=SPEED_OF_LIGHT, unit="m/s")
     check_plausible("impact_velocity", velocity, "velocity")
     angle = check_number(
         "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
     )
     spin = check_number("spin", spin, unit="rad/s")
+    if abs(spin) * grain.radius > SPEED_OF_LIGHT:
+        raise ParameterError(
+            f"spin = {spin!r} rad/s moves the grain's surface faster than light (radius "
+            f"{grain.radius!r} m)"
+        )
     return velocity, angle, spin
 
 
@@ -373,7 +388,7 @@ def simulate_oblique(
         grain, sensor, normal_law, tangential_law, velocity, angle, spin
     )
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
-    kappa = check_number("inertia_factor", inertia_factor, low=0.0)
+    kappa = check_inertia_factor("inertia_factor", inertia_factor)
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
@@ -406,6 +421,7 @@ def simulate_oblique(
         )
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
+    check_output_size(window, sample_rate)
     result = ObliqueResult(
         grain=grain,
         sensor=sensor,

@@ -13,7 +13,7 @@ from contactlab.inverse import FIT_MODELS
 from contactlab.validation import check_choice, check_count, check_number
 from dem_check.campaign import detection
 from dem_check.campaign.analysis import analyse_impact, window_row
-from dem_check.campaign.inputs import expand_paths, for_file, read_record
+from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.result import CampaignResult
 from dem_check.campaign.statistics import (
     join_metadata,
@@ -266,7 +266,8 @@ def run_campaign(
         Channel of multi-channel files (name or 0-based index; a dict per file).
     out : str or os.PathLike, optional
         Folder for ``impacts.csv``, ``files.csv``, ``statistics.csv``,
-        ``regressions.csv``, ``settings.json`` and ``report.html``.
+        ``regressions.csv``, ``settings.json`` and ``report.html``; refused if it holds
+        one of the records (they would be overwritten).
     fit : str, optional
         Fit this law (a key of :data:`contactlab.inverse.FIT_MODELS`) to every ok impact
         (needs ``grain``): the ``fit_*`` columns.
@@ -286,9 +287,9 @@ def run_campaign(
     Raises
     ------
     ParameterError
-        Bad arguments, ``paths`` naming no file at all, or a bad metadata table.
-        Problems with single files or impacts never raise: they are rows with a status
-        and a reason.
+        Bad arguments, ``paths`` naming no file at all, ``out`` holding a record, or a bad
+        metadata table. Problems with single files or impacts never raise: they are rows
+        with a status and a reason (an unexpected error in one file too: ``"failed"``).
     """
     fit, gallery = _check_inputs(sensor, grain, fit, gallery)
     options = {
@@ -301,13 +302,19 @@ def run_campaign(
     }
     skip = () if metadata is None or isinstance(metadata, pd.DataFrame) else (metadata,)
     files, problems = expand_paths(paths, skip)
+    if out is not None:
+        check_out_folder(out, files)
     timings = dict.fromkeys(("read", "detect", "analyse", "statistics", "report"), 0.0)
     file_rows = [_file_row(p.file, p.status, p.reason) for p in problems]
     impact_rows, gallery_traces, records = [], {}, {}
     bar = _Progress(len(files), progress)
     try:
         for path in files:
-            row, rows, traces, envelope = _analyse_file(path, options, timings, bar)
+            try:
+                row, rows, traces, envelope = _analyse_file(path, options, timings, bar)
+            except Exception as exc:  # one bad file never costs the others their rows
+                reason = f"{path}: {type(exc).__name__}: {exc}"
+                row, rows, traces, envelope = _file_row(path, "failed", reason), [], {}, None
             file_rows.append(row)
             impact_rows += rows
             gallery_traces.update(traces)

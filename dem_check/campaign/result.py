@@ -7,7 +7,33 @@ from pathlib import Path
 
 import pandas as pd
 
+from dem_check.campaign.inputs import SKIPPED_STATUSES
+
 __all__ = ["CampaignResult"]
+
+
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+"""First characters that make a spreadsheet read a CSV cell as a formula (OWASP, CSV
+injection)."""
+
+
+def spreadsheet_safe(table):
+    """A copy of ``table`` whose text cells cannot run as spreadsheet formulas.
+
+    A text cell starting with one of :data:`FORMULA_STARTS` (a file named
+    ``=HYPERLINK(...).csv``, a metadata entry) gets a leading ``'``, which spreadsheets
+    show as text; numbers are untouched (a negative number is a number, not text).
+    """
+
+    def neutral(cell):
+        return "'" + cell if isinstance(cell, str) and cell.startswith(FORMULA_STARTS) else cell
+
+    table = table.copy()
+    for column in table.columns:
+        if not pd.api.types.is_numeric_dtype(table[column]):
+            table[column] = table[column].map(neutral)
+    table.columns = [neutral(str(c)) for c in table.columns]
+    return table
 
 
 def _json_ready(value):
@@ -74,6 +100,7 @@ class CampaignResult:
         return {
             "files": len(self.files),
             "files_ok": int((self.files["status"] == "ok").sum()),
+            "files_skipped": int(self.files["status"].isin(SKIPPED_STATUSES).sum()),
             "file_status": self.files["status"].value_counts().to_dict(),
             "impacts": len(self.impacts),
             "impacts_ok": len(self.ok),
@@ -108,7 +135,7 @@ class CampaignResult:
         }
         written = []
         for name, table in tables.items():
-            table.to_csv(out / name, index=False)
+            spreadsheet_safe(table).to_csv(out / name, index=False)
             written.append(out / name)
         settings = {**_json_ready(self.settings), "timings [s]": self.timings}
         (out / "settings.json").write_text(json.dumps(settings, indent=2) + "\n", "utf-8")

@@ -2,6 +2,7 @@
 
 import difflib
 import os
+import stat
 
 from contactlab.errors import ParameterError
 from dem_check.traces.checks import fail
@@ -62,16 +63,32 @@ def read_trace(path, format="auto", channel=None, sensitivity=None):
         A binary format whose optional package is missing (``pip install
         contactlab[traces]``).
     OSError
-        The file cannot be opened (``FileNotFoundError``, ``IsADirectoryError``, ...).
+        The file cannot be opened (``FileNotFoundError``, ``PermissionError``). A folder,
+        FIFO, socket or device is refused at once with a TraceFormatError.
     """
     path = os.fspath(path)
     reader = None if format == "auto" else _format(format)
+    check_regular_file(path)
     head = read_head(path)
     if not head.raw:
         raise fail(path, "line 1", "the file is empty")
     reader = reader or FORMATS[detect_head(head)]
     trace = reader.read(head, channel)
     return trace if sensitivity is None else to_force(trace, sensitivity)
+
+
+def check_regular_file(path):
+    """Refuse at once what is not a regular file (a FIFO or device would block or never end).
+
+    Raises
+    ------
+    TraceFormatError
+        Naming the file and what it is; ``FileNotFoundError`` if it does not exist.
+    """
+    mode = os.stat(path).st_mode
+    if not stat.S_ISREG(mode):
+        kind = "a folder" if stat.S_ISDIR(mode) else "a FIFO, socket or device"
+        raise fail(path, "file", f"is {kind}, not a regular file: refused")
 
 
 def write_trace(path, trace, format="generic", **options):

@@ -13,6 +13,7 @@ import numpy as np
 from contactlab.errors import ParameterError, TraceFormatError
 
 __all__ = [
+    "MAX_SAMPLES",
     "check_samples",
     "fail",
     "grid_deviation",
@@ -28,6 +29,11 @@ uniformly sampled, and of a declared interval from the time column's mean spacin
 columns printed with ~12 digits (Tektronix) jitter by ~1e-6 of an interval and must
 pass; a dropped or repeated sample (a deviation of 1) or real timing irregularity must
 not."""
+
+
+MAX_SAMPLES = 200_000_000
+"""Most samples a binary trace may declare (1.6 GB as float64, two days of a 1 kHz DAQ or
+50 s at 4 MS/s): a larger declaration is refused before anything is allocated."""
 
 
 def fail(path, where, message):

@@ -11,19 +11,31 @@ convention:
 - optional attributes ``instrument`` and ``trigger_time`` [s] on the dataset.
 
 A dataset without a unit or a time axis is an error: nothing is assumed.
+
+Hostile files: a dataset stored in external files or assembled from other files (a
+virtual dataset) is refused, since reading it would return bytes of other files on the
+machine; a dataset declaring more than :data:`~dem_check.traces.checks.MAX_SAMPLES` or
+more bytes than :data:`MAX_COMPRESSION_RATIO` times the file's size is refused before it
+is read; any error h5py raises on a damaged file becomes a TraceFormatError naming the
+file and the dataset.
 """
+
+import os
 
 import numpy as np
 
+from contactlab.errors import TraceFormatError
 from contactlab.validation import check_choice
 from dem_check.traces.binary import require
 from dem_check.traces.checks import (
+    MAX_SAMPLES,
     check_samples,
     fail,
     header_number,
     select_channel,
     uniform_interval,
 )
+from dem_check.traces.isolate import run_isolated
 from dem_check.traces.textwrite import output_units
 from dem_check.traces.trace import Trace
 from dem_check.traces.units import SI_VALUE_UNITS, parse_unit
@@ -32,6 +44,11 @@ __all__ = ["read", "sniff", "write"]
 
 SIGNATURE = b"\x89HDF\r\n\x1a\n"
 _TIME_NAMES = ("t", "time")
+
+MAX_COMPRESSION_RATIO = 200
+"""Most bytes a dataset may declare per byte of the file: gzip packs a block of zeros ~800
+to 1, a measured trace with noise (16-bit samples stored as float64) under 10; beyond 200
+a file is taken for a decompression bomb."""
 
 
 def sniff(head):
@@ -71,6 +88,26 @@ def _channels(h5py, h5file):
     return found
 
 
+def _load(path, dataset):
+    """A dataset's values as float64, after refusing external, virtual and oversized ones."""
+    where = f"dataset {dataset.name!r}"
+    if dataset.is_virtual:
+        raise fail(path, where, "is a virtual dataset (data from other files): refused")
+    if dataset.external:
+        raise fail(path, where, "is stored in external files: refused")
+    if dataset.size > MAX_SAMPLES:
+        raise fail(path, where, f"declares {dataset.size} samples (limit {MAX_SAMPLES})")
+    declared = dataset.size * dataset.dtype.itemsize
+    if declared > MAX_COMPRESSION_RATIO * max(os.path.getsize(path), 1):
+        raise fail(
+            path,
+            where,
+            f"declares {declared} bytes, over {MAX_COMPRESSION_RATIO} times the "
+            "file's size (a decompression bomb?)",
+        )
+    return dataset[()].astype(np.float64)
+
+
 def _time(path, dataset, n):
     where = f"dataset {dataset.name!r}"
     attrs = dataset.attrs
@@ -89,33 +126,51 @@ def _time(path, dataset, n):
     time = group[name]
     if time.shape != (n,):
         raise fail(path, f"dataset {time.name!r}", f"has shape {time.shape}; the channel {n}")
-    t = _unit(path, f"dataset {time.name!r}", time.attrs, ("s",)).to_si(time[()].astype(float))
+    t = _unit(path, f"dataset {time.name!r}", time.attrs, ("s",)).to_si(_load(path, time))
     return t, (t[-1] - t[0]) / (n - 1) if n > 1 else None, "time column (mean spacing)"
 
 
 def read(head, channel):
     """Read one channel of an HDF5 file (see the module docstring for the convention).
 
+    The HDF5 library runs in a child process (:func:`~dem_check.traces.isolate.run_isolated`):
+    a file that crashes it is refused instead of ending this process.
+
     Returns
     -------
     Trace
     """
+    _h5py()  # the ImportError for a missing extra comes from this process
+    return run_isolated(head.path, _read_path, head.path, channel)
+
+
+def _read_path(path, channel):
+    """Read one channel of the HDF5 file ``path`` (in the child process)."""
     h5py = _h5py()
-    path = head.path
     try:
         h5file = h5py.File(path, "r")
     except Exception as exc:  # h5py reports a corrupt file through several exception types
         raise fail(path, "binary", f"not a readable HDF5 file ({exc})") from exc
-    with h5file:
-        names = _channels(h5py, h5file)
-        if not names:
-            raise fail(path, "binary", "no 1-D numeric dataset (channel)")
-        name = names[select_channel(names, channel, path, "dataset list")]
-        dataset = h5file[name]
-        unit = _unit(path, f"dataset {name!r}", dataset.attrs, SI_VALUE_UNITS)
-        values = unit.to_si(dataset[()].astype(np.float64))
-        t, interval, source = _time(path, dataset, values.size)
-        attrs = {k: _text(v) if isinstance(v, bytes | str) else v for k, v in dataset.attrs.items()}
+    try:
+        with h5file:
+            return _read_open(path, h5py, h5file, channel)
+    except TraceFormatError:
+        raise
+    except Exception as exc:  # h5py: RuntimeError, KeyError, OSError, TypeError, decoding
+        raise fail(path, "binary", f"damaged HDF5 file ({type(exc).__name__}: {exc})") from exc
+
+
+def _read_open(path, h5py, h5file, channel):
+    """Read one channel of an open HDF5 file."""
+    names = _channels(h5py, h5file)
+    if not names:
+        raise fail(path, "binary", "no 1-D numeric dataset (channel)")
+    name = names[select_channel(names, channel, path, "dataset list")]
+    dataset = h5file[name]
+    unit = _unit(path, f"dataset {name!r}", dataset.attrs, SI_VALUE_UNITS)
+    values = unit.to_si(_load(path, dataset))
+    t, interval, source = _time(path, dataset, values.size)
+    attrs = {k: _text(v) if isinstance(v, bytes | str) else v for k, v in dataset.attrs.items()}
     trigger = attrs.get("trigger_time")
     if trigger is not None:
         trigger = header_number(path, f"dataset {name!r}", "trigger_time", trigger)

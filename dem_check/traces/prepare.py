@@ -13,6 +13,8 @@ The baseline is the pre-trigger part of the trace: by default the samples before
 first rise of a pulse that starts before the trigger.
 """
 
+import numpy as np
+
 from contactlab import signals
 from contactlab.errors import ParameterError
 from contactlab.plausibility import check_plausible
@@ -184,9 +186,17 @@ def to_force(trace, sensitivity):
         raise ParameterError(
             f"sensitivity converts volts to newtons; the trace is in {trace.unit!r}, not 'V'"
         )
+    with np.errstate(over="ignore"):
+        values = trace.values / sensitivity
+    overflow = np.isinf(values) & np.isfinite(trace.values)
+    if overflow.any():
+        raise ParameterError(
+            f"sensitivity = {sensitivity!r} V/N turns {trace.values[overflow][0]!r} V into an "
+            "infinite force: give the sensitivity in V/N (e.g. 0.0225 for 22.5 mV/N)"
+        )
     return trace.derive(
         {"step": "to_force", "sensitivity [V/N]": sensitivity},
-        values=trace.values / sensitivity,
+        values=values,
         unit="N",
         metadata={"sensitivity [V/N]": sensitivity},
     )

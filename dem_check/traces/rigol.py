@@ -80,6 +80,7 @@ def parse_sequence(head):
             if i > 0
         ),
         channel_line=1,
+        max_fields=min(i_start, i_increment) + 1,  # the columns, a trailing delimiter
         sequence=Sequence(start, increment),
         metadata={"header": {"lines": list(head.lines[:2])}},
     )

@@ -29,6 +29,8 @@ from dem_check.traces.textwrite import write_text
 __all__ = ["parse_mso", "parse_tds", "sniff_mso", "sniff_tds", "write_mso", "write_tds"]
 
 TDS_HEADER_ROWS = 18
+TDS_FIELDS = 6
+"""Cells of a TDS data row: header key, header value, blank, time, value, blank."""
 """Rows of the TDS key/value header (columns 0-2)."""
 
 
@@ -118,6 +120,7 @@ def parse_tds(head):
         time=Column("time", 3, time_unit),
         channels=(Column(source, 4, value_unit),),
         channel_line=lines.get("Source", 1),
+        max_fields=TDS_FIELDS,
         record_length=_declared(head, fields, lines, "Record Length", integer=True),
         interval=_declared(head, fields, lines, "Sample Interval"),
         metadata=metadata,

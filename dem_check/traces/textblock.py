@@ -58,6 +58,11 @@ class Block:
     n_fields: int | None = None
     """Cells per data row, enforced; ``None`` when rows carry extra cells (a trailing
     delimiter, a header beside the data) that are then not checked."""
+    max_fields: int | None = None
+    """Most cells a data row may have when ``n_fields`` is ``None`` (a trailing delimiter
+    included), the cells after the last column being empty: a row with more cells, or a
+    value after the last column, is refused, since a decimal comma (``0,125``) splits a
+    number into two cells that would otherwise read as ``0`` and a stray cell."""
     delimiter: str = ","
     sequence: Sequence | None = None
     record_length: tuple | None = None
@@ -112,6 +117,7 @@ def named_columns(head, fmt, first_line, *, strict=True, **fields):
     names, units = head.cells(0), head.cells(1)
     if not strict:
         names, units = (c[:-1] if c[-1:] == [""] else c for c in (names, units))
+        fields.setdefault("max_fields", len(names) + 1)  # a trailing delimiter allowed
     if len(names) < 2 or len(units) != len(names) or "" in names:
         raise head.fail(2, f"need a unit for each of the {len(names)} columns of line 1")
     columns = [
@@ -149,6 +155,12 @@ def read_block(head, block, channel):
         raise head.fail(block.first_line, "no data rows after the header")
     used = (block.time, column)
     raw_t, raw_v = parse_block(head, block, head.offsets[start], used)
+    if not head.ends_with_line_end():
+        raise head.fail(
+            block.first_line + raw_t.size - 1,
+            "the last line has no line end: the file was cut short or is still being "
+            "written, so its last sample may be a cut number; refused",
+        )
     t = _time_axis(head, block, raw_t)
     values = column.unit.to_si(raw_v)
     overrange = check_samples(t, values, path, lambda i: f"line {block.first_line + i}")

@@ -56,6 +56,16 @@ class Head:
         """A binary file object over the content: the file, or its UTF-8 copy."""
         return open(self.path, "rb") if self.transcoded is None else io.BytesIO(self.transcoded)
 
+    def ends_with_line_end(self):
+        """Whether the content's last byte is ``\\n`` (a last line cut short has none)."""
+        if self.transcoded is not None:
+            return self.transcoded.endswith(b"\n")
+        with open(self.path, "rb") as fh:
+            if fh.seek(0, io.SEEK_END) == 0:
+                return False
+            fh.seek(-1, io.SEEK_END)
+            return fh.read(1) == b"\n"
+
     @property
     def is_text(self):
         """Whether the head looks like text (no NUL byte)."""

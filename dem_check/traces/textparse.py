@@ -21,6 +21,7 @@ __all__ = ["parse_block"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
 _WITH_UNIT = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\s*[A-Za-zµμ]+")
+_COMMA_HINT = " (decimal commas split a number into two cells; decimal points needed)"
 _BOOLEAN_WORDS = (b"true", b"false")
 """Words pandas' C parser turns into 1.0 and 0.0 (in any case) in a column made of them:
 a data block that holds one goes to the line parser, which refuses them as not numbers."""
@@ -67,19 +68,25 @@ def parse_block(head, block, offset, used):
         "lineterminator": "\n",
         "encoding": head.data_encoding,
     }
-    if block.n_fields is None:
+    if block.n_fields is None and block.max_fields is None:
         options["usecols"] = sorted(set(indices))
-    try:
-        with head.open_data() as fh:
-            fh.seek(offset)
-            booleans = _has_boolean_word(fh)
-            fh.seek(offset)
+    with head.open_data() as fh:
+        fh.seek(offset)
+        booleans = _scan_block(head, block, fh)
+        fh.seek(offset)
+        try:
             frame = None if booleans else pd.read_csv(fh, **options)
-    except ValueError:  # pandas' ParserError, EmptyDataError and UnicodeDecodeError too
-        frame = None
+        except ValueError:  # pandas' ParserError, EmptyDataError and UnicodeDecodeError too
+            frame = None
     if frame is None:
         return _parse_lines(head, block, offset, used)
     if block.n_fields is not None and frame.shape[1] != block.n_fields:
+        return _parse_lines(head, block, offset, used)
+    too_many = block.max_fields is not None and (
+        frame.shape[1] > block.max_fields
+        or frame.iloc[:, _last(block) + 1 :].notna().any(axis=None)
+    )
+    if too_many or frame.shape[1] <= max(indices):
         return _parse_lines(head, block, offset, used)
     arrays = [frame[i].to_numpy() for i in indices]
     if any(np.isnan(a).any() for a in arrays):
@@ -88,15 +95,26 @@ def parse_block(head, block, offset, used):
     return [a if frame.shape[1] <= 2 else a.copy() for a in arrays]
 
 
-def _has_boolean_word(fh):
-    """Whether the rest of ``fh`` holds ``true`` or ``false`` in any case (1 MiB chunks)."""
-    tail = b""
+def _last(block):
+    """0-based index of the block's last column; cells after it must be empty."""
+    return max(c.index for c in (block.time, *block.channels))
+
+
+def _scan_block(head, block, fh):
+    """One streaming pass over the rest of ``fh`` (1 MiB chunks, bounded memory): refuse a
+    NUL byte (no text layout has one: a zero-filled tail, a binary file), and say whether
+    the block holds ``true`` or ``false`` in any case."""
+    tail, booleans, lines = b"", False, 0
     while chunk := fh.read(1 << 20):
+        nul = chunk.find(b"\x00")
+        if nul >= 0:
+            line = block.first_line + lines + chunk.count(b"\n", 0, nul)
+            raise head.fail(line, "a NUL byte in the data (a zero-filled or binary tail)")
+        lines += chunk.count(b"\n")
         text = tail + chunk.lower()
-        if any(word in text for word in _BOOLEAN_WORDS):
-            return True
+        booleans = booleans or any(word in text for word in _BOOLEAN_WORDS)
         tail = text[-4:]  # "false" may straddle two chunks
-    return False
+    return booleans
 
 
 def _cell(token, specials):
@@ -128,7 +146,22 @@ def _parse_lines(head, block, offset, used):
                 raise head.fail(blank, "blank line inside the data")
             cells = text.split(block.delimiter)
             if block.n_fields is not None and len(cells) != block.n_fields:
-                raise head.fail(number, f"{len(cells)} cells where the header has {block.n_fields}")
+                raise head.fail(
+                    number,
+                    f"{len(cells)} cells where the header has {block.n_fields}"
+                    + (_COMMA_HINT if len(cells) > block.n_fields else ""),
+                )
+            if block.max_fields is not None and any(c.strip() for c in cells[_last(block) + 1 :]):
+                raise head.fail(
+                    number,
+                    f"a cell after the layout's last column is not empty{_COMMA_HINT}",
+                )
+            if block.max_fields is not None and len(cells) > block.max_fields:
+                raise head.fail(
+                    number,
+                    f"{len(cells)} cells where the layout has at most {block.max_fields}"
+                    f"{_COMMA_HINT}",
+                )
             for out, column in zip(columns, used, strict=True):
                 token = cells[column.index] if column.index < len(cells) else ""
                 try:

@@ -13,11 +13,17 @@ from contactlab import analytic
 from contactlab.config import read_document
 from contactlab.errors import ParameterError
 from contactlab.inverse.export.rebound import rebound_line
+from contactlab.inverse.export.schema import check_fit
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_result import ContactFit
 from contactlab.laws import get_law
 from contactlab.solver import wall_impact
-from contactlab.validation import check_number
+from contactlab.validation import (
+    check_non_negative,
+    check_number,
+    check_poisson_ratio,
+    check_positive,
+)
 
 __all__ = [
     "ExportContact",
@@ -37,9 +43,6 @@ STEEL_YOUNGS_MODULUS = 210e9
 
 STEEL_POISSON_RATIO = 0.3
 """... and Poisson ratio [-]."""
-
-EXPORTED_LAWS = ("linear", "hertz", "hertz_damped")
-"""Fitted laws the DEM codes take as they are."""
 
 PLACEHOLDER_FRICTION = 0.5
 """Friction coefficient written where a code requires one; marked NOT FITTED."""
@@ -70,6 +73,21 @@ class ExportContact:
     friction: float = PLACEHOLDER_FRICTION
     friction_fitted: bool = False
 
+    def __post_init__(self):
+        """Every number a writer may print is finite and physical (SI units)."""
+        for name in ("mass", "radius", "density", "velocity", "contact_time"):
+            check_positive(f"exported {name}", getattr(self, name))
+        check_non_negative("exported friction", self.friction)
+        if self.family == "linear":
+            check_positive("exported stiffness", self.stiffness, "N/m")
+            check_non_negative("exported damping", self.damping, "N*s/m")
+        else:
+            for name in ("effective_modulus", "youngs_modulus", "plate_youngs_modulus"):
+                check_positive(f"exported {name}", getattr(self, name), "Pa")
+            for name in ("poisson_ratio", "plate_poisson_ratio"):
+                check_poisson_ratio(f"exported {name}", getattr(self, name))
+        check_number("exported restitution", self.restitution, low=0.0, high=1.0)
+
     @property
     def shear_modulus(self):
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
@@ -91,7 +109,7 @@ class ExportContact:
             f"fitted law: {self.law}; "
             + "; ".join(
                 [
-                    f"{k} = {number(v['value'])}{_unit(v['unit'])}{_ci(v)}"
+                    f"{k} = {number(v['value'])}{_unit(_fixed_unit(self.law, k))}{_ci(v)}"
                     for k, v in self.fitted.items()
                 ]
                 + [
@@ -113,12 +131,19 @@ class ExportContact:
 
 
 def number(value):
-    """A number as the codes read it (shortest round-trip form up to 7 digits)."""
+    """A number as the codes read it (shortest round-trip form up to 7 digits).
+
+    Raises :class:`~contactlab.errors.ParameterError` for NaN or infinity, which no code
+    reads as a parameter: the last guard behind :func:`check_fit` and
+    :meth:`ExportContact.__post_init__`.
+    """
+    if not math.isfinite(value):
+        raise ParameterError(f"a non-finite number ({value!r}) would be written into the deck")
     return f"{value:.7g}"
 
 
 def _fixed_unit(law, name):
-    """Unit of a law parameter held fixed in the fit."""
+    """Unit of a law parameter, from the code's registry (never from the fit file)."""
     spec = FIT_MODELS[law]
     return dict(zip(spec.parameters, spec.units, strict=True))[name]
 
@@ -153,13 +178,6 @@ def read_fit(path):
     return read_document(path, "fit", "JSON")
 
 
-def _value(data, key, where):
-    try:
-        return data[key]
-    except (KeyError, TypeError):
-        raise ParameterError(f"{where}: missing {key!r} (not a contactlab fit)") from None
-
-
 def _law_value(common, name, where):
     """A law parameter of the fit, fitted or held fixed."""
     if name in common["fitted"]:
@@ -182,29 +200,21 @@ def contact_from_fit(
             f"{type(fit).__name__}"
         )
     where = source
-    law_name = _value(data, "law", where)
-    if law_name not in EXPORTED_LAWS:
-        raise ParameterError(
-            f"export of law {law_name!r} is not supported; fit one of {list(EXPORTED_LAWS)} "
-            "for the DEM codes"
-        )
-    grain = _value(data, "grain", where)
-    mass = float(_value(grain, "mass [kg]", where))
-    radius = 0.5 * float(_value(grain, "diameter [m]", where))
-    velocity = float(_value(data, "velocity [m/s]", where))
-    law = get_law(law_name, **_value(data, "law_parameters", where))
+    data = check_fit(data, where)
+    law_name = data["law"]
+    grain = data["grain"]
+    mass = float(grain["mass [kg]"])
+    radius = 0.5 * float(grain["diameter [m]"])
+    velocity = float(data["velocity [m/s]"])
+    law = get_law(law_name, **data["law_parameters"])
     common = {
         "law": law_name,
-        "fitted": {
-            k: v
-            for k, v in _value(data, "parameters", where).items()
-            if k not in ("velocity", "onset")
-        },
+        "fitted": {k: v for k, v in data["parameters"].items() if k not in ("velocity", "onset")},
         "fixed": dict(data.get("fixed", {})),
         "source": source,
         "mass": mass,
         "radius": radius,
-        "density": float(_value(grain, "density [kg/m^3]", where)),
+        "density": float(grain["density [kg/m^3]"]),
         "velocity": velocity,
         "contact_time": wall_impact(law, mass, velocity).contact_time,
     }

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.errors import ParameterError
 from contactlab.inverse import export_dem
 from contactlab.inverse.export.kratos import kratos_hertz_restitution, thornton_gamma
 
@@ -109,12 +110,11 @@ def _strings(value):
 
 
 def test_only_numbers_and_fixed_keys_reach_the_file():
-    """A hostile source name, fitted-parameter name or unit cannot reach Kratos' input."""
+    """A source label cannot reach Kratos' input; hostile text is refused before any writer."""
     _law, fit = _hertz_fit(0.5)
-    fit["parameters"]["restitution"]["unit"] = '-"}], "evil": [{"'
-    text = export_dem(fit, "kratos", source='FIT.json"} // injected\n{"')
+    text = export_dem(fit, "kratos", source='FIT.json"} // injected {"')
     document = json.loads(text)
-    assert "evil" not in text and "injected" not in text
+    assert "injected" not in text
     assert set(_strings(document)) <= FIXED_STRINGS
     keys = set(document)
     assert keys == {
@@ -123,6 +123,13 @@ def test_only_numbers_and_fixed_keys_reach_the_file():
         "material_assignation_table",
         "contactlab_export",
     }
+    # the FIT.json schema (issue 24) refuses a unit that is not the law's, and a label
+    # with a line end, for every target
+    fit["parameters"]["restitution"]["unit"] = '-"}], "evil": [{"'
+    with pytest.raises(ParameterError, match=r"\['restitution'\]\['unit'\]"):
+        export_dem(fit, "kratos")
+    with pytest.raises(ParameterError, match="source"):
+        export_dem(_hertz_fit(0.5)[1], "kratos", source='FIT.json"} // injected\n{"')
 
 
 def test_the_file_carries_the_step_and_the_fitted_rebound():

@@ -4,6 +4,7 @@ A returned trace must still keep the readers' promises (equal lengths, strictly
 increasing finite time, no NaN), so a mutation can never slip through half-read.
 """
 
+import re
 import tempfile
 from pathlib import Path
 
@@ -149,3 +150,87 @@ def test_valid_header_with_random_rows(scratch, fmt, rows, channel):
     body = "\n".join(",".join(cells) for cells in rows)
     scratch.write_bytes(("\n".join(header[:keep]) + "\n" + body).encode("utf-8"))
     _check(scratch, "auto", channel)
+
+
+def _reference_traces():
+    """What each valid file reads as: the reference a damaged copy may never contradict."""
+    traces = {}
+    with tempfile.TemporaryDirectory() as directory:
+        for fmt, content in VALID.items():
+            path = Path(directory) / fmt
+            path.write_bytes(content)
+            traces[fmt] = read_trace(path)
+    return traces
+
+
+REFERENCE = _reference_traces()
+
+
+def _never_misread(path, fmt):
+    """A TraceFormatError naming the file, or exactly the reference's first samples."""
+    try:
+        trace = read_trace(path, format=fmt)
+    except TraceFormatError as exc:
+        assert str(path) in str(exc)
+        return False
+    reference = REFERENCE[fmt]
+    n = len(trace)
+    np.testing.assert_array_equal(trace.t, reference.t[:n])
+    np.testing.assert_array_equal(trace.values, reference.values[:n])
+    return True
+
+
+@SETTINGS
+@given(fmt=st.sampled_from(TEXT_LAYOUTS), cut=st.integers(min_value=1))
+def test_a_file_cut_anywhere_is_refused_or_read_exactly(scratch, fmt, cut):
+    """A copy cut while written: no sample may change (4.8828125e-05 -> 4.8828125)."""
+    content = VALID[fmt]
+    scratch.write_bytes(content[: cut % len(content)])
+    _never_misread(scratch, fmt)
+
+
+@SETTINGS
+@given(fmt=st.sampled_from(TEXT_LAYOUTS), rows=st.sets(st.integers(0, 60), min_size=1))
+def test_decimal_commas_in_any_rows_are_refused_or_read_exactly(scratch, fmt, rows):
+    lines = VALID[fmt].split(b"\n")
+    for i in rows:
+        if i < len(lines):
+            lines[i] = re.sub(rb"(\d)\.(\d)", rb"\1,\2", lines[i])
+    scratch.write_bytes(b"\n".join(lines))
+    _never_misread(scratch, fmt)
+
+
+def _binary_files():
+    """Small valid HDF5 and TDMS files, as bytes."""
+    t = np.arange(64) * 1e-6
+    trace = Trace(t, np.sin(np.arange(64)) * 1e-2, "V", {"sample_interval": 1e-6})
+    files = {}
+    with tempfile.TemporaryDirectory() as directory:
+        for fmt in ("hdf5", "tdms"):
+            path = Path(directory) / fmt
+            write_trace(path, trace, fmt)
+            files[fmt] = path.read_bytes()
+    return files
+
+
+BINARY = _binary_files()
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    fmt=st.sampled_from(sorted(BINARY)),
+    changes=st.lists(
+        st.tuples(st.integers(min_value=0), st.integers(0, 255)), min_size=1, max_size=6
+    ),
+    cut=st.one_of(st.none(), st.integers(min_value=1)),
+)
+def test_mutated_binary_files(scratch, fmt, changes, cut):
+    """Byte-mutated or cut HDF5 and TDMS files: a Trace or a TraceFormatError, nothing else
+    (h5py's RuntimeError, KeyError, OSError, TypeError, UnicodeDecodeError were seen)."""
+    content = bytearray(BINARY[fmt])
+    for position, value in changes:
+        content[position % len(content)] = value
+    if cut is not None:
+        content = content[: cut % len(content)]
+    scratch.write_bytes(bytes(content))
+    _check(scratch)

@@ -95,3 +95,49 @@ def test_without_limit_damping_the_zero_overlap_rebound_is_realised(tmp_path, na
     # and it is not the fitted law's: 0.500 vs 0.550 (Tsuji), 0.500 vs 0.540 (linear)
     assert impact.restitution < 0.95 * exact.restitution
     assert impact.min_force < -0.01 * impact.peak_force  # the damper pulls at the end
+
+
+# --- hostile fit files (issue 24): LAMMPS runs the snippet and nothing in it executes ---
+# A fit's source label (the CLI sets it to the FIT.json path) may carry shell and include
+# commands; export_dem refuses them where they would start a line
+# (tests/contactlab/inverse/test_export_injection.py). Here LAMMPS includes the snippets
+# it accepts and runs the impact; a marker file the commands would create must not exist.
+# The control writes the same command on its own line, as the exporter did before issue
+# 24, and LAMMPS does create the marker: the check can fail.
+
+
+def _run(tmp_path, text):
+    snippet = tmp_path / "contact.lmp"
+    snippet.write_text(text, encoding="utf-8")
+    law = _fits()["linear"][0]
+    return realise_snippet(
+        snippet, GRAIN, VELOCITY, wall_impact(law, GRAIN.mass, VELOCITY).contact_time
+    )
+
+
+def _labels(marker, evil):
+    return [
+        f"shell touch {marker}",
+        f"include {evil}",
+        f'" ; shell touch {marker} ; "',
+        f"$(shell touch {marker}) ${{x}} & shell touch {marker}",
+    ]
+
+
+def test_accepted_labels_execute_nothing_in_lammps(tmp_path):
+    marker = tmp_path / "injected"
+    evil = tmp_path / "evil.lmp"
+    evil.write_text(f"shell touch {marker}\n", encoding="utf-8")
+    for label in _labels(marker, evil):
+        impact = _run(tmp_path, export_dem(_fits()["linear"][1], "lammps", source=label))
+        assert not marker.exists(), label
+        assert impact.restitution > 0.0  # the deck ran to the end: an impact was recorded
+
+
+def test_the_control_a_command_on_its_own_line_does_execute(tmp_path):
+    marker = tmp_path / "injected"
+    text = export_dem(_fits()["linear"][1], "lammps", source="SOURCE")
+    # what a unit of "N/m\nshell touch ...\n#" wrote before the schema
+    text = text.replace("# source: SOURCE", f"# source: x\nshell touch {marker}\n#")
+    _run(tmp_path, text)
+    assert marker.exists()
