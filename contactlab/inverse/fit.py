@@ -17,11 +17,14 @@ from collections.abc import Mapping
 import numpy as np
 from scipy.optimize import least_squares
 
+from contactlab import signals
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
 from contactlab.inverse._signal import baseline, check_window, uniform_signal
 from contactlab.inverse.fit_models import FIT_MODELS, TRANSFORMS, FitModel
+from contactlab.inverse.fit_quality import FitQuality, judge_fit
 from contactlab.inverse.fit_result import ContactFit, FittedParameter
+from contactlab.inverse.noise_window import clean_noise_window
 from contactlab.inverse.reconstruct import reconstruct_force
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, check_count, check_number
@@ -30,6 +33,7 @@ __all__ = [
     "FIT_MODELS",
     "ContactFit",
     "FitModel",
+    "FitQuality",
     "FittedParameter",
     "IdentifiabilityWarning",
     "fit_contact",
@@ -238,7 +242,11 @@ def fit_contact(
     fixed : dict, optional
         Law parameters held at given values (SI units), e.g. ``{"damping": 1.0}``.
     baseline_window : (float, float), optional
-        Pre-trigger window [s] (baseline mean, noise); default the samples before 0.
+        Noise window [s] (baseline mean, noise). Default: from the record's start to one
+        onset-to-peak time before the pulse's detected onset
+        (:func:`~contactlab.inverse.noise_window.clean_noise_window`), so that the start
+        of the pulse, which an oscilloscope records before its trigger, is not taken for
+        noise.
     window : (float, float), optional
         Samples fitted [s]. Default: from half a contact time before the
         reconstructed onset to the end of the record.
@@ -249,11 +257,14 @@ def fit_contact(
     Returns
     -------
     ContactFit
+        With ``quality`` (:class:`~contactlab.inverse.fit_quality.FitQuality`): the
+        reduced chi-squared, its p-value, the residuals' whiteness and whether the law is
+        consistent with the trace.
 
     Raises
     ------
     ParameterError
-        Bad arguments, no baseline, or no pulse in the trace.
+        Bad arguments, fewer than 16 samples before the pulse, or no pulse in the trace.
 
     Warns
     -----
@@ -295,7 +306,9 @@ def fit_contact(
     if window is not None:
         window = check_window("window", window)
     t, y, dt = uniform_signal(t, signal)
-    mean, noise, _, _ = baseline(t, y, baseline_window)
+    if baseline_window is None:
+        baseline_window = clean_noise_window(t, y)
+    mean, noise, _, baseline_window = baseline(t, y, baseline_window)
     y = y - mean
     start = _starting_values(spec, grain, t, y, sensor, velocity, baseline_window)
     start.update(fixed)
@@ -343,6 +356,13 @@ def fit_contact(
         "function_evaluations": int(solution.nfev),
         "converged": bool(solution.status > 0),
     }
+    quality = judge_fit(
+        residual / noise,
+        n_par,
+        y[signals.in_window(t, baseline_window)],
+        baseline_window,
+        goodness["converged"],
+    )
     fit = ContactFit(
         law=simulation.law,
         law_name=spec.law,
@@ -357,6 +377,7 @@ def fit_contact(
         signal=problem.y,
         model=model,
         goodness=goodness,
+        quality=quality,
         simulation=simulation,
     )
     _warn(fit, max_nfev)
