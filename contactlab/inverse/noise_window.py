@@ -63,7 +63,8 @@ def clean_noise_window(t, y, k=5.0):
     ------
     ParameterError
         When fewer than :data:`~contactlab.inverse._signal.BASELINE_MIN_SAMPLES` samples
-        lie before the pulse, or no pulse stands out of the noise.
+        lie before the pulse (the message says how to give a window), or no pulse stands
+        out of the noise.
     """
     window = (float(t[0]), 0.0)
     for _ in range(MAX_REFINEMENTS):
@@ -78,9 +79,8 @@ def clean_noise_window(t, y, k=5.0):
     count = int(signals.in_window(t, window).sum())
     if count < BASELINE_MIN_SAMPLES:
         raise ParameterError(
-            f"only {count} samples lie before the pulse (noise window {window} s); the "
-            f"noise needs at least {BASELINE_MIN_SAMPLES}: record a longer pre-trigger, or "
-            "give the noise window yourself (baseline_window=(start, end) [s], --baseline "
-            "T0 T1 on the command line)"
+            f"only {count} samples lie before the pulse, which starts about {window[1]:.6g} "
+            f"s; a noise estimate needs {BASELINE_MIN_SAMPLES}: record a longer pre-trigger, "
+            "or give the noise window (baseline_window=(start, end) [s]; --baseline T0 T1)"
         )
     return window

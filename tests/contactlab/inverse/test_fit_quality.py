@@ -80,7 +80,7 @@ def test_noise_window_ends_before_the_touch_and_reads_the_true_noise(name):
 
 def test_noise_window_needs_samples_before_the_pulse():
     t, y, _ = synthetic_trace(GRAIN, SENSOR, HARD, 2.0, pre_trigger=5e-6, seed=0)
-    with pytest.raises(ParameterError, match="samples lie before the pulse"):
+    with pytest.raises(ParameterError, match="0 samples lie before the pulse"):
         clean_noise_window(t, y)
 
 
@@ -102,6 +102,12 @@ def test_the_issue_example_linear_law_on_a_damped_hertz_trace_is_rejected():
     low, high = true.parameters["velocity"].ci95
     assert low < sidecar["velocity [m/s]"] < high
     assert true.to_dict()["quality"]["consistent"] is True
+    # the old default window, given by hand, is now caught by the two-sided test:
+    # measured reduced chi2 0.25 (true law) and 0.72 (linear) against F(~4400, 999)
+    for law in ("hertz_damped", "linear"):
+        old = fit_contact(*args, law, baseline_window=(trace.t[0], 0.0))
+        assert old.quality.reduced_chi_squared < 0.8
+        assert "noise window holds signal" in " ".join(old.quality.reasons)
 
 
 @pytest.mark.parametrize(
