@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from contactlab.errors import ParameterError
 from contactlab.inverse.fit import IdentifiabilityWarning, fit_contact
 from contactlab.inverse.fit_models import FIT_MODELS
+from contactlab.inverse.fit_quality import FitQualityWarning
 from contactlab.validation import check_choice
 
 __all__ = ["DISFAVOURED_DELTA_BIC", "LawComparison", "RankedLaw", "compare_laws"]
@@ -134,9 +135,12 @@ class LawComparison:
 
 
 def _fit_recording_warnings(*args, **kwargs):
-    """A fit and the texts of its identifiability warnings (kept, not printed four times)."""
+    """A fit and the texts of its identifiability warnings (kept in the result, not issued
+    once per law). A :class:`FitQualityWarning` is not kept: the entry's verdict and
+    ``reasons`` say the same."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", IdentifiabilityWarning)
+        warnings.simplefilter("ignore", FitQualityWarning)
         fit = fit_contact(*args, **kwargs)
     for w in caught:
         if not issubclass(w.category, IdentifiabilityWarning):
@@ -179,7 +183,8 @@ def compare_laws(
     Notes
     -----
     The fits' :class:`IdentifiabilityWarning` messages are kept in each entry's
-    ``notes`` instead of being issued.
+    ``notes`` instead of being issued; a :class:`FitQualityWarning` is not issued either
+    (each entry's ``verdict`` and ``reasons`` hold it).
     """
     laws = tuple(FIT_MODELS) if laws is None else tuple(laws)
     if not laws:

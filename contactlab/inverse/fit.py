@@ -22,7 +22,7 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
 from contactlab.inverse._signal import baseline, check_window, uniform_signal
 from contactlab.inverse.fit_models import FIT_MODELS, TRANSFORMS, FitModel
-from contactlab.inverse.fit_quality import FitQuality, judge_fit
+from contactlab.inverse.fit_quality import FitQuality, FitQualityWarning, judge_fit
 from contactlab.inverse.fit_result import ContactFit, FittedParameter
 from contactlab.inverse.noise_window import clean_noise_window
 from contactlab.inverse.reconstruct import reconstruct_force
@@ -34,6 +34,7 @@ __all__ = [
     "ContactFit",
     "FitModel",
     "FitQuality",
+    "FitQualityWarning",
     "FittedParameter",
     "IdentifiabilityWarning",
     "fit_contact",
@@ -271,6 +272,9 @@ def fit_contact(
     IdentifiabilityWarning
         When a parameter is not identifiable (its flag in the result is False), or the
         optimiser stopped at ``max_nfev`` before converging.
+    FitQualityWarning
+        When the law is not consistent with the trace (``quality.consistent`` is False);
+        the message gives ``quality.reasons``.
 
     Notes
     -----
@@ -396,3 +400,10 @@ def _warn(fit, max_nfev):
         problems.append(f"the optimiser stopped after max_nfev={max_nfev} evaluations")
     if problems:
         warnings.warn("; ".join(problems), IdentifiabilityWarning, stacklevel=3)
+    if not fit.quality.consistent:
+        warnings.warn(
+            f"the {fit.law_name} law is not consistent with this trace: "
+            + "; ".join(fit.quality.reasons),
+            FitQualityWarning,
+            stacklevel=3,
+        )

@@ -35,10 +35,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import stats
 
-from contactlab.errors import ParameterError
+from contactlab.errors import ContactlabWarning, ParameterError
 from contactlab.validation import check_count
 
-__all__ = ["ALPHA", "WHITENESS_LAGS", "FitQuality", "judge_fit", "ljung_box"]
+__all__ = ["ALPHA", "WHITENESS_LAGS", "FitQuality", "FitQualityWarning", "judge_fit", "ljung_box"]
 
 ALPHA = 0.01
 """Significance level of each test [-]: a correct law with white noise is called
@@ -48,6 +48,11 @@ WHITENESS_LAGS = 20
 """Lags of the Ljung-Box statistic [samples]. A misfit is smooth on the scale of the
 sensor's period (tens to hundreds of samples), so it correlates every one of them; more
 lags add power against it and against slowly coloured noise."""
+
+
+class FitQualityWarning(ContactlabWarning):
+    """The fitted law is not consistent with the trace; the message says why (the
+    fit's ``quality.reasons``)."""
 
 
 def ljung_box(x, lags=WHITENESS_LAGS):
