@@ -216,6 +216,24 @@ def test_coloured_noise_is_caught_by_whiteness_where_chi_squared_passes():
     assert "coloured" in " ".join(q.reasons)
 
 
+def test_a_wrong_law_hidden_by_noise_is_caught_by_whiteness():
+    """10 % white noise on the damped-Hertz model: the linear law's chi-squared is
+    within the noise (measured 1.03, p = 0.6) and its velocity interval [1.78, 1.83] m/s
+    misses the true 2.0, but its residuals keep the misfit's shape (Ljung-Box p = 2e-4)."""
+    law = cl.laws.HertzDamped.from_material(21.6e6, 0.2, 2.5e-3, restitution=0.5, mass=GRAIN.mass)
+    t, y, _ = synthetic_trace(
+        GRAIN, SENSOR, law, 2.0, noise=0.1, duration=800e-6, pre_trigger=200e-6, seed=11
+    )
+    with pytest.warns(FitQualityWarning, match="systematic misfit"):
+        wrong = fit_contact(t, y, GRAIN, SENSOR, "linear")
+    assert wrong.quality.p_value > ALPHA  # the chi-squared alone calls it fine
+    assert wrong.quality.whiteness_p_value < ALPHA
+    assert wrong.quality.noise_whiteness_p_value > ALPHA  # the noise itself is white
+    assert not wrong.parameters["velocity"].ci95[0] < 2.0 < wrong.parameters["velocity"].ci95[1]
+    right = fit_contact(t, y, GRAIN, SENSOR, "hertz_damped")
+    assert right.quality.consistent
+
+
 def test_a_given_noise_window_is_used_as_given():
     t, y, _ = synthetic_trace(GRAIN, SENSOR, HARD, 2.0, sample_rate=1e6, seed=4)
     fit = fit_contact(t, y, GRAIN, SENSOR, "linear", baseline_window=(-1e-4, -5e-5))
