@@ -168,8 +168,9 @@ def compare_laws(
     t, signal, grain, sensor, velocity, baseline_window, window, max_nfev
         As for :func:`~contactlab.inverse.fit.fit_contact`; the noise window and the
         fitted samples found for the first law are used for every law.
-    laws : sequence of str, optional
-        Keys of :data:`FIT_MODELS` (default all of them).
+    laws : str or sequence of str, optional
+        Keys of :data:`FIT_MODELS` (default all of them; a name given twice is fitted
+        once).
 
     Returns
     -------
@@ -186,7 +187,10 @@ def compare_laws(
     ``notes`` instead of being issued; a :class:`FitQualityWarning` is not issued either
     (each entry's ``verdict`` and ``reasons`` hold it).
     """
-    laws = tuple(FIT_MODELS) if laws is None else tuple(laws)
+    if laws is None:
+        laws = tuple(FIT_MODELS)
+    else:  # one name, or several (each once)
+        laws = tuple(dict.fromkeys([laws] if isinstance(laws, str) else laws))
     if not laws:
         raise ParameterError(f"laws must name at least one of {list(FIT_MODELS)}; got none")
     for law in laws:

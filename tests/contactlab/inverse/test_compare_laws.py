@@ -128,7 +128,11 @@ def test_no_consistent_law_is_said():
 
 @pytest.mark.parametrize(
     ("laws", "message"),
-    [([], "at least one"), (["linear", "hertz_dampd"], "Did you mean 'hertz_damped'")],
+    [
+        ([], "at least one"),
+        (["linear", "hertz_dampd"], "Did you mean 'hertz_damped'"),
+        ("lineer", "Did you mean 'linear'"),
+    ],
 )
 def test_bad_laws_are_named(laws, message):
     t, y, _ = synthetic_trace(GRAIN, SENSOR, HARD, 2.0, sample_rate=1e6, seed=0)
