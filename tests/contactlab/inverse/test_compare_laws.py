@@ -2,6 +2,7 @@
 
 import json
 import math
+import warnings
 from pathlib import Path
 
 import pytest
@@ -11,7 +12,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab.cli import main
 from contactlab.errors import ParameterError
-from contactlab.inverse import compare_laws, synthetic_trace
+from contactlab.inverse import FitQualityWarning, compare_laws, fit_contact, synthetic_trace
 from contactlab.inverse.fit_models import FIT_MODELS
 
 GRAIN = cl.Grain(diameter=5e-3, density=765.0)
@@ -51,6 +52,9 @@ def test_bic_picks_the_true_law_across_grains_and_sensors(
         velocity,
         duration=max(400e-6, 3.0 * contact_time),
         sample_rate=2e6,
+        # the noise window must end an onset-to-peak time (up to ~0.6 contact times)
+        # before the pulse: a pre-trigger of one contact time leaves >= 40 % of it
+        pre_trigger=max(100e-6, contact_time),
         seed=seed,
     )
     result = compare_laws(t, y, grain, sensor)
@@ -69,6 +73,26 @@ def test_bic_picks_the_true_law_across_grains_and_sensors(
         # 20 kHz sensor, 60 us contact: hertz_damped reduced chi2 1.13, delta BIC 67)
         allowed = {"supported"} if nested and law == "hertz" else {"rejected", "disfavoured"}
         assert r.verdict in allowed, result.summary()
+
+
+@pytest.mark.xfail(
+    strict=True, raises=AssertionError, reason="open: the true law's fit is biased, cause not found"
+)
+def test_known_miss_an_undamped_hertz_fit_biased_in_velocity():
+    """Found by a seeded sweep like the one above (1 miss in 15 cases): undamped Hertz,
+    3.3 mm grain at 3.84 m/s on an 84 kHz sensor. The fitted velocity is 3.861 m/s
+    (interval 3.854-3.868) for a true 3.8405; the chi2 at the truth is 40 above the
+    optimum at 1, 2 and 5 MHz sampling alike, and the residuals are correlated (Ljung-Box
+    p = 0.002), although the model at the true values equals the generator's samples to
+    1e-14. The judgement is right to flag this fit; why the optimum sits there is open."""
+    grain = cl.Grain(diameter=3.2565e-3, density=1299.7)
+    sensor = cl.Sensor.from_resonance(83.797e3, mass=1.233e-3, damping_ratio=0.02)
+    law = cl.laws.Hertz(cl.analytic.hertz_stiffness(10.181e6, grain.radius))
+    t, y, _ = synthetic_trace(grain, sensor, law, 3.8405, duration=525e-6, sample_rate=2e6, seed=5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FitQualityWarning)  # the judgement, asserted below
+        fit = fit_contact(t, y, grain, sensor, "hertz")
+    assert fit.quality.consistent
 
 
 def test_comparison_from_the_command_line(tmp_path, capsys):
