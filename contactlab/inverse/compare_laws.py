@@ -44,6 +44,11 @@ FORMAT = "contactlab-law-comparison-1"
 """Tag of the JSON layout of :meth:`LawComparison.to_dict`."""
 
 
+def _fitted_quantities(fit):
+    """``p``: the quantities the fit adjusted (law parameters, velocity, onset, offset)."""
+    return fit.t.size - fit.quality.degrees_of_freedom
+
+
 @dataclass(frozen=True)
 class RankedLaw:
     """One candidate law: its fit, criterion and verdict."""
@@ -73,7 +78,7 @@ class RankedLaw:
         return {
             "law": self.fit.law_name,
             "verdict": self.verdict,
-            "fitted_quantities": len(self.fit.parameters),
+            "fitted_quantities": _fitted_quantities(self.fit),
             "bic [-]": self.bic,
             "delta_bic [-]": self.delta_bic,
             "reduced_chi_squared [-]": quality.reduced_chi_squared,
@@ -123,7 +128,7 @@ class LawComparison:
         ]
         for r in self.ranking:
             lines.append(
-                f"  {r.fit.law_name:<14} {len(r.fit.parameters):>2} "
+                f"  {r.fit.law_name:<14} {_fitted_quantities(r.fit):>2} "
                 f"{r.fit.quality.reduced_chi_squared:>14.4g} {r.delta_bic:>11.4g}  {r.verdict}"
             )
             lines += [f"      {reason}" for reason in r.fit.quality.reasons]
@@ -211,7 +216,7 @@ def compare_laws(
     n = first.t.size
     bics = [
         fit.quality.reduced_chi_squared * fit.quality.degrees_of_freedom
-        + len(fit.parameters) * math.log(n)
+        + _fitted_quantities(fit) * math.log(n)
         for fit, _ in fits
     ]
     best = min(bics)

@@ -57,8 +57,9 @@ class ContactFit:
     parameters that were given instead of fitted; ``law`` is the fitted law
     object; ``simulation`` the model at the best fit (its ``contact_force`` is the
     fitted S2). ``t``, ``signal``, ``model`` and ``residuals`` [N] are on the fitted
-    samples. ``quality`` judges whether the law is consistent with the trace
-    (:class:`~contactlab.inverse.fit_quality.FitQuality`).
+    samples, ``model`` including ``baseline_offset``, the fitted correction [N] to the
+    noise window's mean (subtracted from ``signal``). ``quality`` judges whether the
+    law is consistent with the trace (:class:`~contactlab.inverse.fit_quality.FitQuality`).
     """
 
     law: object
@@ -75,6 +76,7 @@ class ContactFit:
     model: np.ndarray
     goodness: dict
     quality: FitQuality
+    baseline_offset: FittedParameter
     simulation: object = field(repr=False, default=None)
 
     @property
@@ -144,6 +146,7 @@ class ContactFit:
             "sensor": self.sensor.to_dict(),
             "goodness_of_fit": dict(self.goodness),
             "quality": self.quality.to_dict(),
+            "baseline_offset": self.baseline_offset.to_dict(),
             "rebound_on_wall": self.rebound,
             "contact_time_on_sensor [s]": self.simulation.contact_time,
             "restitution_on_sensor [-]": self.simulation.restitution,
