@@ -2,11 +2,12 @@
 
 The model is :func:`contactlab.simulate_impact` itself: grain and sensor are known (the
 sensor from :func:`contactlab.inverse.identify_sensor`), the law's parameters, the impact
-velocity (unless measured) and the onset time are adjusted until the simulated signal
-S1 matches the trace in the least-squares sense (``scipy.optimize.least_squares``,
-trust-region reflective with bounds). Parameters are fitted as transformed values
-(``ln p`` for positive quantities, ``logit e`` for a restitution coefficient, the onset
-in units of the contact time) around a starting guess read from a Tikhonov
+velocity (unless measured), the onset time and the baseline offset are adjusted until the
+simulated signal S1 matches the trace in the least-squares sense
+(``scipy.optimize.least_squares``, trust-region reflective with bounds). Parameters are
+fitted as transformed values (``ln p`` for positive quantities, ``logit e`` for a
+restitution coefficient, the onset in units of the contact time, the offset in noise
+standard deviations) around a starting guess read from a Tikhonov
 reconstruction of the force, so every fitted coordinate is of order one.
 """
 
@@ -223,7 +224,8 @@ def fit_contact(
     window=None,
     max_nfev=200,
 ):
-    """Fit a contact law (plus onset and, unless measured, impact velocity) to a trace.
+    """Fit a contact law (plus onset, baseline offset and, unless measured, impact
+    velocity) to a trace.
 
     Parameters
     ----------
