@@ -116,6 +116,11 @@ class ContactFit:
                 f"  {name} = {p.value:.6g} {p.unit}  (95 % interval {low:.6g} .. {high:.6g})" + note
             )
         lines += [f"  {name} = {value:.6g} (fixed)" for name, value in self.fixed.items()]
+        low, high = self.baseline_offset.ci95
+        lines.append(
+            f"  baseline offset = {self.baseline_offset.value:.3g} N  (95 % interval "
+            f"{low:.3g} .. {high:.3g}; added to the noise window's mean)"
+        )
         if not self.goodness["converged"]:
             lines.append("  the optimiser did NOT converge")
         rebound = self.rebound
