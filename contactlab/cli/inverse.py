@@ -80,25 +80,27 @@ def _reconstruct(args):
 
 def _fit(args):
     from contactlab.config import load_config
-    from contactlab.inverse import fit_contact
+    from contactlab.inverse import compare_laws, fit_contact
 
     model = load_config(args.model)
     trace = _read_trace(args)
-    fit = fit_contact(
+    fitter = compare_laws if args.law == "auto" else fit_contact
+    result = fitter(
         trace.t,
         trace.values,
         model.grain,
         model.sensor,
-        args.law,
+        None if args.law == "auto" else args.law,
         velocity=args.velocity,
         baseline_window=args.baseline,
     )
+    fit = result.best if args.law == "auto" else result
     if args.out:
         fit.to_json(args.out)
-        print(f"wrote {args.out}", file=sys.stderr)
+        print(f"wrote {args.out} ({fit.law_name})", file=sys.stderr)
     if args.plot:
         _save_plot(fit.plot()[0], args.plot)
-    print(dump(fit.to_dict()) if args.json else repr(fit))
+    print(dump(result.to_dict()) if args.json else result.summary())
 
 
 def _export_dem(args):
@@ -158,7 +160,13 @@ def add_inverse_parsers(sub):
 
     p = sub.add_parser("fit", help="fit a contact law to a trace through the two-mass model")
     _add_trace_arguments(p)
-    p.add_argument("--law", required=True, choices=tuple(FIT_MODELS), help="law to fit")
+    p.add_argument(
+        "--law",
+        required=True,
+        choices=(*FIT_MODELS, "auto"),
+        help="law to fit; auto fits every law, ranks them by BIC and says which the data "
+        "reject (--out then writes the best)",
+    )
     p.add_argument("--model", required=True, help="TOML impact config: its grain and sensor")
     p.add_argument("--velocity", type=float, help="measured impact velocity [m/s] (fixed)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")

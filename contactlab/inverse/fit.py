@@ -2,11 +2,12 @@
 
 The model is :func:`contactlab.simulate_impact` itself: grain and sensor are known (the
 sensor from :func:`contactlab.inverse.identify_sensor`), the law's parameters, the impact
-velocity (unless measured) and the onset time are adjusted until the simulated signal
-S1 matches the trace in the least-squares sense (``scipy.optimize.least_squares``,
-trust-region reflective with bounds). Parameters are fitted as transformed values
-(``ln p`` for positive quantities, ``logit e`` for a restitution coefficient, the onset
-in units of the contact time) around a starting guess read from a Tikhonov
+velocity (unless measured), the onset time and the baseline offset are adjusted until the
+simulated signal S1 matches the trace in the least-squares sense
+(``scipy.optimize.least_squares``, trust-region reflective with bounds). Parameters are
+fitted as transformed values (``ln p`` for positive quantities, ``logit e`` for a
+restitution coefficient, the onset in units of the contact time, the offset in noise
+standard deviations) around a starting guess read from a Tikhonov
 reconstruction of the force, so every fitted coordinate is of order one.
 """
 
@@ -17,11 +18,14 @@ from collections.abc import Mapping
 import numpy as np
 from scipy.optimize import least_squares
 
+from contactlab import signals
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
 from contactlab.inverse._signal import baseline, check_window, uniform_signal
 from contactlab.inverse.fit_models import FIT_MODELS, TRANSFORMS, FitModel
+from contactlab.inverse.fit_quality import FitQuality, FitQualityWarning, judge_fit
 from contactlab.inverse.fit_result import ContactFit, FittedParameter
+from contactlab.inverse.noise_window import clean_noise_window
 from contactlab.inverse.reconstruct import reconstruct_force
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, check_count, check_number
@@ -30,6 +34,8 @@ __all__ = [
     "FIT_MODELS",
     "ContactFit",
     "FitModel",
+    "FitQuality",
+    "FitQualityWarning",
     "FittedParameter",
     "IdentifiabilityWarning",
     "fit_contact",
@@ -77,14 +83,15 @@ class _Problem:
         self.kinds = [kind for _, kind in fitted]
         self.constants = constants
         self.start = start  # guesses: dict name -> value
-        self.scale = start["contact_time"]  # onset coordinate unit [s]
+        # coordinate units of the quantities fitted as they are (not transformed)
+        self.scales = {"onset": start["contact_time"], "offset": self.noise}  # [s], [N]
 
     def values(self, x):
         """Natural values of every quantity (fitted and constant) at coordinate ``x``."""
         out = dict(self.constants)
         for name, kind, xi in zip(self.names, self.kinds, x, strict=True):
-            if kind == "onset":
-                out[name] = self.start["onset"] + xi * self.scale
+            if kind in self.scales:
+                out[name] = self.start[name] + xi * self.scales[kind]
             else:
                 to, back, _ = TRANSFORMS[kind]
                 out[name] = back(to(self.start[name]) + xi)
@@ -93,8 +100,8 @@ class _Problem:
     def slope(self, i, x):
         """d value / d coordinate of fitted quantity ``i`` at coordinate ``x``."""
         kind = self.kinds[i]
-        if kind == "onset":
-            return self.scale
+        if kind in self.scales:
+            return self.scales[kind]
         to, _, derivative = TRANSFORMS[kind]
         return derivative(to(self.start[self.names[i]]) + x)
 
@@ -116,7 +123,8 @@ class _Problem:
                 duration=duration,
                 sample_rate=OVERSAMPLE / self.dt,
             )
-        return np.interp(self.t - values["onset"], sim.t, sim.sensor_force, left=0.0), sim
+        model = np.interp(self.t - values["onset"], sim.t, sim.sensor_force, left=0.0)
+        return model + values["offset"], sim
 
     def residuals(self, x):
         return (self.predict(self.values(x))[0] - self.y) / self.noise
@@ -216,7 +224,8 @@ def fit_contact(
     window=None,
     max_nfev=200,
 ):
-    """Fit a contact law (plus onset and, unless measured, impact velocity) to a trace.
+    """Fit a contact law (plus onset, baseline offset and, unless measured, impact
+    velocity) to a trace.
 
     Parameters
     ----------
@@ -238,7 +247,11 @@ def fit_contact(
     fixed : dict, optional
         Law parameters held at given values (SI units), e.g. ``{"damping": 1.0}``.
     baseline_window : (float, float), optional
-        Pre-trigger window [s] (baseline mean, noise); default the samples before 0.
+        Noise window [s] (baseline mean, noise). Default: from the record's start to one
+        onset-to-peak time before the pulse's detected onset
+        (:func:`~contactlab.inverse.noise_window.clean_noise_window`), so that the start
+        of the pulse, which an oscilloscope records before its trigger, is not taken for
+        noise.
     window : (float, float), optional
         Samples fitted [s]. Default: from half a contact time before the
         reconstructed onset to the end of the record.
@@ -249,17 +262,23 @@ def fit_contact(
     Returns
     -------
     ContactFit
+        With ``quality`` (:class:`~contactlab.inverse.fit_quality.FitQuality`): the
+        reduced chi-squared, its p-value, the residuals' whiteness and whether the law is
+        consistent with the trace.
 
     Raises
     ------
     ParameterError
-        Bad arguments, no baseline, or no pulse in the trace.
+        Bad arguments, fewer than 16 samples before the pulse, or no pulse in the trace.
 
     Warns
     -----
     IdentifiabilityWarning
         When a parameter is not identifiable (its flag in the result is False), or the
         optimiser stopped at ``max_nfev`` before converging.
+    FitQualityWarning
+        When the law is not consistent with the trace (``quality.consistent`` is False);
+        the message gives ``quality.reasons``.
 
     Notes
     -----
@@ -295,7 +314,9 @@ def fit_contact(
     if window is not None:
         window = check_window("window", window)
     t, y, dt = uniform_signal(t, signal)
-    mean, noise, _, _ = baseline(t, y, baseline_window)
+    if baseline_window is None:
+        baseline_window = clean_noise_window(t, y)
+    mean, noise, _, baseline_window = baseline(t, y, baseline_window)
     y = y - mean
     start = _starting_values(spec, grain, t, y, sensor, velocity, baseline_window)
     start.update(fixed)
@@ -308,7 +329,11 @@ def fit_contact(
         if name not in fixed
     ]
     fitted += [("velocity", "log")] if velocity is None else []
-    fitted += [("onset", "onset")]
+    # the baseline's offset is fitted too: the noise window's mean is known only to
+    # sigma / sqrt(m), and a fixed error of that size over a long record shifts the
+    # impulse, hence the velocity, by several standard errors (0.5 % for 57 samples)
+    fitted += [("onset", "onset"), ("offset", "offset")]
+    start["offset"] = 0.0
     constants = {**fixed, **({} if velocity is None else {"velocity": velocity})}
     data = (t[rows], y[rows], noise, dt)
     problem = _Problem(spec, grain, sensor, data, fitted, constants, start)
@@ -328,7 +353,12 @@ def fit_contact(
     )
     rss = float(solution.fun @ solution.fun)
     stderr = _covariance(solution.jac, rss, n_rows - n_par)
-    units = {**dict(zip(spec.parameters, spec.units, strict=True)), "velocity": "m/s", "onset": "s"}
+    units = {
+        **dict(zip(spec.parameters, spec.units, strict=True)),
+        "velocity": "m/s",
+        "onset": "s",
+        "offset": "N",
+    }
     values = problem.values(solution.x)
     model, simulation = problem.predict(values)
     residual = model - problem.y
@@ -343,10 +373,19 @@ def fit_contact(
         "function_evaluations": int(solution.nfev),
         "converged": bool(solution.status > 0),
     }
+    parameters = _fitted_parameters(problem, solution.x, stderr, units)
+    quality = judge_fit(
+        residual / noise,
+        n_par,
+        y[signals.in_window(t, baseline_window)],
+        baseline_window,
+        goodness["converged"],
+    )
     fit = ContactFit(
         law=simulation.law,
         law_name=spec.law,
-        parameters=_fitted_parameters(problem, solution.x, stderr, units),
+        parameters=parameters,
+        baseline_offset=parameters.pop("offset"),
         fixed=fixed,
         velocity=float(values["velocity"]),
         velocity_measured=velocity is not None,
@@ -357,6 +396,7 @@ def fit_contact(
         signal=problem.y,
         model=model,
         goodness=goodness,
+        quality=quality,
         simulation=simulation,
     )
     _warn(fit, max_nfev)
@@ -375,3 +415,10 @@ def _warn(fit, max_nfev):
         problems.append(f"the optimiser stopped after max_nfev={max_nfev} evaluations")
     if problems:
         warnings.warn("; ".join(problems), IdentifiabilityWarning, stacklevel=3)
+    if not fit.quality.consistent:
+        warnings.warn(
+            f"the {fit.law_name} law is not consistent with this trace: "
+            + "; ".join(fit.quality.reasons),
+            FitQualityWarning,
+            stacklevel=3,
+        )

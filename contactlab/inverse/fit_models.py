@@ -24,7 +24,10 @@ class FitModel:
     """How one contact law is fitted: its parameters, transforms, guess and law object.
 
     ``guess(grain, velocity, contact_time, restitution)`` gives starting values from a
-    reconstructed pulse; ``build(values, grain)`` makes the law from fitted values.
+    reconstructed pulse; ``build(values, grain)`` makes the law from fitted values;
+    ``overlap_rebound(values, grain)``, for a law with a viscous damper, is the rebound on
+    a rigid wall [-] of the same parameters in a DEM code whose damper may pull until the
+    overlap is zero (MercuryDPM; the fitted law's own contact ends at zero force).
     """
 
     law: str
@@ -33,6 +36,7 @@ class FitModel:
     transforms: tuple
     guess: object
     build: object
+    overlap_rebound: object = None
 
 
 def _hertz_stiffness(modulus, grain):
@@ -76,6 +80,9 @@ FIT_MODELS = {
         ("log", "log"),
         _linear_guess,
         lambda v, grain: LinearViscoelastic(v["stiffness"], v["damping"]),
+        lambda v, grain: analytic.linear_restitution(
+            v["stiffness"], v["damping"], grain.mass, convention="overlap"
+        ),
     ),
     "hertz": FitModel(
         "hertz",
@@ -95,6 +102,9 @@ FIT_MODELS = {
             "restitution": e,
         },
         _hertz_damped_build,
+        # the Tsuji mapping realises its restitution exactly when contact ends at zero
+        # overlap (analytic.tsuji_damping_factor)
+        lambda v, grain: v["restitution"],
     ),
     "walton_braun": FitModel(
         "walton_braun",

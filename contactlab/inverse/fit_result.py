@@ -7,6 +7,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from contactlab.bodies import Grain, Sensor
+from contactlab.inverse.fit_models import FIT_MODELS
+from contactlab.inverse.fit_quality import FitQuality
 
 __all__ = ["FORMAT", "ContactFit", "FittedParameter"]
 
@@ -55,7 +57,9 @@ class ContactFit:
     parameters that were given instead of fitted; ``law`` is the fitted law
     object; ``simulation`` the model at the best fit (its ``contact_force`` is the
     fitted S2). ``t``, ``signal``, ``model`` and ``residuals`` [N] are on the fitted
-    samples.
+    samples, ``model`` including ``baseline_offset``, the fitted correction [N] to the
+    noise window's mean (subtracted from ``signal``). ``quality`` judges whether the
+    law is consistent with the trace (:class:`~contactlab.inverse.fit_quality.FitQuality`).
     """
 
     law: object
@@ -71,6 +75,8 @@ class ContactFit:
     signal: np.ndarray
     model: np.ndarray
     goodness: dict
+    quality: FitQuality
+    baseline_offset: FittedParameter
     simulation: object = field(repr=False, default=None)
 
     @property
@@ -82,6 +88,53 @@ class ContactFit:
     def not_identifiable(self):
         """Names of the parameters the trace does not determine."""
         return [name for name, p in self.parameters.items() if not p.identifiable]
+
+    @property
+    def rebound(self):
+        """Rebound of the fitted parameters on a rigid wall at the fitted velocity [-].
+
+        ``"fitted_law [-]"``: the law's own (its force never pulls, contact ends at zero
+        force; LAMMPS, LIGGGHTS and YADE realise it); ``"overlap_end [-]"``: what a DEM
+        code whose damper may pull until zero overlap realises from the same inputs
+        (MercuryDPM, the convention of the restitution mappings), None for a law without
+        a viscous damper, whose rebound does not depend on the convention.
+        """
+        values = {name: p.value for name, p in self.parameters.items()} | self.fixed
+        overlap = FIT_MODELS[self.law_name].overlap_rebound
+        return {
+            "fitted_law [-]": float(self.law.restitution(self.grain.mass, self.velocity)),
+            "overlap_end [-]": None if overlap is None else float(overlap(values, self.grain)),
+        }
+
+    def summary(self):
+        """The fit as text: parameters with 95 % intervals, rebounds, quality."""
+        lines = [f"fitted law: {self.law_name}"]
+        for name, p in self.parameters.items():
+            low, high = p.ci95
+            note = "" if p.identifiable else "  NOT IDENTIFIABLE"
+            lines.append(
+                f"  {name} = {p.value:.6g} {p.unit}  (95 % interval {low:.6g} .. {high:.6g})" + note
+            )
+        lines += [f"  {name} = {value:.6g} (fixed)" for name, value in self.fixed.items()]
+        low, high = self.baseline_offset.ci95
+        lines.append(
+            f"  baseline offset = {self.baseline_offset.value:.3g} N  (95 % interval "
+            f"{low:.3g} .. {high:.3g}; added to the noise window's mean)"
+        )
+        if not self.goodness["converged"]:
+            lines.append("  the optimiser did NOT converge")
+        rebound = self.rebound
+        own, overlap = rebound["fitted_law [-]"], rebound["overlap_end [-]"]
+        lines.append(
+            f"rebound on a rigid wall: {own:.4f} (the fitted law: contact ends at zero force)"
+        )
+        if overlap is not None and abs(overlap - own) > 5e-4:
+            lines.append(
+                f"  {overlap:.4f} in a DEM code whose damper pulls until zero overlap "
+                "(MercuryDPM) with the same parameters"
+            )
+        lines.append(self.quality.summary())
+        return "\n".join(lines)
 
     def to_dict(self):
         """Everything needed to reuse the fit (FIT.json layout, JSON-ready)."""
@@ -97,6 +150,9 @@ class ContactFit:
             "grain": self.grain.to_dict(),
             "sensor": self.sensor.to_dict(),
             "goodness_of_fit": dict(self.goodness),
+            "quality": self.quality.to_dict(),
+            "baseline_offset": self.baseline_offset.to_dict(),
+            "rebound_on_wall": self.rebound,
             "contact_time_on_sensor [s]": self.simulation.contact_time,
             "restitution_on_sensor [-]": self.simulation.restitution,
             "not_identifiable": self.not_identifiable,
@@ -124,5 +180,6 @@ class ContactFit:
             f"{k}={p.value:.4g}{'' if p.identifiable else ' (not identifiable)'}"
             for k, p in self.parameters.items()
         )
-        chi2 = self.goodness["reduced_chi_squared [-]"]
-        return f"ContactFit({self.law_name}: {fitted}; reduced chi2={chi2:.3g})"
+        chi2 = self.quality.reduced_chi_squared
+        verdict = "consistent" if self.quality.consistent else "NOT consistent"
+        return f"ContactFit({self.law_name}: {fitted}; reduced chi2={chi2:.3g}, {verdict})"

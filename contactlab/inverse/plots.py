@@ -113,6 +113,9 @@ def plot_fit(fit, ax=None, title=None):
         color="black",
         label="fitted contact force $S_2$",
     )
-    chi2 = fit.goodness["reduced_chi_squared [-]"]
-    finish_force_axes(ax, title or f"{fit.law_name}: reduced $\\chi^2$ = {chi2:.3g}")
+    chi2 = fit.quality.reduced_chi_squared
+    verdict = "consistent" if fit.quality.consistent else "NOT consistent"
+    finish_force_axes(
+        ax, title or f"{fit.law_name}: reduced $\\chi^2$ = {chi2:.3g}, {verdict} with the trace"
+    )
     return fig, ax

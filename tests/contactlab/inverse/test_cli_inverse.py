@@ -84,7 +84,8 @@ def test_fit_then_export(files, capsys):
     fit_json = folder / "FIT.json"
     args = ["fit", str(trace), "--sensitivity", str(SENSITIVITY), "--law", "linear"]
     assert main([*args, "--model", str(model), "--out", str(fit_json)]) == 0
-    assert "ContactFit(linear" in capsys.readouterr().out
+    text = capsys.readouterr().out
+    assert "fitted law: linear" in text and "fit quality: consistent" in text
     fit = json.loads(fit_json.read_text())
     # fit errors ~0.2 % at 1 % noise (see test_inverse_fit)
     assert fit["law_parameters"]["stiffness"] == pytest.approx(1e5, rel=0.01)

@@ -1,12 +1,18 @@
 """Fitting contact laws to synthetic traces whose truth is known."""
 
 import json
+import warnings
 
 import pytest
 
 import contactlab as cl
 from contactlab.errors import ParameterError
-from contactlab.inverse import IdentifiabilityWarning, fit_contact, synthetic_trace
+from contactlab.inverse import (
+    FitQualityWarning,
+    IdentifiabilityWarning,
+    fit_contact,
+    synthetic_trace,
+)
 
 GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
 SENSOR = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
@@ -25,7 +31,12 @@ def linear_fit():
     """The paper's hard grain, 1 % noise, velocity unknown."""
     law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1.0)
     t, signal, truth = synthetic_trace(GRAIN, SENSOR, law, 2.0, seed=1)
-    return fit_contact(t, signal, GRAIN, SENSOR, "linear"), truth
+    with warnings.catch_warnings():
+        # this seed's noise window reads the noise 9 % low (a 2.4-sigma draw of 447
+        # samples), so the F test calls the true law inconsistent (p = 0.004): one of the
+        # 1 % false alarms the test is built with (test_fit_quality.py counts them)
+        warnings.simplefilter("ignore", FitQualityWarning)
+        return fit_contact(t, signal, GRAIN, SENSOR, "linear"), truth
 
 
 def test_linear_law_and_velocity_are_recovered(linear_fit):
