@@ -36,11 +36,14 @@ FIT_KEYS = (
     "sensor",
     "goodness_of_fit",
     "quality",
+    "baseline_offset",
+    "rebound_on_wall",
     "contact_time_on_sensor [s]",
     "restitution_on_sensor [-]",
     "not_identifiable",
 )
-"""Top-level keys of a FIT.json (:meth:`ContactFit.to_dict`, plus an optional ``quality``)."""
+"""Top-level keys of a FIT.json (:meth:`ContactFit.to_dict`; ``quality``, ``baseline_offset``
+and ``rebound_on_wall`` are optional, as files written before they existed lack them)."""
 
 PHYSICAL_RANGES = {
     # name: keyword arguments of check_number for a physical value
@@ -50,6 +53,7 @@ PHYSICAL_RANGES = {
     "restitution": {"low": 0.0, "high": 1.0},
     "velocity": {"low": 0.0},
     "onset": {},
+    "baseline_offset": {"low": None},
 }
 """Allowed range of each exported quantity (SI units; ``low`` excluded unless stated)."""
 
@@ -81,7 +85,7 @@ def _keys(data, allowed, field):
 
 
 def _numbers_or_flags(data, field):
-    """A mapping of names to numbers, booleans or null (goodness, quality, sensor).
+    """A mapping of names to numbers, booleans or null (goodness of fit, sensor).
 
     Types only: these entries are never written into a deck, and a fit may hold a NaN
     R squared (flat signal) or a rigid sensor's infinite mass.
@@ -92,6 +96,53 @@ def _numbers_or_flags(data, field):
             raise ParameterError(
                 f"{field}[{key!r}] must be a number, true, false or null; got {value!r}"
             )
+
+
+QUALITY_SHAPE = {
+    "consistent": bool,
+    "reasons": [str],
+    "reduced_chi_squared [-]": numbers.Real,
+    "degrees_of_freedom": numbers.Real,
+    "noise_samples": numbers.Real,
+    "p_value [-]": numbers.Real,
+    "whiteness": {
+        "test": str,
+        "lags": numbers.Real,
+        "statistic [-]": numbers.Real,
+        "p_value [-]": numbers.Real,
+        "noise_p_value [-]": numbers.Real,
+    },
+    "noise_window [s]": [numbers.Real],
+    "alpha [-]": numbers.Real,
+}
+"""The ``quality`` block as :meth:`contactlab.inverse.fit_quality.FitQuality.to_dict` writes
+it: each key's type (a number may be null), lists as ``[type]``, objects as dicts."""
+
+REBOUND_SHAPE = {"fitted_law [-]": numbers.Real, "overlap_end [-]": numbers.Real}
+"""The ``rebound_on_wall`` block (:attr:`contactlab.inverse.fit_result.ContactFit.rebound`)."""
+
+
+def _shaped(value, shape, field):
+    """Check a judgement block against its shape (types only: it is reported, never
+    written into a deck); unknown keys are refused, missing ones allowed (older files)."""
+    if isinstance(shape, dict):
+        _keys(_mapping(value, field), tuple(shape), field)
+        for key, item in value.items():
+            _shaped(item, shape[key], f"{field}[{key!r}]")
+    elif isinstance(shape, list):
+        if not isinstance(value, list):
+            raise ParameterError(f"{field} must be a list; got {type(value).__name__}")
+        for i, item in enumerate(value):
+            _shaped(item, shape[0], f"{field}[{i}]")
+    elif shape is str:
+        if not isinstance(value, str):
+            raise ParameterError(f"{field} must be a text; got {type(value).__name__}")
+        check_text(field, value)
+    elif shape is bool:
+        if not isinstance(value, bool):
+            raise ParameterError(f"{field} must be true or false; got {value!r}")
+    elif value is not None and (isinstance(value, bool) or not isinstance(value, shape)):
+        raise ParameterError(f"{field} must be a number or null; got {value!r}")
 
 
 def _check_grain(grain, where):
@@ -105,9 +156,10 @@ def _check_grain(grain, where):
         check_number(f"{where}: grain[{key!r}]", grain[key], low=low, high=high)
 
 
-def _check_entry(name, entry, unit, where):
-    """One fitted parameter: value, stderr, ci95, unit, identifiable."""
-    field = f"{where}: parameters[{name!r}]"
+def _check_entry(name, entry, unit, where, field=None):
+    """One fitted parameter: value, stderr, ci95, unit, identifiable (``field`` names it in
+    messages; ``parameters[name]`` by default)."""
+    field = field or f"{where}: parameters[{name!r}]"
     entry = _mapping(entry, field)
     _keys(entry, ("value", "stderr", "ci95", "unit", "identifiable"), field)
     if "value" not in entry:
@@ -180,9 +232,15 @@ def check_fit(data, where):
         check_number(f"{where}: fixed[{name!r}]", value, **PHYSICAL_RANGES[name])
     check_number(f"{where}: velocity [m/s]", data["velocity [m/s]"], low=0.0, unit="m/s")
     _check_grain(data["grain"], where)
-    for key in ("goodness_of_fit", "quality", "sensor"):
+    for key in ("goodness_of_fit", "sensor"):
         if key in data:
             _numbers_or_flags(data[key], f"{where}: {key}")
+    for key, shape in (("quality", QUALITY_SHAPE), ("rebound_on_wall", REBOUND_SHAPE)):
+        if key in data:
+            _shaped(data[key], shape, f"{where}: {key}")
+    if "baseline_offset" in data:
+        field = f"{where}: baseline_offset"
+        _check_entry("baseline_offset", data["baseline_offset"], "N", where, field)
     for key in ("onset [s]", "contact_time_on_sensor [s]", "restitution_on_sensor [-]"):
         if data.get(key) is not None:
             check_number(f"{where}: {key}", data[key], low=None)

@@ -30,7 +30,7 @@ def _entry(value, unit):
 
 
 def clean_fit():
-    """A valid linear FIT.json dict (ContactFit.to_dict layout, with a quality mapping)."""
+    """A valid linear FIT.json dict (ContactFit.to_dict layout, with a quality block)."""
     return {
         "format": "contactlab-fit-1",
         "law": "linear",
@@ -43,7 +43,7 @@ def clean_fit():
         "velocity [m/s]": 2.0,
         "grain": GRAIN.to_dict(),
         "goodness_of_fit": {"r_squared [-]": 0.99, "converged": True},
-        "quality": {"passed": True, "score [-]": 0.9},
+        "quality": {"consistent": True, "reasons": [], "p_value [-]": 0.4},
     }
 
 
@@ -65,9 +65,9 @@ PAYLOADS = [
 TEXT_FREE_CODES = ("kratos",)
 """Targets written by json.dumps from numbers and fixed keys: no comment, no label."""
 
-FREE_TEXT_FIELDS = ("source", "quality key")
-"""Text the schema does not pin to a list: the label (a path), the quality entries' names
-(never written into a deck)."""
+FREE_TEXT_FIELDS = ("source",)
+"""Text the schema does not pin to a list: the label (a path). The quality block's keys are
+pinned to FitQuality's (schema.QUALITY_SHAPE), so a hostile quality key is refused too."""
 
 ONE_LINE_PAYLOADS = [
     "shell touch /tmp/contactlab_injected",
@@ -77,7 +77,7 @@ ONE_LINE_PAYLOADS = [
     "$(touch x) `touch x` ${x} & x",
 ]
 """Commands on one printable line: harmless inside a comment line, so a ``source`` label
-or a quality key may hold them; as a law's name, unit or key they are refused."""
+may hold them; as a law's name, unit or key they are refused."""
 
 
 def _set_field(fit, field, value):
@@ -177,7 +177,7 @@ def test_any_source_label_is_refused_or_confined_to_one_comment_line(label, code
         (("velocity [m/s]",), -2.0, "velocity"),
         (("velocity [m/s]",), True, "velocity"),
         (("law_parameters", "stiffness"), math.nan, "law_parameters"),
-        (("quality", "score [-]"), "high", "quality"),
+        (("quality", "p_value [-]"), "high", "quality"),
         (("parameters", "stiffness", "identifiable"), "yes", "identifiable"),
     ],
 )
