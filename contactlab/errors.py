@@ -5,6 +5,7 @@ All errors derive from standard bases so callers can catch them generically
 """
 
 __all__ = [
+    "AuditWarning",
     "ContactlabWarning",
     "ParameterError",
     "PlausibilityWarning",
@@ -48,3 +49,9 @@ class PlausibilityWarning(ContactlabWarning):
     The message names the likely unit slip; the ranges and their sources are in
     ``contactlab.plausibility.RANGES`` and ``docs/plausibility.md``.
     """
+
+
+class AuditWarning(ContactlabWarning):
+    """A result breaks a physical invariant (one-sided normal force, Coulomb's limit, energy,
+    momentum) beyond the solver's tolerance; the message names the check, its worst value,
+    the tolerance and when (see :mod:`contactlab.audit`)."""

@@ -5,12 +5,50 @@ from functools import cached_property
 
 import numpy as np
 
+from contactlab.audit import (
+    Audit,
+    Check,
+    EnergyLedger,
+    elastic_energy,
+    energy_check,
+    grid_checks,
+    worst_of,
+)
+from contactlab.quadrature import gauss_rule
+
 __all__ = ["ObliqueResult"]
 
 _PEAK_SAMPLES = 513
 """Points per contact phase on which the peak forces are read (besides the output grid)."""
 
 _PHASE_NAMES = {0: "stick", 1: "slide+", -1: "slide-"}
+
+FORCE_ROUNDING = 1e-9
+"""Tolerance of the ``one_sided`` and ``coulomb`` checks [-] of the peak normal force: a
+sliding force is ``mu N`` to the last bit and every switch is an event located to machine
+precision, so only the rounding of the state at a root remains (measured <= 2e-16)."""
+
+STEP_ERRORS = 1e4
+"""Tolerance of the ledger's residual, the damper's work [-] of the impact energy and of
+the momentum balances [-] of ``m V``, in units of ``rtol``. The integrals are Gauss-Legendre
+on graded panels of the dense output (converged to 1e-9 there) against the end states;
+they differ by the dense output's error, which ``rtol`` bounds per step but which a
+damper's ``c d'`` amplifies: an overdamped linear contact on a 0.1 g sensor has its end
+state within 1e-13 of the exact solver and its force integral 2.5e-6 of ``m V`` away at
+rtol 1e-9 (5.8e-7, 4.2e-7, 6.6e-8 at rtol 1e-9, 1e-10, 1e-11 on a neighbour):
+docs/verification.md."""
+
+ENERGY_ROUNDING = 100.0
+"""Tolerance of the ``energy`` and angular-momentum checks in units of ``rtol``: the end
+states carry the solver's error, up to ``rtol`` per step (worst measured over the matrix:
+23 rtol, an elastic Hertz contact without slip; docs/verification.md)."""
+
+MINDLIN_ENERGY = (
+    "Mindlin's stiffness kt = k_mindlin sqrt(d) changes with the overlap while the history "
+    "is held: the total form's force -kt h does work kt' h**2 / 2, the incremental form "
+    "unloads at another stiffness than it loaded, so both can return more energy than they "
+    "stored (LAMMPS' mindlin and mindlin/force rules do the same; docs/verification.md)"
+)
 
 
 class ObliqueResult:
@@ -49,8 +87,9 @@ class ObliqueResult:
         final_state,
         duration,
         sample_rate,
+        rtol=1e-9,
     ):
-        self.grain, self.sensor = grain, sensor
+        self.grain, self.sensor, self.rtol = grain, sensor, rtol
         self.normal_law, self.tangential_law = normal_law, tangential_law
         self.velocity, self.angle, self.spin = velocity, angle, spin
         self.duration, self.sample_rate = duration, sample_rate
@@ -67,7 +106,6 @@ class ObliqueResult:
     # -- dense evaluation ------------------------------------------------------------------
     def _evaluate(self, times):
         """States (n, 7), normal and tangential force (n,) at times [s] (any order)."""
-        model = self._model
         times = np.asarray(times, dtype=float)
         states = np.empty((times.size, 7))
         normal, tangential = np.zeros(times.size), np.zeros(times.size)
@@ -78,18 +116,23 @@ class ObliqueResult:
                 continue
             st = piece.states(times[inside] - piece.t0)
             states[inside] = st
-            d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
-            n = np.maximum(model.normal(d, r), 0.0)
-            normal[inside] = n
-            if piece.phase == 0:
-                slip = st[:, 4] - model.radius * st[:, 5]
-                tangential[inside] = model.law.trial_force(st[:, 6], d, slip)
-            else:
-                tangential[inside] = piece.phase * model.law.friction * n
+            _, normal[inside], tangential[inside] = self._forces(piece.phase, st)
         if after.any():
             states[after, :4] = self._free.states(times[after] - self._free.t0)
             states[after, 4:] = [self._final[4], self._final[5], 0.0]
         return states, normal, tangential
+
+    def _forces(self, phase, st):
+        """Unclipped normal formula, normal force (>= 0) and tangential force [N] on states
+        (n, 7) of a contact piece in ``phase``."""
+        model = self._model
+        d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
+        raw = model.normal(d, r)
+        normal = np.maximum(raw, 0.0)
+        if phase == 0:
+            slip = st[:, 4] - model.radius * st[:, 5]
+            return raw, normal, model.law.trial_force(st[:, 6], d, slip)
+        return raw, normal, phase * model.law.friction * normal
 
     # -- rebound ---------------------------------------------------------------------------
     @property
@@ -212,6 +255,130 @@ class ObliqueResult:
         out["dissipated"] = out["kinetic_in"] - out["grain_kinetic_out"] - out["sensor_energy_out"]
         return out
 
+    # -- audit -----------------------------------------------------------------------------
+    def audit(self, full=True):
+        """Energy ledger and invariants of this impact (:mod:`contactlab.audit`).
+
+        Parameters
+        ----------
+        full : bool, default True
+            With the ledger, the momentum balances and the checks on Gauss-Legendre nodes
+            of every contact phase; False: the cheap part :func:`contactlab.simulate_oblique`
+            runs by default (energy and angular momentum from the end states, one-sided
+            force and Coulomb on the output grid).
+
+        Returns
+        -------
+        contactlab.audit.Audit
+        """
+        checks = list(self._end_checks())
+        if not full:
+            inside = self.t < self.contact_time
+            d, r = self.x2 - self.x1, self.v2 - self.v1
+            raw = np.where(inside, self._model.normal(d, r), 0.0)
+            checks += grid_checks(
+                self.t,
+                inside,
+                raw,
+                self.normal_force,
+                self.tangential_force,
+                self.tangential_law.friction,
+                self.peak_normal_force,
+                FORCE_ROUNDING,
+            )
+            return Audit(None, tuple(checks))
+        ledger, dense = self._ledger()
+        return Audit(ledger, tuple(checks + dense))
+
+    def _end_checks(self):
+        """``energy`` and ``momentum_angular`` from the states before and after the contact."""
+        ledger, rtol = self._end_energies(), self.rtol
+        allowed = MINDLIN_ENERGY if self.tangential_law.name == "mindlin" else ""
+        yield energy_check(ledger, ENERGY_ROUNDING * rtol, allowed)
+        m, radius, inertia = self.grain.mass, self.grain.radius, self._model.inertia
+        change = inertia * (self.angular_velocity - self.spin) + m * radius * (
+            self.tangential_velocity - self.incident_tangential_velocity
+        )
+        yield Check(
+            "momentum_angular",
+            abs(change) / (m * self.velocity * radius),
+            ENERGY_ROUNDING * rtol,
+            "m V R (angular momentum about the contact point)",
+        )
+
+    def _end_energies(self, **spent):
+        """:class:`EnergyLedger` from the end states plus the integrals in ``spent`` [J]."""
+        m, inertia, final, sys_ = (
+            self.grain.mass,
+            self._model.inertia,
+            self._final,
+            self._model.system,
+        )
+        sensor = (
+            0.0 if sys_.rigid else 0.5 * sys_.m1 * final[1] ** 2 + 0.5 * sys_.k1 * final[0] ** 2
+        )
+        return EnergyLedger(
+            kinetic_in=0.5 * m * self.velocity**2 + 0.5 * inertia * self.spin**2,
+            translation_out=0.5 * m * (final[3] ** 2 + final[4] ** 2),
+            rotation_out=0.5 * inertia * final[5] ** 2,
+            sensor_left=sensor,
+            **spent,
+        )
+
+    def _ledger(self):
+        """The full ledger and the checks on Gauss-Legendre nodes of every phase."""
+        sys_, model = self._model.system, self._model
+        period = math.inf if sys_.rigid else 2.0 * math.pi / math.sqrt(sys_.k1 / sys_.m1)
+        sums = np.zeros(5)  # N d', -T s, c1 v1**2, N, T
+        raw_worst, excess_worst = [], []
+        peak = self.peak_normal_force
+        for piece in self._pieces:
+            nodes, weights = gauss_rule(piece.t0, piece.t1, period, graded=True, graded_end=True)
+            st = piece.states(nodes - piece.t0)
+            raw, normal, tangential = self._forces(piece.phase, st)
+            slip = st[:, 4] - model.radius * st[:, 5]
+            integrands = (
+                normal * (st[:, 3] - st[:, 1]),
+                -tangential * slip,
+                sys_.c1 * st[:, 1] ** 2 if not sys_.rigid else np.zeros(nodes.size),
+                normal,
+                tangential,
+            )
+            sums += [weights @ f for f in integrands]
+            raw_worst.append(worst_of(-raw / peak, nodes))
+            excess = np.abs(tangential) - model.law.friction * normal
+            excess_worst.append(worst_of(excess / peak, nodes))
+        final = self._final
+        left = elastic_energy(self.normal_law, final[2] - final[0])
+        ledger = self._end_energies(
+            sensor_damper=sums[2],
+            normal_damper=sums[0] - left,
+            normal_elastic_left=left,
+            friction=sums[1],
+        )
+        m, speed, tolerance = self.grain.mass, self.velocity, STEP_ERRORS * self.rtol
+        energy_in, momentum = ledger.kinetic_in, m * speed
+        scale_force, scale_momentum = "peak normal force", "impact momentum m V"
+        checks = [
+            _check("one_sided", max(raw_worst), FORCE_ROUNDING, scale_force),
+            _check("coulomb", max(excess_worst), FORCE_ROUNDING, scale_force),
+            Check("damper", -ledger.normal_damper / energy_in, tolerance, "impact energy"),
+            Check(
+                "momentum_normal",
+                abs(sums[3] - self.normal_impulse) / momentum,
+                tolerance,
+                scale_momentum,
+            ),
+            Check(
+                "momentum_tangential",
+                abs(sums[4] - self.tangential_impulse) / momentum,
+                tolerance,
+                scale_momentum,
+            ),
+            Check("residual", abs(ledger.residual) / energy_in, tolerance, "impact energy"),
+        ]
+        return ledger, checks
+
     # -- output ----------------------------------------------------------------------------
     def summary(self):
         """Headline numbers as a dict with unit-bearing keys (JSON-ready)."""
@@ -278,3 +445,8 @@ class ObliqueResult:
             f"tangential_velocity={self.tangential_velocity:.4g} m/s, "
             f"angular_velocity={self.angular_velocity:.4g} rad/s)"
         )
+
+
+def _check(name, worst_at, tolerance, scale):
+    """A :class:`Check` from a ``(worst, time)`` pair."""
+    return Check(name, worst_at[0], tolerance, scale, worst_at[1])

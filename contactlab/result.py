@@ -7,28 +7,13 @@ from functools import cached_property
 import numpy as np
 
 from contactlab import metrics
+from contactlab.quadrature import gauss_rule
 from contactlab.roots import ROOT_RTOL, locate_root
 
 __all__ = ["ImpactResult", "ImpactSignals"]
 
-_GAUSS_NODES, _GAUSS_WEIGHTS = np.polynomial.legendre.leggauss(64)
-"""Gauss-Legendre rule for impulse, work and energy integrals over each smooth piece."""
-
-
 _ZOOMS = 5
 """Zoom levels of the peak search (:meth:`ImpactResult._refined_max`)."""
-
-_GRADING = np.array([0.0, 1e-12, 1e-9, 1e-6, 1e-4, 1e-2, 0.1, 0.4])
-"""Relative panel edges near the start of a contact piece (geometric grading)."""
-
-
-def _panel_edges(length, period, graded):
-    """Relative panel edges on [0, 1] for :meth:`ImpactResult._integrate`."""
-    n = max(1, math.ceil(length / period)) if math.isfinite(period) else 1
-    uniform = np.linspace(0.0, 1.0, n + 1)
-    if not graded:
-        return uniform
-    return np.union1d(_GRADING, uniform)
 
 
 def _crossing(signal, level, lo, hi):
@@ -168,10 +153,13 @@ class ImpactResult(ImpactSignals):
         events,
         system,
         threshold=0.0,
+        rtol=None,
+        time_step=None,
     ):
         self.grain, self.sensor, self.law = grain, sensor, law
         self.velocity, self.duration, self.sample_rate = velocity, duration, sample_rate
-        self.method, self.threshold = method, threshold
+        self.method, self.threshold, self.rtol = method, threshold, rtol
+        self.time_step = time_step if method == "euler" else None
         self.segments = segments
         self.contact_intervals = list(contact_intervals)
         self.events = list(events)
@@ -261,13 +249,10 @@ class ImpactResult(ImpactSignals):
             lo, hi = max(seg.t0, start), min(seg.t1, end)
             if hi <= lo:
                 continue
-            edges = lo + (hi - lo) * _panel_edges(hi - lo, period, seg.kind == "contact")
-            half, mid = 0.5 * np.diff(edges), 0.5 * (edges[1:] + edges[:-1])
-            # every panel's nodes in one evaluation of the piece
-            tau = (mid[:, None] + half[:, None] * _GAUSS_NODES - seg.t0).ravel()
+            nodes, weights = gauss_rule(lo, hi, period, graded=seg.kind == "contact")
+            tau = nodes - seg.t0  # every panel's nodes in one evaluation of the piece
             st = seg.states(tau)
-            values = integrand(st, seg.force(tau, st)).reshape(half.size, -1)
-            total += float(half @ (values @ _GAUSS_WEIGHTS))
+            total += float(weights @ integrand(st, seg.force(tau, st)))
         return total
 
     def _system_period(self):
@@ -409,6 +394,24 @@ class ImpactResult(ImpactSignals):
     def grain_work(self):
         """Work done by the contact force on the grain, ``-integral S2 v2 dt`` [J]."""
         return self._integrate(lambda st, f: -f * st[:, 3], 0.0, self.duration)
+
+    def audit(self, full=True):
+        """Energy ledger and invariants over the first contact (:mod:`contactlab.audit`).
+
+        Parameters
+        ----------
+        full : bool, default True
+            With the ledger, the one-sided force, the damper's work and the momentum
+            balance; False: the ``energy`` check alone, which
+            :func:`contactlab.simulate_impact` runs by default.
+
+        Returns
+        -------
+        contactlab.audit.Audit
+        """
+        from contactlab.impact_audit import audit_impact
+
+        return audit_impact(self, full)
 
     # -- output ----------------------------------------------------------------
     def summary(self):

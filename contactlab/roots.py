@@ -10,7 +10,18 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-__all__ = ["ROOT_RTOL", "SIDE_STEPS", "crossed_side", "crosses", "earliest_root", "locate_root"]
+__all__ = [
+    "ROOT_RTOL",
+    "SIDE_STEPS",
+    "crossed_side",
+    "crosses",
+    "departure_root",
+    "earliest_root",
+    "has_happened",
+    "is_past",
+    "locate_root",
+    "waits",
+]
 
 ROOT_RTOL = 4 * np.finfo(float).eps
 """Relative tolerance of event roots and crossings: the smallest brentq accepts."""
@@ -46,6 +57,80 @@ def crosses(before, after, direction):
     value exactly 0 before never counts (the event that started the piece).
     """
     return (before > 0) & (after <= 0) if direction < 0 else (before < 0) & (after >= 0)
+
+
+def waits(value, direction):
+    """Whether an event function is strictly on its not-yet-happened side (floats or arrays):
+    ``value > 0`` for a falling event (``direction < 0``), ``value < 0`` for a rising one."""
+    return value > 0 if direction < 0 else value < 0
+
+
+def has_happened(value, direction):
+    """Whether an event function is on its crossed side: ``value <= 0`` falling,
+    ``value >= 0`` rising (the complement of :func:`waits`)."""
+    return value <= 0 if direction < 0 else value >= 0
+
+
+def is_past(value, direction):
+    """Whether an event function is strictly beyond zero on its crossed side: ``value < 0``
+    falling, ``value > 0`` rising (an event that stays exactly at zero, such as the
+    Coulomb limit of a contact without slip or friction, is not past)."""
+    return value < 0 if direction < 0 else value > 0
+
+
+DEPARTURE_SAMPLES = 60
+"""Halvings of the bracket, towards its start, at which :func:`departure_root` looks for
+the point where an event leaves zero (a touch at ``2**-60`` of the first step is below
+any physical time scale)."""
+
+
+def departure_root(fn, lo, hi, direction):
+    """First crossing on [lo, hi] [s] of an event that starts the bracket at zero (or past).
+
+    :func:`crosses` ignores a start value of exactly 0 (the event that started a piece).
+    An event of the *new* piece may also start at 0 (the Coulomb limit at a touch, where
+    the friction force and its cap both vanish) or a rounding past it (the limit a
+    rescaled history was set to), and then cross in the first step. Such an event is
+    armed where it first waits (:func:`waits`): the bracket is sampled at ``lo + (hi -
+    lo) 2**-k`` (k = ``DEPARTURE_SAMPLES`` ... 1) and at sixteenths, in time order, and the
+    root is located between the first waiting sample and the first happened sample after
+    it (or ``hi``).
+
+    Parameters
+    ----------
+    fn : callable
+        Event function of time [s].
+    lo, hi : float
+        Bracket [s]; ``fn(hi)`` is past zero (:func:`is_past`).
+    direction : int
+        Crossing direction, as in :func:`crosses`.
+
+    Returns
+    -------
+    float
+        The crossing (on its crossed side, :func:`crossed_side`), or ``lo`` when the event
+        never waits inside the bracket (it has happened at the start).
+    """
+    span = hi - lo
+    times = sorted(
+        {lo + span * 2.0**-k for k in range(1, DEPARTURE_SAMPLES + 1)}
+        | {lo + span * j / 16.0 for j in range(1, 16)}
+    )
+    armed = None
+    for t in times:
+        if t <= lo:
+            continue
+        value = fn(t)
+        if armed is None:
+            if waits(value, direction):
+                armed = t
+        elif has_happened(value, direction):
+            return crossed_side(fn, locate_root(fn, armed, t), hi, direction)
+        else:
+            armed = t
+    if armed is None:
+        return lo
+    return crossed_side(fn, locate_root(fn, armed, hi), hi, direction)
 
 
 def earliest_root(events, value, lo, hi, directions):

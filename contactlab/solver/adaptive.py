@@ -1,8 +1,9 @@
 """Adaptive contact pieces: DOP853 with event location on its dense output."""
 
 import numpy as np
+from scipy.optimize import minimize_scalar
 
-from contactlab.roots import crosses, earliest_root
+from contactlab.roots import crossed_side, departure_root, is_past, locate_root, waits
 from contactlab.solver import power_piece
 from contactlab.solver.dop853 import DenseSteps, Stepper, interpolate
 from contactlab.solver.pieces import DenseStates
@@ -166,6 +167,7 @@ def _run(stepper, end, event_values, directions, stop=None):
     ``hit`` is ``(time, index)`` of the first event crossing, or None.
     """
     steps, hit, before = [], None, event_values(stepper.y)
+    armed = [bool(waits(v, d)) for v, d in zip(before, directions, strict=True)]
     while stepper.t < end:
         if not stepper.step(end):
             raise RuntimeError(underflow_message(stepper.t, stepper.rtol))
@@ -173,29 +175,102 @@ def _run(stepper, end, event_values, directions, stop=None):
             (stepper.t_old, stepper.t - stepper.t_old, stepper.y_old, stepper.interpolant())
         )
         after = event_values(stepper.y)
-        hit = _first_crossing(steps[-1], before, after, directions, event_values)
+        hit = _first_crossing(steps[-1], before, after, directions, event_values, armed)
         if hit is not None or (stop is not None and stop(stepper.t_old, stepper.t)):
             break
+        armed = [a or bool(waits(v, d)) for a, v, d in zip(armed, after, directions, strict=True)]
         before = after
     return DenseSteps(*zip(*steps, strict=True)), hit
 
 
-def _first_crossing(step, before, after, directions, event_values):
+SUBSTEPS = 8
+"""Intervals per step on whose ends the event functions are read (9 points with the step's
+ends): an event that crosses zero and back inside one step (a trial force grazing the
+Coulomb limit while the tangential spring oscillates, issue 21) is seen there, or, where
+the samples have a maximum towards zero, by maximising the event on the step's
+interpolant."""
+
+
+def _first_crossing(step, before, after, directions, event_values, armed):
     """Earliest event crossing inside one step ``(t_old, h, y_old, F)``: (time, index) or
     None. At the step's end the events take their end values (``after``), so an event
-    that lands exactly on zero there is found there."""
+    that lands exactly on zero there is found there.
+
+    An armed event (``armed[j]``: it has waited, :func:`contactlab.roots.waits`, since
+    the piece started) is read at :data:`SUBSTEPS` + 1 points of the step: the first sign
+    change between two of them is located to machine precision; without one, a sampled
+    maximum towards zero whose curvature could carry it across is maximised on the
+    interpolant (:func:`_grazing_root`). An event that has not waited (it started the
+    piece at zero, such as the Coulomb limit at a touch, or a rounding past it) and is
+    strictly past zero at the step's end (:func:`contactlab.roots.is_past`) crossed inside
+    the step after leaving zero: :func:`contactlab.roots.departure_root` locates it.
+    """
     t_old, h, y_old, F = step
-    events = [
-        j
-        for j, (a, b, d) in enumerate(zip(before, after, directions, strict=True))
-        if crosses(a, b, d)
-    ]
-    if not events:
-        return None
+    fractions = np.linspace(0.0, 1.0, SUBSTEPS + 1)
+    times = t_old + h * fractions
+    times[-1] = t_old + h
+    rows = [before, *(event_values(interpolate(F, y_old, x)) for x in fractions[1:-1]), after]
+    known = dict(zip(times.tolist(), rows, strict=True))
 
     def value(t, j):
-        if t == t_old + h:
-            return after[j]
-        return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
+        row = known.get(t)
+        if row is None:
+            return event_values(interpolate(F, y_old, (t - t_old) / h))[j]
+        return row[j]
 
-    return earliest_root(events, value, t_old, t_old + h, directions)
+    found = []
+    for j, (direction, ready) in enumerate(zip(directions, armed, strict=True)):
+        fn = lambda t, j=j: value(t, j)  # noqa: E731
+        if not ready:
+            if is_past(after[j], direction):
+                found.append((departure_root(fn, t_old, t_old + h, direction), j))
+            continue
+        rising = np.array([direction * row[j] for row in rows])  # crosses from < 0 to >= 0
+        change = np.flatnonzero((rising[:-1] < 0.0) & (rising[1:] >= 0.0))
+        if change.size:
+            lo, hi = times[change[0]], times[change[0] + 1]
+            found.append((crossed_side(fn, locate_root(fn, lo, hi), hi, direction), j))
+            continue
+        root = _grazing_root(fn, times, rising, direction)
+        if root is not None:
+            found.append((root, j))
+    return min(found) if found else None
+
+
+def _grazing_root(fn, times, rising, direction):
+    """Where an event that stays on its waiting side at every sample crosses between two
+    of them, or None.
+
+    ``rising`` holds the samples signed so that the crossing is from < 0 to >= 0. Around
+    each sampled maximum (the step's ends included) whose second difference could lift it
+    to zero, the event is maximised on the neighbouring samples' interval (bounded Brent,
+    :func:`scipy.optimize.minimize_scalar`); a maximum that reaches zero brackets the
+    crossing with the interval's start.
+    """
+    last = rising.size - 1
+    for i in range(rising.size):
+        left, right = max(i - 1, 0), min(i + 1, last)
+        if rising[i] < rising[left] or rising[i] < rising[right]:
+            continue
+        a, b, c = (
+            (rising[1], rising[0], rising[1])
+            if i == 0
+            else ((rising[-2], rising[-1], rising[-2]) if i == last else rising[i - 1 : i + 2])
+        )
+        if b + abs(a - 2.0 * b + c) < 0.0:
+            continue
+        lo, hi = times[left], times[right]
+        best = minimize_scalar(
+            lambda t: -direction * fn(t),
+            bounds=(lo, hi),
+            method="bounded",
+            options={"xatol": GRAZE_XTOL * (hi - lo)},
+        )
+        peak = float(best.x)
+        if direction * fn(peak) >= 0.0:
+            return crossed_side(fn, locate_root(fn, lo, peak), peak, direction)
+    return None
+
+
+GRAZE_XTOL = 1e-10
+"""Relative tolerance [-] of the maximum's time in :func:`_grazing_root`."""

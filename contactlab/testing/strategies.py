@@ -24,7 +24,9 @@ from contactlab.laws import (
     KuwabaraKono,
     LinearPlastic,
     LinearViscoelastic,
+    Mindlin,
     PlasticTrapezoid,
+    TangentialSpring,
     Thornton,
     WaltonBraun,
 )
@@ -41,8 +43,12 @@ __all__ = [
     "laws",
     "linear_laws",
     "linear_plastic_laws",
+    "normal_impacts",
+    "oblique_impacts",
     "plastic_trapezoid_laws",
+    "restitution_laws",
     "sensors",
+    "tangential_laws",
     "thornton_laws",
     "walton_braun_laws",
 ]
@@ -256,4 +262,156 @@ def laws(name=None):
         return LAW_STRATEGIES[check_choice("law", name, tuple(LAW_STRATEGIES))]()
     return st.one_of(
         *(strategy() for key, strategy in LAW_STRATEGIES.items() if key != "plastic_trapezoid")
+    )
+
+
+OBLIQUE_NORMAL_LAWS = ("linear", "hertz", "hertz_damped", "kuwabara_kono", "hunt_crossley")
+"""The normal laws :func:`contactlab.simulate_oblique` accepts (laws without history)."""
+
+
+def restitution_laws(grain, velocity, name=None, restitution=(0.05, 1.0)):
+    """Normal laws without history for ``grain`` at ``velocity`` [m/s], set by a restitution.
+
+    Linear (stiffness 1e3-1e7 N/m, damping for the restitution on a wall,
+    ``LinearViscoelastic.from_restitution``), Hertz from the grain's material, damped Hertz
+    (``HertzDamped.from_material`` with the restitution), Kuwabara-Kono with the
+    dimensionless dissipation ``x = 1.5 A (kH/m)**0.4 v**0.2`` up to ``-ln(e_min)`` and
+    Hunt-Crossley with ``chi v`` up to ``1 / e_min`` (both reach restitutions near
+    ``e_min``), Hertz exponent 1.5 and the grain's kH.
+
+    Parameters
+    ----------
+    grain : Grain
+        With material data.
+    velocity : float
+        Impact speed [m/s] the restitution refers to.
+    name : str, optional
+        One of :data:`OBLIQUE_NORMAL_LAWS`; default any.
+    restitution : (float, float), default (0.05, 1)
+        Range of the restitution [-].
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+    """
+    lo, hi = _bounds("restitution", restitution, "-", high=1.0)
+    e = st.floats(lo, hi)
+    mass = grain.mass
+    k_hertz = Hertz.from_material(*grain.material()).k_hertz
+    scale = 1.5 * (k_hertz / mass) ** 0.4 * velocity**0.2
+    options = {
+        "linear": st.builds(
+            LinearViscoelastic.from_restitution,
+            _log_floats(*_STIFFNESS),
+            e,
+            st.just(mass),
+            st.just("force"),
+        ),
+        "hertz": st.just(Hertz(k_hertz)),
+        "hertz_damped": e.map(
+            lambda r: HertzDamped.from_material(*grain.material(), restitution=r, mass=mass)
+        ),
+        "kuwabara_kono": st.floats(0.0, -math.log(lo)).map(
+            lambda x: KuwabaraKono(k_hertz, x / scale)
+        ),
+        "hunt_crossley": st.floats(0.0, 1.0 / lo).map(
+            lambda chi_v: HuntCrossley(k_hertz, 1.5, chi_v / velocity)
+        ),
+    }
+    if name is not None:
+        return options[check_choice("law", name, OBLIQUE_NORMAL_LAWS)]
+    return st.one_of(*options.values())
+
+
+def tangential_laws(grain, friction=(0.0, 1.0)):
+    """Tangential laws for ``grain``: a Cundall-Strack spring (stiffness 1e3-1e7 N/m, log
+    scale, damping ratio 0-0.5 of ``2 sqrt(m k)``, or none) and Mindlin from the grain's
+    material in both history forms.
+
+    Parameters
+    ----------
+    grain : Grain
+        With material data.
+    friction : (float, float), default (0, 1)
+        Range of the Coulomb friction coefficient [-].
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+    """
+    mu = st.floats(*_bounds("friction", friction, "-", low_open=False))
+    spring = st.builds(
+        lambda k, mu, zeta: TangentialSpring(k, mu, zeta * 2.0 * math.sqrt(grain.mass * k)),
+        _log_floats(*_STIFFNESS),
+        mu,
+        st.one_of(st.just(0.0), st.floats(0.0, 0.5)),
+    )
+    mindlin = st.builds(
+        lambda mu, history: Mindlin.from_material(*grain.material(), mu, history=history),
+        mu,
+        st.sampled_from(("total", "incremental")),
+    )
+    return st.one_of(spring, mindlin)
+
+
+@st.composite
+def oblique_impacts(draw, normal=None, sensor_resonance=(5e3, 300e3), spin_ratio=3.0):
+    """Oblique impacts over the ranges users have, as keyword arguments of
+    :func:`contactlab.simulate_oblique`.
+
+    Grains 1-10 mm (:func:`grains`), a flat or a sensor of 5-300 kHz (:func:`sensors`),
+    a normal law of :func:`restitution_laws` (restitution 0.05-1 in a normal impact at the
+    impact speed: near grazing incidence the normal speed is far smaller, and a
+    Hunt-Crossley damping set for it would be absurd), a tangential law of
+    :func:`tangential_laws` (friction 0-1), speed 0.1-10 m/s, incidence in [0, 90) deg and
+    spin up to ``spin_ratio`` times ``V / R`` either way.
+
+    Parameters
+    ----------
+    normal : str, optional
+        Only this normal law (a name of :data:`OBLIQUE_NORMAL_LAWS`).
+    sensor_resonance : (float, float), default (5 kHz, 300 kHz)
+        Range of the sensor resonance [Hz].
+    spin_ratio : float, default 3
+        Largest ``|spin| R / V`` [-].
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of dicts with ``grain``, ``sensor``, ``normal_law``, ``tangential_law``,
+        ``velocity`` [m/s], ``angle`` [rad] and ``spin`` [rad/s].
+    """
+    grain = draw(grains(diameter=(1e-3, 10e-3)))
+    velocity = draw(impact_velocities(0.1, 10.0))
+    angle = draw(st.floats(0.0, math.pi / 2, exclude_max=True))
+    ratio = check_number("spin_ratio", spin_ratio, low=0.0, low_open=False, unit="-")
+    return {
+        "grain": grain,
+        "sensor": draw(sensors(resonance=sensor_resonance, rigid=True)),
+        "normal_law": draw(restitution_laws(grain, velocity, normal)),
+        "tangential_law": draw(tangential_laws(grain)),
+        "velocity": velocity,
+        "angle": angle,
+        "spin": draw(st.floats(-ratio, ratio)) * velocity / grain.radius,
+    }
+
+
+def normal_impacts(sensor_resonance=(5e3, 300e3)):
+    """Normal impacts over the ranges users have, as keyword arguments of
+    :func:`contactlab.simulate_impact`: grains 1-10 mm, a flat or a sensor of
+    ``sensor_resonance`` [Hz], every law of :data:`LAW_STRATEGIES` (the prescribed pulse
+    included), 0.1-10 m/s.
+
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of dicts with ``grain``, ``sensor``, ``law`` and ``velocity`` [m/s].
+    """
+    return st.fixed_dictionaries(
+        {
+            "grain": grains(diameter=(1e-3, 10e-3)),
+            "sensor": sensors(resonance=sensor_resonance, rigid=True),
+            "law": st.one_of(laws(), laws("plastic_trapezoid")),
+            "velocity": impact_velocities(0.1, 10.0),
+        }
     )

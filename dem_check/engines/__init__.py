@@ -37,6 +37,7 @@ optional extra costs nothing until it is used.
 import difflib
 import importlib
 
+from contactlab.audit import warn_if_broken
 from contactlab.errors import ParameterError
 from dem_check.engines.result import EngineResult
 
@@ -97,6 +98,9 @@ def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", 
     Returns
     -------
     EngineResult
+        Audited (:meth:`EngineResult.audit`: energy, one-sided force, momentum against the
+        step's tolerances); an :class:`~contactlab.errors.AuditWarning` names a broken
+        invariant.
 
     Raises
     ------
@@ -104,4 +108,6 @@ def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", 
         For an unknown engine (listing the valid names) or what the engine refuses.
     """
     module = engine_module(engine)
-    return module.drop_test(grain, sensor, law, velocity, time_step, **options)
+    result = module.drop_test(grain, sensor, law, velocity, time_step, **options)
+    warn_if_broken(result.audit(), f"the {engine} engine's result")
+    return result

@@ -109,6 +109,18 @@ class EngineResult(ImpactSignals):
         end = self.contact_intervals[-1][1]
         return -float(np.interp(end, self.t, self.v2))
 
+    def audit(self):
+        """Energy, one-sided force and momentum of the first contact, with tolerances set
+        by the engine's step (:func:`dem_check.engines.audit.audit_engine`).
+
+        Returns
+        -------
+        contactlab.audit.Audit
+        """
+        from dem_check.engines.audit import audit_engine
+
+        return audit_engine(self)
+
     def summary(self):
         """Headline numbers and engine settings as a dict with unit-bearing keys (JSON-ready)."""
         return {**self._headline(), **self.metadata}

@@ -37,6 +37,7 @@ from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
 from contactlab.solver import wall_impact
 from contactlab.validation import check_number
+from dem_check.engines.audit import STEP_ENERGY, audit_oblique_rebound
 from dem_check.engines.lammps.laws import granular_model
 from dem_check.engines.lammps.session import LammpsSession
 from dem_check.engines.rebound import ObliqueRebound
@@ -103,9 +104,37 @@ class LammpsOblique(ObliqueRebound):
     ----------
     script : str
         The input deck LAMMPS ran.
+    grain, tangential_law : Grain, TangentialLaw or None
+        What was run (for :meth:`audit`).
+    contact_time : float
+        The normal law's wall contact time [s] the step was set from (nan if not known).
     """
 
     script: str
+    grain: object = None
+    tangential_law: object = None
+    contact_time: float = math.nan
+
+    def audit(self):
+        """Energy, angular momentum and Coulomb's integrated inequality of the rebound
+        (:func:`dem_check.engines.audit.audit_oblique_rebound`); the energy tolerance is
+        velocity Verlet's ``10 (pi dt / t_c)**2``, and a Mindlin law's gain is the model's
+        (:data:`contactlab.oblique_result.MINDLIN_ENERGY`).
+
+        Returns
+        -------
+        contactlab.audit.Audit
+        """
+        steps_share = (math.pi * self.time_step / self.contact_time) ** 2
+        return audit_oblique_rebound(
+            self.grain,
+            self.tangential_law,
+            self.velocity,
+            self.angle,
+            self.spin,
+            (self.rebound_normal_velocity, self.tangential_velocity, self.angular_velocity),
+            energy_tolerance=STEP_ENERGY * steps_share,
+        )
 
 
 def _deck(grain, normal_words, tangential, vn, vt, spin, time_step, gap):
@@ -207,4 +236,7 @@ def lammps_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
             time_step=time_step,
             steps=steps,
             script=session.script,
+            grain=grain,
+            tangential_law=tangential_law,
+            contact_time=contact_time,
         )

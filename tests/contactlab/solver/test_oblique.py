@@ -79,15 +79,62 @@ def test_damped_normal_force_sticks_first(tangential):
     assert 0.092 * (1 - 1e-3) < ratio < 0.092  # issue's 1e-3 bar; measured 5e-5 to 3.6e-4
 
 
-def test_a_damped_spring_slides_from_the_touch():
-    """With a constant tangential damping the trial force ``-eta s`` is finite at the
-    touch while the cap ``mu N`` starts at zero: the contact slides from the touch."""
-    res = cl.simulate_oblique(
-        GRAIN, cl.Sensor.rigid(), DAMPED, TANGENTIAL["spring"], SPEED, math.radians(60.0)
-    )
-    assert [p[2] for p in res.phases] == ["slide-"]
+def _discrete_stick_end(normal, spring, angle, dt, horizon=2e-8):
+    """End [s] of the first stick of LAMMPS' rules at step ``dt`` (velocity Verlet, history
+    increment, then Coulomb rescaling), written out here, sharing no code with the solver."""
+    m, radius = GRAIN.mass, GRAIN.radius
+    inertia = 0.4 * m * radius**2
+    d, v, u, w, h, t = 0.0, SPEED * math.cos(angle), SPEED * math.sin(angle), 0.0, 0.0, 0.0
+    n_force = t_force = 0.0
+    stuck = False
+    while t < horizon:
+        v -= 0.5 * dt * n_force / m
+        u += 0.5 * dt * t_force / m
+        w -= 0.5 * dt * radius * t_force / inertia
+        d, t = d + dt * v, t + dt
+        n_force = float(normal.force(d, v))
+        slip = u - radius * w
+        h += slip * dt
+        t_force = -spring.k * h - spring.damping * slip
+        cap = spring.friction * n_force
+        if abs(t_force) > cap:
+            if stuck:
+                return t
+            t_force = math.copysign(cap, t_force)
+            h = -(t_force + spring.damping * slip) / spring.k
+        else:
+            stuck = True
+        v -= 0.5 * dt * n_force / m
+        u += 0.5 * dt * t_force / m
+        w -= 0.5 * dt * radius * t_force / inertia
+    raise AssertionError("no stick ended within the horizon")
+
+
+def test_a_damped_spring_slides_an_instant_then_sticks():
+    """With a constant tangential damping the trial force ``-eta s`` is finite at the touch
+    while the cap ``mu N`` starts at zero: the contact slides, but only for an instant.
+    The damped Hertz cap grows like ``t**0.25``, faster than any trial force, so sliding
+    ends at once with ``eta s`` absorbed into the rescaled history, and the contact sticks
+    until the spring's force ``k s t`` catches up with the cap (14.6 ns here, 0.22 % of
+    the contact), then slides. LAMMPS' rules at a fixed step reach this limit only like
+    ``dt**0.25`` (the cap at the first step is ``~ dt**0.25``); their stick end converges
+    to the solver's (an earlier version of this test claimed sliding throughout)."""
+    spring = TangentialSpring(stiffness=2e7, friction=0.092, damping=0.05)
+    angle = math.radians(60.0)
+    res = cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), DAMPED, spring, SPEED, angle)
+    (_, slide_end, first), (_, stick_end, second), (_, _, third) = res.phases
+    assert (first, second, third) == ("slide-", "stick", "slide-")
+    assert slide_end < 1e-30  # the instant where the cap outgrows -eta s
+    contact = res.contact_time
+    steps = [contact / n for n in (1_024_000, 8_192_000)]  # dt and dt / 8
+    ends = [_discrete_stick_end(DAMPED, spring, angle, dt) for dt in steps]
+    gaps = [stick_end - e for e in ends]
+    assert 0 < gaps[1] < gaps[0]  # from below, closing in
+    # dt**0.25 convergence: the gap shrinks by 8**-0.25 = 0.595 per refinement (measured
+    # 0.587); 5 % for the next order's share at these steps
+    assert gaps[1] / gaps[0] == pytest.approx(8**-0.25, rel=0.05)
     ratio = -res.tangential_impulse / res.normal_impulse
-    assert ratio == pytest.approx(0.092, rel=1e-6)  # gross sliding: exact impulse ratio
+    assert 0.092 * (1 - 1e-4) < ratio < 0.092  # the stick's share: measured 5.0e-5
 
 
 @pytest.mark.parametrize("sensor", [cl.Sensor.rigid(), SENSOR], ids=["rigid", "sensor"])
