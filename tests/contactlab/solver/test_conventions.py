@@ -118,6 +118,8 @@ def test_gross_sliding_rebound_is_independent_of_every_rule():
     for arm in LEVER_ARMS:
         for history in HISTORY_FORMS:
             for damping in DAMPING_FORMS:
+                if (history, damping) == ("total", "tied"):
+                    continue  # refused (test_bad_conventions_are_named)
                 res = _oblique(ELASTIC, Conventions(arm, history, damping), 45.0)
                 # rtol 1e-9 of the integration on an impulse: measured <= 2e-12
                 assert res.tangential_velocity == pytest.approx(theory, rel=1e-9)
@@ -175,7 +177,8 @@ def test_tied_damping_ratio_is_the_normal_laws():
 def test_tied_damping_dissipates_and_does_nothing_beside_an_elastic_normal_law():
     """gamma = 0 beside Hertz: the same impact as no damping; beside a damped normal law
     it takes energy out of the tangential motion (the ledger's friction term grows)."""
-    tied, free = Conventions("radius", "total", "tied"), Conventions("radius", "total", "none")
+    tied = Conventions("radius", "incremental", "tied")
+    free = Conventions("radius", "incremental", "none")
     a, b = _oblique(ELASTIC, tied, 5.0), _oblique(ELASTIC, free, 5.0)
     assert (a.tangential_velocity, a.angular_velocity) == (
         b.tangential_velocity,
@@ -195,13 +198,15 @@ def test_bad_conventions_are_named():
         Mindlin(1e9, 0.3, history="rescaled")
     with pytest.raises(ParameterError, match="damping"):
         Mindlin(1e9, 0.3, damping="viscous")
+    with pytest.raises(ParameterError, match="not supported"):
+        Mindlin(1e9, 0.3, history="total", damping="tied")
 
 
 SENSOR = cl.Sensor.from_resonance(40e3, mass=2e-3, damping_ratio=0.02)
 
 
 @settings(
-    max_examples=30,  # a small fixed budget: about 0.1 s per impact
+    max_examples=25,  # a small fixed budget: about 0.1 s per impact
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow],
     derandomize=True,
@@ -229,6 +234,8 @@ def test_every_convention_keeps_the_audits(
             k, analytic.tsuji_damping_coefficient(k, GRAIN.mass, restitution, "force")
         )
     )
+    if (history, damping) == ("total", "tied"):
+        damping = "none"  # refused (test_bad_conventions_are_named)
     law = Mindlin(BASE.k_mindlin, friction, history, damping)
     sensor = SENSOR if on_sensor else cl.Sensor.rigid()
     res = cl.simulate_oblique(
