@@ -191,9 +191,7 @@ def test_tied_damping_dissipates_and_does_nothing_beside_an_elastic_normal_law()
 
 def test_bad_conventions_are_named():
     with pytest.raises(ParameterError, match="lever_arm"):
-        cl.simulate_oblique(
-            GRAIN, cl.Sensor.rigid(), ELASTIC, BASE, SPEED, 0.3, lever_arm="centre"
-        )
+        cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), ELASTIC, BASE, SPEED, 0.3, lever_arm="centre")
     with pytest.raises(ParameterError, match="history"):
         Mindlin(1e9, 0.3, history="rescaled")
     with pytest.raises(ParameterError, match="damping"):
