@@ -54,7 +54,9 @@ def test_kratos_test4_is_graded_against_contactlab_with_kratos_conventions(repor
     rows = [r for r in report["rows"] if "kratos conventions" in r["quantity"]]
     assert len(rows) == 2 * 2 * 17  # two materials, two quantities, 17 angles
     assert all(r["passed"] and r["not_graded"] == "" and r["kratos"] is not None for r in rows)
-    # Kratos' step error at its own step: measured 4.3e-4 at 5 deg (R w'), else <= 2.5e-6
+    # Kratos' first-order step error at its own step: measured 8.5e-4 (alumina) and 9.1e-4
+    # (aluminium alloy) at 5 deg (R w'; halved by halving the step, test_conventions.py),
+    # median 1.6e-10
     assert max(r["relative_error"] for r in rows) < 1e-3
 
 
