@@ -1,6 +1,7 @@
 """With Kratos' conventions (arm ``R - d``, history rescaled on unloading, tied damping),
 ``simulate_oblique`` gives Kratos' own test-4 rebound at every angle (issue 27)."""
 
+import itertools
 import math
 
 import pytest
@@ -50,5 +51,5 @@ def test_the_remaining_difference_at_5_degrees_is_kratos_step_error():
         theirs = kratos_oblique(GRAIN, NORMAL, BASE, SPEED, angle, time_step=step / factor)
         errors.append(abs(ours.angular_velocity - theirs.angular_velocity))
     # measured ratios 1.98 and 1.99 (R w'/vt 8.5e-4, 4.3e-4, 2.2e-4)
-    for coarse, fine in zip(errors, errors[1:], strict=False):
+    for coarse, fine in itertools.pairwise(errors):
         assert 1.8 < coarse / fine < 2.2
