@@ -100,7 +100,7 @@ class ObliqueResult:
         states, self.normal_force, self.tangential_force = self._evaluate(self.t)
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
-        self.slip = states[:, 4] - grain.radius * states[:, 5]
+        self.slip = model.slip(states)
         self.sensor_force = model.system.signal(states[:, :4], self.normal_force)
 
     # -- dense evaluation ------------------------------------------------------------------
@@ -130,8 +130,7 @@ class ObliqueResult:
         raw = model.normal(d, r)
         normal = np.maximum(raw, 0.0)
         if phase == 0:
-            slip = st[:, 4] - model.radius * st[:, 5]
-            return raw, normal, model.law.trial_force(st[:, 6], d, slip)
+            return raw, normal, model.law.trial_force(st[:, 6], d, model.slip(st))
         return raw, normal, phase * model.law.friction * normal
 
     # -- rebound ---------------------------------------------------------------------------
@@ -299,12 +298,34 @@ class ObliqueResult:
         change = inertia * (self.angular_velocity - self.spin) + m * radius * (
             self.tangential_velocity - self.incident_tangential_velocity
         )
+        change -= self._arm_shortening_moment()
         yield Check(
             "momentum_angular",
             abs(change) / (m * self.velocity * radius),
             ENERGY_ROUNDING * rtol,
             "m V R (angular momentum about the contact point)",
         )
+
+    def _gauss_nodes(self, piece):
+        """Gauss-Legendre nodes [s] and weights of a contact phase, graded at both ends and
+        at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`)."""
+        sys_ = self._model.system
+        period = math.inf if sys_.rigid else 2.0 * math.pi / math.sqrt(sys_.k1 / sys_.m1)
+        return gauss_rule(piece.t0, piece.t1, period, graded=True, graded_end=True)
+
+    def _arm_shortening_moment(self):
+        """``integral d F dt`` [N*m*s] over the contact with ``lever_arm="contact"`` (the
+        torque arm ``R - d`` adds it to ``I dw + m R dvt``), 0 with the radius arm."""
+        model = self._model
+        if not model.contact_arm:
+            return 0.0
+        total = 0.0
+        for piece in self._pieces:
+            nodes, weights = self._gauss_nodes(piece)
+            st = piece.states(nodes - piece.t0)
+            _, _, tangential = self._forces(piece.phase, st)
+            total += weights @ ((model.radius - model.arm(st[:, 2] - st[:, 0])) * tangential)
+        return total
 
     def _end_energies(self, **spent):
         """:class:`EnergyLedger` from the end states plus the integrals in ``spent`` [J]."""
@@ -328,15 +349,14 @@ class ObliqueResult:
     def _ledger(self):
         """The full ledger and the checks on Gauss-Legendre nodes of every phase."""
         sys_, model = self._model.system, self._model
-        period = math.inf if sys_.rigid else 2.0 * math.pi / math.sqrt(sys_.k1 / sys_.m1)
         sums = np.zeros(5)  # N d', -T s, c1 v1**2, N, T
         raw_worst, excess_worst = [], []
         peak = self.peak_normal_force
         for piece in self._pieces:
-            nodes, weights = gauss_rule(piece.t0, piece.t1, period, graded=True, graded_end=True)
+            nodes, weights = self._gauss_nodes(piece)
             st = piece.states(nodes - piece.t0)
             raw, normal, tangential = self._forces(piece.phase, st)
-            slip = st[:, 4] - model.radius * st[:, 5]
+            slip = model.slip(st)
             integrands = (
                 normal * (st[:, 3] - st[:, 1]),
                 -tangential * slip,

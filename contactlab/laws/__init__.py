@@ -31,15 +31,20 @@ from contactlab.laws.linear import LinearViscoelastic, linear_viscoelastic_force
 from contactlab.laws.plastic import LinearPlastic, Thornton, linear_plastic_force, thornton_force
 from contactlab.laws.pulse import PlasticTrapezoid, plastic_trapezoid_force
 from contactlab.laws.tangential import (
+    DAMPING_FORMS,
+    HISTORY_FORMS,
     TANGENTIAL_LAWS,
     Mindlin,
     TangentialLaw,
     TangentialSpring,
+    damping_ratio,
     mindlin_stiffness,
 )
 from contactlab.validation import check_choice
 
 __all__ = [
+    "DAMPING_FORMS",
+    "HISTORY_FORMS",
     "LAWS",
     "TANGENTIAL_LAWS",
     "Branch",
@@ -58,6 +63,7 @@ __all__ = [
     "TangentialSpring",
     "Thornton",
     "WaltonBraun",
+    "damping_ratio",
     "get_law",
     "hertz_damped_force",
     "hertz_force",

@@ -12,9 +12,16 @@ Each law keeps one history variable ``h`` per contact, reset to zero at every to
 ``"displacement"`` history (:class:`TangentialSpring`, :class:`Mindlin` ``history="total"``)
     ``h`` is the elastic tangential displacement [m]; ``h' = s`` while the contact sticks
     and ``F = -kt(d) h - eta s``.
-``"force"`` history (:class:`Mindlin` ``history="incremental"``)
+``"force"`` history (:class:`Mindlin` ``history="incremental"`` or
+``"incremental_rescaled"``)
     ``h`` is the elastic tangential force [N]; ``h' = -kt(d) s`` while the contact sticks
-    and ``F = h - eta s``.
+    (plus ``h d'/(2 d)`` while the overlap shrinks, for ``"incremental_rescaled"``) and
+    ``F = h - eta s``.
+
+``eta`` [N*s/m] is the tangential damping coefficient: a constant for
+:class:`TangentialSpring`, ``2 gamma sqrt(m* kt(d))`` for :class:`Mindlin`
+``damping="tied"`` (``gamma`` the normal law's damping ratio, bound by the solver through
+:meth:`TangentialLaw.for_contact`), zero otherwise.
 
 When the trial force would exceed ``mu N`` the contact slides: ``F = +-mu N`` and the
 history is rescaled so that the trial force equals it (:meth:`TangentialLaw.history_on_cap`).
@@ -41,12 +48,28 @@ from contactlab.analytic.tangential import (
     effective_shear_modulus,
     mindlin_stiffness_coefficient,
 )
+from contactlab.errors import ParameterError
+from contactlab.laws.hertz import Hertz, HertzDamped
+from contactlab.laws.linear import LinearViscoelastic
 from contactlab.validation import KeywordChecked, check_choice, check_number
 
-__all__ = ["HISTORY_FORMS", "Mindlin", "TangentialLaw", "TangentialSpring", "mindlin_stiffness"]
+__all__ = [
+    "DAMPING_FORMS",
+    "HISTORY_FORMS",
+    "Mindlin",
+    "TangentialLaw",
+    "TangentialSpring",
+    "damping_ratio",
+    "mindlin_stiffness",
+]
 
-HISTORY_FORMS = ("total", "incremental")
-"""Values of ``Mindlin(history=...)``: LAMMPS' ``mindlin`` and ``mindlin/force``."""
+HISTORY_FORMS = ("total", "incremental", "incremental_rescaled")
+"""Values of ``Mindlin(history=...)``: LAMMPS' ``mindlin``, ``mindlin/force`` and
+``mindlin_rescale/force`` (Kratos' ``DEM_D_Hertz_viscous_Coulomb``)."""
+
+DAMPING_FORMS = ("none", "tied")
+"""Values of ``Mindlin(damping=...)``: no tangential damping (LAMMPS ``xgamma_t = 0``), or
+``2 gamma sqrt(m* kt)`` with the normal law's damping ratio ``gamma`` (Kratos, EDEM)."""
 
 
 def mindlin_stiffness(overlap, k_mindlin):
@@ -82,34 +105,54 @@ class TangentialLaw(KeywordChecked):
         """``dkt/dd`` [N/m**2] at overlap ``d`` [m]."""
         raise NotImplementedError
 
+    def damping_coefficient(self, overlap):
+        """Tangential damping coefficient ``eta`` [N*s/m] at overlap ``d`` [m]."""
+        return self.damping
+
+    def damping_slope(self, overlap):
+        """``d eta / dd`` [N*s/m**2] at overlap ``d`` [m]."""
+        return 0.0
+
+    def for_contact(self, normal_law, mass):
+        """This law as the solver applies it beside ``normal_law`` on a grain of ``mass``
+        [kg] (a law whose damping is tied to the normal law binds it here)."""
+        return self
+
     def trial_force(self, history, overlap, slip):
         """Tangential force [N] before the Coulomb cap."""
+        damping = self.damping_coefficient(overlap) * slip
         if self.history_kind == "force":
-            return history - self.damping * slip
-        return -self.stiffness(overlap) * history - self.damping * slip
+            return history - damping
+        return -self.stiffness(overlap) * history - damping
 
-    def history_rate(self, overlap, slip):
-        """``h'`` while the contact sticks [m/s or N/s]."""
+    def history_rate(self, history, overlap, overlap_rate, slip):
+        """``h'`` [m/s or N/s] while the contact sticks, at history ``h``, overlap ``d``
+        [m], overlap rate ``d'`` [m/s] and slip ``s`` [m/s]."""
         if self.history_kind == "force":
             return -self.stiffness(overlap) * slip
         return slip
 
     def trial_force_rate(self, history, overlap, overlap_rate, slip, slip_rate):
         """Time derivative of :meth:`trial_force` along a sticking path [N/s]."""
-        elastic = -self.stiffness(overlap) * slip
-        if self.history_kind == "displacement":
+        if self.history_kind == "force":
+            elastic = self.history_rate(history, overlap, overlap_rate, slip)
+        else:
+            elastic = -self.stiffness(overlap) * slip
             elastic -= self.stiffness_slope(overlap) * overlap_rate * history
-        return elastic - self.damping * slip_rate
+        damping = self.damping_coefficient(overlap) * slip_rate
+        damping += self.damping_slope(overlap) * overlap_rate * slip
+        return elastic - damping
 
     def history_on_cap(self, force, overlap, slip):
         """History that makes the trial force equal ``force`` [N] (LAMMPS' rescaling).
 
         Zero where the stiffness vanishes (at the touch of a Mindlin contact).
         """
+        viscous = self.damping_coefficient(overlap) * slip
         if self.history_kind == "force":
-            return force + self.damping * slip
+            return force + viscous
         kt = self.stiffness(overlap)
-        return 0.0 if kt == 0.0 else -(force + self.damping * slip) / kt
+        return 0.0 if kt == 0.0 else -(force + viscous) / kt
 
     def parameters(self):
         """Parameters as a dict (name -> value)."""
@@ -181,21 +224,32 @@ class Mindlin(TangentialLaw):
         ``8 G* sqrt(R*)`` [N/m**1.5], so that ``kt = k_mindlin sqrt(d)`` [N/m].
     friction : float
         Coulomb friction coefficient ``mu`` [-], >= 0.
-    history : {"total", "incremental"}
+    history : {"total", "incremental", "incremental_rescaled"}
         ``"total"``: ``F = -kt(d) h`` on the total elastic displacement ``h`` (``h' = s``),
         so the force follows the contact radius at once when the overlap changes: LAMMPS'
         ``tangential mindlin`` and EDEM's Hertz-Mindlin (no slip). ``"incremental"``:
         ``F = h``, ``h' = -kt(d) s``, so only new displacement is loaded with the current
         stiffness: LAMMPS' ``tangential mindlin/force`` (Thornton et al. 2013, Eq. 18).
-        In both, a trial force above ``mu N`` is scaled down to ``mu N`` and the history
-        rescaled to match (LAMMPS' ``gran_sub_mod_tangential.cpp``).
+        ``"incremental_rescaled"``: the incremental form whose stored force is scaled by
+        the ratio of contact radii ``sqrt(d / d_prev)`` while the overlap shrinks, i.e.
+        ``h' = -kt(d) s + h d' / (2 d)`` while ``d' < 0``: LAMMPS'
+        ``mindlin_rescale/force`` and Kratos' ``DEM_D_Hertz_viscous_Coulomb``
+        (``minoring_factor`` in ``CalculateTangentialForceWithNeighbour``).
+        In every form, a trial force above ``mu N`` is scaled down to ``mu N`` and the
+        history rescaled to match (LAMMPS' ``gran_sub_mod_tangential.cpp``).
+    damping : {"none", "tied"}
+        ``"none"``: no tangential damping (LAMMPS' ``xgamma_t = 0``). ``"tied"``: a viscous
+        force ``-2 gamma sqrt(m* kt(d)) s`` whose ratio ``gamma`` is the normal law's
+        (:func:`damping_ratio`; Kratos' ``CalculateViscoDampingForceWithFEM``, EDEM's
+        ``2 sqrt(5/6) beta sqrt(S_t m*)``). The solver binds ``gamma`` and ``m*`` through
+        :meth:`for_contact`; it is zero beside an elastic normal law.
 
     Notes
     -----
     Neither form is exactly Mindlin-Deresiewicz partial slip (an annulus slipping inside
-    the contact); both are the single-spring simplifications DEM codes use, whose rebounds
-    Chung & Ooi (2011) compare with Maw et al. (1976). No tangential damping: LAMMPS'
-    ``xgamma_t = 0``.
+    the contact); all are the single-spring simplifications DEM codes use, whose rebounds
+    Chung & Ooi (2011) compare with Maw et al. (1976). Which DEM code uses which form:
+    ``docs/dem-conventions.md``.
 
     References
     ----------
@@ -204,21 +258,71 @@ class Mindlin(TangentialLaw):
     DOI 10.1016/j.powtec.2012.08.012
     LAMMPS pair_style granular documentation and src/GRANULAR/gran_sub_mod_tangential.cpp
     (GranSubModTangentialMindlin::calculate_forces).
+    Kratos DEMApplication, custom_constitutive/DEM_D_Hertz_viscous_Coulomb_CL.cpp.
     """
 
     name = "mindlin"
-    damping = 0.0
 
-    def __init__(self, k_mindlin, friction, history="total"):
+    def __init__(self, k_mindlin, friction, history="total", damping="none"):
         self.k_mindlin = check_number("k_mindlin", k_mindlin, low=0.0, unit="N/m**1.5")
         self.friction = _friction(friction)
         self.history = check_choice("history", history, HISTORY_FORMS)
+        self.damping_form = check_choice("damping", damping, DAMPING_FORMS)
+        if self.history == "total" and self.damping_form == "tied":
+            # the phase at the touch is undecided there: the trial force and the damped cap
+            # both grow as t**0.25, and the solver switched stick/slide at t = 0 for ever
+            raise ParameterError(
+                "history='total' with damping='tied' is not supported (the solver cannot "
+                "decide the phase at the touch); use history='incremental' or "
+                "'incremental_rescaled' with damping='tied'"
+            )
         self.history_kind = "displacement" if self.history == "total" else "force"
         self._params = {
             "k_mindlin": self.k_mindlin,
             "friction": self.friction,
             "history": self.history,
         }
+        if self.damping_form != "none":  # the parameters of the untied law stay as they were
+            self._params["damping"] = self.damping_form
+        self._tied = 0.0  # 2 gamma sqrt(m* k_mindlin) [N*s/m**1.25], bound by for_contact
+
+    def for_contact(self, normal_law, mass):
+        """This law with its tied damping bound to ``normal_law`` and the grain's ``mass``
+        [kg] (itself when ``damping="none"``).
+
+        Raises
+        ------
+        ParameterError
+            If ``damping="tied"`` and the normal law has no damping ratio
+            (:func:`damping_ratio`).
+        """
+        if self.damping_form == "none":
+            return self
+        bound = Mindlin(self.k_mindlin, self.friction, self.history, self.damping_form)
+        gamma = damping_ratio(normal_law, mass)
+        bound._tied = 2.0 * gamma * math.sqrt(mass * self.k_mindlin)
+        return bound
+
+    def damping_coefficient(self, overlap):
+        """``2 gamma sqrt(m* kt(d))`` [N*s/m] once bound (:meth:`for_contact`), else 0."""
+        if self._tied == 0.0:
+            return 0.0
+        if isinstance(overlap, float):
+            return self._tied * math.sqrt(math.sqrt(overlap)) if overlap > 0.0 else 0.0
+        return self._tied * np.sqrt(np.sqrt(np.maximum(overlap, 0.0)))
+
+    def damping_slope(self, overlap):
+        if self._tied == 0.0 or overlap <= 0.0:
+            return 0.0
+        return 0.25 * self._tied * overlap**-0.75
+
+    def history_rate(self, history, overlap, overlap_rate, slip):
+        if self.history == "total":
+            return slip
+        rate = -self.stiffness(overlap) * slip
+        if self.history == "incremental_rescaled" and overlap_rate < 0.0 and overlap > 0.0:
+            rate += history * overlap_rate / (2.0 * overlap)
+        return rate
 
     @classmethod
     def from_material(
@@ -230,6 +334,7 @@ class Mindlin(TangentialLaw):
         other_youngs_modulus=math.inf,
         other_poisson_ratio=0.0,
         history="total",
+        damping="none",
     ):
         """Mindlin law of a sphere on a flat from material data; a rigid flat by default.
 
@@ -243,14 +348,16 @@ class Mindlin(TangentialLaw):
             Coulomb friction coefficient [-].
         other_youngs_modulus, other_poisson_ratio : float
             The flat's [Pa, -]; ``inf`` is rigid.
-        history : {"total", "incremental"}
+        history : {"total", "incremental", "incremental_rescaled"}
+            See the class docstring.
+        damping : {"none", "tied"}
             See the class docstring.
         """
         g_eff = effective_shear_modulus(
             youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio
         )
         radius = check_number("radius", radius, low=0.0, unit="m")
-        return cls(mindlin_stiffness_coefficient(g_eff, radius), friction, history)
+        return cls(mindlin_stiffness_coefficient(g_eff, radius), friction, history, damping)
 
     def stiffness(self, overlap):
         if isinstance(overlap, float):  # the solver's scalar path
@@ -259,6 +366,35 @@ class Mindlin(TangentialLaw):
 
     def stiffness_slope(self, overlap):
         return 0.5 * self.k_mindlin / math.sqrt(overlap) if overlap > 0.0 else 0.0
+
+
+def damping_ratio(normal_law, mass):
+    """Damping ratio ``gamma`` [-] of a normal law on a grain of ``mass`` [kg] (``m*`` at a
+    rigid wall), as Kratos defines it: the normal damping force is ``2 gamma sqrt(m* Kn)
+    d'`` with ``Kn`` the normal tangent stiffness.
+
+    ``Hertz``: 0. ``HertzDamped`` (``eta d**0.25 d'``, ``Kn = 1.5 kH sqrt(d)``): ``eta /
+    (2 sqrt(1.5 m* kH))``. ``LinearViscoelastic`` (``c d'``, ``Kn = k``): ``c / (2 sqrt(m*
+    k))``. Constant through the contact for these three, so the tied tangential damping
+    ``2 gamma sqrt(m* kt)`` is exactly Kratos'.
+
+    Raises
+    ------
+    ParameterError
+        For another normal law (its damping is not a constant ratio).
+    """
+    mass = check_number("mass", mass, low=0.0, unit="kg")
+    kind = type(normal_law)
+    if kind is Hertz:
+        return 0.0
+    if kind is HertzDamped:
+        return normal_law.damping / (2.0 * math.sqrt(1.5 * mass * normal_law.k_hertz))
+    if kind is LinearViscoelastic:
+        return normal_law.damping / (2.0 * math.sqrt(mass * normal_law.stiffness))
+    raise ParameterError(
+        f"tangential_law damping='tied' needs a normal law with a constant damping ratio "
+        f"(Hertz, HertzDamped, LinearViscoelastic); got {kind.__name__}"
+    )
 
 
 TANGENTIAL_LAWS = {cls.name: cls for cls in (TangentialSpring, Mindlin)}

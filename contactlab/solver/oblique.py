@@ -10,7 +10,9 @@ on the grain (:mod:`contactlab.laws.tangential`)::
     m vt' = F,     I w' = -R F,     so  s' = F (1/m + R**2/I),
 
 and ``F`` never feeds back into the normal motion: the normal side is exactly the normal
-impact alone.
+impact alone. With ``lever_arm="contact"`` the arm is ``R - d`` instead of ``R`` (Kratos'
+convention, :mod:`contactlab.solver.conventions`): ``s = vt - (R - d) w``, ``I w' = -(R - d)
+F``.
 
 Coulomb friction makes the right-hand side switch between *sticking* (``h`` follows the
 law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigma mu N``,
@@ -42,6 +44,7 @@ from contactlab.errors import ParameterError, WindowWarning
 from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
+from contactlab.solver.conventions import LEVER_ARMS
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import (
@@ -52,7 +55,12 @@ from contactlab.solver.impact import (
 )
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
-from contactlab.validation import check_inertia_factor, check_number, keyword_checked
+from contactlab.validation import (
+    check_choice,
+    check_inertia_factor,
+    check_number,
+    keyword_checked,
+)
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
@@ -88,13 +96,31 @@ class ObliqueModel:
         Grain radius [m] (lever arm of the tangential force).
     inertia : float
         Grain moment of inertia [kg*m**2].
+    lever_arm : {"radius", "contact"}, default "radius"
+        Arm of the torque and of the contact-point slip: ``R``, or ``R - d`` (the centre
+        to the contact point at a wall; Kratos' ``actual_arm_vector``).
     """
 
-    def __init__(self, system, normal_law, tangential_law, radius, inertia):
-        self.system, self.law = system, tangential_law
+    def __init__(self, system, normal_law, tangential_law, radius, inertia, lever_arm="radius"):
+        self.system, self.law = system, tangential_law.for_contact(normal_law, system.m2)
         self.normal = normal_law.branch("load").force
         self.radius, self.inertia = radius, inertia
-        self.slip_compliance = 1.0 / system.m2 + radius**2 / inertia
+        self.contact_arm = lever_arm == "contact"
+
+    def arm(self, overlap):
+        """Lever arm [m] at overlap ``d`` [m] (float or array): ``R`` or ``R - max(d, 0)``."""
+        if not self.contact_arm:
+            return self.radius
+        if isinstance(overlap, float):
+            return self.radius - max(overlap, 0.0)
+        return self.radius - np.maximum(overlap, 0.0)
+
+    def slip(self, states):
+        """Contact-point slip ``vt - arm w`` [m/s] of states ``[x1, v1, x2, v2, vt, w, ...]``
+        (a list of floats, or an array with the states along its last axis)."""
+        if isinstance(states, list):
+            return states[4] - self.arm(states[2] - states[0]) * states[5]
+        return states[..., 4] - self.arm(states[..., 2] - states[..., 0]) * states[..., 5]
 
     # -- pieces of the right-hand side ----------------------------------------------------
     def _normal_accelerations(self, x1, v1, n):
@@ -110,25 +136,26 @@ class ObliqueModel:
         x1, _, x2, _, vt, w, h = y
         d = x2 - x1
         if phase == STICK:
-            return self.law.trial_force(h, d, vt - self.radius * w)
+            return self.law.trial_force(h, d, vt - self.arm(d) * w)
         return phase * self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
 
     def rhs(self, phase):
         """``y' = f(y)`` in ``phase`` (STICK, +1 or -1)."""
-        normal, law, radius, inertia = self.normal, self.law, self.radius, self.inertia
+        normal, law, arm, inertia = self.normal, self.law, self.arm, self.inertia
         m2, mu = self.system.m2, law.friction
 
         def f(y):
             x1, v1, x2, v2, vt, w, h = y.tolist()
-            d = x2 - x1
-            n = normal(d, v2 - v1)
-            slip = vt - radius * w
+            d, r = x2 - x1, v2 - v1
+            n = normal(d, r)
+            lever = arm(d)
+            slip = vt - lever * w
             if phase == STICK:
-                force, dh = law.trial_force(h, d, slip), law.history_rate(d, slip)
+                force, dh = law.trial_force(h, d, slip), law.history_rate(h, d, r, slip)
             else:
                 force, dh = phase * mu * max(n, 0.0), 0.0
             a1, a2 = self._normal_accelerations(x1, v1, n)
-            return np.array([v1, a1, v2, a2, force / m2, -radius * force / inertia, dh])
+            return np.array([v1, a1, v2, a2, force / m2, -lever * force / inertia, dh])
 
         return f
 
@@ -147,10 +174,15 @@ class ObliqueModel:
         d, r = x2 - x1, v2 - v1
         n = self.normal(d, r)
         cap = phase * self.law.friction * max(n, 0.0)
-        slip = vt - self.radius * w
+        lever = self.arm(d)
+        slip = vt - lever * w
         a1, a2 = self._normal_accelerations(x1, v1, n)
         history = self.law.history_on_cap(cap, d, slip)
-        rate = self.law.trial_force_rate(history, d, r, slip, cap * self.slip_compliance)
+        # s' = F (1/m + arm**2/I) - arm' w, and arm' = -d' for the contact arm
+        slip_rate = cap * (1.0 / self.system.m2 + lever**2 / self.inertia)
+        if self.contact_arm:
+            slip_rate += r * w
+        rate = self.law.trial_force_rate(history, d, r, slip, slip_rate)
         return phase * rate - self.law.friction * self._normal_force_rate(d, r, a2 - a1)
 
     def events(self, phase):
@@ -192,10 +224,9 @@ class ObliqueModel:
         spring at the probe instead chose sticking wherever the cap had outgrown
         ``eta s`` by then, and broke Coulomb before it: issue 21's matrix.)
         """
-        slip = y0[4] - self.radius * y0[5]
-        if slip == 0.0:
-            return STICK
         start = list(y0)
+        if self.slip(start) == 0.0:
+            return STICK
         force = self.tangential_force(STICK, start)
         cap = self.law.friction * max(self.normal(start[2] - start[0], start[3] - start[1]), 0.0)
         if abs(force) > cap:
@@ -284,7 +315,7 @@ def _solve_contact(model, y0, rtol, scale):
             phase = +1 if hit[1] == 1 else -1
         else:
             cap = phase * model.law.friction * max(model.normal(y[2] - y[0], y[3] - y[1]), 0.0)
-            y[6] = model.law.history_on_cap(cap, y[2] - y[0], y[4] - model.radius * y[5])
+            y[6] = model.law.history_on_cap(cap, y[2] - y[0], model.slip(y.tolist()))
             phase = STICK
     raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
 
@@ -332,6 +363,7 @@ def simulate_oblique(
     sample_rate=None,
     rtol=1e-9,
     inertia_factor=SOLID_SPHERE_INERTIA,
+    lever_arm="radius",
     audit=True,
 ):
     """Simulate a spinning sphere striking a flat or a force sensor at an angle.
@@ -366,6 +398,11 @@ def simulate_oblique(
         Relative tolerance of the DOP853 integration.
     inertia_factor : float, default 0.4
         ``I / (m R**2)`` [-] (0.4: a homogeneous solid sphere).
+    lever_arm : {"radius", "contact"}, default "radius"
+        Arm of the tangential force's torque and of the contact-point slip: the radius
+        ``R`` (LAMMPS at a wall), or the centre-to-contact distance ``R - d`` (Kratos).
+        Each DEM code's arm, history and damping rules: :data:`DEM_CONVENTIONS
+        <contactlab.solver.conventions.DEM_CONVENTIONS>`.
     audit : bool, default True
         Run the cheap audit (:meth:`ObliqueResult.audit` with ``full=False``: energy and
         angular momentum from the end states, one-sided force and Coulomb on the output
@@ -389,13 +426,15 @@ def simulate_oblique(
     )
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
     kappa = check_inertia_factor("inertia_factor", inertia_factor)
+    lever_arm = check_choice("lever_arm", lever_arm, LEVER_ARMS)
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
         sample_rate = check_number("sample_rate", sample_rate, low=0.0, unit="Hz")
     system = System(grain, sensor)
     radius = grain.radius
-    model = ObliqueModel(system, normal_law, tangential_law, radius, kappa * grain.mass * radius**2)
+    inertia = kappa * grain.mass * radius**2
+    model = ObliqueModel(system, normal_law, tangential_law, radius, inertia, lever_arm)
     vn, vt = velocity * math.cos(angle), velocity * math.sin(angle)
     y0 = np.array([0.0, 0.0, 0.0, vn, vt, spin, 0.0])
     force_scale = grain.mass * velocity / 1e-6  # momentum over 1 us [N]

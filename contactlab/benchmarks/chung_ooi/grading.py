@@ -17,8 +17,10 @@ Tolerances (on the error defined in :func:`row`):
 
 Engines (:data:`ENGINES`) have two columns each, the value and its error. An engine's
 number is *graded* (it counts in ``passed``) when the engine runs the same model as
-contactlab; Kratos' oblique test 4 is only *reported* (``not_graded``): Kratos applies
-its own tangential rules, not contactlab's Mindlin law (``docs/dem-conventions.md``).
+contactlab; Kratos' oblique test 4 is only *reported* (``not_graded``) beside contactlab's
+Mindlin law, since Kratos applies its own tangential rules (``docs/dem-conventions.md``),
+and *graded* against contactlab run with Kratos' rules
+(:data:`~contactlab.solver.conventions.DEM_CONVENTIONS`, rows "..., kratos conventions").
 """
 
 import contactlab as cl
@@ -119,8 +121,9 @@ def row(case, material, quantity, ours, theory, *, scale=None, lammps=None, engi
     }
 
 
-def engine_row(case, material, quantity, ours, lammps, scale):
-    """A number without a closed form, graded as contactlab against LAMMPS.
+def engine_row(case, material, quantity, ours, lammps, scale, engine="lammps"):
+    """A number without a closed form, graded as contactlab against an engine (LAMMPS by
+    default; ``lammps`` is then that engine's value, put in its column).
 
     The theory column is None; ``relative_error`` is ``|ours - lammps| / scale`` against
     :data:`LAMMPS_TOLERANCE` (two independent integrations of the same model).
@@ -134,7 +137,7 @@ def engine_row(case, material, quantity, ours, lammps, scale):
         "contactlab": ours,
         "theory": None,
         **others,
-        "lammps": lammps,
+        engine: lammps,
         "relative_error": error,
         "tolerance": LAMMPS_TOLERANCE,
         "lammps_tolerance": LAMMPS_TOLERANCE,

@@ -14,6 +14,7 @@ import numpy as np
 import contactlab as cl
 from contactlab import analytic
 from contactlab.benchmarks.chung_ooi.grading import engine_row, grain, rebound, row
+from contactlab.solver.conventions import DEM_CONVENTIONS
 
 __all__ = [
     "ANGLES",
@@ -131,7 +132,48 @@ def oblique_test(case, material, lammps=None, reported=None):
                     )
                 )
         curves[history] = np.array(out)
+    for name in reported or {}:
+        rows += _conventions_rows(case, material, body, normal, mu, speed, name, others)
     return rows, curves
+
+
+def _conventions_rows(case, material, body, normal, mu, speed, engine, others):
+    """contactlab with ``engine``'s tangential rules (:data:`DEM_CONVENTIONS`) against the
+    engine at every angle: vt' (over vt) and R w' (over vt), graded; none without a preset."""
+    rules = DEM_CONVENTIONS.get(engine)
+    if rules is None:
+        return []
+    law = rules.mindlin(cl.laws.Mindlin.from_material(*body.material(), mu))
+    rows = []
+    for degrees in ANGLES:
+        angle = math.radians(degrees)
+        vt = speed * math.sin(angle)
+        ours = cl.simulate_oblique(
+            body, cl.Sensor.rigid(), normal, law, speed, angle, lever_arm=rules.lever_arm
+        )
+        theirs = others[engine, degrees]
+        label = f"at {degrees} deg, {engine} conventions"
+        rows += [
+            engine_row(
+                case,
+                material,
+                f"vt' {label} [m/s]",
+                ours.tangential_velocity,
+                theirs[1],
+                vt,
+                engine,
+            ),
+            engine_row(
+                case,
+                material,
+                f"R w' {label} [m/s]",
+                body.radius * ours.angular_velocity,
+                body.radius * theirs[2],
+                vt,
+                engine,
+            ),
+        ]
+    return rows
 
 
 def tangential_speed_test(case, material, lammps=None):

@@ -61,6 +61,7 @@ from contactlab.laws import (
     PlasticTrapezoid,
     Thornton,
     WaltonBraun,
+    damping_ratio,
 )
 from contactlab.validation import check_positive
 
@@ -123,9 +124,10 @@ def linear_kn_factor(wall):
 def hertz_gamma(law, effective_mass):
     """``DAMPING_GAMMA`` that gives a :class:`~contactlab.laws.HertzDamped` damping exactly.
 
-    ``2 gamma sqrt(m* Kn) d' = eta d**0.25 d'`` with ``Kn = 1.5 kH d**0.5``.
+    ``2 gamma sqrt(m* Kn) d' = eta d**0.25 d'`` with ``Kn = 1.5 kH d**0.5``
+    (:func:`contactlab.laws.damping_ratio`).
     """
-    return law.damping / (2.0 * math.sqrt(1.5 * effective_mass * law.k_hertz))
+    return damping_ratio(law, effective_mass)
 
 
 @dataclass(frozen=True)
@@ -200,7 +202,7 @@ def kratos_contact(law, effective_mass, effective_radius, wall):
     common = {"law": law, "effective_mass": mass, "effective_radius": radius}
     if kind is LinearViscoelastic:
         e_star = law.stiffness / (linear_kn_factor(wall) * radius)
-        gamma = law.damping / (2.0 * math.sqrt(mass * law.stiffness))
+        gamma = damping_ratio(law, mass)
         return KratosContact(name=LINEAR_LAW, young=2.0 * e_star, gamma=gamma, **common)
     e_star = 3.0 * law.k_hertz / (4.0 * math.sqrt(radius))
     gamma = hertz_gamma(law, mass) if kind is HertzDamped else 0.0

@@ -7,13 +7,14 @@ contact point (at ``-R z``) moves at ``vt - R spin`` along x, the sign conventio
 :func:`~dem_check.engines.lammps.laws.granular_model` (``m* = m``, ``R* = R`` at a plane
 wall); the tangential law by :func:`tangential_words`:
 
-=======================================  ==============================================
-contactlab                               LAMMPS ``tangential`` sub-model
-=======================================  ==============================================
-``Mindlin(k, mu, history="total")``      ``mindlin kt 0 mu`` with ``kt = k / sqrt(R*)``
-``Mindlin(k, mu, history="incremental")``  ``mindlin/force kt 0 mu``
-``TangentialSpring(k, mu)``              ``linear_history k 0 mu``
-=======================================  ==============================================
+====================================================  ====================================
+contactlab                                            LAMMPS ``tangential`` sub-model
+====================================================  ====================================
+``Mindlin(k, mu, history="total")``                   ``mindlin kt 0 mu``, ``kt = k/sqrt(R*)``
+``Mindlin(k, mu, history="incremental")``             ``mindlin/force kt 0 mu``
+``Mindlin(k, mu, history="incremental_rescaled")``    ``mindlin_rescale/force kt 0 mu``
+``TangentialSpring(k, mu)``                           ``linear_history k 0 mu``
+====================================================  ====================================
 
 LAMMPS' Mindlin force is ``kt a`` times the history with ``a = sqrt(R* d)``, so ``kt a =
 k sqrt(d)``. ``kt`` is always given: ``mindlin NULL`` at a wall mixes the wall as if it
@@ -58,6 +59,14 @@ _MAX_CHUNKS = 20
 """Chunks after which the contact is declared not to end."""
 
 
+_MINDLIN_KEYWORDS = {
+    "total": "mindlin",
+    "incremental": "mindlin/force",
+    "incremental_rescaled": "mindlin_rescale/force",
+}
+"""Mindlin's history rule -> LAMMPS' ``tangential`` keyword."""
+
+
 def tangential_words(law, effective_radius):
     """The LAMMPS ``tangential`` words of a contactlab tangential law.
 
@@ -80,7 +89,13 @@ def tangential_words(law, effective_radius):
     """
     radius = check_number("effective_radius", effective_radius, low=0.0, unit="m")
     if type(law) is Mindlin:
-        model = "mindlin" if law.history == "total" else "mindlin/force"
+        if law.damping_form != "none":
+            raise ParameterError(
+                "tangential_law Mindlin has damping='tied' (2 gamma sqrt(m* kt)); LAMMPS' "
+                "xgamma_t scales its own normal damping coefficient: only damping='none' "
+                "maps here"
+            )
+        model = _MINDLIN_KEYWORDS[law.history]
         return f"tangential {model} {law.k_mindlin / math.sqrt(radius)!r} 0 {law.friction!r}"
     if type(law) is TangentialSpring:
         if law.damping != 0.0:

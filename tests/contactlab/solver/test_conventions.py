@@ -1,0 +1,275 @@
+"""The DEM codes' tangential conventions as options (issue 27): the lever arm ``R - d``,
+the history rescaled on unloading and the tied tangential damping, each against a closed
+form or an independent method, with Kratos' set against the fixed-step replica of Kratos'
+law (``benchmarks/kratos_rules.py``, equal to Kratos to 1e-12 in
+``tests/dem_check/engines/kratos/test_rules.py``), and all of them kept by the audits."""
+
+import importlib.util
+import math
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import contactlab as cl
+from contactlab import analytic
+from contactlab.errors import ParameterError
+from contactlab.laws import DAMPING_FORMS, HISTORY_FORMS, Mindlin, damping_ratio
+from contactlab.solver import wall_impact
+from contactlab.solver.conventions import DEM_CONVENTIONS, LEVER_ARMS, Conventions
+
+_PATH = Path(__file__).resolve().parents[3] / "benchmarks" / "kratos_rules.py"
+_SPEC = importlib.util.spec_from_file_location("kratos_rules", _PATH)
+rules = importlib.util.module_from_spec(_SPEC)
+_SPEC.loader.exec_module(rules)
+
+GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
+"""Chung & Ooi's test-4 aluminium oxide sphere."""
+MU, SPEED = 0.092, 3.9
+ELASTIC = cl.laws.Hertz.from_material(*GRAIN.material())
+DAMPED = cl.laws.HertzDamped(  # e = 0.98, Kratos' own test-4 input
+    ELASTIC.k_hertz,
+    analytic.tsuji_damping_coefficient(ELASTIC.k_hertz, GRAIN.mass, 0.98, "force"),
+)
+BASE = Mindlin.from_material(*GRAIN.material(), MU)
+KRATOS = DEM_CONVENTIONS["kratos"]
+TEST4_ANGLES = tuple(range(5, 90, 5))
+"""Chung & Ooi's (and Kratos') 17 incidence angles [deg]."""
+REPLICA_RULES = {"radius": "R", "contact": "R-d", "incremental_rescaled": "rescaled"}
+
+
+def _oblique(normal, conventions, degrees, spin=0.0, **kwargs):
+    return cl.simulate_oblique(
+        GRAIN,
+        cl.Sensor.rigid(),
+        normal,
+        conventions.mindlin(BASE),
+        SPEED,
+        math.radians(degrees),
+        spin=spin,
+        lever_arm=conventions.lever_arm,
+        **kwargs,
+    )
+
+
+def _replica(normal, conventions, degrees, steps=2000):
+    angle = math.radians(degrees)
+    dt = wall_impact(normal, GRAIN.mass, SPEED * math.cos(angle)).contact_time / steps
+    chosen = rules.Rules(
+        arm=REPLICA_RULES[conventions.lever_arm],
+        history=REPLICA_RULES.get(conventions.history, conventions.history),
+        damping=conventions.damping,
+    )
+    gamma = damping_ratio(normal, GRAIN.mass)
+    k_hertz = normal.k_hertz
+    return rules.replica(
+        GRAIN.mass, GRAIN.radius, k_hertz, BASE.k_mindlin, MU, gamma, SPEED, angle, 0.0, dt, chosen
+    )
+
+
+REPLICA_STEPS = 8000
+"""Replica steps per contact: its first-order step error at 5 deg is then 2.1e-4 of vt in
+R w' (8.5e-4 at 2000, Kratos' own step), a fifth of the 1e-3 bar."""
+
+
+def _assert_replica(normal, conventions, degrees):
+    """vt' and R w' of ``simulate_oblique`` within 1e-3 of vt of the replica's."""
+    ours = _oblique(normal, conventions, degrees)
+    theirs = _replica(normal, conventions, degrees, REPLICA_STEPS)
+    vt = SPEED * math.sin(math.radians(degrees))
+    # the replica's first-order step error (symplectic Euler, stick/slip switches inside
+    # steps): measured <= 2.2e-4 of vt at 8000 steps per contact, at 5 deg; each rule's
+    # own effect is 3e-3 to 3e-2 of vt (docs/dem-conventions.md)
+    assert ours.tangential_velocity == pytest.approx(theirs.tangential_velocity, abs=1e-3 * vt)
+    assert ours.angular_velocity == pytest.approx(
+        theirs.angular_velocity, abs=1e-3 * vt / GRAIN.radius
+    )
+
+
+@pytest.mark.parametrize("degrees", TEST4_ANGLES)
+def test_kratos_conventions_give_the_kratos_replica_at_every_test4_angle(degrees):
+    """arm R - d, rescaled history, tied damping: Kratos' rebound (elastic test 4)."""
+    _assert_replica(ELASTIC, KRATOS, degrees)
+
+
+@pytest.mark.parametrize(
+    "conventions",
+    [
+        Conventions("radius", "incremental_rescaled", "none"),
+        Conventions("contact", "incremental", "none"),
+        Conventions("contact", "total", "none"),
+    ],
+    ids=str,
+)
+@pytest.mark.parametrize("degrees", [5, 10, 20])
+def test_each_rule_alone_gives_the_replica_with_that_rule(conventions, degrees):
+    """Every rule switched alone against the replica with the same rule: the options are
+    the codes' rules, one by one."""
+    _assert_replica(ELASTIC, conventions, degrees)
+
+
+def _lammps_coulomb(elastic, viscous, limit):
+    """LAMMPS' (and contactlab's) cap: the total scaled to ``mu N``, the viscous part kept
+    and the elastic (stored) part set to the rest (``gran_sub_mod_tangential.cpp``)."""
+    if abs(elastic + viscous) <= limit:
+        return elastic, viscous
+    return math.copysign(limit, elastic + viscous) - viscous, viscous
+
+
+@pytest.mark.parametrize("arm", LEVER_ARMS)
+@pytest.mark.parametrize("degrees", [5, 10, 20])
+def test_tied_damping_gives_the_replica_with_lammps_coulomb_cap(arm, degrees, monkeypatch):
+    """The tied damping at Kratos' e = 0.98 against the replica whose Coulomb cap is
+    LAMMPS' (contactlab caps the same way; Kratos' own cap is a fourth rule, below)."""
+    monkeypatch.setattr(rules, "_coulomb", _lammps_coulomb)
+    _assert_replica(DAMPED, Conventions(arm, "incremental_rescaled", "tied"), degrees)
+
+
+def test_kratos_coulomb_cap_with_a_tied_damping_is_a_rule_of_its_own():
+    """With a tangential damping Kratos caps the elastic part alone and drops or scales the
+    viscous part (four cases, ``CalculateTangentialForceWithNeighbour``): at 5 deg and
+    e = 0.98 this moves R w' by 1.7e-3 of vt, converged in the replica's step (1.85e-3 at
+    16000 steps per contact, 1.93e-3 at 32000), so it is a model difference, not a step
+    error (documented in docs/dem-conventions.md)."""
+    ours = _oblique(DAMPED, KRATOS, 5.0)
+    theirs = _replica(DAMPED, KRATOS, 5.0, REPLICA_STEPS)
+    vt = SPEED * math.sin(math.radians(5.0))
+    difference = GRAIN.radius * (theirs.angular_velocity - ours.angular_velocity) / vt
+    # measured 1.73e-3 at 8000 steps; the step error there is 2e-4 (the test above)
+    assert 1.2e-3 < difference < 2.5e-3
+
+
+def test_gross_sliding_rebound_is_independent_of_every_rule():
+    """At 45 deg the contact slides throughout: vt' is the impulse closed form under every
+    history, damping and arm (Coulomb fixes the force, not the history)."""
+    angle = math.radians(45.0)
+    vn, vt = SPEED * math.cos(angle), SPEED * math.sin(angle)
+    assert analytic.slides_throughout(vn, vt, 0.0, GRAIN.radius, 1.0, MU)
+    theory = analytic.gross_sliding_rebound(vn, vt, 0.0, GRAIN.radius, 1.0, MU)[0]
+    for arm in LEVER_ARMS:
+        for history in HISTORY_FORMS:
+            for damping in DAMPING_FORMS:
+                if (history, damping) == ("total", "tied"):
+                    continue  # refused (test_bad_conventions_are_named)
+                res = _oblique(ELASTIC, Conventions(arm, history, damping), 45.0)
+                # rtol 1e-9 of the integration on an impulse: measured <= 2e-12
+                assert res.tangential_velocity == pytest.approx(theory, rel=1e-9)
+
+
+def _hertz_moment_of_overlap(normal, mass, vn):
+    """``integral d N dt`` [N*m*s] of an elastic Hertz impact, closed form.
+
+    With ``u = d/d_max``, ``d' = vn sqrt(1 - u**2.5)`` and ``d_max = (5 m vn**2 /
+    (4 kH))**0.4``: ``2 kH d_max**3.5 / vn * integral_0^1 u**2.5 / sqrt(1 - u**2.5) du``,
+    the integral being ``0.4 B(1.4, 0.5)``.
+    """
+    k = normal.k_hertz
+    d_max = (1.25 * mass * vn**2 / k) ** 0.4
+    beta = math.gamma(1.4) * math.gamma(0.5) / math.gamma(1.9)
+    return 2.0 * k * d_max**3.5 / vn * 0.4 * beta
+
+
+@pytest.mark.parametrize("degrees", [45.0, 70.0])
+def test_the_contact_arm_lowers_the_spin_by_the_overlap_moment(degrees):
+    """In gross sliding ``I w' = (R - d) mu N``: the arm ``R - d`` takes ``mu/I integral d
+    N dt`` off the spin of the arm ``R``, a closed form for elastic Hertz."""
+    radius_arm = _oblique(ELASTIC, Conventions("radius", "total", "none"), degrees)
+    contact_arm = _oblique(ELASTIC, Conventions("contact", "total", "none"), degrees)
+    inertia = 0.4 * GRAIN.mass * GRAIN.radius**2
+    vn = SPEED * math.cos(math.radians(degrees))
+    expected = MU / inertia * _hertz_moment_of_overlap(ELASTIC, GRAIN.mass, vn)
+    difference = radius_arm.angular_velocity - contact_arm.angular_velocity
+    # a difference of two spins 500 times larger, each to ~1e-10: measured <= 2e-8 rel
+    assert difference == pytest.approx(expected, rel=1e-6)
+
+
+def test_tied_damping_ratio_is_the_normal_laws():
+    """``damping_ratio``: the normal damping force is ``2 gamma sqrt(m Kn) d'`` with ``Kn``
+    the elastic tangent stiffness, for both damped laws; zero for elastic Hertz."""
+    mass, d, rate = GRAIN.mass, 2e-7, -1.3
+    gamma = damping_ratio(DAMPED, mass)
+    kn = 1.5 * DAMPED.k_hertz * math.sqrt(d)
+    viscous = DAMPED.force(d, rate) - DAMPED.force(d, 0.0)
+    assert viscous == pytest.approx(2.0 * gamma * math.sqrt(mass * kn) * rate, rel=1e-12)
+    linear = cl.laws.LinearViscoelastic(1e6, 0.4)
+    gamma = damping_ratio(linear, mass)
+    rate = -0.1  # k d = 0.2 N: the force stays above zero (one-sided law)
+    viscous = linear.force(d, rate) - linear.force(d, 0.0)
+    assert viscous == pytest.approx(2.0 * gamma * math.sqrt(mass * 1e6) * rate, rel=1e-12)
+    assert damping_ratio(ELASTIC, mass) == 0.0
+    bound = KRATOS.mindlin(BASE).for_contact(DAMPED, mass)
+    kt = BASE.stiffness(d)
+    gamma = damping_ratio(DAMPED, mass)
+    assert bound.damping_coefficient(d) == pytest.approx(2 * gamma * math.sqrt(mass * kt), 1e-12)
+    with pytest.raises(ParameterError, match="tied"):
+        KRATOS.mindlin(BASE).for_contact(cl.laws.KuwabaraKono(ELASTIC.k_hertz, 1e-6), mass)
+
+
+def test_tied_damping_dissipates_and_does_nothing_beside_an_elastic_normal_law():
+    """gamma = 0 beside Hertz: the same impact as no damping; beside a damped normal law
+    it takes energy out of the tangential motion (the ledger's friction term grows)."""
+    tied = Conventions("radius", "incremental", "tied")
+    free = Conventions("radius", "incremental", "none")
+    a, b = _oblique(ELASTIC, tied, 5.0), _oblique(ELASTIC, free, 5.0)
+    assert (a.tangential_velocity, a.angular_velocity) == (
+        b.tangential_velocity,
+        b.angular_velocity,
+    )
+    damped, undamped = _oblique(DAMPED, tied, 5.0), _oblique(DAMPED, free, 5.0)
+    spent = damped.audit().ledger.friction, undamped.audit().ledger.friction
+    assert spent[0] > spent[1] > 0.0
+
+
+def test_bad_conventions_are_named():
+    with pytest.raises(ParameterError, match="lever_arm"):
+        cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), ELASTIC, BASE, SPEED, 0.3, lever_arm="centre")
+    with pytest.raises(ParameterError, match="history"):
+        Mindlin(1e9, 0.3, history="rescaled")
+    with pytest.raises(ParameterError, match="damping"):
+        Mindlin(1e9, 0.3, damping="viscous")
+    with pytest.raises(ParameterError, match="not supported"):
+        Mindlin(1e9, 0.3, history="total", damping="tied")
+
+
+SENSOR = cl.Sensor.from_resonance(40e3, mass=2e-3, damping_ratio=0.02)
+
+
+@settings(
+    max_examples=25,  # a small fixed budget: about 0.1 s per impact
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+    derandomize=True,
+)
+@given(
+    degrees=st.floats(1.0, 89.0),
+    spin=st.floats(-2000.0, 2000.0),
+    friction=st.floats(0.02, 1.0),
+    restitution=st.floats(0.3, 1.0),
+    arm=st.sampled_from(LEVER_ARMS),
+    history=st.sampled_from(HISTORY_FORMS),
+    damping=st.sampled_from(DAMPING_FORMS),
+    on_sensor=st.booleans(),
+)
+def test_every_convention_keeps_the_audits(
+    degrees, spin, friction, restitution, arm, history, damping, on_sensor
+):
+    """Coulomb on every sample, the energy ledger and the momentum balances (the full
+    audit) over the whole space of the options, grains and impacts of test 4's kind."""
+    k = ELASTIC.k_hertz
+    normal = (
+        ELASTIC
+        if restitution == 1.0
+        else cl.laws.HertzDamped(
+            k, analytic.tsuji_damping_coefficient(k, GRAIN.mass, restitution, "force")
+        )
+    )
+    if (history, damping) == ("total", "tied"):
+        damping = "none"  # refused (test_bad_conventions_are_named)
+    law = Mindlin(BASE.k_mindlin, friction, history, damping)
+    sensor = SENSOR if on_sensor else cl.Sensor.rigid()
+    res = cl.simulate_oblique(
+        GRAIN, sensor, normal, law, SPEED, math.radians(degrees), spin=spin, lever_arm=arm
+    )
+    audit = res.audit()
+    assert audit.ok, audit.failures
