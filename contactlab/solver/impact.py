@@ -197,6 +197,12 @@ def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):
         check_number("velocity", velocity, low=0.0, high=SPEED_OF_LIGHT, unit="m/s"),
         "velocity",
     )
+    if 0.5 * grain.mass * velocity**2 < np.finfo(float).tiny:
+        # the audit's energy ledger divides by the impact energy
+        raise ParameterError(
+            f"velocity = {velocity!r} m/s is too small: the impact energy 1/2 m v**2 of the "
+            f"{grain.mass!r} kg grain underflows a float (below {np.finfo(float).tiny:.3g} J)"
+        )
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
