@@ -32,7 +32,19 @@ from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.metrics import first_lobe, impulse
 from dem_check.campaign.detection import ONSET_SIGMAS
 
-__all__ = ["GALLERY_PERIODS", "ImpactTraces", "analyse_impact", "window_row"]
+__all__ = [
+    "GALLERY_PERIODS",
+    "MIN_SAMPLES_PER_CONTACT",
+    "ImpactTraces",
+    "analyse_impact",
+    "window_row",
+]
+
+MIN_SAMPLES_PER_CONTACT = 20
+"""Fewest samples per contact time for a reconstruction [-]. Below it the Tikhonov
+reconstruction has fewer force values than a pulse's shape needs; the impact keeps its
+signal numbers (onset, peak signal, impulse) and its reason says the record is too
+coarse, instead of a reconstructed peak and contact time."""
 
 IMPULSE_EXCESS = 0.2
 """Largest excess of the segment's impulse over the reconstructed contact's [-]. One
@@ -63,7 +75,7 @@ def window_row(window):
     return {"status": window.status, "reason": window.reason, "onset [s]": window.onset}
 
 
-def _signal_numbers(t, raw, smooth, flat, base, end):
+def _signal_numbers(t, raw, smooth, flat, base, span):
     """Peak, response time and impulse of the signal (module docstring)."""
     in_base = (t >= base[0]) & (t < base[1])
     level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
@@ -76,8 +88,19 @@ def _signal_numbers(t, raw, smooth, flat, base, end):
         "noise [N]": float(np.std(raw[in_base], ddof=1)),
         "peak_signal [N]": float(peak),
         "response_time [s]": float(lobe[1] - lobe[0]),
-        "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), base[1], end),
+        "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), *span),
     }
+
+
+def _too_coarse(row, span, dt, what):
+    """The row with the reason that the record is too coarse to reconstruct."""
+    note = (
+        f"too coarse to reconstruct: the {what} lasts {span / dt:.3g} samples (need "
+        f"{MIN_SAMPLES_PER_CONTACT}); peak_signal, impulse and onset are read, no "
+        "contact force or contact time is given"
+    )
+    reason = "; ".join(r for r in (row["reason"], note) if r)
+    return {**row, "reason": reason}
 
 
 def _fit_columns(fit):
@@ -132,15 +155,21 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
     smooth = np.asarray(detection.smoothed.values[part])
     flat = np.asarray(detection.lowpassed.values[part])
     base = window.baseline_window
-    row = {"status": "ok", "reason": "", "onset [s]": window.onset}
-    row.update(_signal_numbers(t, raw, smooth, flat, base, window.end))
+    start = base[1] if window.start is None else window.start
+    row = {**window_row(window), "significance [-]": window.significance}
+    row.update(_signal_numbers(t, raw, smooth, flat, base, (start, window.end)))
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
+    dt = float(t[1] - t[0])
+    if not row["response_time [s]"] >= MIN_SAMPLES_PER_CONTACT * dt:
+        return _too_coarse(row, row["response_time [s]"], dt, "signal's first lobe"), None
     try:
         rec = reconstruct_force(t, raw, sensor, baseline_window=base)
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))
         return row, None
+    if not rec.metrics.duration >= MIN_SAMPLES_PER_CONTACT * dt:
+        return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration
     excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
@@ -163,7 +192,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
             row.update(status="fit failed", reason=f"fit: {exc}")
         else:
             row.update(columns)
-            row["reason"] = "; ".join(notes)
+            row["reason"] = "; ".join([r for r in (row["reason"],) if r] + notes)
     if not math.isfinite(row["contact_time [s]"]):
         row.update(
             status="reconstruction failed",

@@ -14,6 +14,7 @@ from datetime import UTC, datetime
 import numpy as np
 
 from dem_check.campaign import figures
+from dem_check.campaign.detection import ANALYSED
 
 __all__ = ["render_report"]
 
@@ -89,7 +90,7 @@ def _records(result):
 
 def _failures(result):
     files = result.files[result.files["status"] != "ok"][["file", "status", "reason"]]
-    impacts = result.impacts[result.impacts["status"] != "ok"]
+    impacts = result.impacts[~result.impacts["status"].isin(ANALYSED)]
     impacts = impacts[["file", "impact", "status", "reason", "onset [s]"]]
     return (
         "<h3>Files</h3>\n"
