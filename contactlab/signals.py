@@ -54,8 +54,8 @@ class RunningBaseline(NamedTuple):
     what the impacts are found on."""
     noise: np.ndarray
     """Local noise at every sample, :data:`MAD_TO_SIGMA` times the median absolute
-    residual of its block, the largest of the block and its two neighbours (unit of the
-    samples)."""
+    distance from ``level`` over its block, the largest of the block and its two
+    neighbours (unit of the samples)."""
 
 
 class Baseline(NamedTuple):
@@ -305,7 +305,8 @@ def running_baseline(y, width):
     shorter than a block stands above all four, so it is kept whole; at a DC offset step
     the samples before and after it each find a block on their own side, so the step
     leaves no residual that could pass for an impact. The local noise of a block is
-    :data:`MAD_TO_SIGMA` times the median absolute residual of its samples, and the
+    :data:`MAD_TO_SIGMA` times the median absolute distance of its samples from the
+    interpolated baseline (not from the nearest level, which would shrink it), and the
     noise at a sample the largest of its block's and its two neighbours' (a decaying
     ringing or a hum that fills a block raises its own threshold).
 
@@ -344,7 +345,8 @@ def running_baseline(y, width):
     candidates = np.stack([level, medians[block], before, after])
     nearest = np.argmin(np.abs(y - candidates), axis=0)
     residual = y - candidates[nearest, index]
-    spread = np.array([np.median(np.abs(residual[a:b])) for a, b in itertools.pairwise(edges)])
+    distance = np.abs(y - level)
+    spread = np.array([np.median(distance[a:b]) for a, b in itertools.pairwise(edges)])
     widened = np.maximum(
         spread, np.maximum(np.r_[spread[:1], spread[:-1]], np.r_[spread[1:], spread[-1:]])
     )

@@ -75,11 +75,23 @@ def window_row(window):
     return {"status": window.status, "reason": window.reason, "onset [s]": window.onset}
 
 
+def _main_lobe_start(y, level):
+    """Index from which the first lobe is read: the last sample under ``level`` before
+    the signal first reaches half its largest value. Wiggles before the impact that
+    cross the onset level (an acquisition filter's pre-echo, a trigger glitch) then do
+    not pass for its first lobe."""
+    half = int(np.argmax(y >= 0.5 * np.nanmax(y)))
+    under = np.flatnonzero(y[:half] < level)
+    return int(under[-1]) if under.size else 0
+
+
 def _signal_numbers(t, raw, smooth, flat, base, span):
     """Peak, response time and impulse of the signal (module docstring)."""
     in_base = (t >= base[0]) & (t < base[1])
     level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
-    lobe = first_lobe(t, smooth - smooth[in_base].mean(), level, hysteresis=level)
+    above = smooth - smooth[in_base].mean()
+    first = _main_lobe_start(above, level)
+    lobe = first_lobe(t[first:], above[first:], level, hysteresis=level)
     in_lobe = (t >= lobe[0]) & (t <= lobe[1])
     # both filters pass the baseline's level unchanged (unit gain at 0 Hz), and the
     # low-passed record is unread near the record's ends, where a baseline may lie

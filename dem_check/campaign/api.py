@@ -112,10 +112,11 @@ def _envelope(trace):
 
 def _impact_table(rows):
     """The impact rows as a table, columns in :data:`IMPACT_COLUMNS` order (fit columns
-    after them), whichever row comes first."""
+    after them), whichever row comes first; every column is there (empty when no row
+    has it), ``velocity_change`` only with a grain."""
     extra = list(dict.fromkeys(k for row in rows for k in row if k not in IMPACT_COLUMNS))
     present = {k for row in rows for k in row}
-    columns = [c for c in IMPACT_COLUMNS if c in present or c in IMPACT_COLUMNS[:5]]
+    columns = [c for c in IMPACT_COLUMNS if c in present or c != "velocity_change [m/s]"]
     return pd.DataFrame(rows, columns=columns + extra)
 
 
