@@ -293,22 +293,62 @@ def _block_medians(y, width):
     return edges, medians
 
 
-def running_baseline(y, width):
+def _side_means(y, span):
+    """Per sample, the mean of the ``span`` samples before it or of the ``span`` after it,
+    whichever is nearer to the sample (one side of an offset step holds one level)."""
+    total = np.concatenate([[0.0], np.cumsum(y)])
+    index = np.arange(y.size)
+    low, high = np.maximum(index - span, 0), np.minimum(index + 1 + span, y.size)
+    before = (total[index] - total[low]) / np.maximum(index - low, 1)
+    after = (total[high] - total[index + 1]) / np.maximum(high - index - 1, 1)
+    before[0], after[-1] = after[0], before[-1]  # no samples on that side
+    return np.where(np.abs(y - before) <= np.abs(y - after), before, after)
+
+
+def _block_spread(distance, edges, exclude):
+    """Median of ``distance`` per block over the samples not excluded; a block with
+    fewer than :data:`SPREAD_MIN_SAMPLES` of them takes its neighbours' (interpolated
+    over the block index, held at the ends)."""
+    keep = np.ones(distance.size, dtype=bool) if exclude is None else ~np.asarray(exclude)
+    spread = np.full(edges.size - 1, np.nan)
+    for k, (a, b) in enumerate(itertools.pairwise(edges)):
+        kept = distance[a:b][keep[a:b]]
+        if kept.size >= SPREAD_MIN_SAMPLES:
+            spread[k] = np.median(kept)
+    valid = np.flatnonzero(np.isfinite(spread))
+    if valid.size == 0:
+        raise ParameterError("running_baseline: every block is excluded; no noise to read")
+    return np.interp(np.arange(spread.size), valid, spread[valid])
+
+
+LOCAL_MEAN_FRACTION = 8
+"""The level of a sample is chosen by the mean of the samples on one side of it over
+this fraction of a block [-]: long enough to average the noise out (so the choice does
+not follow the noise and shrink the residual)."""
+
+SPREAD_MIN_SAMPLES = 16
+"""Fewest samples left in a block after the exclusions to read its noise [-]."""
+
+
+def running_baseline(y, width, exclude=None):
     """A baseline that follows slow drift, wander, offset steps and hum, and the local
     noise around it.
 
     The samples are cut into blocks of about ``width`` samples; each block's median is
     its level. The baseline is these levels interpolated linearly between the block
-    centres (what a drift or a hum slower than a block looks like). The residual of a
-    sample is its distance to the nearest of four candidate levels: the interpolated
-    one and the medians of its own block and of the two blocks around it. A pulse much
-    shorter than a block stands above all four, so it is kept whole; at a DC offset step
-    the samples before and after it each find a block on their own side, so the step
-    leaves no residual that could pass for an impact. The local noise of a block is
-    :data:`MAD_TO_SIGMA` times the median absolute distance of its samples from the
-    interpolated baseline (not from the nearest level, which would shrink it), and the
-    noise at a sample the largest of its block's and its two neighbours' (a decaying
-    ringing or a hum that fills a block raises its own threshold).
+    centres, and extrapolated with the outer slopes before the first centre and after
+    the last (what a drift or a hum slower than a block looks like). The residual of a
+    sample is its distance to one of four candidate levels, the interpolated one and
+    the medians of its own block and of the two blocks around it: the one nearest to the
+    mean of the samples on one side of it (over :data:`LOCAL_MEAN_FRACTION` of a block,
+    so the choice does not follow the noise; the side whose mean is nearer the sample,
+    so a step's two sides each keep their level). A pulse much shorter than a block stands above
+    all four, so it is kept whole; at a DC offset step the samples before and after it
+    each find a block on their own side, so the step leaves no residual that could pass
+    for an impact. The local noise of a block is :data:`MAD_TO_SIGMA` times the median
+    absolute residual of its samples, and the noise at a sample the largest of its
+    block's and its two neighbours' (a decaying ringing or a hum that fills a block
+    raises its own threshold).
 
     Parameters
     ----------
@@ -317,6 +357,10 @@ def running_baseline(y, width):
     width : int
         Block length [samples], >= 8; choose it long against a pulse (a pulse must cover
         much less than half of a block) and short against the drift.
+    exclude : array_like of bool, optional
+        Samples left out of the local noise (pulses found on a first pass, with their
+        ringing): a block mostly filled by a pulse's ringing then reads the noise of its
+        other samples, or of its neighbours when fewer than 16 are left.
 
     Returns
     -------
@@ -339,14 +383,20 @@ def running_baseline(y, width):
     index = np.arange(y.size)
     centres = 0.5 * (edges[:-1] + edges[1:] - 1)
     level = np.interp(index, centres, medians)
+    if medians.size > 1:  # beyond the outer centres, the outer slopes go on (drift)
+        head, tail = index < centres[0], index > centres[-1]
+        slope = np.diff(medians) / np.diff(centres)
+        level[head] = medians[0] + slope[0] * (index[head] - centres[0])
+        level[tail] = medians[-1] + slope[-1] * (index[tail] - centres[-1])
     block = np.repeat(np.arange(medians.size), np.diff(edges))
     before = medians[np.maximum(block - 1, 0)]
     after = medians[np.minimum(block + 1, medians.size - 1)]
+    span = max(2, width // LOCAL_MEAN_FRACTION)
     candidates = np.stack([level, medians[block], before, after])
-    nearest = np.argmin(np.abs(y - candidates), axis=0)
+    local_mean = _side_means(y, span)
+    nearest = np.argmin(np.abs(local_mean - candidates), axis=0)
     residual = y - candidates[nearest, index]
-    distance = np.abs(y - level)
-    spread = np.array([np.median(distance[a:b]) for a, b in itertools.pairwise(edges)])
+    spread = _block_spread(np.abs(residual), edges, exclude)
     widened = np.maximum(
         spread, np.maximum(np.r_[spread[:1], spread[:-1]], np.r_[spread[1:], spread[-1:]])
     )

@@ -48,7 +48,10 @@ from dem_check.campaign.noise import (
     FALSE_ALARMS,
     FLOOR_SIGMAS,
     ONSET_SIGMAS,
+    QUIET_MIN_SAMPLES,
+    QUIET_PERIODS,
     NoiseFloor,
+    candidate_runs,
     noise_floor,
 )
 from dem_check.traces import Trace, detect_onset
@@ -70,13 +73,6 @@ __all__ = [
 
 ANALYSED = ("ok", "short pre-trigger")
 """Impact statuses that are analysed (signal numbers, reconstruction, fit)."""
-
-QUIET_PERIODS = 4.0
-"""An impact ends after this many sensor periods below the floor [-] (at least
-:data:`QUIET_MIN_SAMPLES`)."""
-
-QUIET_MIN_SAMPLES = 8
-"""Fewest samples below the floor that end an impact (coarse records) [-]."""
 
 TAIL_PERIODS = 16.0
 """Quiet sensor periods kept after an impact's ringing has decayed (up to the next
@@ -145,21 +141,6 @@ class Detection:
     """The record low-passed [N], for peaks (equal to ``signal`` when not filtered)."""
     local_noise: np.ndarray = None
     """Local noise of the smoothed record at every sample [N]."""
-
-
-def _runs(ratio, hold, sigmas):
-    """``(first, last)`` sample indices of each run of ``ratio`` (smoothed signal over
-    local noise) above the floor that reaches ``sigmas``; runs closer than ``hold``
-    samples are one."""
-    above = np.flatnonzero(ratio > FLOOR_SIGMAS)
-    if above.size == 0:
-        return []
-    breaks = np.flatnonzero(np.diff(above) > hold)
-    firsts = np.concatenate([[0], breaks + 1])
-    lasts = np.concatenate([breaks, [above.size - 1]])
-    peaks = np.maximum.reduceat(ratio[above], firsts)
-    keep = peaks > sigmas
-    return list(zip(above[firsts[keep]].tolist(), above[lasts[keep]].tolist(), strict=True))
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -237,7 +218,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         "overrange": np.asarray(trace.metadata["overrange"], dtype=int),
         "clipped": clipped_samples(finite, floor.noise),
     }
-    runs = _runs(ratio, scales["hold"], floor.sigmas)
+    runs = candidate_runs(ratio, scales["hold"], floor.sigmas)
     windows, previous_end = [], 0
     for k, (first, last) in enumerate(runs):
         following = runs[k + 1][0] if k + 1 < len(runs) else t.size
