@@ -31,7 +31,9 @@ in newtons:
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
-   first one's ringing decayed. Both are flagged ``"overlap"``, never merged.
+   first one's ringing decayed. Both are flagged ``"overlap"``, never merged. A record
+   with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period does not
+   resolve the ringing, and this check is not made.
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
@@ -87,6 +89,10 @@ cent) without reaching back into an older impact."""
 
 BASELINE_MIN_SAMPLES = 16
 """Fewest baseline samples (as :func:`contactlab.inverse.reconstruct_force` requires)."""
+
+RESOLVED_PERIOD_SAMPLES = 4
+"""Fewest samples per sensor period for the ringing envelope to be followed (overlap
+check, step 5) [-]; a coarser record cannot show the ringing grow."""
 
 GROWTH_FACTOR = 1.5
 """Largest growth of the ringing envelope from one sensor period to the next that is
@@ -206,13 +212,13 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     t, z = smoothed.t, np.asarray(smoothed.values)
     dt = float(t[1] - t[0])
     scales = {
-        "period": max(2, round(sensor.period / dt)),
+        "period": max(1, round(sensor.period / dt)),
         "hold": _samples(QUIET_PERIODS, sensor, dt, QUIET_MIN_SAMPLES),
         "tail": _samples(TAIL_PERIODS, sensor, dt, 2 * BASELINE_MIN_SAMPLES),
         "baseline": _samples(BASELINE_PERIODS, sensor, dt, 4 * BASELINE_MIN_SAMPLES),
         "spread": round(3.0 * floor.kernel / dt),  # the kernel's reach before a rise
     }
-    ratio = np.abs(z) / local
+    ratio = np.abs(z) / np.maximum(local, np.finfo(float).tiny)
     finite = np.where(np.isfinite(trace.values), trace.values, 0.0)
     flagged = {
         "overrange": np.asarray(trace.metadata["overrange"], dtype=int),
@@ -337,7 +343,9 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
             return [window(onset, kind, reason)]
     lobe_end = detected + int(np.argmax(z[detected : last + 1] <= 0.0))
     level = FLOOR_SIGMAS * floor.smoothed_noise
-    later = _growths(z, lobe_end, last, scales["period"], level) if lobe_end > detected else []
+    resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
+    growths = resolved and lobe_end > detected
+    later = _growths(z, lobe_end, last, scales["period"], level) if growths else []
     if not later:
         if after:
             reason = (

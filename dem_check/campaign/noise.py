@@ -114,7 +114,12 @@ def _impact_mask(values, width, hold, sigmas):
     :data:`QUIET_PERIODS` past their last sample above the floor): left out of the
     local noise on the second pass."""
     first_pass = signals.running_baseline(values, width)
-    ratio = np.abs(first_pass.residual) / first_pass.noise
+    if np.median(first_pass.noise) == 0.0:
+        raise ParameterError(
+            "the record is exactly constant over most of its blocks: no noise to set a "
+            "detection threshold from"
+        )
+    ratio = np.abs(first_pass.residual) / np.maximum(first_pass.noise, np.finfo(float).tiny)
     mask = np.zeros(values.size, dtype=bool)
     for first, last in candidate_runs(ratio, hold, sigmas):
         mask[first : last + hold + 1] = True

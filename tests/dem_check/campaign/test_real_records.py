@@ -64,8 +64,8 @@ def test_one_hit_per_record_and_nothing_invented(path, resonance):
     # the detector's threshold (5.5 local sigmas) sits far below this 70-90 N hit
     assert hit.significance > 300.0
     # the onset is read where the acquisition filter's pre-echo first exceeds 5 sigma:
-    # up to 5 samples before the hit's own 10 % crossing, never after it
-    assert crossing - 5.0 <= hit.onset * RATE <= crossing
+    # up to 7 samples before the hit's own 10 % crossing, never after it
+    assert crossing - 7.0 <= hit.onset * RATE <= crossing
     # the threshold follows the record: above the 0.1 N wander's local noise, far under the hit
     assert 0.05 < found.floor.threshold < 0.01 * peak
 
@@ -79,9 +79,9 @@ def test_campaign_on_the_real_records(tmp_path):
         # the low-pass is skipped (cutoff above Nyquist): the peak is the largest sample,
         # less a baseline that differs from the reference median by the wander (< 0.1 N)
         assert row["peak_signal [N]"] == pytest.approx(peak, abs=0.1)
-        # impulse of a 0.3 ms hit from a plain sum over 80 samples; the two baselines and
-        # ends differ by the wander, 0.3 % of the 12-15 mN*s
-        assert row["impulse [N*s]"] == pytest.approx(impulse, rel=3e-3)
+        # impulse of a 0.3 ms hit from a plain sum over 80 samples (3 ms); the two
+        # baselines differ by up to the +-0.1 N wander, over 3 ms 2 % of the 12-15 mN*s
+        assert row["impulse [N*s]"] == pytest.approx(impulse, rel=0.02)
         # 8 samples per hit: too coarse to reconstruct, said instead of a number
         assert "too coarse to reconstruct" in row["reason"]
         assert np.isnan(row["peak_contact_force [N]"]) and np.isnan(row["contact_time [s]"])

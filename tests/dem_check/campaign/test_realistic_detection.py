@@ -208,4 +208,6 @@ def test_min_force_and_min_separation_keep_a_row_with_the_reason(hard_setup):
     assert [w.status for w in plain.impacts] == ["ok", "ok", "ok"]
     # significance is the peak over the local noise: the 4x weaker impact reads ~4x lower
     ratio = plain.impacts[0].significance / plain.impacts[2].significance
-    assert ratio == pytest.approx(4.0, rel=0.15)  # noise estimates scatter ~10 % per block
+    # the local noise differs by up to 30 % between blocks: the first impact's ringing
+    # under the floor stays in its blocks' MAD
+    assert ratio == pytest.approx(4.0, rel=0.3)
