@@ -403,7 +403,7 @@ def running_baseline(y, width, exclude=None):
     return RunningBaseline(level, residual, MAD_TO_SIGMA * widened[block])
 
 
-def quiet_window(t, y, width):
+def quiet_window(t, y, width=None):
     """The quietest stretch of a record: the block of ``width`` samples with the smallest
     robust noise around the running baseline, as a time window ``[start, end)`` [s].
 
@@ -414,14 +414,17 @@ def quiet_window(t, y, width):
     ----------
     t, y : array_like
         Sample times [s] and samples, as for :func:`baseline`.
-    width : int
-        Block length [samples], >= 8.
+    width : int, optional
+        Block length [samples], >= 8; default a sixteenth of the record, at least 16
+        samples (a record shorter than 32 samples is refused).
 
     Returns
     -------
     (float, float)
     """
     t, y = _trace(t, y)
+    if width is None:
+        width = max(16, y.size // 16)
     found = running_baseline(y, width)
     edges, _ = _block_medians(y, width)
     noise = [robust_noise(found.residual[a:b]) for a, b in itertools.pairwise(edges)]
