@@ -53,6 +53,15 @@ second impact or contact inside the segment that the ringing check could not see
 began within a sensor period of the first lobe's end) adds its own, and the impact is
 flagged ``"overlap"``."""
 
+RECONSTRUCTION_BASELINE = 5.0
+"""Sensor periods of a baseline before the impact given to the reconstruction [-] (at
+least 64 samples: its noise to 10 %)."""
+
+RECONSTRUCTION_TAIL = 8.0
+"""Sensor periods after the decayed ringing given to the reconstruction [-]: it reads
+the signal to three periods past a window that ends a lobe-length after the main
+lobe."""
+
 GALLERY_PERIODS = 3.0
 """Sensor periods kept for the report's gallery before the reconstruction window and
 after it [-]."""
@@ -102,6 +111,20 @@ def _signal_numbers(t, raw, smooth, flat, base, span):
         "response_time [s]": float(lobe[1] - lobe[0]),
         "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), *span),
     }
+
+
+def _reconstruction_part(t, base, end, sensor):
+    """The samples the reconstruction needs: the last :data:`RECONSTRUCTION_BASELINE`
+    periods of a baseline before the impact (all of one after it), the impact and
+    :data:`RECONSTRUCTION_TAIL` periods past the decayed ringing. The Tikhonov solve costs
+    the number of samples times the square of the unknowns; a long baseline adds cost,
+    not accuracy."""
+    dt = float(t[1] - t[0])
+    keep = max(64, round(RECONSTRUCTION_BASELINE * sensor.period / dt)) * dt
+    after = base[0] > end  # a short pre-trigger's baseline lies after the ringing
+    start = t[0] if after else max(t[0], base[1] - keep)
+    stop = t[-1] if after else end + RECONSTRUCTION_TAIL * sensor.period
+    return (t >= start) & (t <= stop)
 
 
 def _too_coarse(row, span, dt, what):
@@ -175,8 +198,9 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
     dt = float(t[1] - t[0])
     if not row["response_time [s]"] >= MIN_SAMPLES_PER_CONTACT * dt:
         return _too_coarse(row, row["response_time [s]"], dt, "signal's first lobe"), None
+    part = _reconstruction_part(t, base, window.end, sensor)
     try:
-        rec = reconstruct_force(t, raw, sensor, baseline_window=base)
+        rec = reconstruct_force(t[part], raw[part], sensor, baseline_window=base)
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))
         return row, None
@@ -193,10 +217,10 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
         )
         return {**window_row(window), "status": "overlap", "reason": reason}, None
     start, end = rec.parameters["window [s]"]
-    keep = (t >= start - GALLERY_PERIODS * sensor.period) & (
-        t <= end + GALLERY_PERIODS * sensor.period
+    keep = (rec.t >= start - GALLERY_PERIODS * sensor.period) & (
+        rec.t <= end + GALLERY_PERIODS * sensor.period
     )
-    traces = ImpactTraces(t[keep].copy(), rec.signal[keep].copy(), rec.force[keep].copy())
+    traces = ImpactTraces(rec.t[keep].copy(), rec.signal[keep].copy(), rec.force[keep].copy())
     if fit is not None:
         try:
             columns, notes = _fit(t, raw, base, grain, sensor, fit)

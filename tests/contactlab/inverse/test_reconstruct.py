@@ -159,7 +159,7 @@ def test_a_trace_without_pre_trigger_reads_its_baseline_after_the_pulse(hard_cas
     grain, law, velocity = hard_case
     t, signal, truth = synthetic_trace(grain, SENSOR, law, velocity, pre_trigger=0.0)
     rec = reconstruct_force(t, signal + 0.2, SENSOR)  # a DC offset the baseline must remove
-    start, end = rec.parameters["baseline_window [s]"]
+    start, _ = rec.parameters["baseline_window [s]"]
     assert start > truth.contact_time  # the quietest stretch lies after the contact
     # the contact starts at the record's first sample: the 5 % of the main tests hold
     assert rec.metrics.peak == pytest.approx(truth.peak_contact_force, rel=0.05)
