@@ -30,7 +30,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.metrics import first_lobe, impulse
-from dem_check.campaign.detection import ONSET_SIGMAS
+from dem_check.campaign.detection import BASELINE_MIN_SAMPLES, ONSET_SIGMAS
 
 __all__ = [
     "GALLERY_PERIODS",
@@ -109,8 +109,25 @@ def _signal_numbers(t, raw, smooth, flat, base, span):
         "noise [N]": float(np.std(raw[in_base], ddof=1)),
         "peak_signal [N]": float(peak),
         "response_time [s]": float(lobe[1] - lobe[0]),
-        "impulse [N*s]": impulse(t, raw - raw[in_base].mean(), *span),
+        "impulse [N*s]": impulse(t, raw - _impulse_baseline(t, raw, in_base, span[1]), *span),
     }
+
+
+def _impulse_baseline(t, raw, in_base, end):
+    """The baseline under the impulse integral: the line through the means of the local
+    baseline and of the quiet samples after the ringing decayed (at least
+    :data:`~dem_check.campaign.detection.BASELINE_MIN_SAMPLES` of them), or the local
+    baseline's mean when there are too few after it or the baseline lies after the
+    impact. Drift, 1/f noise and hum slower than the segment then do not add to the
+    impulse as a constant baseline lets them."""
+    after = t > end
+    before = float(raw[in_base].mean())
+    if after.sum() < BASELINE_MIN_SAMPLES or t[in_base].mean() > end:
+        return before
+    centres = float(t[in_base].mean()), float(t[after].mean())
+    return before + (float(raw[after].mean()) - before) * (t - centres[0]) / (
+        centres[1] - centres[0]
+    )
 
 
 def _reconstruction_part(t, base, end, sensor):
