@@ -21,9 +21,10 @@ in newtons:
    stayed under the floor for :data:`QUIET_PERIODS` sensor periods. A user's
    ``min_force`` [N] and ``min_separation`` [s] turn weaker or closer candidates into
    rows with status ``"below min_force"`` / ``"too close"`` (listed, not analysed).
-4. **Onset.** :func:`dem_check.traces.detect_onset` on the smoothed segment: the first
-   crossing of :data:`ONSET_SIGMAS` times the noise of the segment's own baseline (the
-   quiet samples just before the impact, at most :data:`BASELINE_PERIODS` periods). An
+4. **Onset.** On the smoothed segment, the last crossing before the detection (searched
+   back from where the impact reached the threshold) of :data:`ONSET_SIGMAS` times the
+   noise of the segment's own baseline (the quiet samples just before the impact, at
+   most :data:`BASELINE_PERIODS` periods). An
    impact with fewer than :data:`BASELINE_MIN_SAMPLES` quiet samples before it (a
    record that starts at the hit, or an impact right after another's ringing) takes its
    baseline from the quiet samples after its ringing decayed: status
@@ -42,6 +43,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactlab import signals
 from contactlab.errors import ParameterError
 from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
@@ -56,7 +58,7 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
-from dem_check.traces import Trace, detect_onset
+from dem_check.traces import Trace
 
 __all__ = [
     "ANALYSED",
@@ -274,6 +276,25 @@ def _local_baseline(ratio, candidate, scales):
     return after, min(stop, after + scales["baseline"]), True
 
 
+def _onset(t, z, base, first, detected):
+    """The onset [s]: the last crossing of :data:`ONSET_SIGMAS` baseline sigmas before
+    the sample where the impact reached the detection threshold (interpolated), searched
+    back from it, so that slow noise or wander that crosses the level earlier in the
+    segment is not taken for the impact's start; the segment's first sample when the
+    impact is already above the level there."""
+    mean, noise, _ = signals.baseline(t, z, base, name="baseline_window")
+    if noise == 0.0:
+        raise ParameterError("the local baseline is exactly constant")
+    level = ONSET_SIGMAS * noise
+    deviation = np.abs(z[first : detected + 1] - mean)
+    below = np.flatnonzero(deviation <= level)
+    if below.size == 0:
+        return float(t[first])
+    j = first + int(below[-1])
+    d0, d1 = abs(z[j] - mean), abs(z[j + 1] - mean)
+    return float(t[j] + (level - d0) * (t[j + 1] - t[j]) / (d1 - d0))
+
+
 def _classify(smoothed, ratio, candidate, scales, floor, flagged):
     """The :class:`ImpactWindow` (one, or several for an overlap) of one run."""
     previous_end, first, last, stop = candidate
@@ -305,9 +326,8 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
             )
         ]
     base = (float(t[base_start]), float(t[base_end - 1]) + float(t[1] - t[0]))
-    segment = Trace(t[segment_first:stop], z[segment_first:stop], smoothed.unit)
     try:
-        onset = detect_onset(segment, ONSET_SIGMAS, base)
+        onset = _onset(t, z, base, segment_first, detected)
     except ParameterError as exc:  # the local noise is far above the record's
         reason = f"the local baseline of the impact at {rough:.6g} s is too noisy to time it: {exc}"
         return [
