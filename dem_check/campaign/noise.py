@@ -72,11 +72,12 @@ BLOCK_MIN_SAMPLES = 64
 FALSE_ALARMS = 1e-3
 """Expected number of chance detections per record [-] (sets the detection sigmas)."""
 
-MIN_SIGMAS = 6.0
+MIN_SIGMAS = 7.0
 """Lowest detection threshold [local noise sigmas]: laboratory noise has heavier tails
-than Gaussian noise (on the real hammer records of ``data/traces/real``, 5.8 sigma
-excursions occur once in 25600 samples), so the Bonferroni threshold is never lowered
-below this."""
+than Gaussian noise relative to a block's local noise (on the real hammer records of
+``data/traces/real``, 5.8 sigma excursions occur once in 25600 samples; 1/f noise as large
+as the white noise made a 6.4 sigma excursion at 5 MHz, its slow part being under-read by
+a block's MAD), so the Bonferroni threshold is never lowered below this."""
 
 ONSET_SIGMAS = 5.0
 """Onset level in noise sigmas of the smoothed segment's own baseline [-]; the
