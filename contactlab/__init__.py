@@ -12,6 +12,7 @@ from contactlab import analytic, laws, metrics
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import (
     ParameterError,
+    PlausibilityWarning,
     ResolutionWarning,
     TraceFormatError,
     UnknownParameterError,
@@ -26,6 +27,7 @@ __all__ = [
     "ImpactResult",
     "ObliqueResult",
     "ParameterError",
+    "PlausibilityWarning",
     "ResolutionWarning",
     "Sensor",
     "TraceFormatError",

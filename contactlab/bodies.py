@@ -9,16 +9,25 @@ import math
 
 from contactlab import analytic
 from contactlab.errors import ParameterError
+from contactlab.plausibility import check_plausible, internal
 from contactlab.validation import KeywordChecked, check_number
 
-__all__ = ["STEEL_DENSITY", "Grain", "Sensor"]
+__all__ = ["DRAWING_DIAMETER", "STEEL_DENSITY", "Grain", "Sensor"]
 
 STEEL_DENSITY = 7850.0
 """Density of steel [kg/m**3], the default for sensor discs."""
 
 
+DRAWING_DIAMETER = 1e-3
+"""Diameter [m] drawn for a grain known only by its mass (:meth:`Grain.from_mass`)."""
+
+
 def _optional(name, value, **limits):
     return None if value is None else check_number(name, value, **limits)
+
+
+def _plausible(key, value, name):
+    return None if value is None else check_plausible(key, value, name)
 
 
 class Grain(KeywordChecked):
@@ -43,6 +52,13 @@ class Grain(KeywordChecked):
     poisson_ratio : float, optional
         Poisson ratio [-] in (-1, 0.5].
 
+    Warns
+    -----
+    PlausibilityWarning
+        A diameter, density, mass or modulus outside what real grains, seeds and
+        calibration balls span (:data:`contactlab.plausibility.RANGES`); the message names
+        the likely unit slip.
+
     Examples
     --------
     The paper's grain (Keska et al. 2021, Section 2.2):
@@ -62,6 +78,7 @@ class Grain(KeywordChecked):
         poisson_ratio=None,
     ):
         self.diameter = check_number("diameter", diameter, low=0.0, unit="m")
+        check_plausible("grain_diameter", self.diameter, "diameter")
         if (density is None) == (mass is None):
             raise ParameterError(
                 f"Grain needs exactly one of density [kg/m**3] or mass [kg]; "
@@ -70,10 +87,15 @@ class Grain(KeywordChecked):
         volume = math.pi * self.diameter**3 / 6.0
         if density is not None:
             self.density = check_number("density", density, low=0.0, unit="kg/m**3")
+            check_plausible("grain_density", self.density, "density")
             self.mass = self.density * volume
         else:
             self.mass = check_number("mass", mass, low=0.0, unit="kg")
+            check_plausible("grain_mass", self.mass, "mass")
             self.density = self.mass / volume
+            check_plausible(
+                "grain_density", self.density, f"density (mass / volume of a {diameter:g} m sphere)"
+            )
         self.poisson_ratio = _optional(
             "poisson_ratio", poisson_ratio, low=-1.0, high=0.5, high_open=False
         )
@@ -83,14 +105,27 @@ class Grain(KeywordChecked):
             if self.poisson_ratio is None:
                 raise ParameterError("shear_modulus needs poisson_ratio to give Young's modulus")
             g = check_number("shear_modulus", shear_modulus, low=0.0, unit="Pa")
+            check_plausible("shear_modulus", g, "shear_modulus")
             self.youngs_modulus = analytic.youngs_from_shear(g, self.poisson_ratio)
         else:
             self.youngs_modulus = _optional("youngs_modulus", youngs_modulus, low=0.0, unit="Pa")
+            _plausible("youngs_modulus", self.youngs_modulus, "youngs_modulus")
 
     @classmethod
-    def from_mass(cls, mass, diameter=1e-3):
-        """A grain known only by its mass [kg] (the diameter [m] only sizes drawings)."""
-        return cls(diameter=diameter, mass=mass)
+    def from_mass(cls, mass, diameter=None):
+        """A grain known only by its mass [kg].
+
+        The diameter [m] only sizes drawings. Without one, :data:`DRAWING_DIAMETER` is
+        drawn and the density it implies is neither checked nor meaningful.
+        """
+        mass = check_plausible("grain_mass", check_number("mass", mass, low=0.0, unit="kg"), "mass")
+        if diameter is not None:
+            return cls(diameter=diameter, mass=mass)
+        grain = cls.__new__(cls)
+        grain.diameter, grain.mass = DRAWING_DIAMETER, mass
+        grain.density = mass / (math.pi * DRAWING_DIAMETER**3 / 6.0)
+        grain.youngs_modulus = grain.poisson_ratio = None
+        return grain
 
     @property
     def radius(self):
@@ -156,6 +191,10 @@ class Sensor(KeywordChecked):
     to signal is ``(c1 s + k1) / (m1 s**2 + c1 s + k1)``. The paper leaves the damping
     open; quartz sensors have damping ratios of about 0.01-0.05. (The paper's software
     screen shows "Damp. const. 500 N*s/m", a damping ratio of 0.8 with the paper's disc.)
+
+    A moving mass, resonance or damping ratio outside what real force sensors span
+    (:data:`contactlab.plausibility.RANGES`) gives a :class:`PlausibilityWarning` naming
+    the likely unit slip.
     """
 
     def __init__(self, mass, stiffness, damping=0.0):
@@ -171,6 +210,10 @@ class Sensor(KeywordChecked):
             )
         if math.isinf(self.damping) and not self.is_rigid:
             raise ParameterError("damping must be finite for a moving sensor")
+        if not self.is_rigid:
+            check_plausible("sensor_mass", self.mass, "mass")
+            check_plausible("sensor_resonance", self.resonance, "resonance sqrt(k1/m1)/(2 pi)")
+            check_plausible("sensor_damping_ratio", self.damping_ratio, "damping ratio")
 
     @classmethod
     def rigid(cls):
@@ -192,8 +235,14 @@ class Sensor(KeywordChecked):
         damping : float, optional
             ``c1`` [N*s/m] instead of the ratio.
         """
-        f1 = check_number("resonance", resonance, low=0.0, unit="Hz")
-        m1 = check_number("mass", mass, low=0.0, unit="kg")
+        f1 = check_plausible(
+            "sensor_resonance",
+            check_number("resonance", resonance, low=0.0, unit="Hz"),
+            "resonance",
+        )
+        m1 = check_plausible(
+            "sensor_mass", check_number("mass", mass, low=0.0, unit="kg"), "sensor mass"
+        )
         k1 = m1 * (2.0 * math.pi * f1) ** 2
         if damping_ratio is not None and damping is not None:
             raise ParameterError("give damping_ratio or damping, not both")
@@ -204,8 +253,13 @@ class Sensor(KeywordChecked):
                 low=0.0,
                 low_open=False,
             )
+            check_plausible("sensor_damping_ratio", zeta, "damping_ratio")
             damping = 2.0 * zeta * math.sqrt(k1 * m1)
-        return cls(mass=m1, stiffness=k1, damping=damping)
+        else:
+            damping = check_number("damping", damping, low=0.0, low_open=False, unit="N*s/m")
+            check_plausible("sensor_damping_ratio", damping / (2.0 * math.sqrt(k1 * m1)), "damping")
+        with internal():  # checked above, by the names the caller gave
+            return cls(mass=m1, stiffness=k1, damping=damping)
 
     @classmethod
     def from_disc(cls, diameter, thickness, resonance, damping_ratio=0.0, density=STEEL_DENSITY):
@@ -224,12 +278,25 @@ class Sensor(KeywordChecked):
         density : float, default 7850
             Disc density [kg/m**3] (steel: a 10 mm x 2 mm disc weighs 1.233 g).
         """
-        dia = check_number("diameter", diameter, low=0.0, unit="m")
-        thick = check_number("thickness", thickness, low=0.0, unit="m")
-        rho = check_number("density", density, low=0.0, unit="kg/m**3")
-        sensor = cls.from_resonance(
-            resonance, mass=rho * math.pi * dia**2 / 4.0 * thick, damping_ratio=damping_ratio
+        dia = check_plausible(
+            "disc_diameter", check_number("diameter", diameter, low=0.0, unit="m"), "diameter"
         )
+        thick = check_plausible(
+            "disc_thickness", check_number("thickness", thickness, low=0.0, unit="m"), "thickness"
+        )
+        rho = check_plausible(
+            "grain_density", check_number("density", density, low=0.0, unit="kg/m**3"), "density"
+        )
+        f1 = check_plausible(
+            "sensor_resonance",
+            check_number("resonance", resonance, low=0.0, unit="Hz"),
+            "resonance",
+        )
+        with internal():  # the disc's mass follows from the values checked above
+            sensor = cls.from_resonance(
+                f1, mass=rho * math.pi * dia**2 / 4.0 * thick, damping_ratio=damping_ratio
+            )
+        check_plausible("sensor_damping_ratio", sensor.damping_ratio, "damping_ratio")
         sensor.diameter, sensor.thickness = dia, thick
         return sensor
 

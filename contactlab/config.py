@@ -17,7 +17,6 @@ Unknown tables and keys are rejected by name; the flags ``rigid`` and ``from_mat
 must be TOML booleans (``true``/``false``), not strings or numbers.
 """
 
-import inspect
 import json
 import tomllib
 from dataclasses import dataclass
@@ -25,9 +24,9 @@ from pathlib import Path
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
-from contactlab.laws import LAWS, get_law
+from contactlab.laws import LAWS
 from contactlab.solver import simulate_impact
-from contactlab.validation import check_choice
+from contactlab.validation import check_choice, unknown_keywords, with_suggestion
 
 __all__ = [
     "PRESET_DIR",
@@ -39,7 +38,7 @@ __all__ = [
     "read_document",
 ]
 
-PRESET_DIR = Path(__file__).resolve().parent.parent / "data" / "presets"
+PRESET_DIR = Path(__file__).resolve().parent / "data" / "presets"
 """Folder of the named impact presets (the paper's Figures 5-9)."""
 
 _TABLES = ("grain", "contact", "sensor", "simulation")
@@ -71,12 +70,9 @@ def _flag(table, key, name):
 
 
 def _build(name, function, *args, **table):
-    """``function(*args, **table)``; a key it does not take, or one it lacks, is named."""
-    try:
-        inspect.signature(function).bind(*args, **table)
-    except TypeError as exc:
-        keys = list(inspect.signature(function).parameters)[len(args) :]
-        raise ParameterError(f"[{name}]: {exc}; valid keys are {', '.join(keys)}") from None
+    """``function(*args, **table)``; a key it does not take (with the nearest valid one)
+    or one it lacks is named."""
+    unknown_keywords(f"[{name}]", function, args, table, noun="key", skip=len(args))
     return function(*args, **table)
 
 
@@ -91,7 +87,7 @@ def _law(table, grain):
         if name == "hertz_damped":
             table.setdefault("mass", grain.mass)
         return _build("contact", LAWS[name].from_material, *grain.material(), **table)
-    return get_law(name, **table)
+    return _build("contact", LAWS[name], **table)
 
 
 def _sensor(table):
@@ -101,7 +97,7 @@ def _sensor(table):
             raise ParameterError(f"[sensor] rigid = true takes no other keys; got {sorted(table)}")
         return Sensor.rigid()
     if "resonance" not in table:
-        return Sensor(**table)
+        return _build("sensor", Sensor, **table)
     if "thickness" in table:
         return _build("sensor", Sensor.from_disc, **table)
     return _build("sensor", Sensor.from_resonance, **table)
@@ -110,7 +106,8 @@ def _sensor(table):
 def _parse(data, where):
     unknown = sorted(set(data) - set(_TABLES))
     if unknown:
-        raise ParameterError(f"{where}: unknown table(s) {unknown}; valid are {list(_TABLES)}")
+        named = ", ".join(with_suggestion(t, _TABLES) for t in unknown)
+        raise ParameterError(f"{where}: unknown table(s) {named}; valid are {list(_TABLES)}")
     missing = [t for t in ("grain", "contact", "sensor") if t not in data]
     if missing:
         raise ParameterError(f"{where}: missing table(s) {missing}")
@@ -120,13 +117,14 @@ def _parse(data, where):
     simulation = dict(data.get("simulation", {}))
     bad = sorted(set(simulation) - set(_SIMULATION_KEYS))
     if bad:
+        named = ", ".join(with_suggestion(k, _SIMULATION_KEYS) for k in bad)
         raise ParameterError(
-            f"{where}: unknown key(s) {bad} in [simulation]; valid are {list(_SIMULATION_KEYS)}"
+            f"{where}: unknown key(s) {named} in [simulation]; valid are {list(_SIMULATION_KEYS)}"
         )
     if "velocity" not in simulation:
         raise ParameterError(f"{where}: [simulation] needs velocity [m/s]")
     try:
-        grain = Grain(**data["grain"])
+        grain = _build("grain", Grain, **data["grain"])
         return ImpactConfig(
             grain, _sensor(data["sensor"]), _law(data["contact"], grain), simulation
         )
@@ -173,7 +171,7 @@ def load_config(path):
 
 
 def list_presets():
-    """Names of the presets in ``data/presets`` (the paper's Figures 5-9)."""
+    """Names of the presets in ``contactlab/data/presets`` (the paper's Figures 5-9)."""
     return sorted(p.stem for p in PRESET_DIR.glob("*.toml"))
 
 

@@ -2,23 +2,12 @@
 
 import json
 
-import numpy as np
-
 from contactlab.bodies import Sensor
 from contactlab.config import load_preset
 from contactlab.solver import simulate_impact
+from contactlab.strict_json import dumps
 
 __all__ = ["run_demo"]
-
-
-def _jsonable(obj):
-    if isinstance(obj, dict):
-        return {k: _jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_jsonable(v) for v in obj]
-    if isinstance(obj, np.generic):
-        return obj.item()
-    return obj
 
 
 def run_demo(out, quick=False, workers=1):
@@ -96,6 +85,6 @@ def run_demo(out, quick=False, workers=1):
         "not_run": chung_ooi["not_run"],
     }
     path = out / "summary.json"
-    path.write_text(json.dumps(_jsonable(summary), indent=2))
+    path.write_text(dumps(summary), encoding="utf-8")
     written.append(path)
     return written

@@ -7,6 +7,7 @@ All errors derive from standard bases so callers can catch them generically
 __all__ = [
     "ContactlabWarning",
     "ParameterError",
+    "PlausibilityWarning",
     "ResolutionWarning",
     "TraceFormatError",
     "UnknownParameterError",
@@ -39,3 +40,11 @@ class WindowWarning(ContactlabWarning):
 
 class ResolutionWarning(ContactlabWarning):
     """The output sample rate cannot resolve the signal; the message gives the minimum rate."""
+
+
+class PlausibilityWarning(ContactlabWarning):
+    """A value is legal but outside what real grains, seeds and sensors span.
+
+    The message names the likely unit slip; the ranges and their sources are in
+    ``contactlab.plausibility.RANGES`` and ``docs/plausibility.md``.
+    """

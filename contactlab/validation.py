@@ -6,6 +6,7 @@ bad value fails where it enters, with a message such as::
     ParameterError: stiffness must be a finite number > 0 [N/m]; got -3.0
 """
 
+import difflib
 import functools
 import inspect
 import math
@@ -22,6 +23,9 @@ __all__ = [
     "check_poisson_ratio",
     "check_positive",
     "check_probability",
+    "keyword_checked",
+    "unknown_keywords",
+    "with_suggestion",
 ]
 
 
@@ -128,12 +132,90 @@ def check_choice(name, value, choices):
     """
     if value in choices:
         return value
-    import difflib
-
     close = difflib.get_close_matches(str(value), [str(c) for c in choices], n=1)
     hint = f" Did you mean {close[0]!r}?" if close else ""
     valid = ", ".join(repr(c) for c in choices)
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
+
+
+def with_suggestion(name, valid):
+    """``'name'``, followed by ``(did you mean 'nearest'?)`` when a valid name is close
+    (:func:`difflib.get_close_matches`, cutoff 0.6)."""
+    close = difflib.get_close_matches(str(name), [str(v) for v in valid], n=1, cutoff=0.6)
+    return f"{name!r} (did you mean {close[0]!r}?)" if close else repr(name)
+
+
+@functools.cache
+def _signature(function):
+    return inspect.signature(function)
+
+
+def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
+    """Bind ``args, kwargs`` to ``function``'s signature; a bad call raises, naming the
+    unknown names with the nearest valid one (:mod:`difflib`).
+
+    Parameters
+    ----------
+    owner : str
+        Who is called, for the message (``"Grain"``, ``"[sensor]"``).
+    function : callable
+        Its signature is the reference.
+    args : tuple
+        Positional arguments (``self`` included for a method).
+    kwargs : dict
+        Keyword arguments (or a TOML table's keys).
+    noun : str, default "parameter"
+        What the names are called in the message (``"key"`` for TOML tables).
+    skip : int, default 0
+        Leading signature parameters not listed as valid (``self``).
+
+    Raises
+    ------
+    UnknownParameterError
+        An unknown name (with a suggestion), a missing required one, or too many
+        positional arguments; the message lists the valid names.
+    """
+    signature = _signature(function)
+    try:
+        signature.bind(*args, **kwargs)
+    except TypeError as exc:
+        valid = list(signature.parameters)[skip:]
+        unknown = [k for k in kwargs if k not in valid]
+        if unknown:
+            problem = f"unknown {noun}(s) {', '.join(with_suggestion(k, valid) for k in unknown)}"
+            given = len(args) - skip
+            missing = [
+                name
+                for i, name in enumerate(valid)
+                if i >= given
+                and name not in kwargs
+                and signature.parameters[name].default is inspect.Parameter.empty
+                and signature.parameters[name].kind
+                not in (inspect.Parameter.VAR_POSITIONAL, inspect.Parameter.VAR_KEYWORD)
+            ]
+            if missing:
+                problem += f"; missing required {noun}(s) {', '.join(map(repr, missing))}"
+        else:
+            problem = str(exc)
+        raise UnknownParameterError(
+            f"{owner}: {problem}; valid {noun}s are {', '.join(valid)}"
+        ) from None
+
+
+def keyword_checked(function):
+    """Decorator: a misspelt or missing argument of ``function`` raises
+    :class:`UnknownParameterError` naming it, with a suggestion, instead of a bare
+    ``TypeError``."""
+
+    @functools.wraps(function)
+    def checked(*args, **kwargs):
+        try:
+            return function(*args, **kwargs)
+        except TypeError:  # a bad call, or a TypeError from inside: binding tells which
+            unknown_keywords(function.__name__, function, args, kwargs)
+            raise
+
+    return checked
 
 
 class KeywordChecked:
@@ -141,7 +223,9 @@ class KeywordChecked:
 
     The error is both a :class:`~contactlab.errors.ParameterError` (a ``ValueError``, as the
     project's contract asks) and a ``TypeError`` (what Python raises for a bad keyword and
-    what python-control's ``kwargs_test`` expects), and it lists the valid names.
+    what python-control's ``kwargs_test`` expects); it names an unknown keyword with the
+    nearest valid one (``Grain(diam=...)``: did you mean 'diameter'?) and lists the valid
+    names.
     """
 
     def __init_subclass__(cls, **kwargs):
@@ -149,17 +233,10 @@ class KeywordChecked:
         init = cls.__dict__.get("__init__")
         if init is None or getattr(init, "_keyword_checked", False):
             return
-        signature = inspect.signature(init)
 
         @functools.wraps(init)
         def checked_init(self, *args, **kw):
-            try:
-                signature.bind(self, *args, **kw)
-            except TypeError as exc:
-                names = [p for p in signature.parameters if p != "self"]
-                raise UnknownParameterError(
-                    f"{cls.__name__}: {exc}; valid parameters are {', '.join(names)}"
-                ) from None
+            unknown_keywords(cls.__name__, init, (self, *args), kw, skip=1)
             init(self, *args, **kw)
 
         checked_init._keyword_checked = True

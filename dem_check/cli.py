@@ -4,12 +4,13 @@ Exit codes: 0 when every available quantity is within its tolerance, 1 when one 
 2 on bad input (the message goes to stderr).
 """
 
-import argparse
 import json
 import sys
 
+from contactlab.cli.output import dump
+from contactlab.cli.running import Parser, add_strict, run
 from contactlab.config import load
-from contactlab.errors import ParameterError, TraceFormatError
+from contactlab.errors import ParameterError
 
 __all__ = ["main"]
 
@@ -34,7 +35,7 @@ def _report(comparison, args):
         fig, _ = comparison.plot()
         fig.savefig(args.plot, dpi=150)
         plt.close(fig)
-    print(json.dumps(comparison.to_dict(), indent=2) if args.json else comparison)
+    print(dump(comparison.to_dict()) if args.json else comparison)
     return 0 if comparison.passed else 1
 
 
@@ -59,7 +60,7 @@ def _lammps_check(args):
 
     paths = base_case_check(args.out, args.time_step)
     result = json.loads(paths[-1].read_text(encoding="utf-8"))
-    print(json.dumps(result, indent=2) if args.json else paths[1].read_text(encoding="utf-8"))
+    print(dump(result) if args.json else paths[1].read_text(encoding="utf-8"))
     for path in paths:
         print(f"wrote {path}", file=sys.stderr)
     return 0 if result["passed"] else 1
@@ -117,7 +118,7 @@ def _campaign(args):
         min_force=args.min_force,
         min_separation=args.min_separation,
     )
-    print(json.dumps(result.summary(), indent=2) if args.json else result)
+    print(dump(result.summary()) if args.json else result)
     if args.out:
         print(f"wrote {args.out}/report.html (open it in a browser)", file=sys.stderr)
     summary = result.summary()
@@ -173,7 +174,7 @@ def _common(parser):
 
 
 def _build_parser():
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="dem-check",
         description="Cross-check contactlab's reduced grain/sensor model against a rigid-body "
         "engine (pybullet) and against measured oscilloscope traces. SI units throughout. "
@@ -245,18 +246,14 @@ def _build_parser():
     _common(p)
     p.set_defaults(func=_compare)
     _add_campaign_parser(sub)
+    add_strict(parser)
     return parser
 
 
 def main(argv=None):
-    """Entry point of the ``dem-check`` console script; returns the exit code."""
-    args = _build_parser().parse_args(argv)
-    try:
-        return args.func(args)
-    # OSError: a file not found; ImportError: an optional engine's extra not installed
-    except (ParameterError, TraceFormatError, OSError, ImportError) as exc:
-        print(f"dem-check: error: {exc}", file=sys.stderr)
-        return 2
+    """Entry point of the ``dem-check`` console script; returns the exit code (bad input:
+    one line on stderr and 2, see :func:`contactlab.cli.running.run`)."""
+    return run("dem-check", _build_parser(), argv)
 
 
 if __name__ == "__main__":

@@ -1,6 +1,6 @@
 """Sensor advisor: how fast a force sensor must be for a grain species.
 
-A species (``data/species/*.toml``, or :class:`Species` built in Python) gives ranges of
+A species (``contactlab/data/species/*.toml``, or :class:`Species` built in Python) gives ranges of
 grain diameter, density and Young's modulus, each with its literature source. The grain
 hits the sensor through the elastic Hertz law built from that material data
 (:meth:`contactlab.laws.Hertz.from_material`: the force rises smoothly from zero, as a real

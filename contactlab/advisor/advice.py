@@ -7,6 +7,8 @@ import numpy as np
 
 from contactlab.advisor.species import Species, load_species
 from contactlab.advisor.worst_case import PAPER_SENSOR_MASS, QUANTITIES, sensor_errors, worst_error
+from contactlab.bodies import Grain, Sensor
+from contactlab.plausibility import check_plausible, internal
 from contactlab.validation import check_choice, check_number
 
 __all__ = ["SCAN_PER_DECADE", "Advice", "advise"]
@@ -113,6 +115,16 @@ class Advice:
         return "\n".join(lines)
 
 
+def _warn_implausible(species, velocity, sensor_mass, damping_ratio, cases):
+    """A :class:`~contactlab.errors.PlausibilityWarning` for each of the user's values
+    outside what real grains and sensors span, once, before the search."""
+    for corner in species.grains(cases):
+        Grain(**corner, poisson_ratio=species.poisson_ratio)
+    speed = check_number("velocity", velocity, low=0.0, unit="m/s")
+    check_plausible("impact_velocity", speed, "velocity")
+    Sensor.from_resonance(40e3, mass=sensor_mass, damping_ratio=damping_ratio)
+
+
 def advise(
     species,
     target=5.0,
@@ -164,6 +176,8 @@ def advise(
     rtol = check_number("rtol", rtol, low=1e-6, high=1.0, low_open=False)
     if resonance is not None:
         resonance = check_number("resonance", resonance, low=0.0, unit="Hz")
+        check_plausible("sensor_resonance", resonance, "resonance")
+    _warn_implausible(species, velocity, sensor_mass, damping_ratio, cases)
     options = dict(
         velocity=velocity, sensor_mass=sensor_mass, damping_ratio=damping_ratio, cases=cases
     )
@@ -172,7 +186,8 @@ def advise(
     def error(f):
         nonlocal evaluations
         evaluations += 1
-        return worst_error(sensor_errors(species, f, **options), quantity)
+        with internal():  # the scan's own resonances reach beyond real sensors
+            return worst_error(sensor_errors(species, f, **options), quantity)
 
     n = max(2, math.ceil(SCAN_PER_DECADE * math.log10(f_max / f_min)) + 1)
     scan = np.geomspace(f_min, f_max, n)[::-1]

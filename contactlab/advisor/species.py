@@ -11,7 +11,7 @@ from contactlab.validation import check_choice, check_number
 
 __all__ = ["CASES", "SPECIES_DIR", "Species", "list_species", "load_species"]
 
-SPECIES_DIR = Path(__file__).resolve().parent.parent.parent / "data" / "species"
+SPECIES_DIR = Path(__file__).resolve().parent.parent / "data" / "species"
 """Folder of the species presets."""
 
 CASES = ("corners", "centre")
@@ -91,7 +91,7 @@ class Species:
 
     @classmethod
     def from_toml(cls, path):
-        """Read a species file (see ``data/species/README.md`` for the format).
+        """Read a species file (see ``contactlab/data/species/README.md`` for the format).
 
         Parameters
         ----------
@@ -171,7 +171,7 @@ class Species:
 
 
 def list_species():
-    """Names of the species presets in ``data/species``."""
+    """Names of the species presets in ``contactlab/data/species``."""
     return sorted(p.stem for p in SPECIES_DIR.glob("*.toml"))
 
 

@@ -16,7 +16,9 @@ import pandas as pd
 from contactlab.batch.frame import check_frame, chunk_bounds
 from contactlab.batch.hertz import DEFAULT_RTOL, HERTZ_INPUTS, hertz_impacts
 from contactlab.batch.linear import LINEAR_INPUTS, linear_impacts
+from contactlab.batch.rows import warn_implausible
 from contactlab.errors import ParameterError
+from contactlab.plausibility import internal
 from contactlab.validation import check_count, check_number
 
 __all__ = ["connected_client", "dask_hertz_impacts", "dask_linear_impacts"]
@@ -45,9 +47,16 @@ def connected_client(client):
         )
 
 
+def _quietly(impacts, piece):
+    """``impacts(piece)`` without plausibility warnings: the whole frame was checked once,
+    before it was partitioned."""
+    with internal():
+        return impacts(piece)
+
+
 def _on_cluster(impacts, columns, frame, client, partitions):
     """``impacts(frame)`` on a cluster: row partitions, results in the input order."""
-    check_frame(frame, columns)
+    warn_implausible(check_frame(frame, columns), frame)
     with connected_client(client) as connected:
         if partitions is None:
             threads = max(1, sum(connected.nthreads().values()))
@@ -57,7 +66,7 @@ def _on_cluster(impacts, columns, frame, client, partitions):
         pieces = [frame.iloc[lo:hi] for lo, hi in chunk_bounds(len(frame), size)]
         if not pieces:
             return impacts(frame)
-        futures = connected.map(impacts, pieces, pure=False)
+        futures = connected.map(functools.partial(_quietly, impacts), pieces, pure=False)
         return pd.concat(connected.gather(futures))
 
 

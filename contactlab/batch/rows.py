@@ -18,6 +18,7 @@ import numpy as np
 from contactlab.batch.frame import check_frame, chunk_bounds
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
+from contactlab.plausibility import implausible_rows, internal
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_count
 
@@ -28,6 +29,7 @@ __all__ = [
     "check_threads",
     "single_impact",
     "solve_frame",
+    "warn_implausible",
 ]
 
 RESULT_COLUMNS = (
@@ -68,11 +70,30 @@ def _check_sensor_pairs(arrays, frame):
         )
 
 
+def warn_implausible(arrays, frame):
+    """One :class:`~contactlab.errors.PlausibilityWarning` per quantity, naming the rows
+    whose grain mass, impact speed or sensor lies outside what real ones span (walls,
+    ``k1 = inf``, are not checked)."""
+    m1, k1, c1 = arrays["m1 [kg]"], arrays["k1 [N/m]"], arrays["c1 [N*s/m]"]
+    labels = frame.index
+    implausible_rows("grain_mass", arrays["m2 [kg]"], labels, "m2 [kg]")
+    implausible_rows("impact_velocity", arrays["v0 [m/s]"], labels, "v0 [m/s]")
+    moving = np.isfinite(k1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        resonance = np.where(moving, np.sqrt(k1 / m1) / (2.0 * math.pi), np.inf)
+        ratio = np.where(moving, c1 / (2.0 * np.sqrt(k1 * m1)), np.inf)
+    implausible_rows("sensor_mass", np.where(moving, m1, np.inf), labels, "m1 [kg]")
+    implausible_rows("sensor_resonance", resonance, labels, "sensor resonance [Hz]")
+    implausible_rows("sensor_damping_ratio", ratio, labels, "sensor damping ratio [-]")
+
+
 def single_impact(m1, k1, c1, m2, law, v0, **options):
     """One row by :func:`contactlab.simulate_impact`: the six headline numbers, in the
-    order of :data:`RESULT_COLUMNS` (``k1 = inf``: an immovable wall)."""
-    sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
-    res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
+    order of :data:`RESULT_COLUMNS` (``k1 = inf``: an immovable wall). The frame was
+    checked for plausibility as a whole: no warning per row here."""
+    with internal():
+        sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
+        res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
     return (
         res.contact_time,
         res.sensor_response_time,
@@ -127,6 +148,7 @@ def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
     threads = check_threads(threads)
     arrays = check_frame(frame, columns, chunk)
     _check_sensor_pairs(arrays, frame)
+    warn_implausible(arrays, frame)
     results = np.empty((len(frame), len(RESULT_COLUMNS)))
     _solve_chunks(solve, arrays, results, chunk, threads)
     out = frame.copy()

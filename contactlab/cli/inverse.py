@@ -41,7 +41,7 @@ def _identify_sensor(args):
     ident = identify_sensor(trace.t, trace.values, window=args.window)
     if args.plot:
         _save_plot(plot_identification(trace.t, trace.values, ident)[0], args.plot)
-    print(dump(ident.to_dict()) if args.json else repr(ident))
+    print(dump(ident.to_dict(unit=trace.unit)) if args.json else repr(ident))
 
 
 def _inverse_sensor(args):

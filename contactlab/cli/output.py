@@ -1,21 +1,14 @@
 """What the command line prints: JSON dumps and aligned summaries."""
 
-import json
-
-import numpy as np
+from contactlab.strict_json import dumps
 
 __all__ = ["dump", "print_summary"]
 
 
-def _json_default(obj):
-    if isinstance(obj, np.generic):
-        return obj.item()
-    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
-
-
 def dump(data):
-    """``data`` as indented JSON (numpy scalars as Python numbers)."""
-    return json.dumps(data, indent=2, default=_json_default)
+    """``data`` as indented strict JSON: NaN and infinity as ``null`` with the reason in
+    ``"null_reasons"`` (:mod:`contactlab.strict_json`)."""
+    return dumps(data)
 
 
 def print_summary(summary):

@@ -78,18 +78,25 @@ class SensorIdentification:
         """The identified sensor with a moving mass ``mass`` [kg] (:class:`contactlab.Sensor`)."""
         return Sensor.from_resonance(self.resonance, mass=mass, damping_ratio=self.damping_ratio)
 
-    def to_dict(self):
-        """Results with unit-bearing keys (JSON-ready)."""
+    def to_dict(self, unit="N"):
+        """Results with unit-bearing keys (JSON-ready).
+
+        Parameters
+        ----------
+        unit : str, default "N"
+            Unit of the signal the ringing was fitted to (``"V"`` for a trace read without
+            a sensitivity): the unit of the amplitude, offset and residual.
+        """
         units = {
             "resonance": "Hz",
             "damping_ratio": "-",
             "resonance_stderr": "Hz",
             "damping_ratio_stderr": "-",
             "window": "s",
-            "amplitude": "N",
+            "amplitude": unit,
             "phase": "rad",
-            "offset": "N",
-            "residual_rms": "N",
+            "offset": unit,
+            "residual_rms": unit,
             "samples": "-",
         }
         out = {f"{k} [{units[k]}]": v for k, v in asdict(self).items()}

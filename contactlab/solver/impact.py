@@ -32,6 +32,7 @@ import numpy as np
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.laws import ContactLaw, PlasticTrapezoid
+from contactlab.plausibility import check_plausible
 from contactlab.result import ImpactResult
 from contactlab.solver.adaptive import adaptive_contact
 from contactlab.solver.euler import solve_euler
@@ -39,7 +40,7 @@ from contactlab.solver.exact import exact_contact, free_flight
 from contactlab.solver.pieces import AffineForceStates
 from contactlab.solver.segment import Segment
 from contactlab.solver.system import System
-from contactlab.validation import check_choice, check_number
+from contactlab.validation import check_choice, check_number, keyword_checked
 
 __all__ = ["METHODS", "simulate_impact"]
 
@@ -155,7 +156,9 @@ def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):
         raise ParameterError(
             f"law must be a contact law from contactlab.laws; got {type(law).__name__}"
         )
-    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    velocity = check_plausible(
+        "impact_velocity", check_number("velocity", velocity, low=0.0, unit="m/s"), "velocity"
+    )
     if duration is not None:
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
@@ -163,6 +166,7 @@ def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):
     return velocity, duration, sample_rate
 
 
+@keyword_checked
 def simulate_impact(
     grain,
     sensor,
@@ -188,7 +192,8 @@ def simulate_impact(
     law : ContactLaw or PlasticTrapezoid
         Grain-sensor contact law.
     velocity : float
-        Impact speed ``v0`` [m/s], > 0.
+        Impact speed ``v0`` [m/s], > 0; outside 0.05-50 m/s a
+        :class:`~contactlab.errors.PlausibilityWarning` names the likely unit slip.
     duration : float, optional
         Output window [s] from first touch. Default: the first contact and five sensor
         periods of ringing after it (at least 1.5 contact times). The first contact is
@@ -253,6 +258,8 @@ def simulate_impact(
                 return adaptive_contact(sys_, branch, t0, y0, tau_max, rtol, velocity)
 
         segments, intervals, log, window = _solve_pieces(system, law, velocity, duration, solver)
+        if not intervals:
+            _no_contact_end(system, log[-1][0])
     _warn_window(intervals, log, window, duration)
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
@@ -276,14 +283,29 @@ def simulate_impact(
     return result
 
 
+def _no_contact_end(system, horizon):
+    """The first contact never ended: not an impact; say which inputs to look at."""
+    raise ParameterError(
+        f"the first contact had not ended after {horizon:.4g} s, so this is not an impact: "
+        f"check the units of the grain (mass {system.m2:.4g} kg), the contact law's "
+        "parameters and the velocity"
+    )
+
+
 def _warn_window(intervals, log, window, duration):
     if duration is None:
         return
-    if not intervals or intervals[0][1] > duration:
-        needed = intervals[0][1] if intervals else math.nan
+    if not intervals:  # Euler stops at the window's end
+        warnings.warn(
+            f"duration = {duration:.4g} s is shorter than the first contact, which had not "
+            "ended at the window's end: give a longer duration",
+            WindowWarning,
+            stacklevel=3,
+        )
+    elif intervals[0][1] > duration:
         warnings.warn(
             f"duration = {duration:.4g} s is shorter than the first contact; it must be at "
-            f"least {needed:.4g} s (the results beyond the window are still exact)",
+            f"least {intervals[0][1]:.4g} s (the results beyond the window are still exact)",
             WindowWarning,
             stacklevel=3,
         )

@@ -39,13 +39,14 @@ from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, WindowWarning
 from contactlab.laws import SmoothLaw, TangentialLaw
+from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import DEFAULT_SAMPLES, auto_window
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
-from contactlab.validation import check_number
+from contactlab.validation import check_number, keyword_checked
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
@@ -253,6 +254,7 @@ def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, sp
             f"Mindlin); got {type(tangential_law).__name__}"
         )
     velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
+    check_plausible("impact_velocity", velocity, "velocity")
     angle = check_number(
         "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
     )
@@ -260,6 +262,7 @@ def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, sp
     return velocity, angle, spin
 
 
+@keyword_checked
 def simulate_oblique(
     grain,
     sensor,

@@ -8,6 +8,7 @@ laws when the solver is imported (:func:`contactlab.laws.base.use_wall_solver`).
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.laws.base import use_wall_solver
+from contactlab.plausibility import internal
 from contactlab.solver.impact import simulate_impact
 
 __all__ = ["wall_impact"]
@@ -31,9 +32,17 @@ def wall_impact(law, mass, velocity, **kwargs):
     Returns
     -------
     ImpactResult
+
+    Notes
+    -----
+    No :class:`~contactlab.errors.PlausibilityWarning`: a law's restitution, contact time
+    and energy are properties of the law at any mass and speed (fits and mappings ask
+    for them far outside the ranges of real grains); impossible values still raise.
     """
     kwargs.setdefault("duration", None)
-    return simulate_impact(Grain.from_mass(mass), Sensor.rigid(), law, velocity=velocity, **kwargs)
+    with internal():
+        grain = Grain.from_mass(mass)
+        return simulate_impact(grain, Sensor.rigid(), law, velocity=velocity, **kwargs)
 
 
 use_wall_solver(wall_impact)

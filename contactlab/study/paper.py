@@ -2,7 +2,8 @@
 
 :func:`paper_study` writes into one folder
 
-* ``fig5`` ... ``fig9`` (.png, .svg): the impact courses of the presets in ``data/presets``;
+* ``fig5`` ... ``fig9`` (.png, .svg): the impact courses of the presets in
+  ``contactlab/data/presets``;
 * ``fig10``, ``fig11``: errors against sensor resonance for d = 5.0 and 2.5 mm;
 * ``fig12``: errors against grain diameter at 40 kHz; ``fig12_resonances``: the RMS force
   error against diameter for every resonance of the diameter sweep;

@@ -31,6 +31,7 @@ from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.metrics import first_lobe, impulse
 from dem_check.campaign.detection import BASELINE_MIN_SAMPLES, ONSET_SIGMAS
+from dem_check.campaign.plausibility import physics_status
 
 __all__ = [
     "GALLERY_PERIODS",
@@ -251,4 +252,5 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
             status="reconstruction failed",
             reason="the reconstructed force does not return below its threshold in the segment",
         )
+    row.update(physics_status(row, grain))
     return row, traces

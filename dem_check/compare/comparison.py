@@ -71,6 +71,10 @@ class Comparison:
         Common time window of the waveform errors, in b's time [s].
     notes : dict
         Context added by the caller (engine settings, baseline removal), shown and saved.
+    physics : list of str
+        What in a measured impact its grain cannot produce
+        (:func:`dem_check.compare.physics.physics_problems`; set by
+        :func:`dem_check.compare.compare_trace`); any entry fails the comparison.
     """
 
     def __init__(self, rows, a, b, labels, align, shift, window, threshold):
@@ -82,17 +86,21 @@ class Comparison:
         self.align, self.shift, self.window = align, float(shift), window
         self.threshold = threshold
         self.notes = {}
+        self.physics = []
 
     @property
     def passed(self):
-        """Whether every available quantity is within its tolerance."""
+        """Whether every available quantity is within its tolerance and the measured
+        impact is physically possible (:attr:`physics` empty)."""
         verdicts = [p for p in self.table["passed"] if p is not None]
-        return bool(verdicts) and all(verdicts)
+        return bool(verdicts) and all(verdicts) and not self.physics
 
     @property
     def failed(self):
-        """Names of the quantities outside their tolerance."""
-        return [row.quantity for row in self.table.itertuples() if row.passed is False]
+        """Names of the quantities outside their tolerance (``physics``: see
+        :attr:`physics`)."""
+        failed = [row.quantity for row in self.table.itertuples() if row.passed is False]
+        return failed + (["physics"] if self.physics else [])
 
     def to_dict(self):
         """The comparison as JSON-ready data (``nan`` -> None)."""
@@ -117,6 +125,7 @@ class Comparison:
             "window [s]": list(self.window),
             "threshold [N]": self.threshold,
             "notes": {k: clean(v) for k, v in self.notes.items()},
+            "physics": list(self.physics),
             "quantities": records,
         }
 
@@ -154,6 +163,7 @@ class Comparison:
         lines += [
             f"{k}: {v:.6g}" if isinstance(v, float) else f"{k}: {v}" for k, v in self.notes.items()
         ]
+        lines += [f"physics: {problem}" for problem in self.physics]
         lines.append("  ".join(h.ljust(w) for h, w in zip(header, widths, strict=True)))
         lines += ["  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)) for r in body]
         return "\n".join(lines)

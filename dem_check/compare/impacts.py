@@ -9,6 +9,7 @@ from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
 from contactlab.validation import check_choice, check_number
 from dem_check.compare.comparison import Comparison, quantity_row, waveform_row
+from dem_check.compare.physics import physics_problems
 from dem_check.compare.quantities import merged_tolerances, noise_tolerances
 from dem_check.compare.waveform import (
     ALIGNMENTS,
@@ -149,7 +150,10 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
     Returns
     -------
     Comparison
-        ``a`` is the measurement (after baseline removal), ``b`` the model.
+        ``a`` is the measurement (after baseline removal), ``b`` the model;
+        ``physics`` lists what in the measurement the grain cannot produce (its impulse
+        from the trigger on over the grain's mass, its peak;
+        :func:`dem_check.compare.physics.physics_problems`), which fails the comparison.
     """
     sensor_signal(trace, "measured")
     if not isinstance(config, ImpactConfig):
@@ -181,4 +185,6 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
         trace, model, tolerances, align, threshold, ("measured", "model"), hysteresis=threshold
     )
     result.notes.update({"baseline": baseline, "lobe threshold [N]": threshold})
+    velocity_change = metrics.impulse(trace.t, trace.values, 0.0) / config.grain.mass
+    result.physics = physics_problems(config.grain, float(np.max(trace.values)), velocity_change)
     return result

@@ -45,6 +45,7 @@ __all__ = ["ENGINES", "EngineResult", "drop_test", "engine_module"]
 ENGINES = {
     "bullet": "dem_check.engines.bullet",  # pybullet's soft contact (LinearViscoelastic)
     "lammps": "dem_check.engines.lammps",  # LAMMPS GRANULAR (linear, Hertz family; extra)
+    "kratos": "dem_check.engines.kratos",  # Kratos DEM (linear, Hertz, damped Hertz; extra)
 }
 """Engine name -> the module that implements the interface (see the module docstring)."""
 

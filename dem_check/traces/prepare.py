@@ -15,6 +15,7 @@ first rise of a pulse that starts before the trigger.
 
 from contactlab import signals
 from contactlab.errors import ParameterError
+from contactlab.plausibility import check_plausible
 from contactlab.validation import check_number
 from dem_check.traces.checks import uniform_interval
 
@@ -169,7 +170,8 @@ def to_force(trace, sensitivity):
     trace : Trace
         In volts.
     sensitivity : float
-        Sensor sensitivity [V/N] (e.g. 0.0225 for 22.5 mV/N), > 0.
+        Sensor sensitivity [V/N] (e.g. 0.0225 for 22.5 mV/N), > 0; outside 1e-5 to 10 V/N
+        (real sensors with their amplifiers) a PlausibilityWarning names the likely slip.
 
     Returns
     -------
@@ -177,6 +179,7 @@ def to_force(trace, sensitivity):
         In newtons, with ``metadata["sensitivity [V/N]"]`` and a history entry.
     """
     sensitivity = check_number("sensitivity", sensitivity, low=0.0, unit="V/N")
+    check_plausible("sensitivity", sensitivity, "sensitivity")
     if trace.unit != "V":
         raise ParameterError(
             f"sensitivity converts volts to newtons; the trace is in {trace.unit!r}, not 'V'"

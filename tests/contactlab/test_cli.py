@@ -61,11 +61,11 @@ def test_presets_run(name, capsys):
 @pytest.mark.parametrize(
     ("text", "message"),
     [
-        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "dampin"),
-        (GOOD.replace("[simulation]", "[simulaton]"), "simulaton"),
+        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "'dampin' (did you mean 'damping'?)"),
+        (GOOD.replace("[simulation]", "[simulaton]"), "'simulaton' (did you mean 'simulation'?)"),
         (GOOD.replace('law = "linear"', 'law = "lineer"'), "Did you mean 'linear'"),
         (GOOD.replace("velocity = 2.0", "velocity = -2.0"), "velocity"),
-        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "durration"),
+        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "(did you mean 'duration'?)"),
     ],
 )
 def test_config_errors_name_the_key(tmp_path, capsys, text, message):
@@ -83,13 +83,21 @@ MATERIAL = "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
     ("old", "new", "message"),
     [
         # a key the sensor's constructor does not take: named, with the valid ones
-        ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "[sensor]: got an unexpec"),
+        (
+            "damping_ratio = 0.02",
+            "damping_ratio = 0.02\ncolour = 1",
+            "[sensor]: unknown key(s) 'colour'",
+        ),
         ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "valid keys are resonance"),
-        ("damping_ratio = 0.02", "thickness = 2e-3", "missing a required argument: 'diameter'"),
+        ("damping_ratio = 0.02", "thickness = 2e-3", "missing required key(s) 'diameter'"),
         # a flag given as a string would be truthy: refused, not guessed
         ("resonance = 40.0e3", 'rigid = "false"\nresonance = 40.0e3', "rigid must be true or"),
         (LINEAR, 'law = "hertz"\nfrom_material = "no"', "from_material must be true or false"),
-        (LINEAR, 'law = "hertz"\nfrom_material = true\nradus = 1', "argument 'radus'"),
+        (
+            LINEAR,
+            'law = "hertz"\nfrom_material = true\nradus = 1',
+            "unknown key(s) 'radus'",
+        ),
         (f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n", "grain = 5\n", "grain must be a table"),
     ],
 )
@@ -129,7 +137,14 @@ def test_config_from_material(tmp_path):
 
 def test_demo_writes_figure_and_summary(tmp_path, capsys):
     assert contactlab_main(["demo", "--out", str(tmp_path), "--quick"]) == 0
-    summary = json.loads((tmp_path / "summary.json").read_text())
+
+    def refuse(name):  # json.loads accepts NaN and Infinity; strict JSON does not
+        raise ValueError(f"summary.json holds {name}")
+
+    summary = json.loads((tmp_path / "summary.json").read_text(), parse_constant=refuse)
+    # the rigid wall's resonance is infinite: null, with the reason beside it
+    assert summary["base_case_rigid_wall"]["sensor"]["resonance [Hz]"] is None
+    assert "inf" in summary["null_reasons"]["base_case_rigid_wall.sensor.resonance [Hz]"]
     assert summary["base_case_rigid_wall"]["contact_time [s]"] > 0
     assert (tmp_path / "base_case.png").stat().st_size > 10_000
     assert summary["engine_check"]["passed"] is True

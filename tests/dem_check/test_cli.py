@@ -93,7 +93,7 @@ def test_bullet_bad_input_exits_2(tmp_path, config, capsys):
         (["bullet", str(config), "--preset", "fig6"], "not both"),
         (["bullet", str(config), "--tolerance", "contact_time"], "NAME=VALUE"),
         (["bullet", str(config), "--tolerance", "peak=0.1"], "unknown tolerance 'peak'"),
-        (["bullet", str(config), "--time-step", "1e-5"], "time_step"),
+        (["bullet", str(config), "--time-step", "1e-5"], "--time-step"),
     ]
     for argv, message in cases:
         assert main(argv) == 2, argv

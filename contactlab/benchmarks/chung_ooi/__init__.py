@@ -16,6 +16,6 @@ The nine tests (the paper's eight and the ninth of Kratos' nightly suite):
   LAMMPS beside) and the table.
 """
 
-from contactlab.benchmarks.chung_ooi.runner import run_chung_ooi
+from contactlab.benchmarks.chung_ooi.runner import EngineRunner, run_chung_ooi
 
-__all__ = ["run_chung_ooi"]
+__all__ = ["EngineRunner", "run_chung_ooi"]

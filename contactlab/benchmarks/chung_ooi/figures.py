@@ -1,4 +1,4 @@
-"""One figure per Chung & Ooi test: contactlab's curves, LAMMPS' points, the theory."""
+"""One figure per Chung & Ooi test: contactlab's curves, the engines' points, the theory."""
 
 from pathlib import Path
 
@@ -60,6 +60,8 @@ def draw_oblique(case, curves):
             for history, data in forms.items():
                 ax.plot(ANGLES, data[:, 0], _STYLE[history], label=f"{name}, Mindlin {history}")
                 _lammps_points(ax, ANGLES, data[:, 1], f"{name}, LAMMPS {history}")
+                if history == "total" and data.shape[1] > 2:  # an engine's own rules, once
+                    ax.plot(ANGLES, data[:, 2], "s", mfc="none", label=f"{name}, Kratos rules")
         ratio = 2 * mu / np.tan(angles)  # mu (1 + e) vn / vt with e = 1
         ok = 3.5 * ratio <= 1.0
         ax.plot(np.array(ANGLES)[ok], 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")

@@ -83,12 +83,18 @@ def _value(result, index):
     return None if result is None else result[index]
 
 
-def oblique_test(case, material, lammps=None):
-    """Test 4: constant speed, incidence 5-85 deg; vt' graded in gross sliding."""
+def oblique_test(case, material, lammps=None, reported=None):
+    """Test 4: constant speed, incidence 5-85 deg; vt' graded in gross sliding.
+
+    ``reported``: ``{engine: oblique}`` run at every angle (once: an engine's own
+    tangential rules take no history form) and reported beside, not graded (Kratos,
+    ``docs/dem-conventions.md``). Its ``vt'/vt`` and spin join the curves (columns 2 and
+    3) and the gross-sliding rows.
+    """
     radius, speed, mu = (case.inputs[k] for k in ("radius [m]", "speed [m/s]", "friction [-]"))
     body = grain(material, radius)
     normal = cl.laws.Hertz.from_material(*body.material())
-    rows, curves = [], {}
+    rows, curves, others = [], {}, {}
     for history in HISTORIES:
         law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
         out = []
@@ -96,7 +102,18 @@ def oblique_test(case, material, lammps=None):
             angle = math.radians(degrees)
             vn, vt = speed * math.cos(angle), speed * math.sin(angle)
             ours, theirs = impact(body, normal, law, speed, angle, 0.0, lammps)
-            out.append((ours[1] / vt, _value(theirs, 1) / vt if theirs else math.nan))
+            for name, oblique in (reported or {}).items():
+                if (name, degrees) not in others:
+                    others[name, degrees] = rebound(oblique(body, normal, law, speed, angle))
+            extra = [others[name, degrees] for name in reported or {}]
+            out.append(
+                (
+                    ours[1] / vt,
+                    _value(theirs, 1) / vt if theirs else math.nan,
+                    *(r[1] / vt for r in extra),
+                    *(r[2] for r in extra),
+                )
+            )
             e = min(ours[0] / vn, 1.0)  # elastic: 1 to ~1e-9
             if analytic.slides_throughout(vn, vt, 0.0, radius, e, mu):
                 theory = analytic.gross_sliding_rebound(vn, vt, 0.0, radius, e, mu)[0]
@@ -108,6 +125,9 @@ def oblique_test(case, material, lammps=None):
                         ours[1],
                         theory,
                         lammps=_value(theirs, 1),
+                        engines={
+                            name: (others[name, degrees][1], False) for name in reported or {}
+                        },
                     )
                 )
         curves[history] = np.array(out)

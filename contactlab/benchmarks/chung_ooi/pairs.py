@@ -23,6 +23,7 @@ from contactlab.benchmarks.chung_ooi.oblique import (
     closed_form_holds,
     contact_momentum,
 )
+from contactlab.plausibility import internal
 
 __all__ = ["pair_impact", "pair_spin_test", "unequal_pair_test"]
 
@@ -48,7 +49,9 @@ def _pair_laws(material1, radius1, material2, radius2, restitution, friction, hi
         analytic.effective_shear_modulus(*moduli), radius
     )
     tangential = cl.laws.Mindlin(k_mindlin, friction, history=history)
-    return cl.Grain(diameter=2 * radius, mass=mass), normal, tangential, (m1, m2)
+    with internal():  # the benchmark's 0.1 m spheres are no grains
+        body = cl.Grain(diameter=2 * radius, mass=mass)
+    return body, normal, tangential, (m1, m2)
 
 
 def pair_impact(spheres, before, restitution, friction, history="total"):

@@ -20,7 +20,7 @@ Friction, rolling resistance and tangential stiffness are not fitted by a normal
 where a code requires them the snippet writes a placeholder marked ``NOT FITTED``.
 """
 
-from contactlab.inverse.export import edem, lammps, liggghts, mercurydpm, yade
+from contactlab.inverse.export import edem, kratos, lammps, liggghts, mercurydpm, yade
 from contactlab.inverse.export.contact import (
     STEEL_POISSON_RATIO,
     STEEL_YOUNGS_MODULUS,
@@ -37,6 +37,7 @@ DEM_CODES = {
     "mercurydpm": mercurydpm.write,
     "yade": yade.write,
     "edem": edem.write,
+    "kratos": kratos.write,
 }
 """Export targets: code name -> writer (one module per code)."""
 

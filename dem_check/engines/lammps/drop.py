@@ -3,14 +3,12 @@
 import math
 import time
 
-import numpy as np
-
 from contactlab.errors import ParameterError
-from contactlab.solver import wall_impact
-from contactlab.validation import check_number, check_positive
-from dem_check.engines.lammps.read import read_steps, recorded_columns, sensor_signal
+from dem_check.engines import steps as engine_steps
+from dem_check.engines.lammps.read import read_steps, recorded_columns
 from dem_check.engines.lammps.scene import drop_deck
 from dem_check.engines.lammps.session import LammpsSession
+from dem_check.engines.record import drop_plan, impact_over
 
 __all__ = [
     "CHUNK_STEPS",
@@ -18,7 +16,6 @@ __all__ = [
     "MIN_STEPS",
     "STEPS_PER_CONTACT",
     "STEPS_PER_PERIOD",
-    "TAIL",
     "default_time_step",
     "drop_test",
 ]
@@ -39,21 +36,12 @@ MAX_STEPS = 2_000_000
 CHUNK_STEPS = 2000
 """Steps per LAMMPS ``run`` while the end of the impact is looked for."""
 
-TAIL = 20e-6
-"""Time simulated after the last contact and the end of the sensor signal's first lobe
-[s], unless ``duration`` is given."""
-
-
-def _wall_contact_time(grain, law, velocity):
-    return wall_impact(law, grain.mass, velocity).contact_time
-
 
 def default_time_step(grain, sensor, law, velocity):
     """Default LAMMPS step [s]: ``min(t_c / 1000, T1 / 200)``.
 
-    ``t_c`` is the contact time of the law on an immovable wall at ``velocity``
-    (:func:`contactlab.solver.wall_impact`; a Hertz contact's duration depends on it) and
-    ``T1`` the sensor period.
+    ``t_c`` is the contact time of the law on an immovable wall at ``velocity`` and ``T1``
+    the sensor period (:func:`dem_check.engines.steps.default_time_step`).
 
     Parameters
     ----------
@@ -67,42 +55,9 @@ def default_time_step(grain, sensor, law, velocity):
     -------
     float
     """
-    steps = [_wall_contact_time(grain, law, velocity) / STEPS_PER_CONTACT]
-    if not sensor.is_rigid:
-        steps.append(sensor.period / STEPS_PER_PERIOD)
-    return min(steps)
-
-
-def _check_time_step(time_step, grain, sensor, law, velocity):
-    if time_step is None:
-        return default_time_step(grain, sensor, law, velocity)
-    limit = _wall_contact_time(grain, law, velocity) / MIN_STEPS
-    if not sensor.is_rigid:
-        limit = min(limit, sensor.period / MIN_STEPS)
-    return check_number(
-        "time_step",
-        time_step,
-        low=0.0,
-        high=limit,
-        unit=f"s; {MIN_STEPS} steps per contact and per sensor period",
+    return engine_steps.default_time_step(
+        grain, sensor, law, velocity, STEPS_PER_CONTACT, STEPS_PER_PERIOD
     )
-
-
-def _impact_over(deck, columns, stop):
-    """Whether ``stop`` steps have passed since the last contact and the first lobe's end."""
-    force = columns[3]
-    touching = np.flatnonzero(force > 0.0)
-    if touching.size == 0:
-        return False
-    after = sensor_signal(deck, columns)[touching[0] :]
-    rising = np.flatnonzero(after > 0.0)
-    if rising.size == 0:
-        return False
-    falls = np.flatnonzero(after[rising[0] :] <= 0.0)
-    if falls.size == 0:
-        return False
-    lobe_end = touching[0] + rising[0] + falls[0]
-    return force.size - 1 >= max(touching[-1], lobe_end) + stop
 
 
 def drop_test(
@@ -138,8 +93,9 @@ def drop_test(
     gap : float, optional
         Distance between grain and sensor at release [m]; default 3.5 steps of travel.
     duration : float, optional
-        Time simulated after the first touch [s]. Default: until :data:`TAIL` after both
-        the last contact and the end of the sensor signal's first lobe (a
+        Time simulated after the first touch [s]. Default: until
+        :data:`~dem_check.engines.record.TAIL` (20 us) after both the last contact and
+        the end of the sensor signal's first lobe (a
         :class:`~contactlab.errors.WindowWarning` if that takes longer than ten contact
         times and twenty sensor periods).
     threshold : float, default 0
@@ -172,15 +128,18 @@ def drop_test(
     >>> round(res.contact_time * 1e6, 2)  # pi sqrt(m/k) = 70.28 us  # doctest: +SKIP
     70.28
     """
-    velocity = check_positive("velocity", velocity, "m/s")
-    threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
-    dt = _check_time_step(time_step, grain, sensor, law, velocity)
-    if duration is None:
-        after = 10.0 * _wall_contact_time(grain, law, velocity) + 20.0 * sensor.period + TAIL
-        stop = math.ceil(TAIL / dt)
-    else:
-        after = check_number("duration", duration, low=0.0, unit="s")
-        stop = None
+    plan = drop_plan(
+        grain,
+        sensor,
+        law,
+        velocity,
+        time_step,
+        duration,
+        threshold,
+        lambda: default_time_step(grain, sensor, law, velocity),
+        MIN_STEPS,
+    )
+    velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     deck = drop_deck(grain, sensor, law, velocity, dt, after, gap, plate_radius)
     step_limit = math.ceil((deck.approach_time + after) / dt)
     if step_limit > MAX_STEPS:
@@ -200,10 +159,10 @@ def drop_test(
             session.command(f"run {chunk} post no", "the run")
             steps += chunk
             columns = recorded_columns(session)
-            if stop is not None and _impact_over(deck, columns, stop):
+            if stop is not None and impact_over(deck, columns, stop):
                 complete = True
                 break
         wall = time.perf_counter() - clock
         version = session.lmp.version()
     complete = complete or stop is None
-    return read_steps(deck, columns, threshold, complete, wall, version)
+    return read_steps(deck, columns, plan.threshold, complete, wall, version)

@@ -39,6 +39,7 @@ from contactlab.solver import wall_impact
 from contactlab.validation import check_number
 from dem_check.engines.lammps.laws import granular_model
 from dem_check.engines.lammps.session import LammpsSession
+from dem_check.engines.rebound import ObliqueRebound
 
 __all__ = ["STEPS_PER_CONTACT", "LammpsOblique", "lammps_oblique", "tangential_words"]
 
@@ -94,41 +95,17 @@ def tangential_words(law, effective_radius):
 
 
 @dataclass(frozen=True)
-class LammpsOblique:
-    """LAMMPS' rebound of one oblique impact (signs as :class:`contactlab.ObliqueResult`).
+class LammpsOblique(ObliqueRebound):
+    """LAMMPS' rebound of one oblique impact: an
+    :class:`~dem_check.engines.rebound.ObliqueRebound` and the deck.
 
     Attributes
     ----------
-    velocity, angle, spin : float
-        Impact speed [m/s], angle from the normal [rad], initial spin [rad/s].
-    radius : float
-        Grain radius [m].
-    rebound_normal_velocity, tangential_velocity, angular_velocity : float
-        After the impact: normal speed away from the wall [m/s], tangential velocity
-        [m/s], spin [rad/s].
-    time_step : float
-        LAMMPS' step [s].
-    steps : int
-        Steps run.
     script : str
         The input deck LAMMPS ran.
     """
 
-    velocity: float
-    angle: float
-    spin: float
-    radius: float
-    rebound_normal_velocity: float
-    tangential_velocity: float
-    angular_velocity: float
-    time_step: float
-    steps: int
     script: str
-
-    @property
-    def slip_after(self):
-        """Contact-point slip after the impact ``vt' - R spin'`` [m/s]."""
-        return self.tangential_velocity - self.radius * self.angular_velocity
 
 
 def _deck(grain, normal_words, tangential, vn, vt, spin, time_step, gap):

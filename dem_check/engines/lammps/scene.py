@@ -26,26 +26,16 @@ records, every step, the step number, the grain's and the plate's z and z-veloci
 the grain's z force (the contact force: nothing else acts on the grain).
 """
 
-import math
 from dataclasses import dataclass
 
-from contactlab.validation import check_number
 from dem_check.engines.lammps.laws import granular_model
+from dem_check.engines.record import COLUMNS, PLATE_RADIUS_FACTOR, drop_geometry
 
 __all__ = ["COLUMNS", "PLATE_RADIUS_FACTOR", "RECORD", "DropDeck", "drop_deck"]
 
-PLATE_RADIUS_FACTOR = 10.0
-"""Sensor plate radius over the grain radius (see the module docstring)."""
 
 RECORD = "record"
 """ID of the fix that records the steps."""
-
-COLUMNS = ("step", "z2", "vz2", "fz2", "z1", "vz1")
-"""Recorded per step: step number, grain z [m], z-velocity [m/s], z-force [N], plate z
-[m], z-velocity [m/s] (plate columns 0 on a rigid sensor)."""
-
-_GAP_STEPS = 3.5
-"""Default release gap: the travel of 3.5 steps (the grain touches during step 4)."""
 
 
 @dataclass(frozen=True)
@@ -173,18 +163,11 @@ def drop_deck(grain, sensor, law, velocity, time_step, duration, gap=None, plate
     ParameterError
         For a law LAMMPS cannot hold, or a gap or plate radius not > 0.
     """
-    r2 = grain.radius
-    if gap is None:
-        gap = _GAP_STEPS * velocity * time_step
-    gap = check_number("gap", gap, low=0.0, unit="m")
-    if sensor.is_rigid:
-        plate, mass, radius = math.nan, grain.mass, r2
-    else:
-        plate = PLATE_RADIUS_FACTOR * r2 if plate_radius is None else plate_radius
-        plate = check_number("plate_radius", plate, low=0.0, unit="m")
-        mass = grain.mass * sensor.mass / (grain.mass + sensor.mass)
-        radius = r2 * plate / (r2 + plate)
-    model = granular_model(law, mass, radius)
+    geometry = drop_geometry(grain, sensor, velocity, time_step, gap, plate_radius)
+    model = granular_model(law, geometry.effective_mass, geometry.effective_radius)
+    r2, gap = grain.radius, geometry.gap
     # the grain never moves faster than at release (no gravity, dissipative contact)
     height = r2 + gap + velocity * (gap / velocity + duration) + 4.0 * r2
-    return DropDeck(grain, sensor, law, velocity, model, time_step, gap, plate, height)
+    return DropDeck(
+        grain, sensor, law, velocity, model, time_step, gap, geometry.plate_radius, height
+    )

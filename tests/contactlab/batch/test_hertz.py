@@ -13,6 +13,10 @@ from contactlab import analytic
 from contactlab.batch import RESULT_COLUMNS, dask_hertz_impacts, hertz_impacts
 from contactlab.errors import ParameterError
 
+# The random frames reach over-damped sensors (damping ratio up to 3.2) on purpose, to cover
+# the kernels' real-mode branches: beyond real sensors, so the PlausibilityWarning is expected.
+pytestmark = pytest.mark.filterwarnings("ignore::contactlab.errors.PlausibilityWarning")
+
 COLUMNS = (
     "m1 [kg]",
     "k1 [N/m]",
@@ -25,6 +29,7 @@ COLUMNS = (
 EVENTS = [0, 1, 4, 5]
 """contact time, response time, restitution, contacts: event times and states."""
 PEAKS = [2, 3]
+EPS = np.finfo(float).eps
 
 
 def random_frame(rng, n):
@@ -76,8 +81,19 @@ def test_random_rows_give_the_single_solvers_numbers_at_the_same_tolerance():
     got = hertz_impacts(frame, rtol=1e-10)[list(RESULT_COLUMNS)].to_numpy()
     ref = np.array([single(row, 1e-10) for row in frame.to_numpy()])
     rel = relative(got, ref)
-    # the same compiled steps: events agree to round-off (measured worst 2e-14)
-    assert rel[:, EVENTS].max() <= 1e-12, rel[:, EVENTS].max(axis=0)
+    single_contact = ref[:, 5] == 1
+    # the same compiled steps: events agree to round-off (measured worst 1e-15)
+    assert rel[single_contact][:, EVENTS].max() <= 1e-12, rel[:, EVENTS].max(axis=0)
+    # after a re-contact the two solvers start the next piece from a touch found by two
+    # root finders (modal scan, roots.py) to round-off, and the adaptive step control
+    # turns a round-off difference into one of order rtol: the single solver's own
+    # numbers move as much when v0 is nudged by 1-4 ulp (2.3e-11 measured on one row),
+    # so the batch must stay within twice that spread, measured here
+    for i in np.flatnonzero(~single_contact):
+        row = frame.to_numpy()[i]
+        nudged = [single(np.r_[row[:6], row[6] * (1 + k * EPS)], 1e-10) for k in range(1, 5)]
+        spread = relative(np.array(nudged), ref[i]).max(axis=0)
+        assert np.all(rel[i, EVENTS] <= 2 * spread[EVENTS] + 1e-12), (i, rel[i], spread)
     # peaks: the batch roots the slope on the dense output, the single solver zooms in
     # from its grid to ~1e-5 of a sample interval (measured worst 8e-10 on 1000 rows)
     assert rel[:, PEAKS].max() <= 2e-9, rel[:, PEAKS].max(axis=0)

@@ -68,12 +68,15 @@ def test_one_step_as_the_python_stepper(paper_grain, law, y):
     assert h_next == pytest.approx(python._h, rel=allowed)
     F = np.empty((7, 4))
     kernel.interpolant(K, h, y, y_new, f_new, par, False, F)
-    # rows 0-2 combine the two states and slopes: within 16 eps of the state's scale, as
-    # y_new; rows 3-6 sum 16 stages h D K, three of them the right-hand side at stage
+    # rows 0-1 hold delta = y_new - y once: within 16 eps of the state's scale, as y_new;
+    # row 2 holds 2 delta - h (f_new + f_old): twice that, plus 2 eps of the slopes'
+    # term (measured 17.5 eps on one CPU); rows 3-6 sum 16 stages h D K, three of them
+    # the right-hand side at stage
     # states rounded apart -- near the touch (d = 1e-9 m against h v = 3e-9 m, force
     # ~ d**2.2) that moves a stage by tens of eps: measured 57 eps of h |D| @ |K|
     rows = np.empty((7, 4))
-    rows[:3] = 16 * EPS * scale
+    rows[:2] = 16 * EPS * scale
+    rows[2] = 34 * EPS * scale
     rows[3:] = 128 * EPS * h * (np.abs(DOP853.D) @ np.abs(K[: kernel.STAGES + 4]))
     assert np.all(np.abs(F - python.interpolant()) <= rows)
 

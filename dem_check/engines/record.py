@@ -1,0 +1,234 @@
+"""What the DEM engines' drop tests share: the release and plate geometry, the run plan,
+the recorded columns and their reading as an :class:`EngineResult`.
+
+LAMMPS (:mod:`dem_check.engines.lammps`) and Kratos (:mod:`dem_check.engines.kratos`) drop
+the grain from a gap of a few steps onto a plane or onto a plate sphere of
+:data:`PLATE_RADIUS_FACTOR` grain radii (:func:`drop_geometry`), run until :data:`TAIL`
+after the contact and the sensor signal's first lobe (:func:`drop_plan`,
+:func:`impact_over`), record :data:`COLUMNS` per step (z up) and read them in the model's
+axis (:func:`model_coordinates`, :func:`engine_result`). A ``deck`` below is the engine's
+scene: it has ``grain``, ``sensor``, ``law``, ``velocity``, ``time_step`` and
+``plate_radius`` (the plate sphere's centre at ``z = -plate_radius`` at rest).
+"""
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactlab.errors import ParameterError, WindowWarning
+from contactlab.validation import check_number, check_positive
+from dem_check.engines import steps as engine_steps
+from dem_check.engines.intervals import contact_intervals
+from dem_check.engines.result import EngineResult
+
+__all__ = [
+    "COLUMNS",
+    "GAP_STEPS",
+    "PLATE_RADIUS_FACTOR",
+    "TAIL",
+    "DropGeometry",
+    "DropPlan",
+    "drop_geometry",
+    "drop_plan",
+    "engine_result",
+    "impact_over",
+    "model_coordinates",
+    "sensor_signal",
+]
+
+PLATE_RADIUS_FACTOR = 10.0
+"""Sensor plate radius over the grain radius: the law is mapped with the contact's ``R*``,
+so the plate's curvature brings no error in the force (``docs/dem_check.md``)."""
+
+GAP_STEPS = 3.5
+"""Default release gap: the travel of 3.5 steps (the grain touches during step 4)."""
+
+TAIL = 20e-6
+"""Time simulated after the last contact and the end of the sensor signal's first lobe
+[s], unless a duration is given."""
+
+COLUMNS = ("step", "z2", "vz2", "fz2", "z1", "vz1")
+"""Recorded per step: step number, grain z [m], z-velocity [m/s], z-force [N], plate z
+[m], z-velocity [m/s] (plate columns 0 on a rigid sensor)."""
+
+
+@dataclass(frozen=True)
+class DropGeometry:
+    """Release gap [m], plate radius [m] (``nan`` on a rigid sensor), and the contact's
+    effective mass ``m*`` [kg] and radius ``R*`` [m] the law is mapped with."""
+
+    gap: float
+    plate_radius: float
+    effective_mass: float
+    effective_radius: float
+
+
+def drop_geometry(grain, sensor, velocity, time_step, gap=None, plate_radius=None):
+    """The release gap, the plate and the contact's ``m*``, ``R*`` of one drop test.
+
+    Parameters
+    ----------
+    grain, sensor, velocity, time_step
+        As for the engines' ``drop_test``; ``time_step`` already checked [s].
+    gap : float, optional
+        Release gap [m]; default :data:`GAP_STEPS` steps of travel.
+    plate_radius : float, optional
+        Plate radius [m]; default :data:`PLATE_RADIUS_FACTOR` grain radii. Ignored on a
+        rigid sensor (``m* = m2``, ``R* = R2``).
+
+    Returns
+    -------
+    DropGeometry
+
+    Raises
+    ------
+    ParameterError
+        For a gap or plate radius not > 0.
+    """
+    r2 = grain.radius
+    if gap is None:
+        gap = GAP_STEPS * velocity * time_step
+    gap = check_number("gap", gap, low=0.0, unit="m")
+    if sensor.is_rigid:
+        return DropGeometry(gap, math.nan, grain.mass, r2)
+    plate = PLATE_RADIUS_FACTOR * r2 if plate_radius is None else plate_radius
+    plate = check_number("plate_radius", plate, low=0.0, unit="m")
+    mass = grain.mass * sensor.mass / (grain.mass + sensor.mass)
+    return DropGeometry(gap, plate, mass, r2 * plate / (r2 + plate))
+
+
+@dataclass(frozen=True)
+class DropPlan:
+    """Checked inputs of a drop test: ``velocity`` [m/s], ``threshold`` [N], ``time_step``
+    [s], ``after`` (longest time simulated after touch [s]) and ``stop`` (steps after the
+    impact's end at which the run stops; ``None`` for a given duration)."""
+
+    velocity: float
+    threshold: float
+    time_step: float
+    after: float
+    stop: int | None
+
+
+def drop_plan(grain, sensor, law, velocity, time_step, duration, threshold, default, min_steps):
+    """Check a drop test's inputs and plan its run.
+
+    ``default()`` gives the engine's default step; ``min_steps`` the fewest steps per
+    contact and per sensor period (:func:`dem_check.engines.steps.check_time_step`).
+    Without ``duration`` the run lasts until :data:`TAIL` after the impact, at most ten
+    wall contact times and twenty sensor periods.
+
+    Returns
+    -------
+    DropPlan
+
+    Raises
+    ------
+    ParameterError
+        For a bad velocity, threshold, time step or duration (each named).
+    """
+    velocity = check_positive("velocity", velocity, "m/s")
+    threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    dt = engine_steps.check_time_step(time_step, grain, sensor, law, velocity, min_steps, default)
+    if duration is None:
+        contact = engine_steps.wall_contact_time(grain, law, velocity)
+        after = 10.0 * contact + 20.0 * sensor.period + TAIL
+        return DropPlan(velocity, threshold, dt, after, math.ceil(TAIL / dt))
+    after = check_number("duration", duration, low=0.0, unit="s")
+    return DropPlan(velocity, threshold, dt, after, None)
+
+
+def model_coordinates(deck, columns):
+    """``(x1, v1, x2, v2, S2)`` of recorded :data:`COLUMNS` in the model's axis (x down,
+    into the sensor): ``x2 = R2 - z2``, ``x1 = -(z1 + Rp)`` (0 on a rigid sensor)."""
+    _, z2, vz2, fz2, z1, vz1 = columns
+    plate = 0.0 if deck.sensor.is_rigid else deck.plate_radius
+    x1 = np.zeros_like(z1) if deck.sensor.is_rigid else -(z1 + plate)
+    return x1, -vz1, deck.grain.radius - z2, -vz2, fz2
+
+
+def sensor_signal(deck, columns):
+    """S1 [N] per recorded step: ``k1 x1 + c1 v1``, or S2 on a rigid sensor."""
+    x1, v1, _, _, force = model_coordinates(deck, columns)
+    if deck.sensor.is_rigid:
+        return force.copy()
+    return deck.sensor.stiffness * x1 + deck.sensor.damping * v1
+
+
+def impact_over(deck, columns, stop):
+    """Whether ``stop`` steps have passed since the last contact and the first lobe's end."""
+    force = columns[3]
+    touching = np.flatnonzero(force > 0.0)
+    if touching.size == 0:
+        return False
+    after = sensor_signal(deck, columns)[touching[0] :]
+    rising = np.flatnonzero(after > 0.0)
+    if rising.size == 0:
+        return False
+    falls = np.flatnonzero(after[rising[0] :] <= 0.0)
+    if falls.size == 0:
+        return False
+    lobe_end = touching[0] + rising[0] + falls[0]
+    return force.size - 1 >= max(touching[-1], lobe_end) + stop
+
+
+def engine_result(method, label, deck, columns, threshold, complete, metadata):
+    """The :class:`EngineResult` of an engine's recorded :data:`COLUMNS`.
+
+    Parameters
+    ----------
+    method : str
+        The engine (``"lammps"``, ``"kratos"``).
+    label : str
+        The engine as named in the warning of a window too short (``"LAMMPS"``).
+    deck
+        The engine's scene (module docstring).
+    columns : numpy.ndarray
+        ``(len(COLUMNS), steps)``.
+    threshold : float
+        Level [N] of the sensor signal's first lobe.
+    complete : bool
+        Whether the run reached the end of the impact.
+    metadata : dict
+        The engine's settings; ``"touch_time [s]"`` is added.
+
+    Returns
+    -------
+    EngineResult
+
+    Raises
+    ------
+    ParameterError
+        If the grain never touched the sensor.
+    """
+    x1, v1, x2, v2, force = model_coordinates(deck, columns)
+    times = columns[0] * deck.time_step
+    intervals = contact_intervals(deck.law, times, x2 - x1, v2 - v1)
+    if not intervals:
+        raise ParameterError(
+            f"the grain did not reach the sensor in {times[-1]:.4g} s; check velocity and gap"
+        )
+    touch = intervals[0][0]
+    t = times - touch
+    intervals = [(a - touch, b - touch) for a, b in intervals]
+    if not complete or math.isnan(intervals[-1][1]):
+        warnings.warn(
+            f"the {label} window ({t[-1]:.4g} s after touch) ended before the contact and "
+            "the sensor signal's first lobe were over; give a longer duration",
+            WindowWarning,
+            stacklevel=4,
+        )
+    return EngineResult(
+        method=method,
+        grain=deck.grain,
+        sensor=deck.sensor,
+        law=deck.law,
+        velocity=deck.velocity,
+        t=t,
+        signals=(x1, v1, x2, v2, force, sensor_signal(deck, columns)),
+        intervals=intervals,
+        metadata={**metadata, "touch_time [s]": touch},
+        threshold=threshold,
+    )

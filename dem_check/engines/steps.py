@@ -1,0 +1,80 @@
+"""Time steps of the DEM engines' drop tests, from the contact and the sensor period.
+
+An engine steps a contact of duration ``t_c`` (the law's impact on an immovable wall at
+the release speed, :func:`contactlab.solver.wall_impact`; a Hertz contact's duration
+depends on it) and a sensor of period ``T1``. Its default step resolves both
+(:func:`default_time_step`), and a given step must leave at least ``min_steps`` steps
+per contact and per sensor period (:func:`check_time_step`). LAMMPS
+(:mod:`dem_check.engines.lammps.drop`) and Kratos (:mod:`dem_check.engines.kratos.drop`)
+use these with their own step counts.
+"""
+
+from contactlab.solver import wall_impact
+from contactlab.validation import check_number
+
+__all__ = ["check_time_step", "default_time_step", "wall_contact_time"]
+
+
+def wall_contact_time(grain, law, velocity):
+    """Contact time [s] of ``law`` for the grain on an immovable wall at ``velocity``."""
+    return wall_impact(law, grain.mass, velocity).contact_time
+
+
+def default_time_step(grain, sensor, law, velocity, steps_per_contact, steps_per_period):
+    """``min(t_c / steps_per_contact, T1 / steps_per_period)`` [s] (no ``T1`` if rigid).
+
+    Parameters
+    ----------
+    grain : Grain
+    sensor : Sensor
+    law : ContactLaw
+    velocity : float
+        Impact speed [m/s].
+    steps_per_contact, steps_per_period : int
+        Steps per wall contact time and per sensor period.
+
+    Returns
+    -------
+    float
+    """
+    steps = [wall_contact_time(grain, law, velocity) / steps_per_contact]
+    if not sensor.is_rigid:
+        steps.append(sensor.period / steps_per_period)
+    return min(steps)
+
+
+def check_time_step(time_step, grain, sensor, law, velocity, min_steps, default):
+    """``time_step`` checked against the contact and the sensor period, or the default.
+
+    Parameters
+    ----------
+    time_step : float or None
+        Engine step [s]; ``None`` returns ``default()``.
+    grain, sensor, law, velocity
+        As for :func:`default_time_step`.
+    min_steps : int
+        Fewest steps per contact and per sensor period accepted.
+    default : callable
+        Returns the engine's default step [s].
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ParameterError
+        For a step not > 0 or coarser than ``t_c / min_steps`` or ``T1 / min_steps``.
+    """
+    if time_step is None:
+        return default()
+    limit = wall_contact_time(grain, law, velocity) / min_steps
+    if not sensor.is_rigid:
+        limit = min(limit, sensor.period / min_steps)
+    return check_number(
+        "time_step",
+        time_step,
+        low=0.0,
+        high=limit,
+        unit=f"s; {min_steps} steps per contact and per sensor period",
+    )

@@ -1,0 +1,135 @@
+"""Kratos' MaterialsDEM.json from a fit: Kratos' rules inverted exactly, numbers and fixed
+keys only (the run through Kratos itself is ``tests/dem_check/engines/kratos/test_export.py``)."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import contactlab as cl
+from contactlab import analytic
+from contactlab.inverse import export_dem
+from contactlab.inverse.export.kratos import kratos_hertz_restitution, thornton_gamma
+
+GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
+VELOCITY = 2.0  # [m/s]
+E_STAR = 2.25e7  # [Pa]
+FIXED_STRINGS = {
+    "grain",
+    "plate",
+    "SpheresPart",
+    "RigidFacePart",
+    "DEMRollingFrictionModelBounded",
+    "DEM_D_Hertz_viscous_Coulomb",
+    "DEM_D_Linear_viscous_Coulomb",
+}
+
+
+def _fit(law_name, law, fitted):
+    entry = {"stderr": 0.0, "ci95": [None, None], "identifiable": True}
+    return {
+        "law": law_name,
+        "law_parameters": law.parameters(),
+        "parameters": {k: {"value": v, "unit": u, **entry} for k, (v, u) in fitted.items()},
+        "velocity [m/s]": VELOCITY,
+        "grain": GRAIN.to_dict(),
+    }
+
+
+def _hertz_fit(restitution):
+    k_hertz = analytic.hertz_stiffness(E_STAR, GRAIN.radius)
+    law = cl.laws.HertzDamped(
+        k_hertz, analytic.tsuji_damping_coefficient(k_hertz, GRAIN.mass, restitution)
+    )
+    fitted = {"effective_modulus": (E_STAR, "Pa"), "restitution": (restitution, "-")}
+    return law, _fit("hertz_damped", law, fitted)
+
+
+@settings(max_examples=200, deadline=None)
+@given(gamma=st.floats(thornton_gamma(0.999), thornton_gamma(0.001)))
+def test_the_restitution_written_gives_kratos_gamma_exactly(gamma):
+    e = kratos_hertz_restitution(gamma)
+    # brentq to 1e-15 in e on a polynomial of slope up to ~1e3: a few ulp of gamma
+    assert thornton_gamma(e) == pytest.approx(gamma, rel=1e-12)
+
+
+@settings(max_examples=40, deadline=None)
+@given(restitution=st.floats(0.05, 0.98))
+def test_kratos_force_from_the_file_is_the_fitted_law(restitution):
+    """Kratos' DEM-FEM Hertz force rebuilt from the file's numbers (E, nu mixed at the
+    wall, Kn = 2 E* sqrt(R d), F = 2/3 Kn d + 2 gamma sqrt(m Kn) d') equals the law's."""
+    law, fit = _hertz_fit(restitution)
+    document = json.loads(export_dem(fit, "kratos"))
+    grain, plate = (m["Variables"] for m in document["materials"])
+    relation = document["material_relations"][1]["Variables"]
+    e_star = 1.0 / (
+        (1.0 - grain["POISSON_RATIO"] ** 2) / grain["YOUNG_MODULUS"]
+        + (1.0 - plate["POISSON_RATIO"] ** 2) / plate["YOUNG_MODULUS"]
+    )
+    gamma = thornton_gamma(relation["COEFFICIENT_OF_RESTITUTION"])
+    d = np.linspace(1e-7, 1e-4, 50)
+    rate = np.linspace(-2.0, 2.0, 50)
+    kn = 2.0 * e_star * np.sqrt(GRAIN.radius * d)
+    kratos = 2.0 / 3.0 * kn * d + 2.0 * gamma * np.sqrt(GRAIN.mass * kn) * rate
+    expected = law.branch("load").force(d, rate)
+    # E* mixed back from E (rounding), gamma through the inverted polynomial (1e-12)
+    np.testing.assert_allclose(kratos, expected, rtol=1e-10, atol=1e-12 * np.abs(expected).max())
+
+
+def test_linear_file_gives_the_fitted_stiffness_and_rebound():
+    damping = analytic.linear_damping_from_restitution(1e5, 0.5, GRAIN.mass)
+    law = cl.laws.LinearViscoelastic(1e5, damping)
+    fit = _fit("linear", law, {"stiffness": (1e5, "N/m"), "damping": (damping, "N*s/m")})
+    document = json.loads(export_dem(fit, "kratos"))
+    grain, plate = (m["Variables"] for m in document["materials"])
+    e_star = 1.0 / (
+        (1.0 - grain["POISSON_RATIO"] ** 2) / grain["YOUNG_MODULUS"]
+        + (1.0 - plate["POISSON_RATIO"] ** 2) / plate["YOUNG_MODULUS"]
+    )
+    # Kn = pi 0.31225 E* R at a wall (DEM_D_Linear_viscous_Coulomb_CL.cpp); rounding only
+    assert math.pi * 0.31225 * e_star * GRAIN.radius == pytest.approx(1e5, rel=1e-12)
+    relation = document["material_relations"][1]["Variables"]
+    expected = analytic.linear_restitution(1e5, damping, GRAIN.mass, convention="force")
+    assert relation["COEFFICIENT_OF_RESTITUTION"] == pytest.approx(expected, rel=1e-14)
+    assert relation["DEM_DISCONTINUUM_CONSTITUTIVE_LAW_NAME"] == "DEM_D_Linear_viscous_Coulomb"
+
+
+def _strings(value):
+    if isinstance(value, str):
+        yield value
+    elif isinstance(value, dict):
+        for item in value.values():
+            yield from _strings(item)
+    elif isinstance(value, list):
+        for item in value:
+            yield from _strings(item)
+
+
+def test_only_numbers_and_fixed_keys_reach_the_file():
+    """A hostile source name, fitted-parameter name or unit cannot reach Kratos' input."""
+    _law, fit = _hertz_fit(0.5)
+    fit["parameters"]["restitution"]["unit"] = '-"}], "evil": [{"'
+    text = export_dem(fit, "kratos", source='FIT.json"} // injected\n{"')
+    document = json.loads(text)
+    assert "evil" not in text and "injected" not in text
+    assert set(_strings(document)) <= FIXED_STRINGS
+    keys = set(document)
+    assert keys == {
+        "materials",
+        "material_relations",
+        "material_assignation_table",
+        "contactlab_export",
+    }
+
+
+def test_the_file_carries_the_step_and_the_fitted_rebound():
+    law, fit = _hertz_fit(0.5)
+    extra = json.loads(export_dem(fit, "kratos"))["contactlab_export"]
+    exact = law.impact(GRAIN.mass, VELOCITY)
+    # contact time of the fitted law on a rigid plate over 200 (rounding only)
+    assert extra["MaxTimeStep [s]"] == pytest.approx(exact.contact_time / 200, rel=1e-9)
+    # the force-zero closed form (0.5503 for Tsuji e = 0.5) against the exact solver
+    assert extra["fitted_rebound [-]"] == pytest.approx(exact.restitution, rel=1e-8)
