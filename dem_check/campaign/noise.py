@@ -77,7 +77,7 @@ MIN_SIGMAS = 7.0
 than Gaussian noise relative to a block's local noise (on the real hammer records of
 ``data/traces/real``, 5.8 sigma excursions occur once in 25600 samples; 1/f noise as large
 as the white noise made a 6.4 sigma excursion at 5 MHz, its slow part being under-read by
-a block's MAD), so the Bonferroni threshold is never lowered below this."""
+a block's MAD, in the hypothesis sweep), so the Bonferroni threshold is never lowered below this."""
 
 ONSET_SIGMAS = 5.0
 """Onset level in noise sigmas of the smoothed segment's own baseline [-]; the
