@@ -13,6 +13,7 @@ at the instrument's limit as +-inf): a baseline or a filter that would depend on
 refuses them, naming the fault.
 """
 
+import itertools
 import numbers
 from typing import NamedTuple
 
@@ -22,7 +23,39 @@ from scipy import signal
 from contactlab.errors import ParameterError
 from contactlab.validation import check_count, check_number
 
-__all__ = ["Baseline", "baseline", "detect_onset", "in_window", "lowpass", "noise_level"]
+__all__ = [
+    "MAD_TO_SIGMA",
+    "Baseline",
+    "RunningBaseline",
+    "baseline",
+    "detect_onset",
+    "in_window",
+    "lowpass",
+    "noise_level",
+    "quiet_window",
+    "robust_noise",
+    "running_baseline",
+]
+
+MAD_TO_SIGMA = 1.482602218505602
+"""Standard deviation of Gaussian noise per median absolute deviation, ``1 / Phi^-1(3/4)``
+[-]: ``robust_noise`` reads the noise as this many MADs, which a pulse covering less
+than half of the samples cannot move far (breakdown point 50 %)."""
+
+
+class RunningBaseline(NamedTuple):
+    """A baseline that follows drift, and the local noise around it (see
+    :func:`running_baseline`)."""
+
+    level: np.ndarray
+    """Baseline at every sample (unit of the samples)."""
+    residual: np.ndarray
+    """Samples minus the nearest of the block levels around them (unit of the samples):
+    what the impacts are found on."""
+    noise: np.ndarray
+    """Local noise at every sample, :data:`MAD_TO_SIGMA` times the median absolute
+    distance from ``level`` over its block, the largest of the block and its two
+    neighbours (unit of the samples)."""
 
 
 class Baseline(NamedTuple):
@@ -224,3 +257,177 @@ def lowpass(y, interval, cutoff, order=4):
     if y.size <= pad:
         raise ParameterError(f"lowpass of order {order} needs more than {pad} samples")
     return signal.sosfiltfilt(sos, y)
+
+
+def robust_noise(y):
+    """Noise of samples that may hold pulses: :data:`MAD_TO_SIGMA` times their median
+    absolute deviation from their median (unit of ``y``).
+
+    For Gaussian noise this is its standard deviation (to ``0.78 / sqrt(n)`` relative
+    scatter); pulses covering less than half of the samples move it little, where they
+    would inflate the standard deviation.
+
+    Parameters
+    ----------
+    y : array_like
+        Finite samples, at least 2.
+
+    Returns
+    -------
+    float
+    """
+    y = np.asarray(y, dtype=np.float64)
+    if y.size < 2 or not np.isfinite(y).all():
+        raise ParameterError(f"robust_noise needs at least 2 finite samples; got {y.size}")
+    return MAD_TO_SIGMA * float(np.median(np.abs(y - np.median(y))))
+
+
+def _block_medians(y, width):
+    """Median and MAD-noise of consecutive blocks of ``width`` samples (the last block
+    takes the remainder, or joins the one before it when shorter than half a block)."""
+    count = max(1, round(y.size / width))
+    edges = np.linspace(0, y.size, count + 1).round().astype(int)
+    medians = np.empty(count)
+    for k in range(count):
+        medians[k] = np.median(y[edges[k] : edges[k + 1]])
+    return edges, medians
+
+
+def _side_means(y, span):
+    """Per sample, the mean of the ``span`` samples before it or of the ``span`` after it,
+    whichever is nearer to the sample (one side of an offset step holds one level)."""
+    total = np.concatenate([[0.0], np.cumsum(y)])
+    index = np.arange(y.size)
+    low, high = np.maximum(index - span, 0), np.minimum(index + 1 + span, y.size)
+    before = (total[index] - total[low]) / np.maximum(index - low, 1)
+    after = (total[high] - total[index + 1]) / np.maximum(high - index - 1, 1)
+    before[0], after[-1] = after[0], before[-1]  # no samples on that side
+    return np.where(np.abs(y - before) <= np.abs(y - after), before, after)
+
+
+def _block_spread(distance, edges, exclude):
+    """Median of ``distance`` per block over the samples not excluded; a block with
+    fewer than :data:`SPREAD_MIN_SAMPLES` of them takes its neighbours' (interpolated
+    over the block index, held at the ends)."""
+    keep = np.ones(distance.size, dtype=bool) if exclude is None else ~np.asarray(exclude)
+    spread = np.full(edges.size - 1, np.nan)
+    for k, (a, b) in enumerate(itertools.pairwise(edges)):
+        kept = distance[a:b][keep[a:b]]
+        if kept.size >= SPREAD_MIN_SAMPLES:
+            spread[k] = np.median(kept)
+    valid = np.flatnonzero(np.isfinite(spread))
+    if valid.size == 0:
+        raise ParameterError("running_baseline: every block is excluded; no noise to read")
+    return np.interp(np.arange(spread.size), valid, spread[valid])
+
+
+LOCAL_MEAN_FRACTION = 8
+"""The level of a sample is chosen by the mean of the samples on one side of it over
+this fraction of a block [-]: long enough to average the noise out (so the choice does
+not follow the noise and shrink the residual)."""
+
+SPREAD_MIN_SAMPLES = 16
+"""Fewest samples left in a block after the exclusions to read its noise [-]."""
+
+
+def running_baseline(y, width, exclude=None):
+    """A baseline that follows slow drift, wander, offset steps and hum, and the local
+    noise around it.
+
+    The samples are cut into blocks of about ``width`` samples; each block's median is
+    its level. The baseline is these levels interpolated linearly between the block
+    centres, and extrapolated with the outer slopes before the first centre and after
+    the last (what a drift or a hum slower than a block looks like). The residual of a
+    sample is its distance to one of four candidate levels, the interpolated one and
+    the medians of its own block and of the two blocks around it: the one nearest to the
+    mean of the samples on one side of it (over :data:`LOCAL_MEAN_FRACTION` of a block,
+    so the choice does not follow the noise; the side whose mean is nearer the sample,
+    so a step's two sides each keep their level). A pulse much shorter than a block stands above
+    all four, so it is kept whole; at a DC offset step the samples before and after it
+    each find a block on their own side, so the step leaves no residual that could pass
+    for an impact. The local noise of a block is :data:`MAD_TO_SIGMA` times the median
+    absolute residual of its samples, and the noise at a sample the largest of its
+    block's and its two neighbours' (a decaying ringing or a hum that fills a block
+    raises its own threshold).
+
+    Parameters
+    ----------
+    y : array_like
+        Finite samples (any unit), at least 2 blocks.
+    width : int
+        Block length [samples], >= 8; choose it long against a pulse (a pulse must cover
+        much less than half of a block) and short against the drift.
+    exclude : array_like of bool, optional
+        Samples left out of the local noise (pulses found on a first pass, with their
+        ringing): a block mostly filled by a pulse's ringing then reads the noise of its
+        other samples, or of its neighbours when fewer than 16 are left.
+
+    Returns
+    -------
+    RunningBaseline
+
+    Raises
+    ------
+    ParameterError
+        Bad ``width``, non-finite samples or fewer than two blocks.
+    """
+    width = check_count("width", width, low=8)
+    y = np.asarray(y, dtype=np.float64)
+    if y.ndim != 1 or not np.isfinite(y).all():
+        raise ParameterError("running_baseline needs a 1-D array of finite samples")
+    if y.size < 2 * width:
+        raise ParameterError(
+            f"running_baseline needs at least two blocks of {width} samples; got {y.size}"
+        )
+    edges, medians = _block_medians(y, width)
+    index = np.arange(y.size)
+    centres = 0.5 * (edges[:-1] + edges[1:] - 1)
+    level = np.interp(index, centres, medians)
+    if medians.size > 1:  # beyond the outer centres, the outer slopes go on (drift)
+        head, tail = index < centres[0], index > centres[-1]
+        slope = np.diff(medians) / np.diff(centres)
+        level[head] = medians[0] + slope[0] * (index[head] - centres[0])
+        level[tail] = medians[-1] + slope[-1] * (index[tail] - centres[-1])
+    block = np.repeat(np.arange(medians.size), np.diff(edges))
+    before = medians[np.maximum(block - 1, 0)]
+    after = medians[np.minimum(block + 1, medians.size - 1)]
+    span = max(2, width // LOCAL_MEAN_FRACTION)
+    candidates = np.stack([level, medians[block], before, after])
+    local_mean = _side_means(y, span)
+    nearest = np.argmin(np.abs(local_mean - candidates), axis=0)
+    residual = y - candidates[nearest, index]
+    spread = _block_spread(np.abs(residual), edges, exclude)
+    widened = np.maximum(
+        spread, np.maximum(np.r_[spread[:1], spread[:-1]], np.r_[spread[1:], spread[-1:]])
+    )
+    return RunningBaseline(level, residual, MAD_TO_SIGMA * widened[block])
+
+
+def quiet_window(t, y, width=None):
+    """The quietest stretch of a record: the block of ``width`` samples with the smallest
+    robust noise around the running baseline, as a time window ``[start, end)`` [s].
+
+    The single-trace methods read their baseline there when a record has no pre-trigger
+    (it starts at, or just before, the impact).
+
+    Parameters
+    ----------
+    t, y : array_like
+        Sample times [s] and samples, as for :func:`baseline`.
+    width : int, optional
+        Block length [samples], >= 8; default a sixteenth of the record, at least 16
+        samples (a record shorter than 32 samples is refused).
+
+    Returns
+    -------
+    (float, float)
+    """
+    t, y = _trace(t, y)
+    if width is None:
+        width = max(16, y.size // 16)
+    found = running_baseline(y, width)
+    edges, _ = _block_medians(y, width)
+    noise = [robust_noise(found.residual[a:b]) for a, b in itertools.pairwise(edges)]
+    k = int(np.argmin(noise))
+    end = float(t[edges[k + 1]]) if edges[k + 1] < t.size else float(np.nextafter(t[-1], np.inf))
+    return float(t[edges[k]]), end

@@ -115,6 +115,8 @@ def _campaign(args):
         metadata=args.metadata,
         gallery=args.gallery,
         progress=not args.no_progress,
+        min_force=args.min_force,
+        min_separation=args.min_separation,
     )
     print(dump(result.summary()) if args.json else result)
     if args.out:
@@ -148,6 +150,12 @@ def _add_campaign_parser(sub):
     p.add_argument("--fit", metavar="LAW", help="fit this law to every impact (needs a grain)")
     p.add_argument("--metadata", metavar="CSV", help="CSV with a 'file' column to join")
     p.add_argument("--gallery", type=int, default=24, help="impacts drawn in the report (24)")
+    p.add_argument(
+        "--min-force", type=float, metavar="N", help="smallest peak signal of an impact [N]"
+    )
+    p.add_argument(
+        "--min-separation", type=float, metavar="S", help="shortest time between onsets [s]"
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.set_defaults(func=_campaign)

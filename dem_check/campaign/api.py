@@ -11,7 +11,7 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse import FIT_MODELS
 from contactlab.validation import check_choice, check_count, check_number
-from dem_check.campaign import detection
+from dem_check.campaign import detection, noise
 from dem_check.campaign.analysis import analyse_impact, window_row
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.result import CampaignResult
@@ -33,6 +33,7 @@ IMPACT_COLUMNS = (
     "status",
     "reason",
     "onset [s]",
+    "significance [-]",
     "noise [N]",
     "peak_signal [N]",
     "response_time [s]",
@@ -58,6 +59,8 @@ _FILE_COLUMNS = (
     "length [s]",
     "noise [N]",
     "threshold [N]",
+    "largest_threshold [N]",
+    "wander [N]",
 )
 
 
@@ -109,17 +112,18 @@ def _envelope(trace):
 
 def _impact_table(rows):
     """The impact rows as a table, columns in :data:`IMPACT_COLUMNS` order (fit columns
-    after them), whichever row comes first."""
+    after them), whichever row comes first; every column is there (empty when no row
+    has it), ``velocity_change`` only with a grain."""
     extra = list(dict.fromkeys(k for row in rows for k in row if k not in IMPACT_COLUMNS))
     present = {k for row in rows for k in row}
-    columns = [c for c in IMPACT_COLUMNS if c in present or c in IMPACT_COLUMNS[:5]]
+    columns = [c for c in IMPACT_COLUMNS if c in present or c != "velocity_change [m/s]"]
     return pd.DataFrame(rows, columns=columns + extra)
 
 
 def _file_row(path, status, reason, trace=None, floor=None, found=()):
     row = dict.fromkeys(_FILE_COLUMNS)
     row.update(file=path, status=status, reason=reason, impacts=len(found))
-    row["impacts_ok"] = sum(r["status"] == "ok" for r in found)
+    row["impacts_ok"] = sum(r["status"] in detection.ANALYSED for r in found)
     if trace is not None:
         dt = float(trace.t[1] - trace.t[0]) if len(trace) > 1 else float("nan")
         row.update(
@@ -133,7 +137,14 @@ def _file_row(path, status, reason, trace=None, floor=None, found=()):
             }
         )
     if floor is not None:
-        row.update({"noise [N]": floor.noise, "threshold [N]": floor.threshold})
+        row.update(
+            {
+                "noise [N]": floor.noise,
+                "threshold [N]": floor.threshold,
+                "largest_threshold [N]": floor.sigmas * floor.largest_noise,
+                "wander [N]": floor.wander,
+            }
+        )
     return row
 
 
@@ -172,7 +183,7 @@ def _analyse_file(path, options, timings, progress):
         return _file_row(path, status, reason), [], {}, None
     started = time.perf_counter()
     try:
-        found = detection.find_impacts(trace, sensor)
+        found = detection.find_impacts(trace, sensor, **options["limits"])
     except ParameterError as exc:
         timings["detect"] += time.perf_counter() - started
         return _file_row(path, "not analysable", f"{path}: {exc}", trace), [], {}, _envelope(trace)
@@ -181,21 +192,24 @@ def _analyse_file(path, options, timings, progress):
     started = time.perf_counter()
     for k, window in enumerate(found.impacts):
         progress.impact(path, k, len(found.impacts))
-        if window.status == "ok":
+        if window.status in detection.ANALYSED:
             row, traces = analyse_impact(found, window, sensor, grain, fit)
             if traces is not None:
                 gallery[(path, k)] = traces
         else:
             row = window_row(window)
+            row["significance [-]"] = window.significance
         rows.append({"file": path, "impact": k, **row})
     timings["analyse"] += time.perf_counter() - started
     if rows:
         status, reason = "ok", ""
     else:
         status = "no impact"
+        floor = found.floor
         reason = (
             f"{path}: no impact: the smoothed signal never exceeds the detection threshold "
-            f"{found.floor.threshold:.4g} N ({found.floor.sigmas:.3g} sigma of its noise)"
+            f"({floor.sigmas:.3g} sigma of its local noise: {floor.threshold:.4g} N where the "
+            f"noise is typical, up to {floor.sigmas * floor.largest_noise:.4g} N)"
         )
     row = _file_row(path, status, reason, trace, found.floor, rows)
     return row, rows, gallery, _envelope(trace)
@@ -219,6 +233,10 @@ def _settings(paths, options, metadata):
             "smoothing -3 dB [Hz]": detection.CUTOFF_FACTOR * sensor.resonance,
             "false alarms per record": detection.FALSE_ALARMS,
             "onset [sigma]": detection.ONSET_SIGMAS,
+            "running baseline block [sensor periods]": noise.BLOCK_PERIODS,
+            "running baseline block, fewest [samples]": noise.BLOCK_MIN_SAMPLES,
+            "min_force [N]": options["limits"]["min_force"],
+            "min_separation [s]": options["limits"]["min_separation"],
             "noise floor [sigma]": detection.FLOOR_SIGMAS,
             "quiet time to end an impact [s]": detection.QUIET_PERIODS * sensor.period,
             "largest local baseline [s]": detection.BASELINE_PERIODS * sensor.period,
@@ -239,6 +257,8 @@ def run_campaign(
     metadata=None,
     gallery=24,
     progress=False,
+    min_force=None,
+    min_separation=None,
 ):
     """Analyse every impact in a set of long records, as a laboratory does after a
     measurement day.
@@ -279,6 +299,12 @@ def run_campaign(
         Impacts drawn in the report's gallery (evenly spaced; 0 for none).
     progress : bool, default False
         Show a progress bar (tqdm, on stderr).
+    min_force : float, optional
+        Smallest peak signal [N] of an impact; weaker candidates are listed with status
+        ``"below min_force"`` and not analysed.
+    min_separation : float, optional
+        Shortest time between impact onsets [s]; closer candidates are listed with
+        status ``"too close"`` and not analysed.
 
     Returns
     -------
@@ -299,6 +325,13 @@ def run_campaign(
         "gallery": gallery,
         "sens": _check_per_file("sensitivity", sensitivity, _check_sensitivity),
         "channel": _check_per_file("channel", channel, _check_channel),
+        "limits": dict(
+            zip(
+                ("min_force", "min_separation"),
+                detection.check_limits(min_force, min_separation),
+                strict=True,
+            )
+        ),
     }
     skip = () if metadata is None or isinstance(metadata, pd.DataFrame) else (metadata,)
     files, problems = expand_paths(paths, skip)

@@ -1,143 +1,104 @@
 """Finding every impact in a long record: noise floor, detection, segmentation, overlaps.
 
-A record holds impacts separated by quiet stretches. The steps, all on the record in
-newtons:
+A record holds impacts separated by stretches without one. The steps, all on the record
+in newtons:
 
-1. **Noise floor.** The record is cut into blocks of :data:`BLOCK_PERIODS` sensor
-   periods; blocks whose standard deviation is at most :data:`QUIET_FACTOR` times the
-   median block's are quiet, and the longest run of quiet blocks is the baseline window.
-   Its mean is removed (:func:`dem_check.traces.remove_baseline`) and its noise read
-   (:func:`dem_check.traces.noise_level`), so no pre-trigger needs to be known. This
-   assumes impacts and their ringing fill less than half of the record.
-2. **Smoothing.** Two copies of the record: one smoothed by a Gaussian kernel
-   (``scipy.ndimage.gaussian_filter1d``) whose -3 dB frequency is :data:`CUTOFF_FACTOR`
-   times the sensor's resonance, for detection and timing (a positive kernel: no
-   overshoot, so no false lobe before a sharp rise, and a lead of at most about three
-   kernel widths, 5 us for a 40 kHz sensor); and one low-passed by a zero-phase
-   Butterworth filter at the same frequency (:func:`dem_check.traces.lowpass`), flat in
-   its pass band, for the peak (the Gaussian would lower a 40 kHz sensor's peaks by
-   1-3 %). Both cut white noise five-fold at 5 MHz.
-3. **Detection.** An impact is a run of the smoothed signal above the noise floor
-   (:data:`FLOOR_SIGMAS` sigma) that reaches the detection threshold: ``k`` sigma, with
-   ``k`` set so that Gaussian noise crosses it by chance in fewer than
-   :data:`FALSE_ALARMS` records (Bonferroni over the record's samples; 6.2 sigma for
-   1.5 million samples, never below 5). The run ends once the signal has stayed under
-   the floor for :data:`QUIET_PERIODS` sensor periods: the ringing has decayed.
-4. **Onset.** :func:`dem_check.traces.detect_onset` on the smoothed segment: the first
-   crossing of :data:`ONSET_SIGMAS` times the noise of the segment's own baseline (the
-   quiet samples just before the impact, at most :data:`BASELINE_PERIODS` periods).
+1. **Baseline and local noise** (:mod:`dem_check.campaign.noise`): a running baseline of
+   block medians follows drift, wander, offset steps and slow hum; the local noise is
+   the MAD of the residual per block (the largest of a block and its neighbours), so hum,
+   wander and a structure's ringing raise their own threshold. No pre-trigger and no
+   quiet stretch need to be known.
+2. **Smoothing.** A Gaussian kernel whose -3 dB frequency is
+   :data:`~dem_check.campaign.noise.CUTOFF_FACTOR` times the sensor's resonance, for
+   detection and timing (a positive kernel: no overshoot, so no false lobe before a
+   sharp rise), and a zero-phase Butterworth low-pass at the same frequency, flat in its
+   pass band, for the peak.
+3. **Detection.** An impact is a run of the smoothed residual above the noise floor
+   (:data:`FLOOR_SIGMAS` local sigmas) that reaches the detection threshold: ``k`` local
+   sigmas, ``k`` set so that Gaussian noise crosses it by chance in fewer than
+   :data:`FALSE_ALARMS` records (6.2 sigma for 1.5 million samples, never below 5). Its
+   **significance** is its peak over the local noise. The run ends once the signal has
+   stayed under the floor for :data:`QUIET_PERIODS` sensor periods. A user's
+   ``min_force`` [N] and ``min_separation`` [s] turn weaker or closer candidates into
+   rows with status ``"below min_force"`` / ``"too close"`` (listed, not analysed).
+4. **Onset.** On the smoothed segment, the last crossing before the detection (searched
+   back from where the impact reached the threshold) of :data:`ONSET_SIGMAS` times the
+   noise of the segment's own baseline (the quiet samples just before the impact, at
+   most :data:`BASELINE_PERIODS` periods). An
+   impact with fewer than :data:`BASELINE_MIN_SAMPLES` quiet samples before it (a
+   record that starts at the hit, or an impact right after another's ringing) takes its
+   baseline from the quiet samples after its ringing decayed: status
+   ``"short pre-trigger"``, analysed.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
-   first one's ringing decayed. Both are flagged ``"overlap"``, never merged. Two
-   impacts closer than the first one's main lobe cannot be told from one longer impact.
+   first one's ringing decayed. Both are flagged ``"overlap"``, never merged. A record
+   with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period does not
+   resolve the ringing, and this check is not made.
+6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
+   inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import gaussian_filter1d
-from scipy.stats import norm
 
+from contactlab import signals
 from contactlab.errors import ParameterError
-from dem_check.traces import Trace, detect_onset, lowpass, noise_level, remove_baseline
-from dem_check.traces.checks import uniform_interval
+from contactlab.validation import check_number
+from dem_check.campaign.clipping import clipped_samples
+from dem_check.campaign.noise import (
+    CUTOFF_FACTOR,
+    FALSE_ALARMS,
+    FLOOR_SIGMAS,
+    ONSET_SIGMAS,
+    QUIET_MIN_SAMPLES,
+    QUIET_PERIODS,
+    NoiseFloor,
+    candidate_runs,
+    noise_floor,
+)
+from dem_check.traces import Trace
 
 __all__ = [
+    "ANALYSED",
     "BASELINE_MIN_SAMPLES",
+    "CUTOFF_FACTOR",
+    "FALSE_ALARMS",
+    "FLOOR_SIGMAS",
+    "ONSET_SIGMAS",
     "Detection",
     "ImpactWindow",
     "NoiseFloor",
+    "check_limits",
     "find_impacts",
+    "noise_floor",
 ]
 
-CUTOFF_FACTOR = 2.0
-"""-3 dB frequency of both smoothings in units of the sensor resonance [-]. The
-Butterworth filter (fourth order, applied twice) keeps the ringing at resonance to
-within 0.4 % (``1 / (1 + 2**-8)``); the Gaussian kernel's width is
-``sqrt(ln 2) / (2 pi fc)`` (1.66 us for a 40 kHz sensor)."""
-
-NYQUIST_FRACTION = 0.8
-"""The record is low-passed only if the cutoff lies below this fraction of the Nyquist
-frequency (and smoothed only if the Gaussian kernel is wider than half a sample); a
-record sampled more coarsely is used as it is."""
-
-EDGE_CUTOFF_PERIODS = 4.0
-"""The low-passed record is not read this many cutoff periods from either end: the
-zero-phase filter's start-up (its slowest poles decay as ``exp(-0.38 * 2 pi fc t)``,
-to 7e-5 after 4 periods) pulls it towards the first and last raw samples."""
-
-BLOCK_PERIODS = 2.0
-"""Block length of the quiet-stretch search [sensor periods], at least 16 samples."""
-
-QUIET_FACTOR = 1.5
-"""A block is quiet when its standard deviation (and its mean's distance from the
-median block mean) is at most this many times the median block's standard deviation.
-The standard deviation of 16 or more noise samples scatters by less than 18 %, so noise
-blocks pass; a block with ringing of amplitude above the noise does not."""
-
-FALSE_ALARMS = 1e-3
-"""Expected number of chance detections per record [-] (sets the detection sigmas)."""
-
-ONSET_SIGMAS = 5.0
-"""Onset level in noise sigmas of the smoothed segment's own baseline [-]; the
-smoothing cuts the noise, so this is a small fraction of a typical impact's peak."""
-
-FLOOR_SIGMAS = 3.0
-"""Noise floor in sigmas of the smoothed record [-]: an impact lasts while its signal
-keeps coming back above it."""
-
-QUIET_PERIODS = 4.0
-"""An impact ends after this many sensor periods below the floor [-]."""
+ANALYSED = ("ok", "short pre-trigger")
+"""Impact statuses that are analysed (signal numbers, reconstruction, fit)."""
 
 TAIL_PERIODS = 16.0
 """Quiet sensor periods kept after an impact's ringing has decayed (up to the next
-impact's run) [-]: the reconstruction reads the signal to three periods past a window
-that may end a lobe-length after the main lobe, which a noisy record's short ringing
-would not reach."""
+impact's run) [-], at least :data:`BASELINE_MIN_SAMPLES` * 2 samples: the
+reconstruction reads the signal to three periods past a window that may end a
+lobe-length after the main lobe, and a short pre-trigger's baseline lies there."""
 
 BASELINE_PERIODS = 20.0
-"""Longest baseline taken before an impact [sensor periods]: enough samples for the
-noise (to a few per cent) without reaching back into an older impact."""
+"""Longest baseline taken before an impact [sensor periods] (at least 4 *
+:data:`BASELINE_MIN_SAMPLES` samples): enough samples for the noise (to a few per
+cent) without reaching back into an older impact."""
 
 BASELINE_MIN_SAMPLES = 16
-"""Fewest baseline samples before an impact (as :func:`contactlab.inverse.reconstruct_force`
-requires)."""
+"""Fewest baseline samples (as :func:`contactlab.inverse.reconstruct_force` requires)."""
+
+RESOLVED_PERIOD_SAMPLES = 4
+"""Fewest samples per sensor period for the ringing envelope to be followed (overlap
+check, step 5) [-]; a coarser record cannot show the ringing grow."""
 
 GROWTH_FACTOR = 1.5
 """Largest growth of the ringing envelope from one sensor period to the next that is
 not a new impact: free ringing shrinks by ``exp(-2 pi zeta)`` per period."""
-
-
-@dataclass(frozen=True)
-class NoiseFloor:
-    """How a record's baseline and noise were read (unit of the record, N)."""
-
-    window: tuple
-    """Baseline window ``[start, end)`` [s]: the longest quiet stretch."""
-    baseline: float
-    """Mean of the record over the window (removed) [N]."""
-    noise: float
-    """Standard deviation of the record over the window [N]."""
-    smoothed_noise: float
-    """Standard deviation of the smoothed record over the window [N]."""
-    cutoff: float
-    """-3 dB frequency of the smoothings [Hz]."""
-    kernel: float
-    """Standard deviation of the Gaussian kernel [s] (0 when not smoothed)."""
-    sigmas: float
-    """Detection threshold in ``smoothed_noise`` units [-]."""
-
-    @property
-    def threshold(self):
-        """Detection threshold on the smoothed record [N]."""
-        return self.sigmas * self.smoothed_noise
-
-    @property
-    def floor(self):
-        """Noise floor of the smoothed record [N]."""
-        return FLOOR_SIGMAS * self.smoothed_noise
 
 
 @dataclass(frozen=True)
@@ -148,9 +109,10 @@ class ImpactWindow:
     """Start of the impact [s] (first crossing of the onset level; for the later impact
     of an overlap, the sensor period where the ringing grew)."""
     baseline_window: tuple
-    """Local baseline before the impact ``[start, end)`` [s]."""
+    """Local baseline ``[start, end)`` [s]: before the impact, or after its ringing for a
+    ``"short pre-trigger"``."""
     first: int
-    """Index of the first sample of the impact's segment (the baseline's first)."""
+    """Index of the first sample of the impact's segment."""
     stop: int
     """Index one past the segment's last sample (:data:`TAIL_PERIODS` after the ringing
     decayed, the next impact's run, or the record's end)."""
@@ -158,10 +120,18 @@ class ImpactWindow:
     """Time the ringing had decayed [s]: :data:`QUIET_PERIODS` after the last sample above
     the noise floor (or the record's end)."""
     status: str
-    """``"ok"``, ``"overlap"``, ``"truncated"``, ``"no baseline"``, ``"negative"`` or
-    ``"overrange"``: only ``"ok"`` impacts are analysed further."""
+    """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``,
+    ``"no baseline"``, ``"negative"``, ``"overrange"``, ``"clipped"``,
+    ``"below min_force"`` or ``"too close"``: those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is)."""
+    significance: float = float("nan")
+    """Peak of the smoothed signal over its local noise [-]."""
+    peak: float = float("nan")
+    """Peak of the smoothed signal [N] (a lower bound when ``"clipped"``)."""
+    start: float | None = None
+    """Where the impulse integral starts [s]: the baseline's end, or the segment's first
+    sample for a ``"short pre-trigger"``."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -172,116 +142,13 @@ class Detection:
     impacts: list
     """:class:`ImpactWindow` list, in time order."""
     signal: Trace
-    """The record with its baseline removed [N]."""
+    """The record without its running baseline [N]."""
     smoothed: Trace
-    """The record smoothed by the Gaussian kernel [N], for detection and timing."""
+    """The smoothed residual [N], for detection and timing."""
     lowpassed: Trace
     """The record low-passed [N], for peaks (equal to ``signal`` when not filtered)."""
-
-
-def _quiet_window(t, y, block):
-    """The longest run of quiet blocks as ``(start, end)`` [s] (see the module)."""
-    count = y.size // block
-    if count < 2:
-        raise ParameterError(
-            f"the record ({y.size} samples) is shorter than two blocks of {block} samples "
-            "(two sensor periods each): too short to find a noise floor"
-        )
-    blocks = y[: count * block].reshape(count, block)
-    spread = blocks.std(axis=1, ddof=1)
-    typical = float(np.median(spread))
-    if typical == 0.0:
-        raise ParameterError(
-            "the record is exactly constant over most of its blocks: no noise to set a "
-            "detection threshold from"
-        )
-    centre = np.median(blocks.mean(axis=1))
-    quiet = (spread <= QUIET_FACTOR * typical) & (
-        np.abs(blocks.mean(axis=1) - centre) <= QUIET_FACTOR * typical
-    )
-    edges = np.flatnonzero(np.diff(np.concatenate([[0], quiet.astype(np.int8), [0]])))
-    starts, ends = edges[::2], edges[1::2]
-    best = int(np.argmax(ends - starts))
-    stop = min(ends[best] * block, t.size - 1)
-    return float(t[starts[best] * block]), float(t[stop])
-
-
-def _finite(trace):
-    """The record with overrange samples (+-inf) set to the largest finite magnitude,
-    for detection only (impacts that hold them are flagged, never analysed)."""
-    if not len(trace.metadata["overrange"]):
-        return trace
-    values = np.asarray(trace.values)
-    finite = np.isfinite(values)
-    limit = float(np.max(np.abs(values[finite]))) if finite.any() else 1.0
-    step = {"step": "overrange_for_detection", "limit": limit}
-    return trace.derive(step, values=np.where(finite, values, np.sign(values) * limit))
-
-
-def _gaussian(trace, kernel, dt):
-    """The trace smoothed by a Gaussian kernel of standard deviation ``kernel`` [s]."""
-    if kernel < 0.5 * dt:
-        return trace
-    step = {"step": "gaussian_smoothing", "kernel [s]": kernel, "mode": "reflect"}
-    return trace.derive(step, values=gaussian_filter1d(trace.values, kernel / dt))
-
-
-def _lowpassed(trace, cutoff, dt):
-    """The trace low-passed at ``cutoff`` [Hz], its first and last samples of filter
-    start-up (:data:`EDGE_CUTOFF_PERIODS`) set to nan, or the trace itself when too
-    coarse to filter."""
-    if cutoff >= NYQUIST_FRACTION * 0.5 / dt:
-        return trace
-    filtered = lowpass(trace, cutoff)
-    edge = round(EDGE_CUTOFF_PERIODS / cutoff / dt)
-    values = np.array(filtered.values)
-    values[:edge], values[values.size - edge :] = np.nan, np.nan
-    step = {"step": "edges_unread", "samples": edge}
-    return filtered.derive(step, values=values)
-
-
-def noise_floor(trace, sensor):
-    """Baseline, noise and detection threshold of a record (module steps 1-3).
-
-    Returns
-    -------
-    floor : NoiseFloor
-    signal, smoothed, lowpassed : Trace
-        The record without its baseline, smoothed (Gaussian) and low-passed.
-    """
-    dt = uniform_interval(trace, "finding impacts needs uniform sampling")
-    block = max(BASELINE_MIN_SAMPLES, round(BLOCK_PERIODS * sensor.period / dt))
-    finite = _finite(trace)
-    window = _quiet_window(finite.t, finite.values, block)
-    signal = remove_baseline(finite, window)
-    cutoff = CUTOFF_FACTOR * sensor.resonance
-    kernel = math.sqrt(math.log(2.0)) / (2.0 * math.pi * cutoff)
-    smoothed = _gaussian(signal, kernel, dt)
-    sigmas = max(ONSET_SIGMAS, float(norm.isf(FALSE_ALARMS / (2.0 * len(trace)))))
-    floor = NoiseFloor(
-        window=window,
-        baseline=float(signal.metadata["history"][-1]["baseline"]),
-        noise=noise_level(finite, window),
-        smoothed_noise=noise_level(smoothed, window),
-        cutoff=cutoff,
-        kernel=kernel if smoothed is not signal else 0.0,
-        sigmas=sigmas,
-    )
-    return floor, signal, smoothed, _lowpassed(signal, cutoff, dt)
-
-
-def _runs(z, floor, threshold, hold):
-    """``(first, last)`` sample indices of each run above the floor that reaches the
-    threshold; runs closer than ``hold`` samples are one."""
-    above = np.flatnonzero(np.abs(z) > floor)
-    if above.size == 0:
-        return []
-    breaks = np.flatnonzero(np.diff(above) > hold)
-    firsts = np.concatenate([[0], breaks + 1])
-    lasts = np.concatenate([breaks, [above.size - 1]])
-    peaks = np.maximum.reduceat(np.abs(z[above]), firsts)
-    keep = peaks > threshold
-    return list(zip(above[firsts[keep]].tolist(), above[lasts[keep]].tolist(), strict=True))
+    local_noise: np.ndarray = None
+    """Local noise of the smoothed record at every sample [N]."""
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -301,8 +168,23 @@ def _growths(z, first_lobe_end, last, period, noise_floor_level):
     return found
 
 
-def find_impacts(trace, sensor):
-    """Every impact in a record, with its onset, local baseline and status.
+def _samples(periods, sensor, dt, minimum):
+    """``periods`` sensor periods in samples, at least ``minimum``."""
+    return max(minimum, round(periods * sensor.period / dt))
+
+
+def check_limits(min_force, min_separation):
+    if min_force is not None:
+        min_force = check_number("min_force", min_force, low=0.0, low_open=False, unit="N")
+    if min_separation is not None:
+        min_separation = check_number(
+            "min_separation", min_separation, low=0.0, low_open=False, unit="s"
+        )
+    return min_force, min_separation
+
+
+def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
+    """Every impact in a record, with its onset, local baseline, significance and status.
 
     Parameters
     ----------
@@ -311,6 +193,12 @@ def find_impacts(trace, sensor):
     sensor : Sensor
         A moving sensor: its period sets the time scales (blocks, quiet time, envelope)
         and its resonance the smoothing.
+    min_force : float, optional
+        Smallest peak of the smoothed signal [N] an impact must reach; weaker candidates
+        get status ``"below min_force"``.
+    min_separation : float, optional
+        Shortest time between two impacts' onsets [s]; a candidate closer to the one
+        before gets status ``"too close"``.
 
     Returns
     -------
@@ -319,68 +207,143 @@ def find_impacts(trace, sensor):
     Raises
     ------
     ParameterError
-        Not uniformly sampled, too short, or without noise (no threshold can be set).
+        Not uniformly sampled, too short, without noise, or bad limits.
     """
-    floor, signal, smoothed, lowpassed = noise_floor(trace, sensor)
+    min_force, min_separation = check_limits(min_force, min_separation)
+    floor, signal, smoothed, lowpassed, local = noise_floor(trace, sensor)
     t, z = smoothed.t, np.asarray(smoothed.values)
     dt = float(t[1] - t[0])
-    period = max(2, round(sensor.period / dt))
-    hold = round(QUIET_PERIODS * sensor.period / dt)
-    spread = round(3.0 * floor.kernel / dt)  # the kernel's reach before a rise
-    overrange = np.asarray(trace.metadata["overrange"], dtype=int)
-    tail = round(TAIL_PERIODS * sensor.period / dt)
-    runs = _runs(z, floor.floor, floor.threshold, hold)
+    scales = {
+        "period": max(1, round(sensor.period / dt)),
+        "hold": _samples(QUIET_PERIODS, sensor, dt, QUIET_MIN_SAMPLES),
+        "tail": _samples(TAIL_PERIODS, sensor, dt, 2 * BASELINE_MIN_SAMPLES),
+        "baseline": _samples(BASELINE_PERIODS, sensor, dt, 4 * BASELINE_MIN_SAMPLES),
+        "spread": round(3.0 * floor.kernel / dt),  # the kernel's reach before a rise
+    }
+    ratio = np.abs(z) / np.maximum(local, np.finfo(float).tiny)
+    finite = np.where(np.isfinite(trace.values), trace.values, 0.0)
+    flagged = {
+        "overrange": np.asarray(trace.metadata["overrange"], dtype=int),
+        "clipped": clipped_samples(finite, floor.noise),
+    }
+    runs = candidate_runs(ratio, scales["hold"], floor.sigmas)
     windows, previous_end = [], 0
     for k, (first, last) in enumerate(runs):
-        run = z[first : last + 1]
-        polarity = 1.0 if run.max() >= -run.min() else -1.0  # the main lobe's side
-        detected = first + int(np.argmax(polarity * run > floor.threshold))
-        quiet = np.flatnonzero(np.abs(z[previous_end:detected]) <= floor.floor)
-        base_end = previous_end + (int(quiet[-1]) if quiet.size else 0) - spread
-        base_start = max(previous_end, base_end - round(BASELINE_PERIODS * sensor.period / dt))
         following = runs[k + 1][0] if k + 1 < len(runs) else t.size
-        stop = min(last + hold + tail, following, t.size)
+        stop = min(last + scales["hold"] + scales["tail"], following, t.size)
+        candidate = (previous_end, first, last, stop)
+        windows += _classify(smoothed, ratio, candidate, scales, floor, flagged)
         previous_end = last + 1
-        windows += _classify(
-            smoothed,
-            (base_start, base_end, detected, last, stop, hold),
-            period,
-            floor,
-            overrange,
-        )
-    return Detection(floor, windows, signal, smoothed, lowpassed)
+    windows = _apply_limits(windows, min_force, min_separation)
+    return Detection(floor, windows, signal, smoothed, lowpassed, local)
 
 
-def _classify(smoothed, indices, period, floor, overrange):
+def _apply_limits(windows, min_force, min_separation):
+    """The user's limits: weaker or closer candidates keep a row with the reason."""
+    out, previous = [], None
+    for w in windows:
+        if min_force is not None and not abs(w.peak) >= min_force:
+            reason = f"peak {w.peak:.4g} N below min_force = {min_force:.4g} N"
+            w = _replace(w, "below min_force", reason)
+        elif min_separation is not None and previous is not None:
+            if w.onset - previous < min_separation:
+                reason = (
+                    f"onset {w.onset - previous:.4g} s after the impact at {previous:.6g} s, "
+                    f"closer than min_separation = {min_separation:.4g} s"
+                )
+                w = _replace(w, "too close", reason)
+        if w.status not in ("below min_force", "too close"):
+            previous = w.onset
+        out.append(w)
+    return out
+
+
+def _replace(window, status, reason):
+    fields = {**window.__dict__, "status": status, "reason": reason}
+    return ImpactWindow(**fields)
+
+
+def _local_baseline(ratio, candidate, scales):
+    """``(start, end)`` indices of the quiet samples just before the impact, or after its
+    ringing (short pre-trigger), and whether it is after."""
+    previous_end, first, last, stop = candidate
+    quiet = np.flatnonzero(ratio[previous_end:first] <= FLOOR_SIGMAS)
+    base_end = previous_end + (int(quiet[-1]) if quiet.size else 0) - scales["spread"]
+    base_start = max(previous_end, base_end - scales["baseline"])
+    if base_end - base_start >= BASELINE_MIN_SAMPLES:
+        return base_start, base_end, False
+    after = min(last + scales["hold"], stop)
+    return after, min(stop, after + scales["baseline"]), True
+
+
+def _onset(t, z, base, first, detected):
+    """The onset [s]: the last crossing of :data:`ONSET_SIGMAS` baseline sigmas before
+    the sample where the impact reached the detection threshold (interpolated), searched
+    back from it, so that slow noise or wander that crosses the level earlier in the
+    segment is not taken for the impact's start; the segment's first sample when the
+    impact is already above the level there."""
+    mean, noise, _ = signals.baseline(t, z, base, name="baseline_window")
+    if noise == 0.0:
+        raise ParameterError("the local baseline is exactly constant")
+    level = ONSET_SIGMAS * noise
+    deviation = np.abs(z[first : detected + 1] - mean)
+    below = np.flatnonzero(deviation <= level)
+    if below.size == 0:
+        return float(t[first])
+    j = first + int(below[-1])
+    d0, d1 = abs(z[j] - mean), abs(z[j + 1] - mean)
+    return float(t[j] + (level - d0) * (t[j + 1] - t[j]) / (d1 - d0))
+
+
+def _classify(smoothed, ratio, candidate, scales, floor, flagged):
     """The :class:`ImpactWindow` (one, or several for an overlap) of one run."""
-    base_start, base_end, detected, last, stop, hold = indices
+    previous_end, first, last, stop = candidate
     t, z = smoothed.t, np.asarray(smoothed.values)
+    run = z[first : last + 1]
+    polarity = 1.0 if run.max() >= -run.min() else -1.0  # the main lobe's side
+    detected = first + int(
+        np.argmax(polarity * ratio[first : last + 1] * np.sign(run) > floor.sigmas)
+    )
+    hold = scales["hold"]
     truncated = last + hold > t.size
     rough = float(t[detected])
     end = float(t[min(last + hold, t.size - 1)])
+    numbers = {
+        "significance": float(ratio[first : last + 1].max()),
+        "peak": float(polarity * np.max(polarity * run)),
+    }
+    base_start, base_end, after = _local_baseline(ratio, candidate, scales)
+    segment_first = previous_end if after else base_start
     if base_end - base_start < BASELINE_MIN_SAMPLES:
         reason = (
             f"only {max(base_end - base_start, 0)} quiet samples before the impact at "
-            f"{rough:.6g} s (need {BASELINE_MIN_SAMPLES}): it starts too close to the "
-            "record's start or to the previous impact's ringing"
+            f"{rough:.6g} s and after its ringing (need {BASELINE_MIN_SAMPLES}): it is "
+            "squeezed between the record's ends or other impacts"
         )
-        return [ImpactWindow(rough, (np.nan, np.nan), detected, stop, end, "no baseline", reason)]
-    base = (float(t[base_start]), float(t[base_end]))
-    segment = Trace(t[base_start:stop], z[base_start:stop], smoothed.unit)
+        return [
+            ImpactWindow(
+                rough, (np.nan, np.nan), detected, stop, end, "no baseline", reason, **numbers
+            )
+        ]
+    base = (float(t[base_start]), float(t[base_end - 1]) + float(t[1] - t[0]))
     try:
-        onset = detect_onset(segment, ONSET_SIGMAS, base)
+        onset = _onset(t, z, base, segment_first, detected)
     except ParameterError as exc:  # the local noise is far above the record's
-        reason = f"the local baseline before {rough:.6g} s is too noisy to time it: {exc}"
-        return [ImpactWindow(rough, base, base_start, stop, end, "no baseline", reason)]
+        reason = f"the local baseline of the impact at {rough:.6g} s is too noisy to time it: {exc}"
+        return [
+            ImpactWindow(rough, base, segment_first, stop, end, "no baseline", reason, **numbers)
+        ]
+    start = float(t[segment_first]) if after else base[1]
 
     def window(at, status="ok", reason=""):
-        return ImpactWindow(at, base, base_start, stop, end, status, reason)
+        return ImpactWindow(
+            at, base, segment_first, stop, end, status, reason, start=start, **numbers
+        )
 
-    if z[detected] < 0.0:
+    if polarity < 0.0:
         reason = (
-            f"the main lobe is negative ({z[detected : last + 1].min():.4g} N after "
-            f"{rough:.6g} s); a compressive contact gives a positive signal: check the "
-            "sensor's polarity"
+            f"the main lobe is negative ({run.min():.4g} N after {rough:.6g} s); a "
+            "compressive contact gives a positive signal: check the sensor's polarity"
         )
         return [window(onset, "negative", reason)]
     if truncated:
@@ -389,16 +352,27 @@ def _classify(smoothed, indices, period, floor, overrange):
             "decayed below the noise floor"
         )
         return [window(onset, "truncated", reason)]
-    inside = overrange[(overrange >= base_start) & (overrange < stop)]
-    if inside.size:
-        reason = (
-            f"{inside.size} overrange samples (first at {t[inside[0]]:.6g} s): the "
-            "instrument's range was exceeded, the true signal is unknown"
-        )
-        return [window(onset, "overrange", reason)]
+    for kind, what in (
+        ("overrange", "the instrument's range was exceeded, the true signal is unknown"),
+        ("clipped", "held at the record's rail: the peak is a lower bound"),
+    ):
+        indices = flagged[kind]
+        inside = indices[(indices >= segment_first) & (indices < stop)]
+        if inside.size:
+            reason = f"{inside.size} {kind} samples (first at {t[inside[0]]:.6g} s): {what}"
+            return [window(onset, kind, reason)]
     lobe_end = detected + int(np.argmax(z[detected : last + 1] <= 0.0))
-    later = _growths(z, lobe_end, last, period, floor.floor) if lobe_end > detected else []
+    level = FLOOR_SIGMAS * floor.smoothed_noise
+    resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
+    growths = resolved and lobe_end > detected
+    later = _growths(z, lobe_end, last, scales["period"], level) if growths else []
     if not later:
+        if after:
+            reason = (
+                f"fewer than {BASELINE_MIN_SAMPLES} quiet samples before the impact: the "
+                f"baseline is read after its ringing, {base[0]:.6g} to {base[1]:.6g} s"
+            )
+            return [window(onset, "short pre-trigger", reason)]
         return [window(onset)]
     times = [onset, *(float(t[i]) for i in later)]
     out = []

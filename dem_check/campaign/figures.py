@@ -12,6 +12,8 @@ import re
 
 import numpy as np
 
+from dem_check.campaign.detection import ANALYSED
+
 __all__ = [
     "MAX_POINTS",
     "distributions_svg",
@@ -87,7 +89,7 @@ def record_svg(envelope, onsets, statuses, name):
     ax = fig.add_subplot()
     ax.fill_between(t, low, high, color="0.35", linewidth=0.5, step="mid")
     for onset, status in zip(onsets, statuses, strict=True):
-        ax.axvline(onset, color="tab:green" if status == "ok" else "tab:red", lw=0.8, alpha=0.7)
+        ax.axvline(onset, color="tab:green" if status in ANALYSED else "tab:red", lw=0.8, alpha=0.7)
     ax.set(xlabel="t [s]", ylabel="signal [N]", title=name)
     return _svg(fig)
 
@@ -105,8 +107,9 @@ def distributions_svg(ok):
             bins = np.histogram_bin_edges(values, bins=min(30, max(5, values.size // 2)))
             ax.hist([g.to_numpy() for g in groups], bins=bins, stacked=True, label=files)
         ax.set(xlabel=label, ylabel="impacts")
-    if files and len(files) <= 10:
-        fig.axes[0].legend(fontsize="x-small")
+    drawn = [ax for ax in fig.axes if ax.get_legend_handles_labels()[0]]
+    if drawn and len(files) <= 10:
+        drawn[0].legend(fontsize="x-small")
     return _svg(fig)
 
 

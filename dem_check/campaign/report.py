@@ -4,7 +4,8 @@ No script, no remote font, stylesheet or image: figures are inline SVG
 (:mod:`dem_check.campaign.figures`) and tables plain HTML (``DataFrame.to_html``, which
 escapes every cell). The page opens from disk in any browser, also offline, and can be
 mailed as one file. Sections: summary, files, statistics, distributions, regressions,
-gallery, records, failures, settings.
+gallery, records, detection (each record's noise and thresholds, every candidate with
+its status and reason), failures, settings.
 """
 
 import html
@@ -14,6 +15,7 @@ from datetime import UTC, datetime
 import numpy as np
 
 from dem_check.campaign import figures
+from dem_check.campaign.detection import ANALYSED
 
 __all__ = ["render_report"]
 
@@ -89,13 +91,58 @@ def _records(result):
 
 def _failures(result):
     files = result.files[result.files["status"] != "ok"][["file", "status", "reason"]]
-    impacts = result.impacts[result.impacts["status"] != "ok"]
+    impacts = result.impacts[~result.impacts["status"].isin(ANALYSED)]
     impacts = impacts[["file", "impact", "status", "reason", "onset [s]"]]
     return (
         "<h3>Files</h3>\n"
         + _table(files)
         + "<h3>Impacts found but not analysed</h3>\n"
         + _table(impacts, digits=8)
+    )
+
+
+_DETECTION_COLUMNS = (
+    "file",
+    "status",
+    "noise [N]",
+    "threshold [N]",
+    "largest_threshold [N]",
+    "wander [N]",
+    "impacts",
+    "impacts_ok",
+)
+_CANDIDATE_COLUMNS = (
+    "file",
+    "impact",
+    "status",
+    "onset [s]",
+    "significance [-]",
+    "peak_signal [N]",
+    "reason",
+)
+
+
+def _detection(result):
+    """What the detector did, per record: the noise and thresholds it used, then every
+    candidate it found with its status and reason (analysed ones too)."""
+    files = result.files[[c for c in _DETECTION_COLUMNS if c in result.files.columns]]
+    candidates = result.impacts[[c for c in _CANDIDATE_COLUMNS if c in result.impacts.columns]]
+    note = (
+        "<p>Each record's baseline is followed by a running median (blocks of "
+        "<code>BLOCK_PERIODS</code> sensor periods) and its noise read locally (median "
+        "absolute deviation per block): <em>noise</em> is the typical local noise, "
+        "<em>threshold</em> the detection threshold where the noise is typical and "
+        "<em>largest_threshold</em> where it is largest (hum, crosstalk, ringing), "
+        "<em>wander</em> the range of the running baseline. A candidate is a run of the "
+        "smoothed signal above the threshold; <em>significance</em> is its peak over the "
+        "local noise. Every candidate is listed with its status and reason.</p>"
+    )
+    return (
+        note
+        + "<h3>Noise and thresholds per record</h3>\n"
+        + _table(files)
+        + "<h3>Every candidate</h3>\n"
+        + _table(candidates, digits=6)
     )
 
 
@@ -140,6 +187,7 @@ def render_report(result, title="Measurement campaign"):
         _section("regressions", "Regressions on metadata", _regressions(result)),
         _section("gallery", "Gallery: sensor signal and reconstructed force", _gallery(result)),
         _section("records", "Records", _records(result)),
+        _section("detection", "Detection: noise, thresholds, candidates", _detection(result)),
         _section("failures", "Failures", _failures(result)),
         _section("settings", "Settings", f"<pre>{html.escape(settings_text)}</pre>"),
     ]

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import SKIPPED_STATUSES
 
 __all__ = ["CampaignResult"]
@@ -92,8 +93,9 @@ class CampaignResult:
 
     @property
     def ok(self):
-        """The impacts with status ``"ok"``."""
-        return self.impacts[self.impacts["status"] == "ok"]
+        """The analysed impacts: status ``"ok"`` or ``"short pre-trigger"``
+        (:data:`dem_check.campaign.detection.ANALYSED`)."""
+        return self.impacts[self.impacts["status"].isin(ANALYSED)]
 
     def summary(self):
         """Counts by status, for files and impacts (JSON-ready)."""

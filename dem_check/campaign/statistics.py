@@ -15,6 +15,7 @@ import pandas as pd
 from scipy import stats
 
 from contactlab.errors import ParameterError
+from dem_check.campaign.detection import ANALYSED
 
 __all__ = [
     "QUANTILES",
@@ -104,7 +105,7 @@ def population_statistics(impacts):
         Columns :data:`STATISTIC_COLUMNS`; one row per (group, quantity), the groups
         being each file with ok impacts, then ``"all"``.
     """
-    ok = impacts[impacts["status"] == "ok"] if len(impacts) else impacts
+    ok = impacts[impacts["status"].isin(ANALYSED)] if len(impacts) else impacts
     quantities = statistic_quantities(impacts) if len(impacts) else []
     rows = []
     for file, frame in ok.groupby("file", sort=False):
@@ -202,7 +203,7 @@ def regressions(joined, predictors):
         ``slope_unit``, ``intercept``, ``r``, ``p_value`` and ``note`` (why a line was
         not fitted: fewer than 3 impacts with both values, or a constant predictor).
     """
-    ok = joined[joined["status"] == "ok"]
+    ok = joined[joined["status"].isin(ANALYSED)]
     rows = []
     for response in (r for r in RESPONSES if r in ok.columns):
         for predictor in predictors:

@@ -125,7 +125,9 @@ def synthetic_record(
     clean = np.zeros(count)
     rows = []
     for velocity, onset in zip(velocities, onsets, strict=True):
-        onset = check_number("onset", onset, low=0.0, high=length, high_open=True, unit="s")
+        onset = check_number(
+            "onset", onset, low=0.0, low_open=False, high=length, high_open=True, unit="s"
+        )
         touch = round(onset / step)  # first touch on the simulation grid
         result = simulate_impact(
             grain,

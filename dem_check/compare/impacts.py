@@ -3,9 +3,10 @@ the model of its set-up (:func:`compare_trace`)."""
 
 import numpy as np
 
-from contactlab import metrics
+from contactlab import metrics, signals
 from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
+from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
 from contactlab.validation import check_choice, check_number
 from dem_check.compare.comparison import Comparison, quantity_row, waveform_row
 from dem_check.compare.physics import physics_problems
@@ -125,8 +126,10 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
     both sensor signals are then read at ``k`` times the trace's noise, so the
     measurement and the model are read alike. A lobe ends at its last crossing of that
     level before the signal is back at the baseline (hysteresis equal to the threshold),
-    so noise on a slow rise or fall cannot cut it short. Without a baseline the trace is
-    used as is and read at 0 N; :attr:`Comparison.notes` says which was done.
+    so noise on a slow rise or fall cannot cut it short. A trace with fewer than 16
+    samples before its trigger (one that starts at the impact) takes its baseline and
+    noise from its quietest stretch (:func:`contactlab.signals.quiet_window`);
+    :attr:`Comparison.notes` says which was done.
 
     Parameters
     ----------
@@ -162,13 +165,18 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
     trigger = trace.metadata.get("trigger_time")
     trigger = 0.0 if trigger is None else trigger
     before = int(np.count_nonzero(trace.t < trigger))
-    if before >= 2:
+    if before >= BASELINE_MIN_SAMPLES:
         trace = remove_baseline(trace)
         baseline = f"removed: mean of the {before} samples before {trigger:.6g} s"
         noise = noise_level(trace)
     else:
-        baseline = "kept: no samples before the trigger"
-        noise = 0.0
+        window = signals.quiet_window(trace.t, trace.values)
+        noise = noise_level(trace, window)
+        trace = remove_baseline(trace, window)
+        baseline = (
+            f"removed: only {before} samples before the trigger, so the mean of the "
+            f"record's quietest stretch, {window[0]:.6g} to {window[1]:.6g} s"
+        )
     if threshold is None:
         threshold = k * noise
     model = config.simulate()

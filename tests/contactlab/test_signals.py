@@ -163,3 +163,61 @@ def test_lowpass_errors():
     assert signals.lowpass(y[:16], DT, 1e3).shape == (16,)
     with pytest.raises(ParameterError, match="1-D array"):
         signals.lowpass(y.reshape(10, 10), DT, 1e3)
+
+
+def test_robust_noise_of_gaussian_noise_with_pulses():
+    sigma, n = 0.02, 40_000
+    y = np.random.default_rng(5).normal(0.3, sigma, n)
+    # the MAD estimate's relative standard error is 1.17 / sqrt(n) (efficiency 37 %)
+    assert signals.robust_noise(y) == pytest.approx(sigma, rel=5 * 1.17 / math.sqrt(n))
+    y[::20] += 50 * sigma  # 5 % of the samples in pulses: the std is ten times off
+    assert y.std() > 10 * sigma
+    # a 5 % contamination moves the median absolute deviation by about 7 % at most
+    assert signals.robust_noise(y) == pytest.approx(sigma, rel=0.1)
+
+
+def test_running_baseline_follows_drift_and_keeps_a_pulse_whole():
+    sigma, n, width = 0.01, 20_000, 400
+    rng = np.random.default_rng(6)
+    t = np.arange(n) * DT
+    drift = 2.0 * t / t[-1] + 0.3 * np.sin(2 * np.pi * t / t[-1])  # 230 sigma of wander
+    pulse = np.zeros(n)
+    pulse[10_000:10_020] = 50 * sigma  # 20 samples, a twentieth of a block
+    found = signals.running_baseline(drift + pulse + rng.normal(0, sigma, n), width)
+    # the block medians follow the drift to their own scatter, 1.25 sigma / sqrt(400),
+    # plus the linear interpolation's error over a block of a slow sine (< 1e-5)
+    assert np.max(np.abs(found.level - drift)[width:-width]) < 5 * sigma
+    quiet = np.ones(n, dtype=bool)
+    quiet[10_000:10_020] = False
+    # the residual is the noise (its std to a few per cent) and the whole pulse
+    assert found.residual[quiet].std() == pytest.approx(sigma, rel=0.05)
+    assert np.mean(found.residual[10_000:10_020]) == pytest.approx(50 * sigma, abs=sigma)
+    assert np.median(found.noise) == pytest.approx(sigma, rel=0.1)  # MAD of 400 samples
+
+
+def test_running_baseline_leaves_no_residual_at_an_offset_step():
+    sigma, n, width = 0.01, 12_000, 400
+    y = np.random.default_rng(7).normal(0, sigma, n)
+    y[5_130:] += 20 * sigma  # a step inside a block, away from the record's ends
+    found = signals.running_baseline(y, width)
+    # the samples on each side keep their own level: nothing reaches 6 sigma
+    assert np.max(np.abs(found.residual)) < 6 * sigma
+
+
+def test_quiet_window_finds_the_quietest_stretch():
+    n = 16_000
+    rng = np.random.default_rng(8)
+    t = np.arange(n) * DT
+    y = rng.normal(0, 0.05, n)
+    y[9_000:10_000] = rng.normal(0, 0.005, 1000)  # ten times quieter, one block long
+    start, end = signals.quiet_window(t, y, 1000)
+    assert (start, end) == (t[9_000], t[10_000])
+
+
+def test_running_baseline_refuses_bad_input():
+    with pytest.raises(ParameterError, match="two blocks"):
+        signals.running_baseline(np.zeros(30), 16)
+    with pytest.raises(ParameterError, match="width"):
+        signals.running_baseline(np.zeros(100), 4)
+    with pytest.raises(ParameterError, match="finite"):
+        signals.running_baseline(np.r_[np.zeros(99), np.inf], 16)

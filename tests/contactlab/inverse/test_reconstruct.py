@@ -155,8 +155,19 @@ def test_the_automatic_window_starts_within_a_short_pre_trigger(hard_case):
     assert rec.metrics.peak == pytest.approx(truth.peak_contact_force, rel=0.05)
 
 
-def test_a_trace_without_pre_trigger_is_refused(hard_case):
+def test_a_trace_without_pre_trigger_reads_its_baseline_after_the_pulse(hard_case):
+    grain, law, velocity = hard_case
+    t, signal, truth = synthetic_trace(grain, SENSOR, law, velocity, pre_trigger=0.0)
+    rec = reconstruct_force(t, signal + 0.2, SENSOR)  # a DC offset the baseline must remove
+    start, _ = rec.parameters["baseline_window [s]"]
+    assert start > truth.contact_time  # the quietest stretch lies after the contact
+    # the contact starts at the record's first sample: the 5 % of the main tests hold
+    assert rec.metrics.peak == pytest.approx(truth.peak_contact_force, rel=0.05)
+    assert rec.metrics.duration == pytest.approx(truth.contact_time, rel=0.05)
+
+
+def test_a_trace_too_short_for_a_quiet_stretch_is_refused(hard_case):
     grain, law, velocity = hard_case
     t, signal, _ = synthetic_trace(grain, SENSOR, law, velocity, pre_trigger=0.0)
     with pytest.raises(ParameterError, match="pre-trigger"):
-        reconstruct_force(t, signal, SENSOR)
+        reconstruct_force(t[:20], signal[:20], SENSOR)

@@ -88,9 +88,11 @@ def test_a_second_contact_right_after_the_first_lobe_is_flagged(hard_setup):
 
 
 def test_impacts_after_the_ringing_decayed_are_separate(hard_setup):
-    """900 us later the first ringing is under the noise floor: two ok impacts."""
+    """1 ms later the first ringing is under the noise floor: two ok impacts (at 900 us
+    it is in 4 of 8 seeds: the local noise, read without the impacts, sets a lower floor
+    than the quietest stretch's did)."""
     sensor = hard_setup[1]
-    trace, truth = _record(hard_setup, [1e-3, 1.9e-3], 4e-3)
+    trace, truth = _record(hard_setup, [1e-3, 2e-3], 4e-3)
     found = find_impacts(trace, sensor)
     assert [w.status for w in found.impacts] == ["ok", "ok"]
     start, end = found.impacts[1].baseline_window
@@ -101,8 +103,9 @@ def test_impact_at_the_record_edges(hard_setup):
     sensor = hard_setup[1]
     trace, _ = _record(hard_setup, [2e-6, 3e-3], 3.3e-3)
     statuses = [w.status for w in find_impacts(trace, sensor).impacts]
-    # no quiet samples before the first; the second still rings when the record ends
-    assert statuses == ["no baseline", "truncated"]
+    # no quiet samples before the first (its baseline is read after its ringing); the
+    # second still rings when the record ends
+    assert statuses == ["short pre-trigger", "truncated"]
 
 
 def test_negative_polarity_is_flagged(hard_setup):

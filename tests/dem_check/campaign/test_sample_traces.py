@@ -27,8 +27,10 @@ def test_every_sample_record_is_analysed_and_the_rest_listed(samples):
     assert (files.loc[sorted(records), "impacts_ok"] == 1).all()
     others = files.drop(index=sorted(records))
     assert len(others) == len(list(TRACES.iterdir())) - 10  # nothing skipped silently
+    folders = {str(p) for p in TRACES.iterdir() if p.is_dir()}  # real/: listed, not entered
+    assert folders and (others.loc[sorted(folders), "status"] == "sub-folder").all()
     # sidecars, models, the generator and the README are not records (issue 23): skipped
-    assert (others["status"] == "skipped").all()
+    assert (others.drop(index=sorted(folders))["status"] == "skipped").all()
 
 
 def test_sample_impacts_against_their_truth(samples):

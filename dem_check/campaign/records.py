@@ -1,0 +1,289 @@
+"""Realistic laboratory records: the forward model's impacts with what a laboratory adds.
+
+:func:`dem_check.campaign.synthetic_record` places exact impacts on white noise after a
+long quiet stretch. Laboratory records are not like that (issue 22). :func:`realistic_record`
+starts from the same impacts and adds, each one switched on alone by its field of
+:class:`Effects` (all off by default):
+
+- ``pink``: coloured noise, power spectral density proportional to ``1/f`` from the
+  record's length to the Nyquist frequency (standard deviation [N]);
+- ``drift``: slow baseline drift and wander, a sum of five sines of 0.2-5 Hz with random
+  phases and a linear trend, largest excursion from the start [N];
+- ``hum``: mains hum at ``mains`` [Hz] (50 or 60) and its harmonics 2-5 with the
+  amplitudes ``harmonics`` relative to the fundamental's (amplitude [N]);
+- ``crosstalk``: structural crosstalk, the plate's modes ringing after each impact
+  (``plate_modes``: frequency [Hz] and damping ratio each), initial amplitude the
+  impact's peak signal times ``crosstalk`` [-];
+- ``full_scale`` and ``bits``: an ADC of range ``[-full_scale, +full_scale]`` [N] with
+  ``bits`` bits: samples are quantised to its steps and clipped at its rails (the rail
+  value is written, as most instruments do, not +-inf);
+- ``steps`` and ``step_size``: DC offset steps (a charge amplifier's range change or
+  reset) at random times, heights ``+-step_size`` [N];
+- ``bounce`` and ``bounce_delay``: each impact followed by a second one at ``bounce``
+  times its velocity, ``bounce_delay`` [s] later (a double hit or a grain's bounce).
+
+The record's start relative to the first impact (``onsets`` near 0: a short or zero
+pre-trigger) and trigger-aligned files (``trigger``: the time axis starts before the
+trigger, as oscilloscopes write it) are set by the arguments. The truth table holds
+the bounces too, with a ``clipped`` column.
+"""
+
+import math
+from dataclasses import dataclass, fields
+from typing import NamedTuple
+
+import numpy as np
+import pandas as pd
+
+from contactlab.errors import ParameterError
+from contactlab.validation import check_count, check_number
+from dem_check.campaign.synthetic import synthetic_record
+from dem_check.traces import Trace
+
+__all__ = ["Effects", "RealisticRecord", "realistic_record"]
+
+DRIFT_BAND = (0.2, 5.0)
+"""Frequencies of the drift's sines [Hz]: thermal and charge-amplifier wander."""
+
+
+@dataclass(frozen=True)
+class Effects:
+    """What a laboratory adds to the impacts; every effect is off by default (units N
+    unless stated)."""
+
+    pink: float = 0.0
+    """Standard deviation of the 1/f noise [N]."""
+    drift: float = 0.0
+    """Largest excursion of the slow drift and wander from the record's start [N]."""
+    hum: float = 0.0
+    """Amplitude of the mains fundamental [N]."""
+    mains: float = 50.0
+    """Mains frequency [Hz] (50 or 60)."""
+    harmonics: tuple = (0.3, 0.5, 0.1, 0.2)
+    """Amplitudes of harmonics 2, 3, 4, 5 relative to the fundamental [-] (odd
+    harmonics dominate a transformer's field)."""
+    crosstalk: float = 0.0
+    """Initial amplitude of the plate-mode ringing after each impact, as a fraction of
+    the impact's peak signal [-]."""
+    plate_modes: tuple = ((730.0, 0.01), (1890.0, 0.02), (4100.0, 0.015))
+    """Plate modes: ``(frequency [Hz], damping ratio [-])`` each."""
+    full_scale: float | None = None
+    """ADC range ``[-full_scale, +full_scale]`` [N]; samples beyond it are clipped to
+    the rail (None: no ADC)."""
+    bits: int = 16
+    """ADC resolution [bits] (with ``full_scale``)."""
+    steps: int = 0
+    """Number of DC offset steps, at random times [-]."""
+    step_size: float = 0.0
+    """Height of each offset step, sign random [N]."""
+    bounce: float = 0.0
+    """Velocity of the bounce or second hit after each impact, as a fraction of the
+    impact's [-] (0: none)."""
+    bounce_delay: float = 2e-3
+    """Time from an impact to its bounce [s]."""
+
+    @classmethod
+    def everything(cls, noise, peak, **changes):
+        """Every effect on, at levels usual in a laboratory, for impacts of peak signal
+        ``peak`` [N] on white noise of standard deviation ``noise`` [N]: 1/f noise as
+        large as the white noise, a drift of 20 noise sigmas, hum of 1.5 sigma, crosstalk
+        of 2 % of each peak, a 16-bit ADC clipping at 1.2 times ``peak``, two offset steps
+        of 8 sigma and bounces at 40 % of the velocity 2 ms later."""
+        levels = {
+            "pink": noise,
+            "drift": 20.0 * noise,
+            "hum": 1.5 * noise,
+            "crosstalk": 0.02,
+            "full_scale": 1.2 * peak,
+            "bits": 16,
+            "steps": 2,
+            "step_size": 8.0 * noise,
+            "bounce": 0.4,
+            "bounce_delay": 2e-3,
+        }
+        return cls(**{**levels, **changes})
+
+
+class RealisticRecord(NamedTuple):
+    """A realistic record and what is known of it."""
+
+    trace: Trace
+    """The record (unit N, or V with a sensitivity)."""
+    truth: pd.DataFrame
+    """One row per impact and bounce, the columns of
+    :data:`dem_check.campaign.synthetic.TRUTH_COLUMNS` and ``clipped`` (the ADC's rail
+    was reached inside it)."""
+    noise: float
+    """Standard deviation of the random noise (white, 1/f and quantisation) [N]: the
+    scale of the significance of an impact."""
+    step_times: np.ndarray
+    """Times of the offset steps [s]."""
+
+
+def _pink(rng, count, sigma):
+    """``count`` samples of 1/f noise of standard deviation ``sigma``."""
+    if sigma == 0.0:
+        return np.zeros(count)
+    spectrum = rng.normal(size=count // 2 + 1) + 1j * rng.normal(size=count // 2 + 1)
+    f = np.arange(spectrum.size, dtype=float)
+    spectrum[1:] /= np.sqrt(f[1:])
+    spectrum[0] = 0.0
+    noise = np.fft.irfft(spectrum, count)
+    return sigma * noise / noise.std()
+
+
+def _drift(rng, t, size):
+    """Slow wander: five sines of :data:`DRIFT_BAND` and a trend, largest excursion
+    ``size`` from the start."""
+    if size == 0.0:
+        return np.zeros(t.size)
+    wander = t * rng.uniform(-1.0, 1.0) / max(float(t[-1]), 1e-12)
+    for f in rng.uniform(*DRIFT_BAND, 5):
+        phase = rng.uniform(0.0, 2.0 * math.pi)
+        wander += rng.uniform(0.3, 1.0) * (np.sin(2 * math.pi * f * t + phase) - math.sin(phase))
+    return size * wander / np.max(np.abs(wander))
+
+
+def _hum(rng, t, effects):
+    if effects.hum == 0.0:
+        return np.zeros(t.size)
+    hum = np.zeros(t.size)
+    for order, relative in enumerate((1.0, *effects.harmonics), start=1):
+        phase = rng.uniform(0.0, 2.0 * math.pi)
+        hum += relative * np.sin(2.0 * math.pi * order * effects.mains * t + phase)
+    return effects.hum * hum
+
+
+def _crosstalk(rng, t, truth, effects):
+    """The plate's modes ringing after each impact (zero before its onset)."""
+    ringing = np.zeros(t.size)
+    if effects.crosstalk == 0.0:
+        return ringing
+    for onset, peak in zip(truth["onset [s]"], truth["peak_signal [N]"], strict=True):
+        after = t >= onset
+        s = t[after] - onset
+        for frequency, zeta in effects.plate_modes:
+            w = 2.0 * math.pi * frequency
+            weight = effects.crosstalk * peak * rng.uniform(0.5, 1.0)
+            ringing[after] += weight * np.exp(-zeta * w * s) * np.sin(w * s)
+    return ringing
+
+
+def _steps(rng, t, effects):
+    times = np.sort(rng.uniform(t[0], t[-1], effects.steps))
+    levels = np.zeros(t.size)
+    for at in times:
+        levels[t >= at] += effects.step_size * rng.choice((-1.0, 1.0))
+    return levels, times
+
+
+def _adc(values, effects):
+    """Quantised to the ADC's steps and clipped at its rails; which samples hit a rail."""
+    if effects.full_scale is None:
+        return values, np.zeros(values.size, dtype=bool)
+    top = effects.full_scale
+    lsb = 2.0 * top / 2**effects.bits
+    clipped = np.abs(values) >= top
+    return np.clip(np.round(values / lsb) * lsb, -top, top), clipped
+
+
+def _check_effects(effects):
+    if not isinstance(effects, Effects):
+        raise ParameterError(f"effects must be a dem_check.campaign.Effects; got {effects!r}")
+    for field in fields(Effects):
+        value = getattr(effects, field.name)
+        if field.name in ("pink", "drift", "hum", "crosstalk", "step_size", "bounce"):
+            check_number(f"effects.{field.name}", value, low=0.0, low_open=False)
+    check_number("effects.mains", effects.mains, low=0.0, unit="Hz")
+    check_number("effects.bounce_delay", effects.bounce_delay, low=0.0, unit="s")
+    check_count("effects.bits", effects.bits, low=2)
+    check_count("effects.steps", effects.steps, low=0)
+    if effects.full_scale is not None:
+        check_number("effects.full_scale", effects.full_scale, low=0.0, unit="N")
+
+
+def realistic_record(
+    grain,
+    sensor,
+    law,
+    velocities,
+    onsets,
+    *,
+    length,
+    sample_rate,
+    noise=0.02,
+    effects=Effects(),
+    trigger=None,
+    sensitivity=None,
+    seed=0,
+):
+    """A record of impacts with a laboratory's noise, drift, hum, crosstalk and ADC.
+
+    Parameters
+    ----------
+    grain, sensor, law, velocities, onsets, length, sample_rate, noise, seed
+        As for :func:`dem_check.campaign.synthetic_record` (``noise``: white noise
+        [N]); an onset of 0 puts the impact at the record's first sample (no
+        pre-trigger).
+    effects : Effects
+        What is added (module docstring); the default adds nothing.
+    trigger : float, optional
+        Trigger time [s] from the record's start: the time axis is shifted so that the
+        trigger is at t = 0 (trigger-aligned files, as oscilloscopes write them) and
+        ``metadata["trigger_time"]`` is 0.
+    sensitivity : float, optional
+        [V/N]: the record is then in volts (everything above is scaled).
+
+    Returns
+    -------
+    RealisticRecord
+    """
+    _check_effects(effects)
+    velocities = np.atleast_1d(np.asarray(velocities, dtype=float))
+    onsets = np.atleast_1d(np.asarray(onsets, dtype=float))
+    if effects.bounce > 0.0 and velocities.size:
+        later = onsets + effects.bounce_delay
+        inside = later < length
+        onsets = np.concatenate([onsets, later[inside]])
+        velocities = np.concatenate([velocities, effects.bounce * velocities[inside]])
+        order = np.argsort(onsets, kind="stable")
+        onsets, velocities = onsets[order], velocities[order]
+    clean, truth = synthetic_record(
+        grain,
+        sensor,
+        law,
+        velocities,
+        onsets,
+        length=length,
+        sample_rate=sample_rate,
+        noise=0.0,
+    )
+    rng = np.random.default_rng(check_count("seed", seed, low=0))
+    t = np.asarray(clean.t)
+    white = rng.normal(0.0, check_number("noise", noise, low=0.0, low_open=False), t.size)
+    random_part = white + _pink(rng, t.size, effects.pink)
+    levels, step_times = _steps(rng, t, effects)
+    values = (
+        np.asarray(clean.values)
+        + random_part
+        + _drift(rng, t, effects.drift)
+        + _hum(rng, t, effects)
+        + _crosstalk(rng, t, truth, effects)
+        + levels
+    )
+    values, rail = _adc(values, effects)
+    lsb = 0.0 if effects.full_scale is None else 2.0 * effects.full_scale / 2**effects.bits
+    truth["clipped"] = [
+        bool(rail[(t >= at) & (t < at + 10.0 * sensor.period)].any()) for at in truth["onset [s]"]
+    ]
+    unit, scale = ("N", 1.0) if sensitivity is None else ("V", sensitivity)
+    shift = 0.0 if trigger is None else float(trigger)
+    metadata = {
+        **clean.metadata,
+        "instrument": "realistic laboratory record (dem_check.campaign.realistic_record)",
+        "trigger_time": None if trigger is None else 0.0,
+    }
+    trace = Trace(t - shift, values * scale, unit, metadata)
+    truth["onset [s]"] = truth["onset [s]"] - shift
+    random_noise = math.sqrt(noise**2 + effects.pink**2 + lsb**2 / 12.0)
+    return RealisticRecord(trace, truth, random_noise, step_times - shift)
