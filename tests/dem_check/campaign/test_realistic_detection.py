@@ -84,12 +84,6 @@ def _check(record, sensor):
     return found
 
 
-@pytest.mark.xfail(
-    strict=False,
-    reason="known failures of the full-suite run (issue 22, open): a 6 ms record that starts "
-    "at a 1.25 m/s impact, with drift of 42 sigma and 1/f noise of 2 sigma, missed the bounce "
-    "1.5 ms later and invented an overlap 0.1 ms after the start; it passes run alone",
-)
 @settings(
     max_examples=100,
     deadline=None,
