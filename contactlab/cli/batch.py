@@ -11,6 +11,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from contactlab.batch.rows import ERROR_COLUMN
 from contactlab.errors import ParameterError
 
 __all__ = ["BATCH_LAWS", "add_batch_parser", "read_table"]
@@ -93,11 +94,20 @@ def _batch(args):
     else:
         solved.to_csv(sys.stdout, index=False)
     where = f"wrote {args.out}: " if args.out else ""
+    failed = int(solved[ERROR_COLUMN].ne("").sum()) if ERROR_COLUMN in solved else 0
     print(
-        f"{where}{len(solved)} impacts solved in {seconds:.2f} s (solvers compiled or "
+        f"{where}{len(solved) - failed} impacts solved in {seconds:.2f} s (solvers compiled or "
         f"loaded before, in {compile_seconds:.2f} s)",
         file=sys.stderr,
     )
+    if failed:
+        print(
+            f"{failed} of {len(solved)} rows could not be solved: NaN in their results, the "
+            f"reason in the {ERROR_COLUMN!r} column",
+            file=sys.stderr,
+        )
+        return 1
+    return 0
 
 
 def add_batch_parser(sub):

@@ -81,3 +81,19 @@ def test_missing_file_and_misplaced_options_are_refused(tmp_path, capsys):
     write(tmp_path / "in.csv", LINEAR)
     assert main(["batch", str(tmp_path / "in.csv"), "--law", "linear", "--rtol", "1e-8"]) == 2
     assert "--rtol applies to --law hertz only" in capsys.readouterr().err
+
+
+# the unsolvable row's own overflow, which its error column reports
+@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
+def test_a_table_with_an_unsolvable_row_is_written_and_exits_1(tmp_path, capsys):
+    columns = {name: [values[0]] * 3 for name, values in LINEAR.items()}
+    columns["k2 [N/m]"] = [1e5, 1e300, 2e5]  # the middle row's system matrix overflows
+    write(tmp_path / "in.csv", columns)
+    argv = ["batch", str(tmp_path / "in.csv"), "--law", "linear", "--out", str(tmp_path / "o.csv")]
+    assert main(argv) == 1
+    got = pd.read_csv(tmp_path / "o.csv", keep_default_na=False)
+    assert got["error"].ne("").tolist() == [False, True, False]  # the failing row is marked
+    assert (got.loc[[0, 2], "restitution [-]"].astype(float) > 0).all()  # the others solved
+    err = capsys.readouterr().err
+    assert "1 of 3 rows could not be solved" in err and "2 impacts solved" in err
+    assert "Traceback" not in err
