@@ -25,6 +25,7 @@ from hypothesis import HealthCheck, Phase, given, seed, settings
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.errors import ParameterError
 from contactlab.testing.strategies import normal_impacts, oblique_impacts
 
 MIN_FRICTION = 0.01
@@ -85,7 +86,8 @@ def run_oblique(examples, seed_value):
             warnings.simplefilter("ignore")
             try:
                 res = cl.simulate_oblique(**case, audit=False)
-            except RuntimeError as error:  # a solver that gives up is a failure too
+            # a solver that gives up, or a contact refused as no impact, is listed too
+            except (RuntimeError, ParameterError) as error:
                 worst.failures.append((case, [str(error)]))
                 return
         worst.add(res.audit(), (_name(case["normal_law"]), _name(case["tangential_law"])), case)
@@ -123,7 +125,7 @@ def run_impact(examples, seed_value):
             warnings.simplefilter("ignore")
             try:
                 res = cl.simulate_impact(**case, audit=False)
-            except RuntimeError as error:
+            except (RuntimeError, ParameterError) as error:
                 worst.failures.append((case, [str(error)]))
                 return
         worst.add(res.audit(), (type(case["law"]).__name__,), case)

@@ -126,3 +126,9 @@ def test_simulate_oblique_answers_any_value_with_parameter_error(name, value):
     arguments = {**OBLIQUE, name: value}
     _call(cl.simulate_oblique, grain=GRAIN, sensor=SENSOR, normal_law=normal,
           tangential_law=tangential, **arguments)  # fmt: skip
+
+
+def test_a_linear_contact_too_stiff_for_a_float_is_refused_by_name():
+    law = cl.laws.LinearViscoelastic(stiffness=1e300, damping=1.0)  # rates overflow
+    with pytest.raises(ParameterError, match=r"overflow a float.*stiffness or damping"):
+        cl.simulate_impact(GRAIN, SENSOR, law, velocity=2.0)

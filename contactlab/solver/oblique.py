@@ -304,7 +304,11 @@ def _solve_contact(model, y0, rtol, scale):
             model.rhs(phase), t, y, 1.0, rtol, atol, values, directions, touch
         )
         if hit is None:
-            raise RuntimeError("the contact lasted more than 1 s: not an impact")
+            raise ParameterError(
+                f"the contact had not ended after {t + 1.0:.4g} s, so this is not an impact: "
+                f"check the units of the grain (mass {model.system.m2:.4g} kg), the laws' "
+                f"parameters and the velocity ({velocity:.4g} m/s)"
+            )
         states = DenseStates(t, steps, start, switch, size=7)
         pieces.append(ContactPiece(t, hit[0], phase, states))
         y = states(hit[0] - t)[0]

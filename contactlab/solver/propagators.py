@@ -58,7 +58,15 @@ class LinearFlow:
     def __init__(self, matrix, scale=None):
         self.matrix = np.asarray(matrix, dtype=float)
         scale = np.ones(self.matrix.shape[0]) if scale is None else np.asarray(scale, float)
-        eigvals, eigvecs = np.linalg.eig(self.matrix * np.divide.outer(scale, scale))
+        with np.errstate(over="ignore", invalid="ignore"):
+            scaled = self.matrix * np.divide.outer(scale, scale)
+        if not np.isfinite(scaled).all():
+            raise ParameterError(
+                "the linear system's rates overflow a float (largest entry "
+                f"{np.max(np.abs(self.matrix)):.3g}): a stiffness or damping too large for the "
+                "bodies' masses; check their units"
+            )
+        eigvals, eigvecs = np.linalg.eig(scaled)
         self.modal = np.linalg.cond(eigvecs) < _COND_LIMIT
         if self.modal:
             self.eigvals = eigvals

@@ -13,8 +13,6 @@ GOOD = {"m1 [kg]": 1e-3, "k1 [N/m]": 7.9e7, "c1 [N*s/m]": 1.0, "m2 [kg]": 5e-5,
 UNSOLVABLE = {**GOOD, "k2 [N/m]": 1e300}  # the system matrix overflows to inf
 
 
-# the bad row's own overflow, which its error column reports
-@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
 @pytest.mark.parametrize("threads", [1, 2])
 def test_the_failing_row_is_named_marked_and_the_others_solved(threads):
     rows = [GOOD, {**GOOD, "v0 [m/s]": 1.0}, UNSOLVABLE, {**GOOD, "m2 [kg]": 1e-4}]
@@ -30,7 +28,7 @@ def test_the_failing_row_is_named_marked_and_the_others_solved(threads):
     )
     assert out.loc["bad", list(RESULT_COLUMNS)].isna().all()
     assert out[ERROR_COLUMN].ne("").tolist() == [False, False, True, False]
-    assert "LinAlgError" in out.loc["bad", ERROR_COLUMN]
+    assert "overflow" in out.loc["bad", ERROR_COLUMN]
 
 
 def test_a_batch_without_failures_has_no_error_column():

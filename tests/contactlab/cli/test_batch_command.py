@@ -83,8 +83,6 @@ def test_missing_file_and_misplaced_options_are_refused(tmp_path, capsys):
     assert "--rtol applies to --law hertz only" in capsys.readouterr().err
 
 
-# the unsolvable row's own overflow, which its error column reports
-@pytest.mark.filterwarnings("ignore:overflow encountered:RuntimeWarning")
 def test_a_table_with_an_unsolvable_row_is_written_and_exits_1(tmp_path, capsys):
     columns = {name: [values[0]] * 3 for name, values in LINEAR.items()}
     columns["k2 [N/m]"] = [1e5, 1e300, 2e5]  # the middle row's system matrix overflows
