@@ -17,6 +17,8 @@ import re
 import numpy as np
 import pandas as pd
 
+from dem_check.traces import checks
+
 __all__ = ["parse_block"]
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?")
@@ -102,8 +104,9 @@ def _last(block):
 
 def _scan_block(head, block, fh):
     """One streaming pass over the rest of ``fh`` (1 MiB chunks, bounded memory): refuse a
-    NUL byte (no text layout has one: a zero-filled tail, a binary file), and say whether
-    the block holds ``true`` or ``false`` in any case."""
+    NUL byte (no text layout has one: a zero-filled tail, a binary file) and more rows than
+    :data:`~dem_check.traces.checks.MAX_SAMPLES` (before anything is parsed), and say
+    whether the block holds ``true`` or ``false`` in any case."""
     tail, booleans, lines = b"", False, 0
     while chunk := fh.read(1 << 20):
         nul = chunk.find(b"\x00")
@@ -111,6 +114,11 @@ def _scan_block(head, block, fh):
             line = block.first_line + lines + chunk.count(b"\n", 0, nul)
             raise head.fail(line, "a NUL byte in the data (a zero-filled or binary tail)")
         lines += chunk.count(b"\n")
+        if lines > checks.MAX_SAMPLES:
+            raise head.fail(
+                block.first_line + checks.MAX_SAMPLES,
+                f"more than {checks.MAX_SAMPLES} rows of samples (the limit of one trace)",
+            )
         text = tail + chunk.lower()
         booleans = booleans or any(word in text for word in _BOOLEAN_WORDS)
         tail = text[-4:]  # "false" may straddle two chunks

@@ -212,3 +212,15 @@ def test_a_zero_filled_tail_is_refused_in_bounded_memory(tmp_path):
         read_trace(path)
     grown = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before
     assert grown < 32 << 10  # < 32 MiB: streamed in 1 MiB chunks, never the 64 MiB whole
+
+
+@pytest.mark.parametrize("name", ["generic.csv", "tek_tds.csv", "rigol_seconds.csv"])
+def test_more_rows_than_the_sample_limit_are_refused_before_parsing(monkeypatch, name):
+    from dem_check.traces import checks
+
+    monkeypatch.setattr(checks, "MAX_SAMPLES", 1000)  # the files hold 2 500-6 000 rows
+    with pytest.raises(TraceFormatError, match=r"line \d+: more than 1000 rows") as info:
+        read_trace(DATA / name)
+    assert name in str(info.value)
+    monkeypatch.undo()
+    assert len(read_trace(DATA / name).t) > 1000  # under the real limit: read whole
