@@ -5,9 +5,20 @@ The paper's grains and sensors (``paper_grain``, ``paper_grain_small``, ``paper_
 (:mod:`contactlab.testing.plugin`), loaded through its entry point.
 """
 
+import os
+
 import matplotlib
+from hypothesis import settings
 
 matplotlib.use("Agg")
+
+# Property tests draw the same examples on every run (seeded from each test's source and
+# hypothesis' pinned version), so CI runs exactly what passed here; a failure found once is
+# pinned as an explicit case. CONTACTLAB_RANDOM_SWEEPS=1 draws fresh examples to hunt for
+# new failures locally.
+settings.register_profile("derandomized", derandomize=True)
+settings.register_profile("random", derandomize=False)
+settings.load_profile("random" if os.environ.get("CONTACTLAB_RANDOM_SWEEPS") else "derandomized")
 
 pytest_plugins = ["pytester"]  # the plugin's own tests run pytest in temporary folders
 
