@@ -50,7 +50,6 @@ why (:data:`REFUSED`); nothing is approximated.
 import math
 from dataclasses import dataclass
 
-from contactlab.errors import ParameterError
 from contactlab.laws import (
     Hertz,
     HertzDamped,
@@ -64,6 +63,7 @@ from contactlab.laws import (
     damping_ratio,
 )
 from contactlab.validation import check_positive
+from dem_check.engines.law_support import refuse_unsupported
 
 __all__ = [
     "ENGINE_LAWS",
@@ -191,14 +191,8 @@ def kratos_contact(law, effective_mass, effective_radius, wall):
     """
     mass = check_positive("effective_mass", effective_mass, "kg")
     radius = check_positive("effective_radius", effective_radius, "m")
+    refuse_unsupported(law, ENGINE_LAWS, REFUSED, "Kratos DEM", "Kratos' DEM contact laws")
     kind = type(law)
-    if kind not in ENGINE_LAWS:
-        reason = REFUSED.get(kind, "it is not one of the laws Kratos' DEM contact laws hold")
-        names = ", ".join(cls.__name__ for cls in ENGINE_LAWS)
-        raise ParameterError(
-            f"law {kind.__name__} cannot be represented in Kratos DEM: {reason}. "
-            f"Supported exactly: {names}"
-        )
     common = {"law": law, "effective_mass": mass, "effective_radius": radius}
     if kind is LinearViscoelastic:
         e_star = law.stiffness / (linear_kn_factor(wall) * radius)

@@ -63,6 +63,7 @@ from contactlab.laws import (
     WaltonBraun,
 )
 from contactlab.validation import check_positive
+from dem_check.engines.law_support import refuse_unsupported
 
 __all__ = ["ENGINE_LAWS", "REFUSED", "TANGENTIAL", "GranularModel", "granular_model"]
 
@@ -183,14 +184,8 @@ def granular_model(law, effective_mass, effective_radius):
     """
     mass = check_positive("effective_mass", effective_mass, "kg")
     radius = check_positive("effective_radius", effective_radius, "m")
+    refuse_unsupported(law, ENGINE_LAWS, REFUSED, "LAMMPS", "LAMMPS' granular models")
     kind = type(law)
-    if kind not in ENGINE_LAWS:
-        reason = REFUSED.get(kind, "it is not one of the laws LAMMPS' granular models hold")
-        names = ", ".join(cls.__name__ for cls in ENGINE_LAWS)
-        raise ParameterError(
-            f"law {kind.__name__} cannot be represented in LAMMPS: {reason}. "
-            f"Supported exactly: {names}"
-        )
     common = {"law": law, "effective_mass": mass, "effective_radius": radius}
     if kind is LinearViscoelastic:
         return GranularModel(
