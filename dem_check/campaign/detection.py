@@ -149,6 +149,8 @@ class Detection:
     """The record low-passed [N], for peaks (equal to ``signal`` when not filtered)."""
     local_noise: np.ndarray = None
     """Local noise of the smoothed record at every sample [N]."""
+    record: Trace = None
+    """The record as given [N] (each analysed impact fits its own baseline on it)."""
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -235,7 +237,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         windows += _classify(smoothed, ratio, candidate, scales, floor, flagged)
         previous_end = last + 1
     windows = _apply_limits(windows, min_force, min_separation)
-    return Detection(floor, windows, signal, smoothed, lowpassed, local)
+    return Detection(floor, windows, signal, smoothed, lowpassed, local, trace)
 
 
 def _apply_limits(windows, min_force, min_separation):
