@@ -114,11 +114,10 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     first = _main_lobe_start(above, level)
     lobe = first_lobe(t[first:], above[first:], level, hysteresis=level)
     in_lobe = (t >= lobe[0]) & (t <= lobe[1])
-    start = base[1] if window.start is None else window.start
     # a contact cannot outlast one lobe-length after the signal's first lobe
     # (contactlab.inverse.reconstruct_force's window)
     contact_end = 2.0 * lobe[1] - lobe[0]
-    local = local_baseline(t, record, base, start, contact_end, window.end, sensor)
+    local = _local(t, record, window, contact_end, sensor)
     detrended = record - local.values
     # the low-passed record less the local baseline: ``flat`` is the low-passed record
     # less the running baseline (record - raw), which the low-pass leaves unchanged
@@ -131,6 +130,21 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
         "impulse [N*s]": local.impulse,
     }
     return numbers, detrended, contact_end
+
+
+def _local(t, record, window, contact_end, sensor):
+    """The impact's local baseline (:func:`dem_check.campaign.local.local_baseline`),
+    its ringing fitted from ``contact_end`` [s]."""
+    start = window.baseline_window[1] if window.start is None else window.start
+    return local_baseline(t, record, window.baseline_window, start, contact_end, window.end, sensor)
+
+
+def _impulse(t, record, window, contact_end, sensor):
+    """The impulse [N*s] integrated to ``contact_end`` [s], then the fitted ringing's:
+    once the contact's end is known from the reconstruction (a period past it), the
+    integral spans less 1/f noise than to the first lobe's bound (about 200 us against
+    130 us for a 100 us contact)."""
+    return _local(t, record, window, contact_end, sensor).impulse
 
 
 def _reconstruction_part(t, base, end, sensor):
@@ -245,6 +259,10 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
         return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration
+    if rec.metrics.end + sensor.period < contact_end:  # the contact's end is known now
+        row["impulse [N*s]"] = _impulse(t, record, window, rec.metrics.end + sensor.period, sensor)
+        if grain is not None:
+            row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
     if not abs(excess) <= IMPULSE_EXCESS:
         reason = (

@@ -7,7 +7,8 @@ find impacts but not to measure them to a per cent. So each analysed impact gets
 own baseline, fitted on the record (not on the running baseline's residual) where the
 signal holds no impact:
 
-- before it, the impact's baseline window (the quiet samples just before it);
+- before it, the last :data:`PRE_PERIODS` sensor periods of the impact's baseline
+  window (the quiet samples just before it);
 - after its contact, :data:`POST_PERIODS` sensor periods of the sensor's free ringing,
   fitted together with the baseline as the damped sinusoid the sensor's resonance and
   damping ratio give (two amplitudes: the sensor's state when the contact has ended).
@@ -33,7 +34,7 @@ import numpy as np
 
 from contactlab.metrics import impulse
 
-__all__ = ["DEGREE", "POST_PERIODS", "LocalBaseline", "local_baseline"]
+__all__ = ["DEGREE", "POST_PERIODS", "PRE_PERIODS", "LocalBaseline", "local_baseline"]
 
 DEGREE = 1
 """Degree of the local baseline polynomial [-]: a line through the quiet samples before
@@ -48,6 +49,12 @@ amplitudes, short against the drift."""
 
 POST_MIN_SAMPLES = 32
 """Fewest samples of the post-contact window [-]."""
+
+PRE_PERIODS = 8.0
+"""Sensor periods of the baseline window just before the impact that are fitted [-]
+(at least :data:`POST_MIN_SAMPLES`): 1/f noise is best interpolated under the impact
+from samples near it (over 12 impacts at 5 MHz with 1/f noise as large as the white
+noise, the impulse's rms error was 2.1 % with 8 periods, 3.1 % with 20)."""
 
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the free ringing to be fitted [-]."""
@@ -104,6 +111,9 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
     post_start = min(post_start, float(t[-1]) - POST_MIN_SAMPLES * dt)
     post = (post_start, min(post_start + length, float(t[-1])))
     in_base = (t >= base[0]) & (t < base[1])
+    if base[1] <= start:  # a baseline before the impact: its last PRE_PERIODS
+        near = max(PRE_PERIODS * sensor.period, POST_MIN_SAMPLES * dt)
+        in_base &= t >= base[1] - near
     in_post = (t >= post[0]) & (t <= post[1]) & ~in_base
     fitted = in_base | in_post
     centre = float(t[fitted].mean())
