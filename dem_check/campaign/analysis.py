@@ -259,10 +259,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
         return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration
-    if rec.metrics.end + sensor.period < contact_end:  # the contact's end is known now
-        row["impulse [N*s]"] = _impulse(t, record, window, rec.metrics.end + sensor.period, sensor)
-        if grain is not None:
-            row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
+    # the impulse to the first lobe's bound holds a second contact that began within it
     excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
     if not abs(excess) <= IMPULSE_EXCESS:
         reason = (
@@ -271,6 +268,10 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
             "lobe, so neither is analysed alone"
         )
         return {**window_row(window), "status": "overlap", "reason": reason}, None
+    if rec.metrics.end + sensor.period < contact_end:  # the contact's end is known now
+        row["impulse [N*s]"] = _impulse(t, record, window, rec.metrics.end + sensor.period, sensor)
+        if grain is not None:
+            row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     start, end = rec.parameters["window [s]"]
     keep = (rec.t >= start - GALLERY_PERIODS * sensor.period) & (
         rec.t <= end + GALLERY_PERIODS * sensor.period

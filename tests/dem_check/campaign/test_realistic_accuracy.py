@@ -1,0 +1,107 @@
+"""Accuracy of the analysed impacts on realistic records (issue 22), where it is reachable.
+
+One 2 MHz record of the hard grain (contact 100 us: 200 samples per contact) with drift of
+20 noise sigmas, hum of 1.5 sigma, 1/f noise of 0.3 sigma and bounces at 40 % of the
+velocity 2 ms later (``Effects.everything`` without crosstalk, clipping and offset steps;
+``docs/campaign.md`` gives the measured envelope for the others). The issue's targets are
+asserted where ``benchmarks/bench_realistic.py --accuracy`` measured them to hold:
+
+- every target (onset within 2 samples, peak signal within 2 %, impulse within 5 %,
+  reconstructed peak and contact time within 5 %) from a significance (peak over random
+  noise) of :data:`ALL_TARGETS`;
+- impulse, reconstructed peak and contact time within 5 % from :data:`FORCE_TARGETS`.
+
+The truth is the forward model's (the exact first touch and the noise-free numbers), so
+this checks that the analysis undoes the laboratory effects, not the model itself.
+"""
+
+import numpy as np
+import pytest
+
+from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign.analysis import analyse_impact
+
+NOISE = 0.03
+"""White noise [N], 1 % of the hard grain's 3 N peak signal at 2 m/s."""
+
+RATE = 2e6
+"""Sample rate [Hz]."""
+
+ALL_TARGETS = 100.0
+"""Significance from which every target holds [-] (measured: onsets within 1.1 samples,
+peak signal 0.7 %, impulse 0.5 %, reconstructed peak 1.1 %, contact time 2.5 %)."""
+
+FORCE_TARGETS = 30.0
+"""Significance from which impulse, reconstructed peak and contact time hold [-]
+(measured at 30-100: 3.5 %, 3.0 %, 4.2 %; the peak signal reaches 2.2 % and the onset 4.6
+samples there, docs/campaign.md)."""
+
+
+@pytest.fixture(scope="module")
+def analysed(hard_setup):
+    grain, sensor, law = hard_setup
+    effects = Effects.everything(
+        NOISE, 3.0, pink=0.3 * NOISE, crosstalk=0.0, full_scale=None, steps=0
+    )
+    record = realistic_record(
+        grain,
+        sensor,
+        law,
+        [2.5, 1.0, 2.2, 1.6],
+        [1e-3, 6e-3, 11e-3, 16e-3],
+        length=22e-3,
+        sample_rate=RATE,
+        noise=NOISE,
+        effects=effects,
+        seed=11,
+    )
+    found = find_impacts(record.trace, sensor)
+    rows = []
+    for window in found.impacts:
+        row, _ = analyse_impact(found, window, sensor, grain)
+        gap = np.abs(record.truth["onset [s]"] - window.onset)
+        rows.append((row, record.truth.iloc[int(gap.argmin())]))
+    return rows, record
+
+
+def test_every_impact_and_bounce_is_analysed(analysed):
+    rows, record = analysed
+    assert len(rows) == len(record.truth) == 8  # four impacts, four bounces
+    assert [row["status"] for row, _ in rows] == ["ok"] * 8
+
+
+def _errors(row, true):
+    def relative(column):
+        return abs(row[column] / true[column] - 1.0)
+
+    return {
+        "onset": abs(row["onset [s]"] - true["onset [s]"]) * RATE,
+        "peak_signal": relative("peak_signal [N]"),
+        "impulse": relative("impulse [N*s]"),
+        "peak_force": relative("peak_contact_force [N]"),
+        "contact_time": relative("contact_time [s]"),
+    }
+
+
+def test_the_issues_targets_where_the_signal_is_strong(analysed):
+    rows, record = analysed
+    strong = [(r, t) for r, t in rows if t["peak_signal [N]"] >= ALL_TARGETS * record.noise]
+    assert len(strong) == 2  # 2.5 and 2.2 m/s
+    for row, true in strong:
+        errors = _errors(row, true)
+        assert errors["onset"] <= 2.0, errors  # the issue's targets, not loosened
+        assert errors["peak_signal"] <= 0.02, errors
+        assert errors["impulse"] <= 0.05, errors
+        assert errors["peak_force"] <= 0.05, errors
+        assert errors["contact_time"] <= 0.05, errors
+
+
+def test_impulse_and_force_from_thirty_sigma(analysed):
+    rows, record = analysed
+    clear = [(r, t) for r, t in rows if t["peak_signal [N]"] >= FORCE_TARGETS * record.noise]
+    assert len(clear) >= 5  # the four impacts and the strongest bounces
+    for row, true in clear:
+        errors = _errors(row, true)
+        assert errors["impulse"] <= 0.05, errors  # the issue's targets, not loosened
+        assert errors["peak_force"] <= 0.05, errors
+        assert errors["contact_time"] <= 0.05, errors
