@@ -1,18 +1,23 @@
 """Per-impact analysis: the signal's own numbers, the reconstructed force, an optional fit.
 
 Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
-segment (local baseline, impact, decayed ringing):
+segment (local baseline, impact, decayed ringing), less its own baseline: a line fitted
+before the impact and on the sensor's free ringing after its contact
+(:mod:`dem_check.campaign.local`), so that drift, wander, hum and the slow part of 1/f
+noise are read on both sides of it:
 
 - ``response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
   :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
   noise), with the same hysteresis so that only a return to zero ends it;
 - ``peak_signal [N]``: the largest value of the low-passed signal (flat pass band) in
   that lobe;
-- ``impulse [N*s]``: the integral of the signal from the end of the local baseline to
-  the end of the decayed ringing. The sensor returns to rest, so this is the impulse of
-  the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
+- ``impulse [N*s]``: the integral of the signal from the end of the baseline window to a
+  sensor period after the reconstructed contact's end, plus the fitted free ringing's
+  integral from there in closed form. The sensor returns to rest, so this is the impulse
+  of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
-  by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV) on the segment;
+  by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV, a force value per
+  twentieth of a sensor period) on the segment;
 - with a grain, ``velocity_change [m/s]`` = impulse / grain mass (``(1 + e) v`` for an
   impact at speed ``v`` and restitution ``e``: the impulse alone cannot separate them);
 - with ``fit=`` a law name, :func:`contactlab.inverse.fit_contact` on the segment: each
