@@ -102,3 +102,12 @@ def test_the_command_line_sets_min_force(tmp_path, capsys):
     assert impacts["status"].tolist().count("below min_force") == 2
     assert impacts["reason"].str.contains("min_force = 80 N").sum() == 2
     assert code == 1  # not every impact analysed
+    # the report shows what the detector did: each record's noise and threshold, and
+    # every candidate with its status and reason
+    files = pd.read_csv(tmp_path / "files.csv")
+    assert files["noise [N]"].notna().all() and files["threshold [N]"].notna().all()
+    html = (tmp_path / "report.html").read_text()
+    assert "Noise and thresholds per record" in html and "Every candidate" in html
+    detection = html[html.index("Noise and thresholds per record") :]
+    assert all(Path(p).name in detection for p in paths)
+    assert detection.count("min_force = 80 N") >= 2  # the rejected ones, with the reason
