@@ -66,7 +66,10 @@ GRID_PER_PERIOD = 20.0
 nothing more (the sensor passes little above twice its resonance) and lets generalised
 cross-validation, which assumes white noise, fit 1/f noise as force: on a 2 MHz record
 with 1/f noise as large as the white noise, 390 values (0.5 us) gave a peak 16 % high
-(lambda 0.06), 200-50 values within 0.5 % (lambda 0.09-0.3)."""
+(lambda 0.06), 200-50 values within 0.5 % (lambda 0.09-0.3). A trade-off: 40 values per
+period read the paper's fig6 grain (white noise 0.9 %, 5 MHz) to 3.2 % instead of 5.3 %,
+but realistic records worse (a reconstructed peak 10 % off at 100 sigma with 1/f noise of
+0.3 sigma, against 1.1 %; ``benchmarks/bench_realistic.py``)."""
 
 RECONSTRUCTION_BASELINE = 5.0
 """Sensor periods of a baseline before the impact given to the reconstruction [-] (at
