@@ -1,5 +1,7 @@
 """Adaptive contact pieces: DOP853 with event location on its dense output."""
 
+import math
+
 import numpy as np
 from scipy.optimize import minimize_scalar
 
@@ -165,8 +167,8 @@ def _run(stepper, end, event_values, directions, stop=None):
     """Step until ``end``, an event, or ``stop(t_old, t_new)``; returns (DenseSteps, hit).
 
     ``hit`` is ``(time, index)`` of the first event crossing, or None. A step across the
-    contact's end (event 0) is taken again up to the end located on it, as long as
-    :func:`contactlab.solver.power_piece.retakes` says so: the force formula is not
+    contact's end (event 0) is taken again to just past the end located on it, as long as
+    :func:`contactlab.solver.power_piece.retake_bound` says so: the force formula is not
     smooth where it changes sign, and DOP853's error estimate misses that (the root cause
     is written there).
     """
@@ -179,14 +181,12 @@ def _run(stepper, end, event_values, directions, stop=None):
         step = (stepper.t_old, stepper.t - stepper.t_old, stepper.y_old, stepper.interpolant())
         after = event_values(stepper.y)
         hit = _first_crossing(step, before, after, directions, event_values, armed)
-        if (
-            hit is not None
-            and hit[1] == 0
-            and power_piece.retakes(stepper.t_old, hit[0], stepper.t, retaken)
-        ):
-            stepper.undo()  # and again, bounded by the end just located
-            bound, retaken = hit[0], retaken + 1
-            continue
+        if hit is not None and hit[1] == 0:
+            again = power_piece.retake_bound(stepper.t_old, hit[0], stepper.t, retaken)
+            if not math.isnan(again):
+                stepper.undo()  # and again, to just past the end just located
+                bound, retaken = again, retaken + 1
+                continue
         steps.append(step)
         bound = end
         if hit is not None or (stop is not None and stop(stepper.t_old, stepper.t)):

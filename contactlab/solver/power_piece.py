@@ -23,11 +23,12 @@ from contactlab.solver.power_rhs import force, rhs
 __all__ = [
     "MAX_RETAKES",
     "RETAKE_FLOATS",
+    "RETAKE_SHARE",
     "STATUS_OK",
     "STATUS_UNDERFLOW",
     "contact_tolerances",
     "integrate",
-    "retakes",
+    "retake_bound",
 ]
 
 STATUS_OK, STATUS_UNDERFLOW = 0, 1
@@ -50,37 +51,53 @@ def contact_tolerances(rtol, velocity):
 
 
 MAX_RETAKES = 8
-"""Most retakes of the step that ends one contact piece (:func:`retakes`); two or three
-are usual, the located end moving less each time."""
+"""Most retakes of the step that ends one contact piece (:func:`retake_bound`); one or
+two are usual."""
 
 RETAKE_FLOATS = 128
 """A contact's end closer than this many floats to its step's start is read on that step
-(:func:`retakes`): the interpolant is exact to first order at the step's start, so its
-error there is below ``(128 ulp / h)**2`` of the step's; and a shorter step would not
+(:func:`retake_bound`): the interpolant is exact to first order at the step's start, so
+its error there is below ``(128 ulp / h)**2`` of the step's; and a shorter step would not
 give its 9 event samples (:data:`contactlab.solver.adaptive.SUBSTEPS`) distinct times."""
+
+RETAKE_SHARE = 2.0**-20
+"""Share of a step past the contact's end [-] up to which the step stands
+(:func:`retake_bound`). A retaken step is bounded half of it past the end located, so
+that it crosses the end by a margin no rounding removes and locates the end itself (a
+bound at the end would leave the event a rounding short of zero about half the time, and
+one more step); what the non-smooth force does in a millionth of a step past the end is
+below rounding (the error of a step across it falls like a power above 3 of that part)."""
 
 
 @njit(cache=True)
-def retakes(t_old, end, t_new, count):
-    """Whether a step from ``t_old`` to ``t_new`` [s] across the contact's end, located at
-    ``end`` [s] on it, is taken again from ``t_old`` with ``end`` as its bound (``count``
-    retakes so far).
+def retake_bound(t_old, end, t_new, count):
+    """Where a step from ``t_old`` to ``t_new`` [s] across the contact's end, located at
+    ``end`` [s] on it, is taken again to from ``t_old`` [s], or nan where it stands
+    (``count`` retakes so far).
 
     The root cause of Thornton's wrong rebounds (issue 21; 1e-5 off the closed form): the
     force of a Hertz-family branch, ``k (d - d_p)**1.5``, is continued past the contact's
     end as ``k x |x|**0.5`` (``x = d - d_p``; its sign change marks the end), which is
     not smooth at ``x = 0`` (the overlap's fourth derivative grows like ``|x|**-0.5``).
     DOP853's error estimate assumes a smooth solution over the step: on a step across
-    that point its small 5th-order estimate, damped by a large 3rd-order one (``err5**2 /
+    that point its 5th-order estimate, damped by a far larger 3rd-order one (``err5**2 /
     sqrt(err5**2 + 0.01 err3**2)``), accepted steps whose end state, and the interpolant
     the end was located on, were off by 1e5 times the tolerance. Such a step is taken
-    again, bounded by the end located on it, until the end located is the step's last
-    point, lies within :data:`RETAKE_FLOATS` of its start, or :data:`MAX_RETAKES` is
-    reached: the state at the contact's end then comes from a step that does not cross
-    the non-smooth point. Branch exits need no retake: the formula is smooth across them.
+    again, bounded just past the end located on it, until no more than
+    :data:`RETAKE_SHARE` of the step lies past the end, the end lies within
+    :data:`RETAKE_FLOATS` of the step's start, or :data:`MAX_RETAKES` is reached: the state
+    at the contact's end then comes from a step that does not cross the non-smooth point
+    (to a millionth of the step). Branch exits need no retake: the formula is smooth
+    across them.
     """
     ulp = np.nextafter(t_old, math.inf) - t_old
-    return count < MAX_RETAKES and t_old + RETAKE_FLOATS * ulp < end < t_new
+    if (
+        count >= MAX_RETAKES
+        or end <= t_old + RETAKE_FLOATS * ulp
+        or t_new - end <= RETAKE_SHARE * (t_new - t_old)
+    ):
+        return math.nan
+    return end + 0.5 * RETAKE_SHARE * (end - t_old)
 
 
 @njit(cache=True, error_model="numpy")
@@ -151,8 +168,9 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
         after = _event(y_new, par)
         if before > 0.0 and after <= 0.0:
             hit = _locate(t, h, before, after, F[count], y, par, tmp, work)
-            if retakes(t, hit, t_new, retaken):  # again from t, bounded by the end located
-                h_try, bound, retaken, hit = h_next, hit, retaken + 1, math.nan
+            again = retake_bound(t, hit, t_new, retaken)
+            if not math.isnan(again):  # the step again from t, to just past the end
+                h_try, bound, retaken, hit = h_next, again, retaken + 1, math.nan
                 continue
         t_old[count], hs[count], y_old[count] = t, h, y
         last_start = t
