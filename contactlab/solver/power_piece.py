@@ -87,8 +87,9 @@ def retake_bound(t_old, end, t_new, count):
     :data:`RETAKE_SHARE` of the step lies past the end, the end lies within
     :data:`RETAKE_FLOATS` of the step's start, or :data:`MAX_RETAKES` is reached: the state
     at the contact's end then comes from a step that does not cross the non-smooth point
-    (to a millionth of the step). Branch exits need no retake: the formula is smooth
-    across them.
+    (to a millionth of the step). A branch exit needs no retake for the step to hold (the
+    formula is smooth across it); the normal solver retakes those steps too, so that the
+    next branch starts from a step's end (:func:`contactlab.solver.adaptive.integrate_piece`).
     """
     ulp = np.nextafter(t_old, math.inf) - t_old
     if (
