@@ -242,7 +242,11 @@ class Mindlin(TangentialLaw):
         force ``-2 gamma sqrt(m* kt(d)) s`` whose ratio ``gamma`` is the normal law's
         (:func:`damping_ratio`; Kratos' ``CalculateViscoDampingForceWithFEM``, EDEM's
         ``2 sqrt(5/6) beta sqrt(S_t m*)``). The solver binds ``gamma`` and ``m*`` through
-        :meth:`for_contact`; it is zero beside an elastic normal law.
+        :meth:`for_contact`; it is zero beside an elastic normal law. With
+        ``history="total"`` it is refused beside a damped normal law (``gamma > 0``): the
+        sliding history ``-(mu N + eta s) / kt`` is unbounded at the touch and the solver
+        cannot decide the phase there (LIGGGHTS' ``tangential history`` with
+        ``tangential_damping on``; not run here).
 
     Notes
     -----
@@ -268,14 +272,6 @@ class Mindlin(TangentialLaw):
         self.friction = _friction(friction)
         self.history = check_choice("history", history, HISTORY_FORMS)
         self.damping_form = check_choice("damping", damping, DAMPING_FORMS)
-        if self.history == "total" and self.damping_form == "tied":
-            # the phase at the touch is undecided there: the trial force and the damped cap
-            # both grow as t**0.25, and the solver switched stick/slide at t = 0 for ever
-            raise ParameterError(
-                "history='total' with damping='tied' is not supported (the solver cannot "
-                "decide the phase at the touch); use history='incremental' or "
-                "'incremental_rescaled' with damping='tied'"
-            )
         self.history_kind = "displacement" if self.history == "total" else "force"
         self._params = {
             "k_mindlin": self.k_mindlin,
@@ -294,12 +290,23 @@ class Mindlin(TangentialLaw):
         ------
         ParameterError
             If ``damping="tied"`` and the normal law has no damping ratio
-            (:func:`damping_ratio`).
+            (:func:`damping_ratio`), or with ``history="total"`` beside a damped normal
+            law (see the class docstring).
         """
         if self.damping_form == "none":
             return self
         bound = Mindlin(self.k_mindlin, self.friction, self.history, self.damping_form)
         gamma = damping_ratio(normal_law, mass)
+        if self.history == "total" and gamma > 0.0:
+            raise ParameterError(
+                f"tangential_law history='total' with damping='tied' beside a damped normal "
+                f"law (gamma = {gamma:.3g}) is not supported: the law is defined (LIGGGHTS' "
+                "tangential history with tangential_damping on), but its sliding history "
+                "-(mu N + eta s)/kt grows without bound at the touch (kt ~ d**0.5 while eta s "
+                "and N ~ d**0.25), so the solver cannot decide the phase there; use "
+                "history='incremental' or 'incremental_rescaled' with damping='tied', or an "
+                "elastic normal law (gamma = 0: no tangential damping)"
+            )
         bound._tied = 2.0 * gamma * math.sqrt(mass * self.k_mindlin)
         return bound
 

@@ -4,9 +4,9 @@ from pathlib import Path
 
 import numpy as np
 
-from contactlab.benchmarks.chung_ooi.oblique import ANGLES
+from contactlab.benchmarks.chung_ooi.oblique import ANGLES, HISTORIES
 
-__all__ = ["DRAW", "save_figure"]
+__all__ = ["DRAW", "save_attribution_figure", "save_figure"]
 
 _STYLE = {"total": "o-", "incremental": "x--"}
 
@@ -57,11 +57,26 @@ def draw_oblique(case, curves):
     def draw(ax):
         angles = np.radians(ANGLES)
         for name, forms in curves.items():
-            for history, data in forms.items():
+            for history in HISTORIES:
+                data = forms[history]
                 ax.plot(ANGLES, data[:, 0], _STYLE[history], label=f"{name}, Mindlin {history}")
                 _lammps_points(ax, ANGLES, data[:, 1], f"{name}, LAMMPS {history}")
-                if history == "total" and data.shape[1] > 2:  # an engine's own rules, once
-                    ax.plot(ANGLES, data[:, 2], "s", mfc="none", label=f"{name}, Kratos rules")
+            for found in forms.get("attribution", ()):
+                if found.engine.startswith("lammps"):  # LAMMPS' points are drawn above
+                    continue
+                ax.plot(
+                    ANGLES,
+                    found.engine_values[:, 0],
+                    "s",
+                    mfc="none",
+                    label=f"{name}, {found.engine}",
+                )
+                ax.plot(
+                    ANGLES,
+                    found.values[found.preset][:, 0],
+                    ":",
+                    label=f"{name}, contactlab with {found.preset}",
+                )
         ratio = 2 * mu / np.tan(angles)  # mu (1 + e) vn / vt with e = 1
         ok = 3.5 * ratio <= 1.0
         ax.plot(np.array(ANGLES)[ok], 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")
@@ -69,6 +84,47 @@ def draw_oblique(case, curves):
         ax.set_ylabel("tangential restitution vt'/vt [-]")
 
     return draw
+
+
+def save_attribution_figure(case, material, attributions, out):
+    """Each engine's test-4 difference from contactlab under every variant of the rules
+    (:mod:`~contactlab.benchmarks.chung_ooi.attribution`): one row per engine, ``vt'/vt``
+    and ``R w'/vt`` minus the engine's against the angle; saved as
+    ``chung_ooi_test<N>_attribution_<material>.png`` in ``out``."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(
+        len(attributions),
+        2,
+        figsize=(10.0, 3.2 * len(attributions)),
+        layout="constrained",
+        squeeze=False,
+    )
+    for row, found in zip(axes, attributions, strict=True):
+        for variant in found.values:
+            diff = found.differences(variant)
+            style = (
+                "k-" if variant == found.preset else "o-" if variant.startswith("only") else "x--"
+            )
+            for ax, column in zip(row, diff.T, strict=True):
+                ax.plot(found.angles, column, style, ms=3, lw=1.0, label=variant)
+        for ax, quantity in zip(row, ("vt'/vt", "R w'/vt"), strict=True):
+            ax.axhspan(-1e-3, 1e-3, color="0.85", lw=0)  # the engines' tolerance
+            ax.set_yscale("symlog", linthresh=1e-4)  # 1e-1 (a rule) to 1e-4 (a step error)
+            ax.axhline(0.0, color="k", lw=0.5)
+            ax.set_ylabel(f"{quantity} minus {found.engine}'s [-]", fontsize=8)
+            ax.set_xlabel("incidence angle [deg]")
+        row[0].legend(frameon=False, fontsize=6)
+    fig.suptitle(
+        f"Chung & Ooi test {case.number}, {material}: contactlab with one rule switched, "
+        "against each engine (grey: 1e-3; linear within 1e-4)",
+        fontsize=9,
+    )
+    slug = material.replace(" ", "_")
+    path = Path(out) / f"chung_ooi_test{case.number}_attribution_{slug}.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
 
 
 def draw_tangential_speed(case, curves):
