@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab import analytic
 from contactlab.errors import ParameterError
-from contactlab.laws import DAMPING_FORMS, HISTORY_FORMS, Mindlin, damping_ratio
+from contactlab.laws import COULOMB_CAPS, DAMPING_FORMS, HISTORY_FORMS, Mindlin, damping_ratio
 from contactlab.solver import wall_impact
 from contactlab.solver.conventions import DEM_CONVENTIONS, LEVER_ARMS, Conventions
 
@@ -60,6 +60,7 @@ def _replica(normal, conventions, degrees, steps=2000):
         arm=REPLICA_RULES[conventions.lever_arm],
         history=REPLICA_RULES.get(conventions.history, conventions.history),
         damping=conventions.damping,
+        cap=conventions.coulomb_cap,
     )
     gamma = damping_ratio(normal, GRAIN.mass)
     k_hertz = normal.k_hertz
@@ -109,35 +110,57 @@ def test_each_rule_alone_gives_the_replica_with_that_rule(conventions, degrees):
     _assert_replica(ELASTIC, conventions, degrees)
 
 
-def _lammps_coulomb(elastic, viscous, limit):
-    """LAMMPS' (and contactlab's) cap: the total scaled to ``mu N``, the viscous part kept
-    and the elastic (stored) part set to the rest (``gran_sub_mod_tangential.cpp``)."""
-    if abs(elastic + viscous) <= limit:
-        return elastic, viscous
-    return math.copysign(limit, elastic + viscous) - viscous, viscous
-
-
 @pytest.mark.parametrize("arm", LEVER_ARMS)
 @pytest.mark.parametrize("degrees", [5, 10, 20])
-def test_tied_damping_gives_the_replica_with_lammps_coulomb_cap(arm, degrees, monkeypatch):
-    """The tied damping at Kratos' e = 0.98 against the replica whose Coulomb cap is
-    LAMMPS' (contactlab caps the same way; Kratos' own cap is a fourth rule, below)."""
-    monkeypatch.setattr(rules, "_coulomb", _lammps_coulomb)
-    _assert_replica(DAMPED, Conventions(arm, "incremental_rescaled", "tied"), degrees)
+def test_tied_damping_gives_the_replica_with_lammps_coulomb_cap(arm, degrees):
+    """The tied damping at Kratos' e = 0.98 with LAMMPS' Coulomb cap (the total force
+    scaled to mu N), against the replica with the same cap."""
+    _assert_replica(DAMPED, Conventions(arm, "incremental_rescaled", "tied", "total"), degrees)
 
 
-def test_kratos_coulomb_cap_with_a_tied_damping_is_a_rule_of_its_own():
-    """With a tangential damping Kratos caps the elastic part alone and drops or scales the
-    viscous part (four cases, ``CalculateTangentialForceWithNeighbour``): at 5 deg and
-    e = 0.98 this moves R w' by 1.7e-3 of vt, converged in the replica's step (1.85e-3 at
-    16000 steps per contact, 1.93e-3 at 32000), so it is a model difference, not a step
-    error (documented in docs/dem-conventions.md)."""
-    ours = _oblique(DAMPED, KRATOS, 5.0)
-    theirs = _replica(DAMPED, KRATOS, 5.0, REPLICA_STEPS)
-    vt = SPEED * math.sin(math.radians(5.0))
-    difference = GRAIN.radius * (theirs.angular_velocity - ours.angular_velocity) / vt
-    # measured 1.73e-3 at 8000 steps; the step error there is 2e-4 (the test above)
-    assert 1.2e-3 < difference < 2.5e-3
+def _cap_gap(conventions, degrees, steps):
+    """R (w' - replica's) over vt at e = 0.98, the replica with all of Kratos' rules."""
+    ours = _oblique(DAMPED, conventions, degrees)
+    theirs = _replica(DAMPED, KRATOS, degrees, steps)
+    vt = SPEED * math.sin(math.radians(degrees))
+    return GRAIN.radius * (ours.angular_velocity - theirs.angular_velocity) / vt
+
+
+TOTAL_CAP = Conventions("contact", "incremental_rescaled", "tied", "total")
+
+
+@pytest.mark.parametrize("degrees", [5, 10, 45, 70])
+def test_kratos_coulomb_cap_gives_kratos_replica_with_a_tied_damping(degrees):
+    """``coulomb_cap="elastic"`` (Kratos' four cases, ``CalculateTangentialForceWithNeighbour``)
+    at e = 0.98: the replica converges onto simulate_oblique at first order in its step.
+    Measured R w' gap over vt at 5 deg: 2.7e-4 at 8000 steps per contact, 7.5e-5 at 32000
+    (the saw tooth of the elastic force cut back to the cap, 25 phases)."""
+    coarse, fine = _cap_gap(KRATOS, degrees, 8000), _cap_gap(KRATOS, degrees, 32000)
+    # first order: a quarter of the step gives a quarter of the gap (3.6 measured at 5 deg;
+    # at 45-70 deg both are below 1e-7, rounding)
+    assert abs(fine) < 1e-4 and (abs(fine) < 1e-7 or abs(fine) < abs(coarse) / 3.0)
+
+
+def test_kratos_coulomb_cap_is_a_rule_of_its_own():
+    """With LAMMPS' cap instead, the gap to Kratos' replica at 5 deg does not shrink with
+    the replica's step: 1.73e-3 at 8000 steps, 1.93e-3 at 32000 (a model difference)."""
+    gap = _cap_gap(TOTAL_CAP, 5, 32000)
+    # the rule's own effect, 20 times the elastic cap's residual at the same step
+    assert 1.5e-3 < abs(gap) < 2.5e-3
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="open: at 20 and 30 deg (e = 0.98) the elastic cap leaves a gap to Kratos' replica "
+    "that does not shrink with its step (R w' over vt: 20 deg 1.0e-4, 2.3e-4, 1.7e-4 at "
+    "2000, 8000, 32000 steps; 30 deg 5.4e-4, 6.0e-4, 6.0e-4), equal to LAMMPS' cap there: "
+    "the slide starts at rest in slip (s = 0), where Kratos' saw tooth has teeth of vanishing "
+    "length and the solver takes LAMMPS' slide as their limit (ObliqueModel.slide_phase)",
+)
+@pytest.mark.parametrize("degrees", [20, 30])
+def test_kratos_coulomb_cap_where_the_slide_starts_at_rest(degrees):
+    # the converged cases above reach < 1e-4 at 32000 steps
+    assert abs(_cap_gap(KRATOS, degrees, 32000)) < 1e-4
 
 
 def test_gross_sliding_rebound_is_independent_of_every_rule():
@@ -150,11 +173,10 @@ def test_gross_sliding_rebound_is_independent_of_every_rule():
     for arm in LEVER_ARMS:
         for history in HISTORY_FORMS:
             for damping in DAMPING_FORMS:
-                if (history, damping) == ("total", "tied"):
-                    continue  # refused (test_bad_conventions_are_named)
-                res = _oblique(ELASTIC, Conventions(arm, history, damping), 45.0)
-                # rtol 1e-9 of the integration on an impulse: measured <= 2e-12
-                assert res.tangential_velocity == pytest.approx(theory, rel=1e-9)
+                for cap in COULOMB_CAPS:
+                    res = _oblique(ELASTIC, Conventions(arm, history, damping, cap), 45.0)
+                    # rtol 1e-9 of the integration on an impulse: measured <= 2e-12
+                    assert res.tangential_velocity == pytest.approx(theory, rel=1e-9)
 
 
 def _hertz_moment_of_overlap(normal, mass, vn):
@@ -228,8 +250,14 @@ def test_bad_conventions_are_named():
         Mindlin(1e9, 0.3, history="rescaled")
     with pytest.raises(ParameterError, match="damping"):
         Mindlin(1e9, 0.3, damping="viscous")
-    with pytest.raises(ParameterError, match="not supported"):
-        Mindlin(1e9, 0.3, history="total", damping="tied")
+    with pytest.raises(ParameterError, match="coulomb_cap"):
+        Mindlin(1e9, 0.3, coulomb_cap="viscous")
+    tied_total = Conventions("radius", "total", "tied")
+    with pytest.raises(ParameterError, match="not supported.*singular|not supported"):
+        _oblique(DAMPED, tied_total, 20.0)  # gamma > 0: the sliding history is unbounded
+    # beside elastic Hertz (gamma = 0) it is the untied law exactly
+    plain = _oblique(ELASTIC, Conventions("radius", "total", "none"), 20.0)
+    assert _oblique(ELASTIC, tied_total, 20.0).angular_velocity == plain.angular_velocity
 
 
 SENSOR = cl.Sensor.from_resonance(40e3, mass=2e-3, damping_ratio=0.02)
@@ -249,10 +277,11 @@ SENSOR = cl.Sensor.from_resonance(40e3, mass=2e-3, damping_ratio=0.02)
     arm=st.sampled_from(LEVER_ARMS),
     history=st.sampled_from(HISTORY_FORMS),
     damping=st.sampled_from(DAMPING_FORMS),
+    cap=st.sampled_from(COULOMB_CAPS),
     on_sensor=st.booleans(),
 )
 def test_every_convention_keeps_the_audits(
-    degrees, spin, friction, restitution, arm, history, damping, on_sensor
+    degrees, spin, friction, restitution, arm, history, damping, cap, on_sensor
 ):
     """Coulomb on every sample, the energy ledger and the momentum balances (the full
     audit) over the whole space of the options, grains and impacts of test 4's kind."""
@@ -264,9 +293,9 @@ def test_every_convention_keeps_the_audits(
             k, analytic.tsuji_damping_coefficient(k, GRAIN.mass, restitution, "force")
         )
     )
-    if (history, damping) == ("total", "tied"):
+    if (history, damping) == ("total", "tied") and normal is not ELASTIC:
         damping = "none"  # refused (test_bad_conventions_are_named)
-    law = Mindlin(BASE.k_mindlin, friction, history, damping)
+    law = Mindlin(BASE.k_mindlin, friction, history, damping, cap)
     sensor = SENSOR if on_sensor else cl.Sensor.rigid()
     res = cl.simulate_oblique(
         GRAIN, sensor, normal, law, SPEED, math.radians(degrees), spin=spin, lever_arm=arm
