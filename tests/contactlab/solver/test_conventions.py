@@ -253,7 +253,7 @@ def test_bad_conventions_are_named():
     with pytest.raises(ParameterError, match="coulomb_cap"):
         Mindlin(1e9, 0.3, coulomb_cap="viscous")
     tied_total = Conventions("radius", "total", "tied")
-    with pytest.raises(ParameterError, match="not supported.*singular|not supported"):
+    with pytest.raises(ParameterError, match="is not supported"):
         _oblique(DAMPED, tied_total, 20.0)  # gamma > 0: the sliding history is unbounded
     # beside elastic Hertz (gamma = 0) it is the untied law exactly
     plain = _oblique(ELASTIC, Conventions("radius", "total", "none"), 20.0)
