@@ -25,7 +25,9 @@ law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigm
 * sliding: sticking becomes admissible, i.e. ``sigma dF_trial/dt < mu dN/dt`` along a
   sticking path (the limit of LAMMPS' rule "increment the history, then cap" as the time
   step vanishes). ``dN/dt`` comes from central differences of the normal law (relative step
-  1e-7: about 1e-13 relative error on smooth laws), the rest is exact.
+  1e-7: about 1e-13 relative error on smooth laws), the rest is exact. Kratos' cap of the
+  elastic force alone (``coulomb_cap="elastic"``) has slides of its own
+  (:mod:`contactlab.solver.coulomb_cap`).
 
 At the touch (``N = 0``) the phase is that of LAMMPS' rule in the limit ``t -> 0+``: the
 history starts from zero and the contact slides only if the trial force along a sticking
@@ -45,6 +47,8 @@ from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
 from contactlab.solver.conventions import LEVER_ARMS
+from contactlab.solver.coulomb_cap import ELASTIC_SLIDE, FREE_SLIDE, cap_rules
+from contactlab.solver.coulomb_cap import sign as _sign
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import (
@@ -67,26 +71,11 @@ __all__ = ["ObliqueModel", "simulate_oblique"]
 STICK = 0
 """Phase code of a sticking contact (sliding phases are +1 and -1, the sign of F)."""
 
-ELASTIC_SLIDE = 2
-"""``|phase|`` of a slide whose elastic force is held at ``mu N`` and viscous force dropped
-(a law with ``coulomb_cap="elastic"``, viscous force along the slide)."""
-
-FREE_SLIDE = 3
-"""``|phase|`` of a slide whose elastic force is below ``mu N`` and free, the viscous force
-cut to the rest (``coulomb_cap="elastic"``, viscous force along the slide). With the
-viscous force against the slide, Kratos' rule caps the total in the limit of a vanishing
-step (the elastic force overshoots the cap by the viscous one and is cut back every other
-step): the slide is then LAMMPS' (``|phase|`` 1)."""
-
 MAX_PHASES = 1000
 """Stick/slide switches after which the solver gives up (a chattering contact)."""
 
 _PROBE = 1e-6
 """Fraction of the first step at which the phase at a touch is read."""
-
-_CUT = 1e-9
-"""Smallest cut of the elastic force back to the cap, relative to the cap, that Kratos'
-rule (``coulomb_cap="elastic"``) makes a saw tooth of (:meth:`ObliqueModel.slide_phase`)."""
 
 _DIFF_STEP = 1e-7
 """Relative step of the central differences of the normal law."""
@@ -121,7 +110,7 @@ class ObliqueModel:
         self.normal = normal_law.branch("load").force
         self.radius, self.inertia = radius, inertia
         self.contact_arm = lever_arm == "contact"
-        self.elastic_cap = self.law.coulomb_cap == "elastic"
+        self.cap_rules = cap_rules(self)  # the slides of the law's Coulomb cap
 
     def arm(self, overlap):
         """Lever arm [m] at overlap ``d`` [m] (float or array): ``R`` or ``R - max(d, 0)``."""
@@ -159,7 +148,7 @@ class ObliqueModel:
         """``y' = f(y)`` in ``phase`` (STICK, +1 or -1)."""
         normal, law, arm, inertia = self.normal, self.law, self.arm, self.inertia
         m2, mu = self.system.m2, law.friction
-        free = abs(phase) == FREE_SLIDE  # the history goes on while sliding
+        free = abs(phase) == FREE_SLIDE  # Kratos' cap: the history goes on while sliding
 
         def f(y):
             x1, v1, x2, v2, vt, w, h = y.tolist()
@@ -207,67 +196,14 @@ class ObliqueModel:
             slip_rate += r * w
         return _sign(phase) * self.law.trial_force_rate(history, d, r, slip, slip_rate) - rate
 
-    def _along(self, sigma, y):
-        """``-sigma eta s`` [N]: the viscous force along a slide of sign ``sigma`` (> 0),
-        or against it (< 0)."""
-        return -sigma * self.law.damping_coefficient(y[2] - y[0]) * self.slip(list(y[:7]))
-
-    def slide_phase(self, sigma, y):
-        """The phase once the trial force reaches ``sigma mu N`` in state ``y`` (a list or
-        array, whose history this may set): ``sigma`` (LAMMPS' slide), or for
-        ``coulomb_cap="elastic"``: with a viscous force along the slide, ``2 sigma``
-        (:data:`ELASTIC_SLIDE`) when the elastic force alone is at the cap and ``3 sigma``
-        (:data:`FREE_SLIDE`) when it is below; with one against it and the elastic force
-        above the cap, Kratos cuts the elastic force back to the cap and the contact
-        sticks again (a saw tooth: the force climbs back to the cap, ``mu N - eta |s|`` to
-        ``mu N``), unless the cut is below :data:`_CUT` of the cap (a slip at rest: LAMMPS'
-        slide, the limit of teeth whose length vanishes with the slip)."""
-        along = self._along(sigma, y) if self.elastic_cap else 0.0
-        if along == 0.0:
-            return sigma
-        d = y[2] - y[0]
-        cap = self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
-        elastic = sigma * self.law.elastic_force(y[6], d)
-        if along < 0.0:
-            if elastic - cap <= _CUT * cap:
-                return sigma
-            y[6] = self.law.history_of(sigma * cap, d)
-            # a viscous force over twice the cap leaves the trial force beyond the other cap
-            return STICK if along >= -2.0 * cap else self.slide_phase(-sigma, y)
-        return ELASTIC_SLIDE * sigma if elastic >= cap else FREE_SLIDE * sigma
-
-    def after_slide(self, phase, event, y):
-        """The phase after event ``event`` (1 or 2) of slide ``phase`` at state ``y``, whose
-        history this sets when it was slaved to the cap."""
-        sigma = _sign(phase)
-        d = y[2] - y[0]
-        cap = sigma * self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
-        kind = abs(phase)
-        if kind == 1:  # LAMMPS: the history that gives the trial force the cap
-            y[6] = self.law.history_on_cap(cap, d, self.slip(y.tolist()))
-            # event 2 (elastic cap): the viscous force turns along the slide, elastic at cap
-            return STICK if event == 1 else ELASTIC_SLIDE * sigma
-        if kind == FREE_SLIDE:  # the trial force back under the cap, or the elastic one at it
-            return STICK if event == 1 else ELASTIC_SLIDE * sigma
-        y[6] = self.law.history_of(cap, d)
-        if event == 1:  # the elastic force turns back under the cap
-            return FREE_SLIDE * sigma if self._along(sigma, y) > 0.0 else STICK
-        # the viscous force turns against the slide: LAMMPS' slide, if it goes on
-        return sigma if self.slide_exit(sigma, y.tolist()) > 0.0 else STICK
-
     def events(self, phase):
         """Event functions ``values(y) -> list`` and their crossing directions.
 
         Event 0 is the contact end; in sticking, events 1 and 2 are the trial force
-        reaching ``+mu N`` and ``-mu N``; in sliding, event 1 is the end of sliding. With
-        ``coulomb_cap="elastic"``: in LAMMPS' slide (``sigma``) event 2 is the viscous
-        force turning along the slide; in a free slide (``3 sigma``) event 1 is the trial
-        force falling back to ``mu N`` and event 2 the elastic force reaching it; in an
-        elastic slide (``2 sigma``) event 1 is the elastic force turning back and event 2
-        the viscous force turning against the slide.
+        reaching ``+mu N`` and ``-mu N``; in sliding, the cap's
+        (:mod:`contactlab.solver.coulomb_cap`; LAMMPS': event 1 is the end of sliding).
         """
-        normal, mu, law = self.normal, self.law.friction, self.law
-        sigma = _sign(phase)
+        normal, mu = self.normal, self.law.friction
 
         if phase == STICK:
 
@@ -279,38 +215,7 @@ class ObliqueModel:
 
             return values, [-1, +1, +1]
 
-        if abs(phase) == FREE_SLIDE:
-
-            def values(y):
-                x1, v1, x2, v2, *_, h = y[:7].tolist()
-                d = x2 - x1
-                n = normal(d, v2 - v1)
-                trial = sigma * self.tangential_force(STICK, y[:7].tolist())
-                elastic = sigma * law.elastic_force(h, d)
-                return [_contact_value(n, d), trial - mu * n, elastic - mu * n]
-
-            return values, [-1, -1, +1]
-
-        if abs(phase) == ELASTIC_SLIDE:
-
-            def values(y):
-                x1, v1, x2, v2 = y[:4].tolist()
-                d = x2 - x1
-                n = normal(d, v2 - v1)
-                along = self._along(sigma, y)
-                return [_contact_value(n, d), self.slide_exit(phase, y.tolist()), along]
-
-            return values, [-1, -1, -1]
-
-        def values(y):
-            x1, v1, x2, v2 = y[:4].tolist()
-            n = normal(x2 - x1, v2 - v1)
-            ends = [_contact_value(n, x2 - x1), self.slide_exit(phase, y.tolist())]
-            if self.elastic_cap:  # the viscous force turning along the slide (none: never)
-                ends.append(-self._along(sigma, y))
-            return ends
-
-        return values, [-1, -1, -1][: 2 + self.elastic_cap]
+        return self.cap_rules.events(phase, _contact_value)
 
     def touch_phase(self, y0, first_step, rtol, atol):
         """Phase at a touch: the limit ``t -> 0+`` of LAMMPS' rule.
@@ -332,7 +237,7 @@ class ObliqueModel:
         force = self.tangential_force(STICK, start)
         cap = self.law.friction * max(self.normal(start[2] - start[0], start[3] - start[1]), 0.0)
         if abs(force) > cap:
-            return self.slide_phase(+1 if force > 0.0 else -1, start)
+            return self.cap_rules.slide_phase(+1 if force > 0.0 else -1, start)
         probe_time = _PROBE * first_step
         stepper = Stepper(self.rhs(STICK), 0.0, y0, rtol, atol, first_step=probe_time)
         stepper.step(probe_time)
@@ -341,12 +246,7 @@ class ObliqueModel:
         cap = self.law.friction * max(self.normal(probe[2] - probe[0], probe[3] - probe[1]), 0.0)
         if abs(force) <= cap:
             return STICK
-        return self.slide_phase(+1 if force > 0.0 else -1, probe)
-
-
-def _sign(phase):
-    """The sign of a slide's force (``phase`` +-1 or +-2), 0 when sticking."""
-    return (phase > 0) - (phase < 0)
+        return self.cap_rules.slide_phase(+1 if force > 0.0 else -1, probe)
 
 
 def _contact_value(normal_force, overlap):
@@ -423,9 +323,9 @@ def _solve_contact(model, y0, rtol, scale):
         if hit[1] == 0:
             return pieces, y
         if phase == STICK:
-            phase = model.slide_phase(+1 if hit[1] == 1 else -1, y)
+            phase = model.cap_rules.slide_phase(+1 if hit[1] == 1 else -1, y)
         else:
-            phase = model.after_slide(phase, hit[1], y)
+            phase = model.cap_rules.after_slide(phase, hit[1], y)
     raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
 
 

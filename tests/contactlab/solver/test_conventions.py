@@ -155,7 +155,7 @@ def test_kratos_coulomb_cap_is_a_rule_of_its_own():
     "that does not shrink with its step (R w' over vt: 20 deg 1.0e-4, 2.3e-4, 1.7e-4 at "
     "2000, 8000, 32000 steps; 30 deg 5.4e-4, 6.0e-4, 6.0e-4), equal to LAMMPS' cap there: "
     "the slide starts at rest in slip (s = 0), where Kratos' saw tooth has teeth of vanishing "
-    "length and the solver takes LAMMPS' slide as their limit (ObliqueModel.slide_phase)",
+    "length and the solver takes LAMMPS' slide as their limit (coulomb_cap.ElasticCap.slide_phase)",
 )
 @pytest.mark.parametrize("degrees", [20, 30])
 def test_kratos_coulomb_cap_where_the_slide_starts_at_rest(degrees):
