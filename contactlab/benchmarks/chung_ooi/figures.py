@@ -12,13 +12,16 @@ _STYLE = {"total": "o-", "incremental": "x--"}
 
 
 def save_figure(case, draw, out):
-    """Draw ``case`` with ``draw(ax)`` and save ``chung_ooi_test<N>.png`` in ``out``."""
+    """Draw ``case`` with ``draw(ax)`` (``draw(axes)`` when ``draw.panels`` > 1) and save
+    ``chung_ooi_test<N>.png`` in ``out``."""
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.0, 4.0), layout="constrained")
-    draw(ax)
-    ax.set_title(f"Chung & Ooi test {case.number}\n{case.title}", fontsize=9)
-    ax.legend(frameon=False, fontsize=7)
+    panels = getattr(draw, "panels", 1)
+    fig, axes = plt.subplots(1, panels, figsize=(6.0 * panels, 4.5), layout="constrained")
+    draw(axes)
+    fig.suptitle(f"Chung & Ooi test {case.number}\n{case.title}", fontsize=9)
+    for ax in np.atleast_1d(axes):
+        ax.legend(frameon=False, fontsize=6)
     path = Path(out) / f"chung_ooi_test{case.number}.png"
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -30,10 +33,25 @@ def _lammps_points(ax, x, y, label):
         ax.plot(x, y, "k+", ms=7, label=label)
 
 
+_ENGINE_STYLE = {"lammps": "--", "kratos": ":"}
+
+
 def draw_hertz(case, curves):
+    """Force against time: contactlab, each engine, and Hertz' contact time and peak."""
+
     def draw(ax):
-        for name, (t, f) in curves.items():
-            ax.plot(t * 1e6, f, label=f"{name}: contactlab")
+        for name, runs in curves.items():
+            for run, (t, f) in runs.items():
+                if run != "theory":
+                    ax.plot(t * 1e6, f, _ENGINE_STYLE.get(run, "-"), label=f"{name}: {run}")
+            contact_time, peak = runs["theory"]
+            ax.plot(
+                [contact_time * 0.5e6, contact_time * 1e6],
+                [peak, 0.0],
+                "k*",
+                ms=8,
+                label=f"{name}: Hertz (peak, contact time)",
+            )
         ax.set_xlabel("time [µs]")
         ax.set_ylabel("contact force [N]")
 
@@ -41,10 +59,14 @@ def draw_hertz(case, curves):
 
 
 def draw_restitution(case, curves):
+    """Realised against requested restitution: contactlab and each engine."""
+
     def draw(ax):
-        for name, (asked, got) in curves.items():
-            ax.plot(asked, got, "o-", label=f"{name}: contactlab")
-        ax.plot([0, 1], [0, 1], "k:", label="requested")
+        for name, (asked, realised) in curves.items():
+            for run, got in realised.items():
+                style = "o-" if run == "contactlab" else "x"
+                ax.plot(asked, got, style, mfc="none", label=f"{name}: {run}")
+        ax.plot([0, 1], [0, 1], "k:", label="requested (theory)")
         ax.set_xlabel("requested restitution [-]")
         ax.set_ylabel("realised restitution [-]")
 
@@ -52,37 +74,47 @@ def draw_restitution(case, curves):
 
 
 def draw_oblique(case, curves):
+    """Two panels, ``vt'/vt`` and ``R w'/vt`` against the angle: theory (gross sliding),
+    contactlab's two Mindlin forms, LAMMPS' points, and each other engine (open squares)
+    beside contactlab with that engine's rules (dotted)."""
     mu = case.inputs["friction [-]"]
 
-    def draw(ax):
+    def draw(axes):
         angles = np.radians(ANGLES)
         for name, forms in curves.items():
             for history in HISTORIES:
                 data = forms[history]
-                ax.plot(ANGLES, data[:, 0], _STYLE[history], label=f"{name}, Mindlin {history}")
-                _lammps_points(ax, ANGLES, data[:, 1], f"{name}, LAMMPS {history}")
+                for j, ax in enumerate(axes):
+                    ax.plot(ANGLES, data[:, j], _STYLE[history], ms=4, label=f"{name}, {history}")
+                    _lammps_points(ax, ANGLES, data[:, 2 + j], f"{name}, LAMMPS {history}")
             for found in forms.get("attribution", ()):
                 if found.engine.startswith("lammps"):  # LAMMPS' points are drawn above
                     continue
-                ax.plot(
-                    ANGLES,
-                    found.engine_values[:, 0],
-                    "s",
-                    mfc="none",
-                    label=f"{name}, {found.engine}",
-                )
-                ax.plot(
-                    ANGLES,
-                    found.values[found.preset][:, 0],
-                    ":",
-                    label=f"{name}, contactlab with {found.preset}",
-                )
+                for j, ax in enumerate(axes):
+                    ax.plot(
+                        ANGLES,
+                        found.engine_values[:, j],
+                        "s",
+                        mfc="none",
+                        label=f"{name}, {found.engine}",
+                    )
+                    ax.plot(
+                        ANGLES,
+                        found.values[found.preset][:, j],
+                        ":",
+                        label=f"{name}, contactlab with {found.preset}",
+                    )
         ratio = 2 * mu / np.tan(angles)  # mu (1 + e) vn / vt with e = 1
         ok = 3.5 * ratio <= 1.0
-        ax.plot(np.array(ANGLES)[ok], 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")
-        ax.set_xlabel("incidence angle [deg]")
-        ax.set_ylabel("tangential restitution vt'/vt [-]")
+        sliding = np.array(ANGLES)[ok]
+        axes[0].plot(sliding, 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")
+        # I w' = R mu (1 + e) m vn with I = 0.4 m R**2: R w'/vt = 2.5 ratio
+        axes[1].plot(sliding, 2.5 * ratio[ok], "k-", lw=2, label="gross sliding (theory)")
+        for ax, label in zip(axes, ("vt'/vt", "R w'/vt"), strict=True):
+            ax.set_xlabel("incidence angle [deg]")
+            ax.set_ylabel(f"{label} [-]")
 
+    draw.panels = 2
     return draw
 
 

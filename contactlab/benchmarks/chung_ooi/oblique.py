@@ -95,8 +95,10 @@ def oblique_test(case, material, lammps=None, reported=None):
 
     ``reported``: ``{engine: oblique}`` run at every angle (once: an engine's own
     tangential rules take no history form) and reported beside, not graded (Kratos,
-    ``docs/dem-conventions.md``). Its ``vt'/vt`` and spin join the curves (columns 2 and
-    3) and the gross-sliding rows.
+    ``docs/dem-conventions.md``), in the gross-sliding rows.
+
+    ``curves[history]``: (17, 4) ``vt'/vt`` and ``R w'/vt`` of contactlab, then of LAMMPS
+    (NaN when not run), at each angle.
 
     Every engine run (each reported engine with a preset in :data:`DEM_CONVENTIONS`, and
     LAMMPS' ``mindlin`` and ``mindlin/force``) is then attributed rule by rule
@@ -120,13 +122,12 @@ def oblique_test(case, material, lammps=None, reported=None):
             for name, oblique in (reported or {}).items():
                 if (name, degrees) not in others:
                     others[name, degrees] = rebound(oblique(body, normal, law, speed, angle))
-            extra = [others[name, degrees] for name in reported or {}]
             out.append(
                 (
                     ours[1] / vt,
+                    radius * ours[2] / vt,
                     _value(theirs, 1) / vt if theirs else math.nan,
-                    *(r[1] / vt for r in extra),
-                    *(r[2] for r in extra),
+                    radius * _value(theirs, 2) / vt if theirs else math.nan,
                 )
             )
             e = min(ours[0] / vn, 1.0)  # elastic: 1 to ~1e-9
