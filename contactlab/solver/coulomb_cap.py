@@ -35,9 +35,11 @@ ELASTIC_SLIDE = 2
 FREE_SLIDE = 3
 """``|phase|`` of a slide whose elastic force is free below ``mu N`` (viscous force cut)."""
 
-CUT = 1e-9
+CUT = 1e-6
 """Smallest cut of the elastic force back to the cap, relative to the cap, that starts a
-saw tooth (smaller: the slip is at rest, LAMMPS' slide)."""
+saw tooth: below it the slip is nearly at rest and the slide is LAMMPS' (the limit of
+teeth whose length vanishes with the slip), until the viscous force against it reaches
+twice this (then the teeth start)."""
 
 
 def sign(phase):
@@ -117,6 +119,11 @@ class ElasticCap(TotalCap):
         sigma, kind = sign(phase), abs(phase)
         if kind == 1:  # LAMMPS' slide: its history; event 2, the viscous force turned along
             stick = super().after_slide(phase, event, y)
+            if event == 3:  # the viscous force against the slide grown: a saw tooth starts
+                d, cap = self._cap(y)
+                y[6] = self.model.law.history_of(sigma * cap, d)
+                along = self.along(sigma, y)
+                return 0 if along >= -2.0 * cap else self.slide_phase(-sigma, y)
             return stick if event == 1 else ELASTIC_SLIDE * sigma
         if kind == FREE_SLIDE:  # the trial force back under the cap, or the elastic one at it
             return 0 if event == 1 else ELASTIC_SLIDE * sigma
@@ -145,7 +152,12 @@ class ElasticCap(TotalCap):
                 elastic = sigma * law.elastic_force(h, d)
                 return [contact_value(n, d), trial - mu * n, elastic - mu * n]
             ends = [contact_value(n, d), model.slide_exit(phase, y.tolist())]
-            # the viscous force turning against the slide, or (LAMMPS' slide) along it
-            return [*ends, self.along(sigma, y) if kind == ELASTIC_SLIDE else -self.along(sigma, y)]
+            if kind == ELASTIC_SLIDE:  # the viscous force turning against the slide
+                return [*ends, self.along(sigma, y)]
+            # LAMMPS' slide: the viscous force turning along it, or grown against it
+            against = -self.along(sigma, y)
+            return [*ends, against, against - 2.0 * CUT * mu * n]
 
-        return values, ([-1, -1, +1] if kind == FREE_SLIDE else [-1, -1, -1])
+        if kind == FREE_SLIDE:
+            return values, [-1, -1, +1]
+        return values, ([-1, -1, -1] if kind == ELASTIC_SLIDE else [-1, -1, -1, +1])

@@ -25,6 +25,7 @@ import numpy as np
 
 import contactlab as cl
 from contactlab.benchmarks.chung_ooi.grading import engine_row
+from contactlab.errors import ParameterError
 from contactlab.solver.conventions import DEM_CONVENTIONS, Conventions
 
 __all__ = [
@@ -80,6 +81,9 @@ class Attribution:
         ``{variant: (n, 2) array}``: the same for this toolkit under each variant.
     rules : dict
         ``{variant: Conventions}``.
+    refused : dict
+        ``{variant: reason}`` for variants this toolkit refuses (their values are NaN),
+        e.g. ``history="total"`` with ``damping="tied"`` beside a damped normal law.
     """
 
     engine: str
@@ -88,6 +92,7 @@ class Attribution:
     engine_values: np.ndarray
     values: dict
     rules: dict
+    refused: dict
 
     def differences(self, variant):
         """(n, 2): the variant's ``vt'/vt`` and ``R w'/vt`` minus the engine's [-]."""
@@ -161,9 +166,15 @@ def attribute(body, material, normal, mindlin, speed, angles, engine, engine_reb
     Attribution
     """
     rules = variants(target, engine=engine)
-    values = {}
+    values, refused = {}, {}
     for variant, chosen in rules.items():
         law = chosen.mindlin(mindlin)
+        try:
+            law.for_contact(normal, body.mass)
+        except ParameterError as error:  # a combination this toolkit refuses, and why
+            refused[variant] = str(error)
+            values[variant] = np.full((len(angles), 2), np.nan)
+            continue
         out = []
         for degrees in angles:
             angle = math.radians(degrees)
@@ -181,7 +192,7 @@ def attribute(body, material, normal, mindlin, speed, angles, engine, engine_reb
             for degrees, r in zip(angles, engine_rebounds, strict=True)
         ]
     )
-    return Attribution(engine, material, tuple(angles), theirs, values, rules)
+    return Attribution(engine, material, tuple(angles), theirs, values, rules, refused)
 
 
 def markdown(attributions):
@@ -194,6 +205,12 @@ def markdown(attributions):
     ]
     for item in attributions:
         for variant in item.values:
+            if variant in item.refused:
+                lines.append(
+                    f"| {item.engine} | {item.material} | {variant} | not run: "
+                    f"{item.refused[variant].split(':')[0]} | | | |"
+                )
+                continue
             diff = np.abs(item.differences(variant))
             where = diff.argmax(axis=0)
             lines.append(
