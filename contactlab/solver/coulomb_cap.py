@@ -27,7 +27,16 @@ The phase codes are those of :mod:`contactlab.solver.oblique` (0 sticking, ``sig
 LAMMPS' slide) and ``2 sigma``, ``3 sigma`` here.
 """
 
-__all__ = ["CUT", "ELASTIC_SLIDE", "FREE_SLIDE", "ElasticCap", "TotalCap", "cap_rules", "sign"]
+__all__ = [
+    "CUT",
+    "ELASTIC_SLIDE",
+    "FREE_SLIDE",
+    "TEETH",
+    "ElasticCap",
+    "TotalCap",
+    "cap_rules",
+    "sign",
+]
 
 ELASTIC_SLIDE = 2
 """``|phase|`` of a slide whose elastic force is held at ``mu N`` (viscous force dropped)."""
@@ -35,11 +44,15 @@ ELASTIC_SLIDE = 2
 FREE_SLIDE = 3
 """``|phase|`` of a slide whose elastic force is free below ``mu N`` (viscous force cut)."""
 
-CUT = 1e-6
+CUT = 1e-5
 """Smallest cut of the elastic force back to the cap, relative to the cap, that starts a
 saw tooth: below it the slip is nearly at rest and the slide is LAMMPS' (the limit of
-teeth whose length vanishes with the slip), until the viscous force against it reaches
-twice this (then the teeth start)."""
+teeth whose length vanishes with the slip; its force is off the teeth's mean by less than
+the cut), until the viscous force against it reaches twice this (then the teeth start)."""
+
+TEETH = 200
+"""Teeth in a row after which the smallest cut grows tenfold (teeth whose cut stays near
+it are a slide at rest in the slip: LAMMPS' slide again, until the cut has grown)."""
 
 
 def sign(phase):
@@ -90,6 +103,10 @@ class TotalCap:
 class ElasticCap(TotalCap):
     """Phase switches and events of Kratos' cap (see the module docstring)."""
 
+    def __init__(self, model):
+        super().__init__(model)
+        self.cut, self.teeth = CUT, 0  # the smallest cut now, teeth in a row
+
     def along(self, sigma, y):
         """``-sigma eta s`` [N]: the viscous force along a slide of sign ``sigma`` (> 0),
         or against it (< 0)."""
@@ -106,7 +123,11 @@ class ElasticCap(TotalCap):
         d, cap = self._cap(y)
         elastic = sigma * law.elastic_force(y[6], d)
         if along < 0.0:
-            if elastic - cap <= CUT * cap:
+            if elastic - cap <= self.cut * cap:
+                return sigma
+            self.teeth += 1
+            if self.teeth > TEETH:
+                self.cut, self.teeth = 10.0 * self.cut, 0
                 return sigma
             y[6] = law.history_of(sigma * cap, d)
             # a viscous force over twice the cap leaves the trial force beyond the other cap
@@ -117,6 +138,8 @@ class ElasticCap(TotalCap):
         """The phase after event ``event`` of slide ``phase`` at state ``y``, whose history
         this sets when it was slaved to the cap."""
         sigma, kind = sign(phase), abs(phase)
+        if event != 3:  # a slide ended: the teeth in a row start again
+            self.teeth = 0
         if kind == 1:  # LAMMPS' slide: its history; event 2, the viscous force turned along
             stick = super().after_slide(phase, event, y)
             if event == 3:  # the viscous force against the slide grown: a saw tooth starts
@@ -156,7 +179,7 @@ class ElasticCap(TotalCap):
                 return [*ends, self.along(sigma, y)]
             # LAMMPS' slide: the viscous force turning along it, or grown against it
             against = -self.along(sigma, y)
-            return [*ends, against, against - 2.0 * CUT * mu * n]
+            return [*ends, against, against - 2.0 * self.cut * mu * n]
 
         if kind == FREE_SLIDE:
             return values, [-1, -1, +1]
