@@ -46,13 +46,13 @@ class RawStream:
         The contact dump (:data:`~dem_check.stream.deck.CONTACTS`, ``pid`` the schedule's).
     script : str
         The LAMMPS input lines run (a deck reproducing the run, inserts included).
-    ranks : int
-        MPI processes.
+    rank, ranks : int
+        This process's MPI rank and the number of processes.
     """
 
-    def __init__(self, case, schedule, steps, contacts, script, ranks):
+    def __init__(self, case, schedule, steps, contacts, script, rank, ranks):
         self.case, self.schedule, self.steps = case, schedule, steps
-        self.contacts, self.script, self.ranks = contacts, script, ranks
+        self.contacts, self.script, self.rank, self.ranks = contacts, script, rank, ranks
 
 
 def world(session):
@@ -133,6 +133,8 @@ def simulate_stream(case, *, progress=False, workdir=None):
         contacts = _read_contacts(dump)
         script = session.script
     step, first = np.unique(step.astype(np.int64), return_index=True)
+    if not np.array_equal(step, np.arange(step.size)):  # the truth indexes steps by number
+        raise RuntimeError("LAMMPS' step record is not every step from 0; report this")
     sensor = case.sensor
     x1, v1 = x1[first], v1[first]
     steps = pd.DataFrame(
@@ -144,4 +146,4 @@ def simulate_stream(case, *, progress=False, workdir=None):
             "v1 [m/s]": v1,
         }
     )
-    return RawStream(case, schedule, steps, contacts, script, size)
+    return RawStream(case, schedule, steps, contacts, script, rank, size)

@@ -45,19 +45,19 @@ class StreamResult:
         [s].
     script : str
         The LAMMPS input run.
-    ranks : int
-        MPI processes it ran on.
+    rank, ranks : int
+        This process's MPI rank and the number of processes it ran on.
     """
 
     def __init__(self, raw):
         self.case = raw.case
         self.steps = raw.steps
-        self.truth = impacts_truth(raw.contacts, raw.schedule)
+        self.truth = impacts_truth(raw.contacts, raw.schedule, raw.steps)
         self.particles = raw.schedule.table
         self.time_step = raw.schedule.time_step
         self.lead = raw.schedule.lead
         self.script = raw.script
-        self.ranks = raw.ranks
+        self.rank, self.ranks = raw.rank, raw.ranks
 
     def trace(self, sample_rate=None, noise=None, seed=None):
         """The sensor signal S1 as an oscilloscope records it.

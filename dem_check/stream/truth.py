@@ -6,10 +6,13 @@ contact: it ends when the force reaches zero; with ``limit_damping`` LAMMPS keep
 overlap a few steps longer at zero force); the first is its impact, later ones are
 re-contacts (a bounce back onto the plate, rolling on and off). Per impact:
 
-* ``touch [s]``: the first step in contact (the overlap began during the step before);
-  ``separation [s]``: one step after the last step in contact; ``contact_time [s]``
-  their difference (steps in contact times the step, as
+* ``touch [s]``: when the overlap began, ``t_n - d_n / v`` from the first step in
+  contact ``n``, its overlap ``d_n`` (radius minus the centre's height over the plate,
+  whose position is the sensor's) and the approach speed ``v`` of the free flight
+  (second order in the step, so signals can be aligned to it); ``contact_time [s]``:
+  steps in contact times the step (as
   :class:`~dem_check.engines.lammps.realise.RealisedImpact` counts);
+  ``separation [s]``: touch plus contact time;
 * ``normal_speed`` and ``tangential_speed [m/s]`` at touch: the velocity the particle had
   on the last free step. LAMMPS writes ``v(n) = v(n - 1/2) + dt f(n) / (2 m)`` at the
   first contact step, and ``v(n - 1/2)`` (the velocity Verlet half step) is the free
@@ -45,13 +48,15 @@ TRUTH_COLUMNS = (
 )
 
 
-def impacts_truth(contacts, schedule):
-    """The truth table (module docstring) of a contact dump and its schedule."""
+def impacts_truth(contacts, schedule, steps):
+    """The truth table (module docstring) of a contact dump, its schedule and the step
+    series (``x1 [m]``, ``v1 [m/s]``: the plate's position and velocity)."""
     if contacts.empty:
         return pd.DataFrame(columns=TRUTH_COLUMNS)
     dt = schedule.time_step
     table = schedule.table
     rows = []
+    x1, v1 = steps["x1 [m]"].to_numpy(), steps["v1 [m/s]"].to_numpy()
     pressing = contacts[contacts["fz"] > 0.0]
     for pid, group in pressing.groupby("pid", sort=True):
         steps = group["step"].to_numpy()
@@ -65,6 +70,10 @@ def impacts_truth(contacts, schedule):
         vz0 = head["vz"] - half * head["fz"]
         vx0, vy0 = head["vx"] - half * head["fx"], head["vy"] - half * head["fy"]
         fz = first["fz"].to_numpy()
+        n = int(head["step"])
+        plate_z, plate_vz = -x1[n], -v1[n]
+        overlap = 0.5 * float(table.at[pid, "diameter [m]"]) - (head["z"] - plate_z)
+        approach = plate_vz - vz0
         rows.append(
             {
                 "pid": int(pid),
@@ -72,8 +81,8 @@ def impacts_truth(contacts, schedule):
                 "cls": int(table.at[pid, "cls"]),
                 "mass [kg]": mass,
                 "diameter [m]": float(table.at[pid, "diameter [m]"]),
-                "touch [s]": head["step"] * dt,
-                "separation [s]": (tail["step"] + 1) * dt,
+                "touch [s]": n * dt - overlap / approach,
+                "separation [s]": n * dt - overlap / approach + len(first) * dt,
                 "contact_time [s]": len(first) * dt,
                 "normal_speed [m/s]": -vz0,
                 "tangential_speed [m/s]": float(np.hypot(vx0, vy0)),

@@ -1,0 +1,206 @@
+"""Scoring a detector on a simulated stream against the truth.
+
+A **detector** is a callable ``detector(trace, sensor) -> onsets [s]`` (array-like), or
+``None`` for the campaign's (:func:`dem_check.campaign.detection.find_impacts`, every
+window it lists). Matching: each true impact (its ``touch [s]``) goes to the detection
+with the latest onset at or before ``touch + tolerance`` whose span (up to the next
+detection) contains it; ``tolerance`` defaults to two sensor periods (smoothing moves an
+onset by about a period). Then:
+
+* a **hit** is a detection holding exactly one true impact; its onset error is
+  ``onset - touch``;
+* a **merge** is a detection holding two or more (the detector saw one impact where
+  there were several; each true impact in it counts as merged);
+* a **miss** is a true impact with no detection before it in reach;
+* a **false alarm** is a detection holding none.
+
+:func:`pileup_curve` runs a case at several flow rates and tabulates these against the
+rate. :func:`discrimination` classifies hits as grain or chaff from signal features
+(peak, rise time, impulse, duration) with a nearest-centroid rule on standardised
+log-features, trained and tested by two-fold cross-validation, and returns the
+confusion matrix.
+"""
+
+import numpy as np
+import pandas as pd
+
+from dem_check.campaign.detection import find_impacts
+
+__all__ = [
+    "FEATURES",
+    "Score",
+    "campaign_detector",
+    "discrimination",
+    "hit_features",
+    "pileup_curve",
+    "score",
+]
+
+FEATURES = ("peak [N]", "rise_time [s]", "impulse [N*s]", "duration [s]")
+"""Signal features of a hit used to tell grain from chaff."""
+
+
+def campaign_detector(trace, sensor):
+    """Onsets [s] of every impact window the campaign's detector lists."""
+    return [w.onset for w in find_impacts(trace, sensor).impacts]
+
+
+class Score:
+    """A detector's result on one stream.
+
+    Attributes
+    ----------
+    matches : pandas.DataFrame
+        Per true impact: ``pid``, ``kind``, ``touch [s]``, ``detection`` (index, -1 for
+        a miss), ``outcome`` (``"hit"``, ``"merged"``, ``"miss"``) and ``onset_error
+        [s]`` (hits).
+    detections : numpy.ndarray
+        Onsets [s].
+    counts : dict
+        ``impacts``, ``hits``, ``merged``, ``misses``, ``false_alarms``,
+        ``detections``.
+    """
+
+    def __init__(self, matches, detections, counts):
+        self.matches, self.detections, self.counts = matches, detections, counts
+
+
+def score(result, detector=None, trace=None, tolerance=None):
+    """Match a detector's onsets on ``result``'s trace to its truth (module docstring)."""
+    sensor = result.case.sensor
+    trace = result.trace() if trace is None else trace
+    onsets = np.sort(np.asarray((detector or campaign_detector)(trace, sensor), dtype=float))
+    tolerance = 2.0 * sensor.period if tolerance is None else tolerance
+    truth = result.truth
+    touch = truth["touch [s]"].to_numpy()
+    owner = np.searchsorted(onsets, touch + tolerance, side="right") - 1
+    held = np.bincount(owner[owner >= 0], minlength=onsets.size)
+    outcome = np.where(owner < 0, "miss", np.where(held[np.maximum(owner, 0)] == 1, "hit", "merged"))
+    error = np.where(outcome == "hit", onsets[np.maximum(owner, 0)] - touch, np.nan)
+    matches = pd.DataFrame(
+        {
+            "pid": truth["pid"].to_numpy(),
+            "kind": truth["kind"].to_numpy(),
+            "touch [s]": touch,
+            "detection": owner,
+            "outcome": outcome,
+            "onset_error [s]": error,
+        }
+    )
+    counts = {
+        "impacts": int(touch.size),
+        "hits": int((outcome == "hit").sum()),
+        "merged": int((outcome == "merged").sum()),
+        "misses": int((outcome == "miss").sum()),
+        "false_alarms": int((held == 0).sum()),
+        "detections": int(onsets.size),
+    }
+    return Score(matches, onsets, counts)
+
+
+def pileup_curve(case, rates, detector=None, run=None):
+    """Hits, merges, misses and false alarms against the count flow rate.
+
+    Parameters
+    ----------
+    case : StreamCase
+        Its flow rate is replaced by each of ``rates`` [1/s].
+    rates : sequence of float
+    detector : callable, optional
+        As for :func:`score`.
+    run : callable, optional
+        ``run(case) -> StreamResult`` (default :func:`~dem_check.stream.result.run_stream`).
+
+    Returns
+    -------
+    pandas.DataFrame
+        Per rate: ``rate [1/s]`` and the fractions of true impacts hit, merged and
+        missed, false alarms per detection, and the median absolute onset error [s].
+    """
+    from dataclasses import replace
+
+    from dem_check.stream.result import run_stream
+
+    run = run or run_stream
+    rows = []
+    for rate in rates:
+        result = run(case.with_(flow=replace(case.flow, rate=float(rate), kind="count")))
+        s = score(result, detector)
+        n = max(s.counts["impacts"], 1)
+        rows.append(
+            {
+                "rate [1/s]": float(rate),
+                "impacts": s.counts["impacts"],
+                "hit_fraction": s.counts["hits"] / n,
+                "merged_fraction": s.counts["merged"] / n,
+                "miss_fraction": s.counts["misses"] / n,
+                "false_alarms": s.counts["false_alarms"],
+                "median_onset_error [s]": float(np.nanmedian(np.abs(s.matches["onset_error [s]"])))
+                if s.counts["hits"]
+                else np.nan,
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def hit_features(result, scored, trace=None):
+    """:data:`FEATURES` of each hit, read from the trace between its onset and the next
+    detection (or four sensor periods, whichever is first); with the hit's true kind."""
+    trace = result.trace() if trace is None else trace
+    t, v = np.asarray(trace.t), np.asarray(trace.values)
+    period = result.case.sensor.period
+    hits = scored.matches[scored.matches["outcome"] == "hit"]
+    rows = []
+    for _, hit in hits.iterrows():
+        k = int(hit["detection"])
+        start = scored.detections[k]
+        stop = min(start + 4.0 * period, *scored.detections[k + 1 : k + 2], t[-1])
+        inside = (t >= start) & (t < stop)
+        if inside.sum() < 3:
+            continue
+        tw, vw = t[inside], v[inside]
+        top = int(np.argmax(vw))
+        above = vw > 0.5 * vw[top]
+        rows.append(
+            {
+                "kind": hit["kind"],
+                "peak [N]": float(vw[top]),
+                "rise_time [s]": float(tw[top] - start) + 1e-12,
+                "impulse [N*s]": float(np.clip(vw, 0.0, None).sum() * (tw[1] - tw[0])),
+                "duration [s]": float(above.sum() * (tw[1] - tw[0])),
+            }
+        )
+    return pd.DataFrame(rows, columns=["kind", *FEATURES])
+
+
+def discrimination(features):
+    """Two-fold cross-validated nearest-centroid classification of hits by kind.
+
+    Parameters
+    ----------
+    features : pandas.DataFrame
+        :func:`hit_features`' table.
+
+    Returns
+    -------
+    pandas.DataFrame
+        Confusion matrix: rows the true kinds, columns the predicted ones (counts).
+    """
+    kinds = sorted(features["kind"].unique())
+    x = np.log(np.maximum(features[list(FEATURES)].to_numpy(dtype=float), 1e-300))
+    y = features["kind"].to_numpy()
+    predicted = np.empty(y.size, dtype=object)
+    fold = np.arange(y.size) % 2
+    for f in (0, 1):
+        train, test = fold != f, fold == f
+        mean, sd = x[train].mean(axis=0), x[train].std(axis=0) + 1e-12
+        z = (x - mean) / sd
+        present = [k for k in kinds if (y[train] == k).any()]
+        centroids = np.array([z[train & (y == k)].mean(axis=0) for k in present])
+        distance = ((z[test][:, None, :] - centroids[None]) ** 2).sum(axis=2)
+        predicted[test] = np.array(present, dtype=object)[distance.argmin(axis=1)]
+    matrix = pd.crosstab(
+        pd.Categorical(y, categories=kinds), pd.Categorical(predicted, categories=kinds),
+        rownames=["true"], colnames=["predicted"], dropna=False,
+    )
+    return matrix
