@@ -129,11 +129,13 @@ def write_report(out, result, scored=None, features=None, confusion=None, curve=
 
 def _summary(result):
     case = result.case
-    kinds = result.truth["kind"].value_counts().to_dict()
+    truth = result.truth
+    kinds = truth.loc[truth["contact"] == 0, "kind"].value_counts().to_dict()
     return json.dumps(
         {
             "particles drawn": len(result.particles),
             "impacts by kind": kinds,
+            "re-contacts": int((truth["contact"] > 0).sum()),
             "duration [s]": case.duration,
             "time step [s]": result.time_step,
             "steps": len(result.steps),

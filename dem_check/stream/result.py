@@ -10,7 +10,7 @@ the truth (:mod:`dem_check.stream.truth`) and return a :class:`StreamResult`. It
 * ``trace.csv``: that trace (generic CSV, read by :func:`dem_check.read_trace`);
 * ``steps.csv.gz``: every step's ``t [s]``, ``contact_force [N]``, ``sensor_force [N]``,
   ``x1 [m]``, ``v1 [m/s]``;
-* ``truth.csv``: one row per impact (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`);
+* ``truth.csv``: one row per contact (impacts and re-contacts) (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`);
 * ``particles.csv``: the drawn particles; ``deck.lammps``: the LAMMPS input run.
 """
 
@@ -38,7 +38,7 @@ class StreamResult:
         Per step (``t [s]``, ``contact_force [N]``, ``sensor_force [N]``, ``x1 [m]``,
         ``v1 [m/s]``).
     truth : pandas.DataFrame
-        Per impact (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`).
+        Per contact: impacts and re-contacts (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`).
     particles : pandas.DataFrame
         The drawn particles (:class:`~dem_check.stream.feed.Schedule`'s table).
     time_step : float

@@ -3,9 +3,12 @@
 A **detector** is a callable ``detector(trace, sensor) -> onsets [s]`` (array-like), or
 ``None`` for the campaign's (:func:`dem_check.campaign.detection.find_impacts`, every
 window it lists). Matching: each true impact (its ``touch [s]``) goes to the detection
-with the latest onset at or before ``touch + tolerance`` whose span (up to the next
-detection) contains it; ``tolerance`` defaults to two sensor periods (smoothing moves an
-onset by about a period). Then:
+with the latest onset at or before ``touch + tolerance``, if that onset is less than
+``reach`` before the touch; ``tolerance`` defaults to two sensor periods (smoothing
+moves an onset by about a period) and ``reach`` to :data:`REACH_PERIODS` sensor periods
+(a signal's ringing has decayed by then, so a later impact is a new one). Then:
+
+True impacts are all the truth's contacts, re-contacts included (each makes a signal).
 
 * a **hit** is a detection holding exactly one true impact; its onset error is
   ``onset - touch``;
@@ -28,6 +31,7 @@ from dem_check.campaign.detection import find_impacts
 
 __all__ = [
     "FEATURES",
+    "REACH_PERIODS",
     "Score",
     "campaign_detector",
     "discrimination",
@@ -35,6 +39,10 @@ __all__ = [
     "pileup_curve",
     "score",
 ]
+
+REACH_PERIODS = 20.0
+"""How long after a detection's onset a true impact still belongs to it [sensor periods]:
+the ringing of a sensor of damping ratio 0.02 has decayed to 8 % by then."""
 
 FEATURES = ("peak [N]", "rise_time [s]", "impulse [N*s]", "duration [s]")
 """Signal features of a hit used to tell grain from chaff."""
@@ -65,15 +73,20 @@ class Score:
         self.matches, self.detections, self.counts = matches, detections, counts
 
 
-def score(result, detector=None, trace=None, tolerance=None):
-    """Match a detector's onsets on ``result``'s trace to its truth (module docstring)."""
+def score(result, detector=None, trace=None, tolerance=None, reach=None):
+    """Match a detector's onsets on ``result``'s trace to its truth (module docstring).
+
+    ``tolerance`` and ``reach`` are in seconds; ``trace`` defaults to ``result.trace()``.
+    """
     sensor = result.case.sensor
     trace = result.trace() if trace is None else trace
     onsets = np.sort(np.asarray((detector or campaign_detector)(trace, sensor), dtype=float))
     tolerance = 2.0 * sensor.period if tolerance is None else tolerance
     truth = result.truth
     touch = truth["touch [s]"].to_numpy()
+    reach = REACH_PERIODS * sensor.period if reach is None else reach
     owner = np.searchsorted(onsets, touch + tolerance, side="right") - 1
+    owner[(owner >= 0) & (touch - onsets[np.maximum(owner, 0)] > reach)] = -1
     held = np.bincount(owner[owner >= 0], minlength=onsets.size)
     outcome = np.where(owner < 0, "miss", np.where(held[np.maximum(owner, 0)] == 1, "hit", "merged"))
     error = np.where(outcome == "hit", onsets[np.maximum(owner, 0)] - touch, np.nan)
@@ -81,6 +94,7 @@ def score(result, detector=None, trace=None, tolerance=None):
         {
             "pid": truth["pid"].to_numpy(),
             "kind": truth["kind"].to_numpy(),
+            "contact": truth["contact"].to_numpy() if "contact" in truth else 0,
             "touch [s]": touch,
             "detection": owner,
             "outcome": outcome,

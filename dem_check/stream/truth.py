@@ -20,8 +20,11 @@ re-contacts (a bounce back onto the plate, rolling on and off). Per impact:
 * ``rebound_normal_speed [m/s]``: the velocity at the last contact step plus the
   half step of its force, the same way;
 * ``peak_force [N]`` and ``impulse [N*s]`` (the sum of force times step, velocity
-  Verlet's own momentum change) of the normal contact force over the first contact;
-  ``recontacts`` and ``total_impulse [N*s]`` over all contacts.
+  Verlet's own momentum change) of the normal contact force over the contact.
+
+Every contact is a row (``contact`` 0 the impact, 1, 2 ... re-contacts; ``recontacts``
+their number for the particle): a re-contact makes its own signal, which a detector
+should find.
 """
 
 import numpy as np
@@ -33,6 +36,7 @@ TRUTH_COLUMNS = (
     "pid",
     "kind",
     "cls",
+    "contact",
     "mass [kg]",
     "diameter [m]",
     "touch [s]",
@@ -44,53 +48,60 @@ TRUTH_COLUMNS = (
     "peak_force [N]",
     "impulse [N*s]",
     "recontacts",
-    "total_impulse [N*s]",
 )
+
+
+def _segment(segment, pid, contact, dt, table, plate):
+    """The truth row of one contact (consecutive steps with a positive force)."""
+    mass = float(table.at[pid, "mass [kg]"])
+    half = 0.5 * dt / mass
+    head, tail = segment.iloc[0], segment.iloc[-1]
+    vz0 = head["vz"] - half * head["fz"]
+    vx0, vy0 = head["vx"] - half * head["fx"], head["vy"] - half * head["fy"]
+    fz = segment["fz"].to_numpy()
+    n = int(head["step"])
+    x1, v1 = plate
+    overlap = 0.5 * float(table.at[pid, "diameter [m]"]) - (head["z"] + x1[n])
+    approach = -v1[n] - vz0
+    # a re-contact may start from a standing overlap (the plate pushing back): no
+    # interpolation is then possible, and the touch is the step's start
+    before = min(max(overlap / approach, 0.0), dt) if approach > 0.0 else dt
+    touch = n * dt - before
+    return {
+        "pid": int(pid),
+        "kind": table.at[pid, "kind"],
+        "cls": int(table.at[pid, "cls"]),
+        "contact": contact,
+        "mass [kg]": mass,
+        "diameter [m]": float(table.at[pid, "diameter [m]"]),
+        "touch [s]": touch,
+        "separation [s]": touch + len(segment) * dt,
+        "contact_time [s]": len(segment) * dt,
+        "normal_speed [m/s]": -vz0,
+        "tangential_speed [m/s]": float(np.hypot(vx0, vy0)),
+        "rebound_normal_speed [m/s]": tail["vz"] + half * tail["fz"],
+        "peak_force [N]": float(fz.max()),
+        "impulse [N*s]": float(fz.sum() * dt),
+    }
 
 
 def impacts_truth(contacts, schedule, steps):
     """The truth table (module docstring) of a contact dump, its schedule and the step
-    series (``x1 [m]``, ``v1 [m/s]``: the plate's position and velocity)."""
+    series (``x1 [m]``, ``v1 [m/s]``: the plate's position and velocity): one row per
+    contact, ``contact`` 0 for a particle's impact and 1, 2 ... for its re-contacts
+    (``recontacts`` counts them on every row of the particle)."""
     if contacts.empty:
         return pd.DataFrame(columns=TRUTH_COLUMNS)
-    dt = schedule.time_step
-    table = schedule.table
+    dt, table = schedule.time_step, schedule.table
+    plate = steps["x1 [m]"].to_numpy(), steps["v1 [m/s]"].to_numpy()
     rows = []
-    x1, v1 = steps["x1 [m]"].to_numpy(), steps["v1 [m/s]"].to_numpy()
     pressing = contacts[contacts["fz"] > 0.0]
     for pid, group in pressing.groupby("pid", sort=True):
-        steps = group["step"].to_numpy()
-        breaks = np.flatnonzero(np.diff(steps) != 1) + 1
-        starts = np.concatenate([[0], breaks])
-        ends = np.concatenate([breaks, [steps.size]])
-        first = group.iloc[starts[0] : ends[0]]
-        mass = float(table.at[pid, "mass [kg]"])
-        half = 0.5 * dt / mass
-        head, tail = first.iloc[0], first.iloc[-1]
-        vz0 = head["vz"] - half * head["fz"]
-        vx0, vy0 = head["vx"] - half * head["fx"], head["vy"] - half * head["fy"]
-        fz = first["fz"].to_numpy()
-        n = int(head["step"])
-        plate_z, plate_vz = -x1[n], -v1[n]
-        overlap = 0.5 * float(table.at[pid, "diameter [m]"]) - (head["z"] - plate_z)
-        approach = plate_vz - vz0
-        rows.append(
-            {
-                "pid": int(pid),
-                "kind": table.at[pid, "kind"],
-                "cls": int(table.at[pid, "cls"]),
-                "mass [kg]": mass,
-                "diameter [m]": float(table.at[pid, "diameter [m]"]),
-                "touch [s]": n * dt - overlap / approach,
-                "separation [s]": n * dt - overlap / approach + len(first) * dt,
-                "contact_time [s]": len(first) * dt,
-                "normal_speed [m/s]": -vz0,
-                "tangential_speed [m/s]": float(np.hypot(vx0, vy0)),
-                "rebound_normal_speed [m/s]": tail["vz"] + half * tail["fz"],
-                "peak_force [N]": float(fz.max()),
-                "impulse [N*s]": float(fz.sum() * dt),
-                "recontacts": int(starts.size - 1),
-                "total_impulse [N*s]": float(group["fz"].sum() * dt),
-            }
-        )
+        numbers = group["step"].to_numpy()
+        breaks = np.flatnonzero(np.diff(numbers) != 1) + 1
+        edges = np.concatenate([[0], breaks, [numbers.size]])
+        for k in range(edges.size - 1):
+            row = _segment(group.iloc[edges[k] : edges[k + 1]], pid, k, dt, table, plate)
+            row["recontacts"] = int(edges.size - 2)
+            rows.append(row)
     return pd.DataFrame(rows, columns=TRUTH_COLUMNS).sort_values("touch [s]").reset_index(drop=True)
