@@ -275,8 +275,15 @@ def _add_stream_parser(sub):
     )
     p.add_argument("case", nargs="?", help="stream case TOML (default: a small built-in case)")
     p.add_argument("--out", default="results/stream", metavar="DIR", help="output folder")
-    p.add_argument("--pileup", metavar="RATES", help="count rates [1/s] of a pile-up curve, e.g. 100,400,1600")
-    p.add_argument("--capacity", type=float, metavar="KG_PER_S", help="calibrate an impact plate at 25-100 %% of this mass flow")
+    p.add_argument(
+        "--pileup", metavar="RATES", help="count rates [1/s] of a pile-up curve, e.g. 100,400,1600"
+    )
+    p.add_argument(
+        "--capacity",
+        type=float,
+        metavar="KG_PER_S",
+        help="calibrate an impact plate at 25-100 %% of this mass flow",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
     p.set_defaults(func=_stream)

@@ -98,9 +98,7 @@ class ParticleKind:
     def __post_init__(self):
         where = f"particles {self.name!r}"
         object.__setattr__(self, "diameter", _range(f"{where}: diameter", self.diameter, "m"))
-        object.__setattr__(
-            self, "density", _range(f"{where}: density", self.density, "kg/m^3")
-        )
+        object.__setattr__(self, "density", _range(f"{where}: density", self.density, "kg/m^3"))
         check_number(f"{where}: share", self.share, low=0.0)
         check_count(f"{where}: diameter_classes", self.diameter_classes, low=1)
         check_count(f"{where}: density_classes", self.density_classes, low=1)
@@ -176,7 +174,9 @@ class Flow:
     def peak(self):
         """Largest rate of the profile."""
         ends = self.end_rate if self.end_rate is not None else self.rate
-        return max(self.rate, ends) * (1.0 + (self.amplitude if self.profile == "oscillating" else 0))
+        return max(self.rate, ends) * (
+            1.0 + (self.amplitude if self.profile == "oscillating" else 0)
+        )
 
 
 @dataclass(frozen=True)
@@ -219,8 +219,14 @@ class Plate:
     def __post_init__(self):
         for name in ("length", "width", "thickness"):
             check_number(f"plate {name}", getattr(self, name), low=0.0, unit="m")
-        check_number("plate inclination_deg", self.inclination_deg, low=0.0, high=90.0,
-                     low_open=False, high_open=False)
+        check_number(
+            "plate inclination_deg",
+            self.inclination_deg,
+            low=0.0,
+            high=90.0,
+            low_open=False,
+            high_open=False,
+        )
 
 
 @dataclass(frozen=True)
@@ -299,7 +305,9 @@ def _table(cls, data, key, where):
     allowed = {f.name for f in fields(cls)}
     unknown = sorted(set(table) - allowed)
     if unknown:
-        raise ParameterError(f"{where}: unknown key(s) {unknown} in [{key}]; valid {sorted(allowed)}")
+        raise ParameterError(
+            f"{where}: unknown key(s) {unknown} in [{key}]; valid {sorted(allowed)}"
+        )
     return cls(**table)
 
 
@@ -315,7 +323,11 @@ def read_case(path):
         particles = [_particles(t, where) for t in data.get("particles", [])]
         stream = dict(data.get("stream", {}))
         allowed = {f.name for f in fields(StreamCase)} - {
-            "particles", "sensor", "flow", "feed", "plate"
+            "particles",
+            "sensor",
+            "flow",
+            "feed",
+            "plate",
         }
         bad = sorted(set(stream) - allowed)
         if bad:

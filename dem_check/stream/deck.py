@@ -56,7 +56,9 @@ _SENSOR_ID = 1
 
 def _words(grain, law, tangential):
     model = granular_model(law, grain.mass, grain.radius)
-    return model.words(TANGENTIAL if tangential is None else tangential_words(tangential, grain.radius))
+    return model.words(
+        TANGENTIAL if tangential is None else tangential_words(tangential, grain.radius)
+    )
 
 
 def _item(name, index, count):
@@ -73,8 +75,12 @@ def _box(schedule, case):
     top = max([*table.get("z [m]", []), case.feed.release]) + 4.0 * rmax
     margin = 4.0 * rmax
     return (
-        min(xs) - margin, max(xs) + margin, min(ys) - margin, max(ys) + margin,
-        -plate.thickness - 8.0 * rmax, top,
+        min(xs) - margin,
+        max(xs) + margin,
+        min(ys) - margin,
+        max(ys) + margin,
+        -plate.thickness - 8.0 * rmax,
+        top,
     )
 
 
@@ -120,7 +126,7 @@ def deck_lines(case, schedule, dump_path):
             "the plate",
         ),
     ]
-    for i, (name, grain, law, _) in enumerate(classes):
+    for i, (name, _, law, _) in enumerate(classes):
         lines += [
             (f"group c{i + 1} type {i + 1}", setup),
             (
@@ -210,7 +216,7 @@ def sweep_lines(ceiling):
     """Lines deleting particles that rebounded above ``ceiling`` [m] (they would meet the
     insertions; IDs are kept: ``compress no``)."""
     return [
-        (f"variable gone atom \"vz > 0 && z > {ceiling!r} && i_pid > 0\"", "sweep"),
+        (f'variable gone atom "vz > 0 && z > {ceiling!r} && i_pid > 0"', "sweep"),
         ("group gone variable gone", "sweep"),
         ("delete_atoms group gone compress no", "sweep"),
         ("group gone clear", "sweep"),

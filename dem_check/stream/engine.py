@@ -65,8 +65,14 @@ def _read_contacts(path):
     if not Path(path).exists():
         return pd.DataFrame(columns=CONTACTS)
     frame = pd.read_csv(
-        path, sep=" ", header=None, names=CONTACTS, comment="I", skipinitialspace=True,
-        engine="c", index_col=False,
+        path,
+        sep=" ",
+        header=None,
+        names=CONTACTS,
+        comment="I",
+        skipinitialspace=True,
+        engine="c",
+        index_col=False,
     )
     frame = frame.dropna().astype({"pid1": int, "step": int, "type": int})
     frame.insert(0, "pid", frame.pop("pid1") - 1)

@@ -86,7 +86,9 @@ def _arrivals(case, rng, mean_mass, start):
     if flow.arrivals == "regular":
         grid = np.linspace(0.0, duration, 100_001)
         rate = flow.at(grid, duration) * scale
-        cumulative = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(grid))])
+        cumulative = np.concatenate(
+            [[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(grid))]
+        )
         wanted = np.arange(0.5, cumulative[-1], 1.0)
         return start + np.interp(wanted, cumulative, grid)
     count = rng.poisson(peak * duration * 1.2 + 20)

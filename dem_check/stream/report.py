@@ -14,7 +14,7 @@ import json
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.pyplot as plt
 
 __all__ = ["calibration_figure", "pileup_figure", "signal_figure", "write_report"]
 
@@ -40,8 +40,14 @@ def signal_figure(result, scored=None, window=None):
     ax.plot(ms, part["sensor_force [N]"], color="C0", lw=0.8, label="sensor signal S1")
     truth = result.truth[(result.truth["touch [s]"] >= start) & (result.truth["touch [s]"] <= stop)]
     for k, (kind, rows) in enumerate(truth.groupby("kind")):
-        ax.plot(1e3 * rows["touch [s]"], rows["peak_force [N]"], "v", color=f"C{k + 1}",
-                ms=5, label=f"touch: {kind}")
+        ax.plot(
+            1e3 * rows["touch [s]"],
+            rows["peak_force [N]"],
+            "v",
+            color=f"C{k + 1}",
+            ms=5,
+            label=f"touch: {kind}",
+        )
     if scored is not None:
         onsets = scored.detections[(scored.detections >= start) & (scored.detections <= stop)]
         ax.plot(1e3 * onsets, [0.0] * len(onsets), "|", color="k", ms=12, label="detected onset")
@@ -55,8 +61,11 @@ def signal_figure(result, scored=None, window=None):
 def pileup_figure(curve):
     """Fractions hit, merged and missed against the count flow rate."""
     fig, ax = plt.subplots(figsize=(5, 3.6))
-    for column, label in (("hit_fraction", "hit"), ("merged_fraction", "merged"),
-                          ("miss_fraction", "missed")):
+    for column, label in (
+        ("hit_fraction", "hit"),
+        ("merged_fraction", "merged"),
+        ("miss_fraction", "missed"),
+    ):
         ax.plot(curve["rate [1/s]"], curve[column], "o-", label=label)
     ax.set_xlabel("flow rate [particles/s]")
     ax.set_ylabel("fraction of impacts")
@@ -92,8 +101,9 @@ def _table(frame):
     return frame.to_html(index=False, float_format=lambda v: f"{v:.5g}")
 
 
-def write_report(out, result, scored=None, features=None, confusion=None, curve=None,
-                 calibration=None):
+def write_report(
+    out, result, scored=None, features=None, confusion=None, curve=None, calibration=None
+):
     """Write ``report.html`` and the figures' PNGs into ``out`` (a folder); returns the
     page's path. Every argument but ``out`` and ``result`` is optional (a section each)."""
     figures = [("signal", signal_figure(result, scored), "Signal over the true force")]
@@ -107,11 +117,14 @@ def write_report(out, result, scored=None, features=None, confusion=None, curve=
         parts.append(f"<h2>{html.escape(title)}</h2>{_svg(fig)}")
         plt.close(fig)
     if scored is not None:
-        parts.append("<h2>Detector against the truth</h2>" + _table(
-            __import__("pandas").DataFrame([scored.counts])))
+        parts.append(
+            "<h2>Detector against the truth</h2>"
+            + _table(__import__("pandas").DataFrame([scored.counts]))
+        )
     if confusion is not None:
-        parts.append("<h2>Grain / chaff from signal features (rows: true)</h2>"
-                     + confusion.to_html())
+        parts.append(
+            "<h2>Grain / chaff from signal features (rows: true)</h2>" + confusion.to_html()
+        )
     if curve is not None:
         parts.append("<h2>Pile-up table</h2>" + _table(curve))
     if calibration is not None:
@@ -120,8 +133,10 @@ def write_report(out, result, scored=None, features=None, confusion=None, curve=
             f"{calibration.intercept:.5g})</h2>" + _table(calibration.table)
         )
     parts.append("<h2>Impacts (first 200)</h2>" + _table(result.truth.head(200)))
-    page = (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>Stream</title>"
-            f"<style>{_STYLE}</style></head><body>{''.join(parts)}</body></html>")
+    page = (
+        f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>Stream</title>"
+        f"<style>{_STYLE}</style></head><body>{''.join(parts)}</body></html>"
+    )
     path = out / "report.html"
     path.write_text(page, encoding="utf-8")
     return path

@@ -10,7 +10,8 @@ the truth (:mod:`dem_check.stream.truth`) and return a :class:`StreamResult`. It
 * ``trace.csv``: that trace (generic CSV, read by :func:`dem_check.read_trace`);
 * ``steps.csv.gz``: every step's ``t [s]``, ``contact_force [N]``, ``sensor_force [N]``,
   ``x1 [m]``, ``v1 [m/s]``;
-* ``truth.csv``: one row per contact (impacts and re-contacts) (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`);
+* ``truth.csv``: one row per contact, impacts and re-contacts
+  (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`);
 * ``particles.csv``: the drawn particles; ``deck.lammps``: the LAMMPS input run.
 """
 
@@ -76,8 +77,10 @@ class StreamResult:
         Trace
         """
         rate = check_number(
-            "sample_rate", self.case.sample_rate if sample_rate is None else sample_rate,
-            low=0.0, unit="Hz",
+            "sample_rate",
+            self.case.sample_rate if sample_rate is None else sample_rate,
+            low=0.0,
+            unit="Hz",
         )
         if rate * self.time_step > 1.0 + 1e-12:
             raise ParameterError(
@@ -85,7 +88,10 @@ class StreamResult:
                 f"{1.0 / self.time_step:.6g} Hz; lower it or the case's time_step"
             )
         noise = check_number(
-            "noise", self.case.noise if noise is None else noise, low=0.0, low_open=False,
+            "noise",
+            self.case.noise if noise is None else noise,
+            low=0.0,
+            low_open=False,
             unit="N",
         )
         seed = check_count("seed", self.case.seed if seed is None else seed, low=0)

@@ -88,7 +88,9 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
     owner = np.searchsorted(onsets, touch + tolerance, side="right") - 1
     owner[(owner >= 0) & (touch - onsets[np.maximum(owner, 0)] > reach)] = -1
     held = np.bincount(owner[owner >= 0], minlength=onsets.size)
-    outcome = np.where(owner < 0, "miss", np.where(held[np.maximum(owner, 0)] == 1, "hit", "merged"))
+    outcome = np.where(
+        owner < 0, "miss", np.where(held[np.maximum(owner, 0)] == 1, "hit", "merged")
+    )
     error = np.where(outcome == "hit", onsets[np.maximum(owner, 0)] - touch, np.nan)
     matches = pd.DataFrame(
         {
@@ -214,7 +216,10 @@ def discrimination(features):
         distance = ((z[test][:, None, :] - centroids[None]) ** 2).sum(axis=2)
         predicted[test] = np.array(present, dtype=object)[distance.argmin(axis=1)]
     matrix = pd.crosstab(
-        pd.Categorical(y, categories=kinds), pd.Categorical(predicted, categories=kinds),
-        rownames=["true"], colnames=["predicted"], dropna=False,
+        pd.Categorical(y, categories=kinds),
+        pd.Categorical(predicted, categories=kinds),
+        rownames=["true"],
+        colnames=["predicted"],
+        dropna=False,
     )
     return matrix

@@ -18,8 +18,7 @@ from dem_check.stream.scoring import discrimination, hit_features, pileup_curve,
 __all__ = ["stream_study"]
 
 
-def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None,
-                 progress=False):
+def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None, progress=False):
     """Run ``case`` and write its files, scores and report into ``out``.
 
     Parameters
@@ -59,12 +58,12 @@ def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None,
         calibration.table.to_csv(out / "calibration.csv", index=False)
     write_report(out, result, scored, features, confusion, curve, calibration)
     summary = {
-        "impacts": int(len(result.truth)),
+        "impacts": len(result.truth),
         "detector": scored.counts,
         "confusion": None if confusion is None else confusion.to_dict(),
         "calibration_error [%]": None
         if calibration is None
-        else dict(zip(calibration.table["fraction"], calibration.table["error [%]"])),
+        else dict(zip(calibration.table["fraction"], calibration.table["error [%]"], strict=True)),
         "ranks": result.ranks,
         "time_step [s]": result.time_step,
     }

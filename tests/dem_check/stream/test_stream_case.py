@@ -73,7 +73,10 @@ def test_read_case_builds_the_species_laws(tmp_path):
         ("[flow]\nrate = 1.0\n[[particles]]\ndiameter = 1e-3\ndensity = 1e3\n", "contact"),
         ("[flow]\nrate = 1.0\nprofile = 'square'\n", "profile"),
         ("[flow]\nrate = 1.0\n[stream]\nduraton = 1.0\n", "duraton"),
-        ("[[particles]]\nspecies = 'wheat'\ncontact = {law = 'linear', stiffness = 1e4}\n", "[flow]"),
+        (
+            "[[particles]]\nspecies = 'wheat'\ncontact = {law = 'linear', stiffness = 1e4}\n",
+            "[flow]",
+        ),
     ],
 )
 def test_bad_cases_are_refused_naming_the_key(tmp_path, text, named):
@@ -119,8 +122,9 @@ def test_every_particle_reaches_its_aim_with_its_velocity():
     )
     drawn = schedule(case)
     g = gravity_vector(case)
-    assert g == pytest.approx([9.81 * math.sin(math.radians(35.0)), 0.0,
-                               -9.81 * math.cos(math.radians(35.0))], rel=1e-15)
+    assert g == pytest.approx(
+        [9.81 * math.sin(math.radians(35.0)), 0.0, -9.81 * math.cos(math.radians(35.0))], rel=1e-15
+    )
     slot = drawn.slot_steps * drawn.time_step
     for _, row in drawn.table.iterrows():
         back = row["aim_time [s]"] - row["slot"] * slot
@@ -137,8 +141,7 @@ def test_every_particle_reaches_its_aim_with_its_velocity():
 
 def _fake_result(touches, kinds=None):
     truth = pd.DataFrame(
-        {"pid": range(len(touches)), "kind": kinds or ["g"] * len(touches),
-         "touch [s]": touches}
+        {"pid": range(len(touches)), "kind": kinds or ["g"] * len(touches), "touch [s]": touches}
     )
     case = SimpleNamespace(sensor=cl.Sensor.from_resonance(40e3, mass=1e-3, damping_ratio=0.02))
     return SimpleNamespace(truth=truth, case=case)
@@ -156,7 +159,12 @@ def test_matching_counts_hits_merges_misses_and_false_alarms():
     # 4 ms detections hold none (false alarms): 5 ms is 40 sensor periods after the 4 ms
     # onset, beyond the 20-period reach, so a miss
     assert scored.counts == {
-        "impacts": 4, "hits": 1, "merged": 2, "misses": 1, "false_alarms": 2, "detections": 4,
+        "impacts": 4,
+        "hits": 1,
+        "merged": 2,
+        "misses": 1,
+        "false_alarms": 2,
+        "detections": 4,
     }
     hits = scored.matches[scored.matches["outcome"] == "hit"]
     assert hits["onset_error [s]"].to_numpy() == pytest.approx([-0.1e-3], abs=1e-15)

@@ -49,7 +49,10 @@ def test_two_ranks_give_the_same_truth(tmp_path):
     out = tmp_path / "truth.csv"
     done = subprocess.run(
         [mpiexec, "-n", "2", sys.executable, "-c", SCRIPT, str(out)],
-        capture_output=True, text=True, timeout=600, check=False,
+        capture_output=True,
+        text=True,
+        timeout=600,
+        check=False,
     )
     assert done.returncode == 0, done.stderr[-2000:]
     assert json.loads(done.stdout.strip().splitlines()[-1]) == 2

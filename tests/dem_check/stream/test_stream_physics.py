@@ -56,8 +56,12 @@ def _one_grain(kind, speed):
 )
 def test_one_grain_equals_simulate_impact(contact):
     kind = ParticleKind(
-        name="grain", diameter=4e-3, density=1300.0, youngs_modulus=0.35e9,
-        poisson_ratio=0.3, contact=contact,
+        name="grain",
+        diameter=4e-3,
+        density=1300.0,
+        youngs_modulus=0.35e9,
+        poisson_ratio=0.3,
+        contact=contact,
     )
     result = _one_grain(kind, 3.0)
     grain, law, _ = kind.classes()[0]
@@ -80,7 +84,10 @@ def test_one_grain_equals_simulate_impact(contact):
 @pytest.fixture(scope="module")
 def sparse():
     kind = ParticleKind(
-        name="grain", diameter=(3.5e-3, 4.5e-3), density=1300.0, youngs_modulus=0.35e9,
+        name="grain",
+        diameter=(3.5e-3, 4.5e-3),
+        density=1300.0,
+        youngs_modulus=0.35e9,
         poisson_ratio=0.3,
         contact={"law": "hertz_damped", "from_material": True, "restitution": 0.7},
         diameter_classes=2,
@@ -105,7 +112,9 @@ def test_plate_impulse_equals_momentum_lost(sparse):
     truth = result.truth
     assert len(truth) >= 4 and (truth["recontacts"] == 0).all()
     impulse = result.steps["contact_force [N]"].sum() * result.time_step
-    lost = (truth["mass [kg]"] * (truth["normal_speed [m/s]"] + truth["rebound_normal_speed [m/s]"])).sum()
+    lost = (
+        truth["mass [kg]"] * (truth["normal_speed [m/s]"] + truth["rebound_normal_speed [m/s]"])
+    ).sum()
     # the 1e-3; velocity Verlet conserves it to rounding (measured 4e-16)
     assert impulse == pytest.approx(lost, rel=1e-3)
 
@@ -119,8 +128,12 @@ def test_sparse_stream_is_a_sum_of_single_impacts(sparse):
     for _, row in result.truth.iterrows():
         grain, law, _ = classes[int(row["cls"])]
         ref = cl.simulate_impact(
-            grain, SENSOR, law, row["normal_speed [m/s]"],
-            duration=t[-1] - row["touch [s]"], sample_rate=1.0 / result.time_step,
+            grain,
+            SENSOR,
+            law,
+            row["normal_speed [m/s]"],
+            duration=t[-1] - row["touch [s]"],
+            sample_rate=1.0 / result.time_step,
         )
         total += np.interp(t - row["touch [s]"], ref.t, ref.sensor_force, left=0.0, right=0.0)
     # the 1 % of the peak; measured 7e-4 (plate motion at a touch, one step)
