@@ -14,13 +14,16 @@ Why the plate is built this way (the exact-physics argument):
   mass ``m1`` held by ``fix spring/self k1`` and ``fix viscous c1`` on the z axis, and
   pushed by ``fix addforce`` with minus the sum of the plate's contact forces on the
   particles (``compute reduce`` of the walls' per-atom forces, summed over all MPI
-  ranks). Its z displacement moves the region (``v_zp``). So the sensor is integrated
-  by LAMMPS' own velocity Verlet, in lock-step with the particles and with no Python in
-  the loop: at the force stage of each step both see the positions of that step, and
-  the region's velocity ``(zp - zp_prev)/dt`` equals the sensor's half-step velocity,
-  the velocity the particles have at that stage (velocity Verlet), so the contact's
-  damping sees the true relative velocity. The wall fixes are defined before
-  ``addforce``, so the sensor is pushed by the contact forces of the same step.
+  ranks; one reduction gives the forces and the contact counts, one the sensor's
+  position, and the sensor's velocity at the step's end is a third: the global
+  reductions are a step's fixed cost under MPI). Its z displacement moves the region
+  (``v_zp``). So the sensor is integrated by LAMMPS' own velocity Verlet, in lock-step
+  with the particles and with no Python in the loop: at the force stage of each step
+  both see the positions of that step, and the region's velocity ``(zp - zp_prev)/dt``
+  equals the sensor's half-step velocity, the velocity the particles have at that stage
+  (velocity Verlet), so the contact's damping sees the true relative velocity. The wall
+  fixes are defined before ``addforce``, so the sensor is pushed by the contact forces
+  of the same step.
 * One wall fix per class (its group is the class's atom type), because the mapping
   depends on the class's ``m*`` and ``R*``. Particle-particle contacts use, for classes
   ``i <= j``, class ``i``'s mapped law (LAMMPS needs one model per type pair; these
@@ -59,11 +62,6 @@ def _words(grain, law, tangential):
     return model.words(
         TANGENTIAL if tangential is None else tangential_words(tangential, grain.radius)
     )
-
-
-def _item(name, index, count):
-    """Element ``index`` of a ``compute reduce`` of ``count`` inputs (a scalar if one)."""
-    return name if count == 1 else f"{name}[{index}]"
 
 
 def _box(schedule, case):
@@ -118,7 +116,8 @@ def deck_lines(case, schedule, dump_path):
     lines += [
         (f"neighbor {rmax!r} bin", setup),
         ("neigh_modify delay 0 every 1 check yes", setup),
-        (f"variable zp equal z[{_SENSOR_ID}]-{z_rest!r}", setup),
+        ("compute sensor_z sensor reduce sum z", setup),
+        (f"variable zp equal c_sensor_z-{z_rest!r}", setup),
         (
             f"region plate block {-plate.length / 2!r} {plate.length / 2!r} "
             f"{-plate.width / 2!r} {plate.width / 2!r} {-plate.thickness!r} 0.0 side out "
@@ -137,11 +136,16 @@ def deck_lines(case, schedule, dump_path):
         ]
     ids = range(1, count + 1)
     lines += [
-        ("compute fz all reduce sum " + " ".join(f"f_wall{i}[4]" for i in ids), setup),
-        ("compute touching all reduce sum " + " ".join(f"f_wall{i}[1]" for i in ids), setup),
-        ("variable force equal " + "+".join(_item("c_fz", i, count) for i in ids), setup),
+        (
+            "compute walls all reduce sum "
+            + " ".join(f"f_wall{i}[4]" for i in ids)
+            + " "
+            + " ".join(f"f_wall{i}[1]" for i in ids),
+            setup,
+        ),
+        ("variable force equal " + "+".join(f"c_walls[{i}]" for i in ids), setup),
         ("variable load equal -v_force", setup),
-        ("variable ntouch equal " + "+".join(_item("c_touching", i, count) for i in ids), setup),
+        ("variable ntouch equal " + "+".join(f"c_walls[{count + i}]" for i in ids), setup),
         (f"fix sensor_spring sensor spring/self {sensor.stiffness!r} z", "sensor stiffness k1"),
         (f"fix sensor_damper sensor viscous {sensor.damping!r}", "sensor damping c1"),
         ("fix sensor_load sensor addforce 0.0 0.0 v_load", setup),
@@ -162,7 +166,7 @@ def deck_lines(case, schedule, dump_path):
         ("fix integrate all nve/sphere", setup),
         (f"timestep {schedule.time_step!r}", "time_step"),
         ("variable step equal step", setup),
-        (f"variable x1 equal {z_rest!r}-z[{_SENSOR_ID}]", setup),
+        (f"variable x1 equal {z_rest!r}-c_sensor_z", setup),
         (f"variable v1 equal -vz[{_SENSOR_ID}]", setup),
         (f"fix {RECORD} all vector 1 v_step v_force v_x1 v_v1", setup),
         ("variable astep atom step", setup),

@@ -42,8 +42,8 @@ class StreamResult:
         Per contact: impacts and re-contacts (:data:`~dem_check.stream.truth.TRUTH_COLUMNS`).
     particles : pandas.DataFrame
         The drawn particles (:class:`~dem_check.stream.feed.Schedule`'s table).
-    time_step : float
-        [s].
+    time_step, slot_time, lead : float
+        The step, the insertion slot and the time before the first touch [s].
     script : str
         The LAMMPS input run.
     rank, ranks : int
@@ -56,6 +56,7 @@ class StreamResult:
         self.truth = impacts_truth(raw.contacts, raw.schedule, raw.steps)
         self.particles = raw.schedule.table
         self.time_step = raw.schedule.time_step
+        self.slot_time = raw.schedule.slot_steps * raw.schedule.time_step
         self.lead = raw.schedule.lead
         self.script = raw.script
         self.rank, self.ranks = raw.rank, raw.ranks

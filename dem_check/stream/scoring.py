@@ -8,7 +8,9 @@ with the latest onset at or before ``touch + tolerance``, if that onset is less 
 moves an onset by about a period) and ``reach`` to :data:`REACH_PERIODS` sensor periods
 (a signal's ringing has decayed by then, so a later impact is a new one). Then:
 
-True impacts are all the truth's contacts, re-contacts included (each makes a signal).
+True impacts are the truth's impacts and those re-contacts that start more than
+``reach`` after the particle's previous contact (:func:`true_events`): contact chatter on
+the ringing plate belongs to the signal it interrupts.
 
 * a **hit** is a detection holding exactly one true impact; its onset error is
   ``onset - touch``;
@@ -38,6 +40,7 @@ __all__ = [
     "hit_features",
     "pileup_curve",
     "score",
+    "true_events",
 ]
 
 REACH_PERIODS = 20.0
@@ -51,6 +54,19 @@ FEATURES = ("peak [N]", "rise_time [s]", "impulse [N*s]", "duration [s]")
 def campaign_detector(trace, sensor):
     """Onsets [s] of every impact window the campaign's detector lists."""
     return [w.onset for w in find_impacts(trace, sensor).impacts]
+
+
+def true_events(truth, reach):
+    """The contacts a detector should find: every impact, and every re-contact that
+    starts more than ``reach`` [s] after the particle's previous contact ended (closer
+    ones, e.g. contact chatter on the ringing plate, belong to the signal of the contact
+    before)."""
+    if "contact" not in truth or truth.empty:
+        return truth
+    ordered = truth.sort_values(["pid", "touch [s]"], kind="stable")
+    gap = ordered["touch [s]"] - ordered.groupby("pid")["separation [s]"].shift()
+    keep = (ordered["contact"] == 0) | (gap > reach)
+    return ordered[keep].sort_values("touch [s]", kind="stable").reset_index(drop=True)
 
 
 class Score:
@@ -82,9 +98,9 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
     trace = result.trace() if trace is None else trace
     onsets = np.sort(np.asarray((detector or campaign_detector)(trace, sensor), dtype=float))
     tolerance = 2.0 * sensor.period if tolerance is None else tolerance
-    truth = result.truth
-    touch = truth["touch [s]"].to_numpy()
     reach = REACH_PERIODS * sensor.period if reach is None else reach
+    truth = true_events(result.truth, reach)
+    touch = truth["touch [s]"].to_numpy()
     owner = np.searchsorted(onsets, touch + tolerance, side="right") - 1
     owner[(owner >= 0) & (touch - onsets[np.maximum(owner, 0)] > reach)] = -1
     held = np.bincount(owner[owner >= 0], minlength=onsets.size)
