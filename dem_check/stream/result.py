@@ -4,7 +4,8 @@
 the truth (:mod:`dem_check.stream.truth`) and return a :class:`StreamResult`. Its
 :meth:`~StreamResult.trace` samples the sensor signal ``S1`` at an oscilloscope's rate
 (point samples of the step series, linearly interpolated between steps, plus white noise
-``noise`` [N] from the seed): a :class:`~dem_check.traces.Trace` in newtons that
+``noise`` [N] from the seed, and optionally a laboratory's effects:
+:class:`dem_check.campaign.Effects`): a :class:`~dem_check.traces.Trace` in newtons that
 :func:`dem_check.run_campaign` analyses. :meth:`~StreamResult.write` puts in a folder:
 
 * ``trace.csv``: that trace (generic CSV, read by :func:`dem_check.read_trace`);
@@ -18,9 +19,11 @@ the truth (:mod:`dem_check.stream.truth`) and return a :class:`StreamResult`. It
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 from contactlab.errors import ParameterError
 from contactlab.validation import check_count, check_number
+from dem_check.campaign.records import add_effects
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
 from dem_check.traces import Trace
@@ -61,7 +64,7 @@ class StreamResult:
         self.script = raw.script
         self.rank, self.ranks = raw.rank, raw.ranks
 
-    def trace(self, sample_rate=None, noise=None, seed=None):
+    def trace(self, sample_rate=None, noise=None, seed=None, effects=None):
         """The sensor signal S1 as an oscilloscope records it.
 
         Parameters
@@ -72,6 +75,10 @@ class StreamResult:
             Standard deviation of white noise added [N]; default the case's.
         seed : int, optional
             Noise seed; default the case's.
+        effects : dem_check.campaign.Effects, optional
+            A laboratory's coloured noise, drift, hum, crosstalk, ADC and offset steps
+            (:func:`dem_check.campaign.records.add_effects`); the crosstalk rings after
+            each impact's touch with the impact's peak contact force as its scale.
 
         Returns
         -------
@@ -99,8 +106,15 @@ class StreamResult:
         t_steps = self.steps["t [s]"].to_numpy()
         t = np.arange(0.0, t_steps[-1], 1.0 / rate)
         values = np.interp(t, t_steps, self.steps["sensor_force [N]"].to_numpy())
-        if noise > 0.0:
-            values = values + np.random.default_rng(seed + 1).normal(0.0, noise, t.size)
+        rng = np.random.default_rng(seed + 1)
+        if effects is not None:
+            impacts = self.truth[self.truth["contact"] == 0]
+            truth = pd.DataFrame(
+                {"onset [s]": impacts["touch [s]"], "peak_signal [N]": impacts["peak_force [N]"]}
+            )
+            values = add_effects(t, values, effects, truth, noise, rng)[0]
+        elif noise > 0.0:
+            values = values + rng.normal(0.0, noise, t.size)
         metadata = {
             "format": "stream",
             "instrument": "dem_check.stream (LAMMPS with the sensor inside)",

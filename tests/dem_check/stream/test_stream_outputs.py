@@ -67,3 +67,17 @@ def test_command_writes_the_report(tmp_path):
     # self-contained: inline figures, nothing fetched, no script
     assert "<svg" in page and "<script" not in page
     assert 'src="http' not in page and "<link" not in page
+
+
+def test_laboratory_effects_reach_the_trace(result):
+    from dem_check.campaign import Effects
+
+    clean = result.trace(noise=0.0)
+    hum = result.trace(noise=0.0, effects=Effects(hum=0.05, mains=50.0, harmonics=()))
+    extra = np.asarray(hum.values) - np.asarray(clean.values)
+    t = np.asarray(hum.t)
+    basis = np.column_stack([np.sin(2 * np.pi * 50.0 * t), np.cos(2 * np.pi * 50.0 * t)])
+    (a, b), *_ = np.linalg.lstsq(basis, extra, rcond=None)
+    # what was added is exactly a 50 Hz sine of amplitude 0.05 N (rounding only)
+    assert np.hypot(a, b) == pytest.approx(0.05, rel=1e-9)
+    assert np.abs(basis @ [a, b] - extra).max() < 1e-12
