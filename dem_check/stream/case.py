@@ -364,9 +364,17 @@ def _default_case():
         contact={"law": "linear", "stiffness": 2e3, "damping": 0.05},
         diameter_classes=2,
     )
-    return StreamCase(particles=(wheat, chaff), flow=Flow(rate=400.0), duration=0.02)
+    return StreamCase(
+        particles=(wheat, chaff),
+        flow=Flow(rate=400.0),
+        feed=Feed(spot=10e-3),
+        plate=Plate(length=0.04, width=0.04),
+        duration=0.02,
+        noise=0.01,
+    )
 
 
 DEFAULT_CASE = _default_case()
 """A small stream: wheat (Hertz-Mindlin normal law, restitution 0.5) and as many chaff
-particles (soft, lossy linear law), 400 particles/s for 20 ms on a 40 kHz sensor."""
+particles (soft, lossy linear law), 400 particles/s for 20 ms aimed at a 10 mm disc of a
+40 mm plate, on a 40 kHz sensor; the trace has 0.01 N of white noise."""
