@@ -23,6 +23,7 @@ TOML layout (every table but ``[[particles]]`` optional; keys as the dataclasses
 import math
 from dataclasses import dataclass, field, fields, replace
 
+from contactlab.advisor.species import value_range
 from contactlab.bodies import Grain, Sensor
 from contactlab.config import law_from_table, read_document, sensor_from_table
 from contactlab.errors import ParameterError
@@ -55,19 +56,6 @@ PROFILES = ("steady", "ramp", "oscillating")
 sin(2 pi frequency t))`` (the three flows of ASABE S587's yield-monitor tests)."""
 
 
-def _range(name, value, unit):
-    """(low, high) from a number or a [low, high] pair."""
-    if isinstance(value, (list, tuple)):
-        if len(value) != 2:
-            raise ParameterError(f"{name} must be a number or [low, high]; got {value!r}")
-        low, high = (check_number(name, v, low=0.0, unit=unit) for v in value)
-        if low > high:
-            raise ParameterError(f"{name}: low {low!r} is above high {high!r}")
-        return low, high
-    value = check_number(name, value, low=0.0, unit=unit)
-    return value, value
-
-
 def _class_values(low, high, count):
     """Midpoints of ``count`` equal-probability bins of a uniform [low, high]."""
     return [low + (high - low) * (k + 0.5) / count for k in range(count)]
@@ -97,8 +85,10 @@ class ParticleKind:
 
     def __post_init__(self):
         where = f"particles {self.name!r}"
-        object.__setattr__(self, "diameter", _range(f"{where}: diameter", self.diameter, "m"))
-        object.__setattr__(self, "density", _range(f"{where}: density", self.density, "kg/m^3"))
+        object.__setattr__(self, "diameter", value_range(f"{where}: diameter", self.diameter, "m"))
+        object.__setattr__(
+            self, "density", value_range(f"{where}: density", self.density, "kg/m^3")
+        )
         check_number(f"{where}: share", self.share, low=0.0)
         check_count(f"{where}: diameter_classes", self.diameter_classes, low=1)
         check_count(f"{where}: density_classes", self.density_classes, low=1)

@@ -22,14 +22,6 @@ from dem_check.stream import Feed, Flow, ParticleKind, StreamCase, run_stream
 pytestmark = pytest.mark.lammps
 
 SENSOR = cl.Sensor.from_resonance(40e3, mass=1.2e-3, damping_ratio=0.02)
-GRAIN_KIND = ParticleKind(
-    name="grain",
-    diameter=4e-3,
-    density=1300.0,
-    youngs_modulus=0.35e9,
-    poisson_ratio=0.3,
-    contact={"law": "hertz_damped", "from_material": True, "restitution": 0.7},
-)
 
 
 def _one_grain(kind, speed):
