@@ -1,6 +1,7 @@
 """Scoring a detector on a simulated stream against the truth.
 
 A **detector** is a callable ``detector(trace, sensor) -> onsets [s]`` (array-like), or
+``-> [(onset [s], peak [N]), ...]`` to have its peaks scored too, or
 ``None`` for the campaign's (:func:`dem_check.campaign.detection.find_impacts`, every
 window it lists). Matching: each true impact (its ``touch [s]``) goes to the detection
 with the latest onset at or before ``touch + tolerance``, if that onset is less than
@@ -52,8 +53,34 @@ FEATURES = ("peak [N]", "rise_time [s]", "impulse [N*s]", "duration [s]")
 
 
 def campaign_detector(trace, sensor):
-    """Onsets [s] of every impact window the campaign's detector lists."""
-    return [w.onset for w in find_impacts(trace, sensor).impacts]
+    """``(onset [s], peak [N])`` of every impact window the campaign's detector lists
+    (the peak of its low-passed signal)."""
+    return [(w.onset, w.peak) for w in find_impacts(trace, sensor).impacts]
+
+
+def _detections(found):
+    """Onsets [s] and peaks [N] (NaN where the detector gives none), sorted by onset."""
+    found = np.asarray(found, dtype=float)
+    if found.ndim == 2 and found.shape[1] == 2:
+        order = np.argsort(found[:, 0], kind="stable")
+        return found[order, 0], found[order, 1]
+    onsets = np.sort(found.reshape(-1))
+    return onsets, np.full(onsets.size, np.nan)
+
+
+def _signal_peaks(result, touch, onsets, owner, period):
+    """Largest clean S1 [N] from each touch to the next detection or four sensor periods."""
+    t = result.steps["t [s]"].to_numpy()
+    s1 = result.steps["sensor_force [N]"].to_numpy()
+    peaks = np.full(touch.size, np.nan)
+    for k, (at, who) in enumerate(zip(touch, owner, strict=True)):
+        stop = at + 4.0 * period
+        if who + 1 < onsets.size:
+            stop = min(stop, onsets[who + 1])
+        inside = (t >= at) & (t <= stop)
+        if inside.any():
+            peaks[k] = s1[inside].max()
+    return peaks
 
 
 def true_events(truth, reach):
@@ -76,10 +103,12 @@ class Score:
     ----------
     matches : pandas.DataFrame
         Per true impact: ``pid``, ``kind``, ``touch [s]``, ``detection`` (index, -1 for
-        a miss), ``outcome`` (``"hit"``, ``"merged"``, ``"miss"``) and ``onset_error
-        [s]`` (hits).
+        a miss), ``outcome`` (``"hit"``, ``"merged"``, ``"miss"``), ``onset_error
+        [s]`` (hits), ``signal_peak [N]`` (the noise-free S1's largest value from the
+        touch to the next detection, at most four sensor periods) and ``peak_error [N]``
+        (the detector's peak minus it, hits of detectors that give peaks).
     detections : numpy.ndarray
-        Onsets [s].
+        Onsets [s], sorted.
     counts : dict
         ``impacts``, ``hits``, ``merged``, ``misses``, ``false_alarms``,
         ``detections``.
@@ -96,7 +125,7 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
     """
     sensor = result.case.sensor
     trace = result.trace() if trace is None else trace
-    onsets = np.sort(np.asarray((detector or campaign_detector)(trace, sensor), dtype=float))
+    onsets, peaks = _detections((detector or campaign_detector)(trace, sensor))
     tolerance = 2.0 * sensor.period if tolerance is None else tolerance
     reach = REACH_PERIODS * sensor.period if reach is None else reach
     truth = true_events(result.truth, reach)
@@ -107,7 +136,10 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
     outcome = np.where(
         owner < 0, "miss", np.where(held[np.maximum(owner, 0)] == 1, "hit", "merged")
     )
-    error = np.where(outcome == "hit", onsets[np.maximum(owner, 0)] - touch, np.nan)
+    hit = outcome == "hit"
+    error = np.where(hit, onsets[np.maximum(owner, 0)] - touch, np.nan)
+    true_peak = _signal_peaks(result, touch, onsets, owner, sensor.period)
+    peak_error = np.where(hit, peaks[np.maximum(owner, 0)] - true_peak, np.nan)
     matches = pd.DataFrame(
         {
             "pid": truth["pid"].to_numpy(),
@@ -117,6 +149,8 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
             "detection": owner,
             "outcome": outcome,
             "onset_error [s]": error,
+            "signal_peak [N]": true_peak,
+            "peak_error [N]": peak_error,
         }
     )
     counts = {
@@ -146,8 +180,9 @@ def pileup_curve(case, rates, detector=None, run=None):
     Returns
     -------
     pandas.DataFrame
-        Per rate: ``rate [1/s]`` and the fractions of true impacts hit, merged and
-        missed, false alarms per detection, and the median absolute onset error [s].
+        Per rate: ``rate [1/s]``, ``impacts``, the fractions of true impacts hit,
+        merged and missed, the false alarms, and the hits' median absolute onset error
+        [s] and peak error [%] (of the noise-free signal's peak).
     """
     from dataclasses import replace
 
@@ -167,12 +202,19 @@ def pileup_curve(case, rates, detector=None, run=None):
                 "merged_fraction": s.counts["merged"] / n,
                 "miss_fraction": s.counts["misses"] / n,
                 "false_alarms": s.counts["false_alarms"],
-                "median_onset_error [s]": float(np.nanmedian(np.abs(s.matches["onset_error [s]"])))
-                if s.counts["hits"]
-                else np.nan,
+                "median_onset_error [s]": _median_abs(s.matches["onset_error [s]"]),
+                "median_peak_error [%]": _median_abs(
+                    100.0 * s.matches["peak_error [N]"] / s.matches["signal_peak [N]"]
+                ),
             }
         )
     return pd.DataFrame(rows)
+
+
+def _median_abs(values):
+    values = np.abs(np.asarray(values, dtype=float))
+    values = values[np.isfinite(values)]
+    return float(np.median(values)) if values.size else float("nan")
 
 
 def hit_features(result, scored, trace=None):

@@ -7,6 +7,7 @@ against hand-made truths and onsets.
 """
 
 import math
+from dataclasses import replace
 from types import SimpleNamespace
 
 import numpy as np
@@ -15,7 +16,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.errors import ParameterError
-from dem_check.stream import DEFAULT_CASE, Feed, Flow, Plate, read_case, score
+from dem_check.stream import DEFAULT_CASE, Feed, Flow, Plate, calibration_curve, read_case, score
 from dem_check.stream.feed import gravity_vector, schedule
 
 CASE_TOML = """
@@ -144,7 +145,8 @@ def _fake_result(touches, kinds=None):
         {"pid": range(len(touches)), "kind": kinds or ["g"] * len(touches), "touch [s]": touches}
     )
     case = SimpleNamespace(sensor=cl.Sensor.from_resonance(40e3, mass=1e-3, damping_ratio=0.02))
-    return SimpleNamespace(truth=truth, case=case)
+    steps = pd.DataFrame({"t [s]": [0.0, 1.0], "sensor_force [N]": [0.0, 0.0]})
+    return SimpleNamespace(truth=truth, case=case, steps=steps)
 
 
 def test_matching_counts_hits_merges_misses_and_false_alarms():
@@ -173,3 +175,41 @@ def test_matching_counts_hits_merges_misses_and_false_alarms():
 def test_an_impact_before_every_detection_is_a_miss():
     scored = score(_fake_result([1e-3, 2.2e-3]), lambda trace, sensor: [2e-3], trace=object())
     assert scored.counts["misses"] == 1 and scored.counts["hits"] == 1
+
+
+def test_peaks_a_detector_gives_are_scored_against_the_clean_signal():
+    result = _fake_result([1e-3])
+    t = np.arange(0.0, 2e-3, 1e-6)
+    # a clean S1 of one lobe peaking at 3 N, 10 us after the touch
+    s1 = 3.0 * np.exp(-(((t - 1.01e-3) / 5e-6) ** 2))
+    result.steps = pd.DataFrame({"t [s]": t, "sensor_force [N]": s1})
+    scored = score(result, lambda trace, sensor: [(0.999e-3, 2.7)], trace=object())
+    row = scored.matches.iloc[0]
+    assert row["outcome"] == "hit"
+    # the grid holds the lobe's top exactly (1.010 ms is a sample): 3 N, error -0.3 N
+    assert row["signal_peak [N]"] == pytest.approx(3.0, rel=1e-12)
+    assert row["peak_error [N]"] == pytest.approx(-0.3, rel=1e-12)
+
+
+def test_oscillating_regular_flow_delivers_its_integral():
+    flow = Flow(rate=2000.0, profile="oscillating", amplitude=0.5, frequency=30.0)
+    case = DEFAULT_CASE.with_(flow=replace(flow, arrivals="regular"), duration=0.02, time_step=1e-6)
+    # closed form of the integral: r (T + A (1 - cos 2 pi f T) / (2 pi f))
+    total = 2000.0 * (0.02 + 0.5 * (1 - math.cos(2 * math.pi * 30.0 * 0.02)) / (2 * math.pi * 30.0))
+    assert len(schedule(case).table) == math.floor(total + 0.5)
+
+
+def test_calibration_recovers_a_linear_plate():
+    """A plate whose mean signal is exactly 2 + 300 N*s/kg times the mass flow: the fit
+    inverts it and the test errors vanish (the arithmetic, not the physics)."""
+
+    def run(case):
+        steps = pd.DataFrame({"t [s]": [0.0, 1.0], "sensor_force [N]": [0.0, 0.0]})
+        steps["sensor_force [N]"] = 2.0 + 300.0 * case.flow.rate
+        return SimpleNamespace(steps=steps, lead=0.0)
+
+    calibration = calibration_curve(DEFAULT_CASE, capacity=0.1, run=run)
+    assert calibration.slope == pytest.approx(1.0 / 300.0, rel=1e-12)
+    assert calibration.intercept == pytest.approx(-2.0 / 300.0, rel=1e-12)
+    assert np.abs(calibration.table["error [%]"]).max() < 1e-9
+    assert list(calibration.table["flow [kg/s]"]) == pytest.approx([0.025, 0.05, 0.075, 0.1])
