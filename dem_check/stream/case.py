@@ -23,6 +23,8 @@ TOML layout (every table but ``[[particles]]`` optional; keys as the dataclasses
 import math
 from dataclasses import dataclass, field, fields, replace
 
+import numpy as np
+
 from contactlab.advisor.species import value_range
 from contactlab.bodies import Grain, Sensor
 from contactlab.config import law_from_table, read_document, sensor_from_table
@@ -152,8 +154,6 @@ class Flow:
 
     def at(self, t, duration):
         """Rate at times ``t`` [s] (numpy array) in a run of ``duration`` [s]."""
-        import numpy as np
-
         t = np.asarray(t, dtype=float)
         if self.profile == "ramp":
             return self.rate + (self.end_rate - self.rate) * t / duration
@@ -163,10 +163,11 @@ class Flow:
 
     def peak(self):
         """Largest rate of the profile."""
-        ends = self.end_rate if self.end_rate is not None else self.rate
-        return max(self.rate, ends) * (
-            1.0 + (self.amplitude if self.profile == "oscillating" else 0)
-        )
+        if self.profile == "ramp":
+            return max(self.rate, self.end_rate)
+        if self.profile == "oscillating":
+            return self.rate * (1.0 + self.amplitude)
+        return self.rate
 
 
 @dataclass(frozen=True)
