@@ -83,6 +83,33 @@ def test_thornton_on_a_wall_at_5_m_s_rebounds_at_its_closed_form(rtol):
     assert audit.ok, [c.describe() for c in audit.failures]
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="open, found by benchmarks/audit_matrix.py: an elastic contact (Thornton below "
+    "yield, and Hertz with its kH) of a 0.88 g grain at 1.23 m/s rebounds 1.06e-8 (106 rtol) "
+    "off e = 1 at rtol 1e-10 (6.7e-9 at 1e-8, 2.3e-11 at 1e-12): the first warped step after "
+    "the touch (t 1e-9 -> 1.5e-5 s) is accepted with its energy 2.1e-8 off, DOP853's error "
+    "norm letting the overlap's large 3rd-order estimate shrink the velocity's 5th-order one; "
+    "combined per component it gives 2.6e-10, but step counts then follow rounding "
+    "(docs/verification.md, known limits)",
+)
+@pytest.mark.parametrize("law", ["thornton", "hertz"])
+def test_elastic_rebound_after_a_long_first_warped_step(law):
+    grain = cl.Grain(
+        diameter=0.01,
+        density=1682.0131005723867,
+        youngs_modulus=1.486e9,
+        poisson_ratio=0.3399843133332635,
+    )
+    laws = {
+        "thornton": cl.laws.Thornton(1e6, 0.00131901, 6.09324e6),  # yields at 472 m/s
+        "hertz": cl.laws.Hertz(analytic.hertz_stiffness(1e6, 0.00131901)),
+    }
+    res = cl.simulate_impact(grain, cl.Sensor.rigid(), laws[law], 1.2328923077566711, audit=False)
+    # a few rtol of global error, as in the regression above: 10 rtol
+    assert res.restitution == pytest.approx(1.0, abs=10.0 * 1e-10)
+
+
 def _frame(rows):
     return pd.DataFrame(
         rows, columns=["m1 [kg]", "k1 [N/m]", "c1 [N*s/m]", "m2 [kg]", "a", "b", "v0 [m/s]"]
