@@ -24,7 +24,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab import analytic
 from contactlab.batch import hertz_impacts, linear_impacts
-from contactlab.errors import WindowWarning
+from contactlab.errors import ParameterError, PlausibilityWarning, WindowWarning
 from contactlab.testing.strategies import normal_impacts, oblique_impacts
 
 MATRIX = settings(
@@ -48,7 +48,17 @@ def _solved(solve, *args, **kwargs):
 @MATRIX
 @given(case=oblique_impacts())
 def test_oblique_impacts_audit_clean(case):
-    res = _solved(cl.simulate_oblique, **case)
+    try:
+        res = _solved(cl.simulate_oblique, **case)
+    except ParameterError:
+        # a first contact longer than 1 s is refused as no impact (grazing incidence: at 90
+        # deg minus one float a Hertz contact lasts 1.4 s, found by a random sweep); the
+        # normal side is the normal impact alone, which must be refused as well
+        normal_speed = case["velocity"] * math.cos(case["angle"])
+        with warnings.catch_warnings(), pytest.raises(ParameterError, match="not an impact"):
+            warnings.simplefilter("ignore", PlausibilityWarning)  # a speed of 1e-17 m/s
+            cl.simulate_impact(case["grain"], case["sensor"], case["normal_law"], normal_speed)
+        return
     audit = res.audit()
     assert audit.ok, [c.describe() for c in audit.failures]
     if case["tangential_law"].name != "mindlin":  # the spring never returns more than stored
