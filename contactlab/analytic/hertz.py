@@ -15,9 +15,9 @@ from contactlab.validation import (
 
 __all__ = [
     "HERTZ_TIME_FACTOR",
+    "HUNT_CROSSLEY_SERIES",
     "KUWABARA_KONO_C1",
     "KUWABARA_KONO_C2",
-    "HUNT_CROSSLEY_SERIES",
     "KUWABARA_KONO_MAX_PARAMETER",
     "hertz_contact_time",
     "hertz_max_force",
