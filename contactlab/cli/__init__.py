@@ -10,6 +10,7 @@ from contactlab.cli.inverse import add_inverse_parsers
 from contactlab.cli.output import dump
 from contactlab.cli.running import Parser, add_strict, run
 from contactlab.cli.setup import add_setup_parsers
+from contactlab.engines import load_engine
 from contactlab.errors import ParameterError
 
 __all__ = ["main"]
@@ -273,7 +274,7 @@ def _benchmark(args):
     names = [name.strip() for name in args.engines.split(",") if name.strip()]
     lammps = None
     if args.lammps or "lammps" in names:
-        from dem_check.engines.lammps.oblique import lammps_oblique as lammps
+        lammps = load_engine("lammps").oblique_impact
     report = run_chung_ooi(args.out, lammps=lammps, engines=_benchmark_engines(names))
     print(report["markdown"])
     failed = sum(not r["passed"] for r in report["rows"])
@@ -287,12 +288,11 @@ def _benchmark_engines(names):
     from contactlab.bodies import Sensor
     from contactlab.solver import wall_impact
     from contactlab.validation import check_choice
-    from dem_check.engines import engine_module
 
     runners = {}
     for name in names:
         check_choice("--engines", name, ENGINES)
-        module = engine_module(name)
+        module = load_engine(name)
 
         def normal(grain, law, speed, drop_test=module.drop_test):
             # a rigid plane: the impact is over when the contact ends; 1.5 wall contact
@@ -302,7 +302,7 @@ def _benchmark_engines(names):
 
         # LAMMPS runs tests 4-6 graded, through run_chung_ooi's lammps; Kratos' test 4 under
         # its own tangential rules is reported
-        oblique = module.kratos_oblique if name == "kratos" else None
+        oblique = module.oblique_impact if name == "kratos" else None
         runners[name] = EngineRunner(normal, oblique)
     return runners
 

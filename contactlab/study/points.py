@@ -20,19 +20,31 @@ from contactlab.batch import (
     linear_impacts,
 )
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
+from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
 from contactlab.study.execution import progress_bar
 
 __all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
 
-_IMPACT_COLUMNS = (
-    "contact_time [s]",
-    "sensor_response_time [s]",
-    "peak_contact_force [N]",
-    "peak_sensor_force [N]",
-    "time_error [%]",
-    "force_error [%]",
+_READING_NAMES = (
+    "contact_time",
+    "sensor_response_time",
+    "peak_contact_force",
+    "peak_sensor_force",
 )
+"""An impact's readings kept per point, as :mod:`contactlab.quantities` names them."""
+
+_READINGS = columns(*_READING_NAMES)
+
+
+def _with_errors(readings):
+    """The readings (column -> array) and the study's two errors [%] computed from them."""
+    time, response, force, signal = (np.asarray(readings[name]) for name in _READINGS)
+    return {
+        **{name: np.asarray(readings[name]).tolist() for name in _READINGS},
+        "time_error [%]": error_percent(response, time).tolist(),
+        "force_error [%]": error_percent(signal, force).tolist(),
+    }
 
 
 _CLOSED_FORMS = {
@@ -95,21 +107,17 @@ def simulate_point(setup, overrides, factors):
         *(_rigid_contact_time(setup.scattered(law, f), grain.mass, velocity) for f in extremes),
     )
     sample_rate = setup.samples_per_period / shortest
-    columns = setup.varied_columns()
-    out = {name: [] for name in (*columns, *_IMPACT_COLUMNS)}
+    varied = setup.varied_columns()
+    out = {name: [] for name in (*varied, *_READINGS)}
     for factor in factors:
         drawn = setup.scattered(law, float(factor))
         res = simulate_impact(grain, sensor, drawn, velocity, sample_rate=sample_rate)
         params = drawn.parameters()
-        for name, column in zip(setup.varied, columns, strict=True):
+        for name, column in zip(setup.varied, varied, strict=True):
             out[column].append(params[name])
-        out["contact_time [s]"].append(res.contact_time)
-        out["sensor_response_time [s]"].append(res.sensor_response_time)
-        out["peak_contact_force [N]"].append(res.peak_contact_force)
-        out["peak_sensor_force [N]"].append(res.peak_sensor_force)
-        out["time_error [%]"].append(error_percent(res.sensor_response_time, res.contact_time))
-        out["force_error [%]"].append(error_percent(res.peak_sensor_force, res.peak_contact_force))
-    return out
+        for column, name in zip(_READINGS, _READING_NAMES, strict=True):
+            out[column].append(getattr(res, name))
+    return {**{column: out[column] for column in varied}, **_with_errors(out)}
 
 
 def _linear_columns(law):
@@ -222,16 +230,7 @@ def simulate_points(tasks, *, client=None, progress=None):
             column: [law.parameters()[name] for law in laws[start:stop]]
             for name, column in zip(setup.varied, setup.varied_columns(), strict=True)
         }
-        out["contact_time [s]"] = part["contact_time [s]"].tolist()
-        out["sensor_response_time [s]"] = part["response_time [s]"].tolist()
-        out["peak_contact_force [N]"] = part["peak_contact_force [N]"].tolist()
-        out["peak_sensor_force [N]"] = part["peak_sensor_force [N]"].tolist()
-        out["time_error [%]"] = error_percent(
-            part["response_time [s]"], part["contact_time [s]"]
-        ).tolist()
-        out["force_error [%]"] = error_percent(
-            part["peak_sensor_force [N]"], part["peak_contact_force [N]"]
-        ).tolist()
+        out.update(_with_errors(part))
         results.append(out)
         start = stop
     return results

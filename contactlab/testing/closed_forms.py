@@ -15,6 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from contactlab import analytic
+from contactlab.compare import QUANTITIES
 from contactlab.errors import ParameterError
 from contactlab.laws import (
     Hertz,
@@ -28,7 +29,6 @@ from contactlab.laws import (
     WaltonBraun,
 )
 from contactlab.validation import check_choice, check_number
-from dem_check.compare import QUANTITIES
 
 __all__ = [
     "CLOSED_FORMS",

@@ -3,7 +3,7 @@
 No public data set of measured grain-impact traces is known, so the sample traces are
 simulated with the two-mass model (:func:`contactlab.simulate_impact`, set up by the
 ``model_*.toml`` files beside this script) and written by
-:func:`dem_check.traces.write_trace` in the instruments' own export layouts, with the
+:func:`contactlab.traces.write_trace` in the instruments' own export layouts, with the
 features of a real acquisition:
 
 - volts: the sensor signal S1 [N] times the sensitivity :data:`SENSITIVITY` [V/N], plus a
@@ -38,7 +38,7 @@ import numpy as np
 
 from contactlab.config import load_config
 from contactlab.metrics import impulse, pulse_metrics
-from dem_check.traces import Trace, write_trace
+from contactlab.traces import Trace, write_trace
 
 __all__ = [
     "ACQUISITIONS",
@@ -80,7 +80,7 @@ class Acquisition:
     file: str
     """File name."""
     format: str
-    """Registry name of the layout (a key of :data:`dem_check.traces.FORMATS`)."""
+    """Registry name of the layout (a key of :data:`contactlab.traces.FORMATS`)."""
     description: str
     """What the file imitates."""
     model: str
@@ -102,7 +102,7 @@ class Acquisition:
     seed: int
     """Seed of the noise generator."""
     options: dict = field(default_factory=dict)
-    """Writer options (see :func:`dem_check.traces.write_trace`)."""
+    """Writer options (see :func:`contactlab.traces.write_trace`)."""
 
     @property
     def lsb(self):

@@ -29,7 +29,7 @@ def engine_check(
     grain, sensor, law, velocity, time_step
         As for ``drop_test`` (no gravity: the reduced model has none).
     tolerances : dict, optional
-        Tolerances by quantity name (:data:`dem_check.compare.DEFAULT_TOLERANCES`).
+        Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
     notes : sequence of str
         Further keys of the engine result's ``metadata`` to copy into the notes.
     **options
@@ -37,14 +37,14 @@ def engine_check(
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         ``a`` is the :class:`EngineResult`, ``b`` the :class:`~contactlab.ImpactResult`
         (exact solver) over the same window. Both start at the first touch, so the
         waveforms are compared without shifting (``align=None``). ``notes`` holds the time
         step, the numerical damping, the steps and their wall time, and ``notes``' keys.
     """
+    from contactlab.compare import compare
     from contactlab.solver import simulate_impact
-    from dem_check.compare import compare
 
     engine = drop_test(grain, sensor, law, velocity, time_step, **options)
     model = simulate_impact(grain, sensor, law, velocity, duration=float(engine.t[-1]))
@@ -71,7 +71,7 @@ def convergence_study(drop_test, grain, sensor, law, velocity, time_steps, **opt
     -------
     pandas.DataFrame
         One row per step: ``time_step [s]``, ``wall_time [s]`` and the error of each
-        quantity of :data:`dem_check.compare.QUANTITIES` as ``<name> error [-]`` (signed
+        quantity of :data:`contactlab.compare.QUANTITIES` as ``<name> error [-]`` (signed
         relative errors; restitution: signed absolute; waveforms: over the model's peak).
         ``attrs["order"]`` maps each quantity to the observed order of convergence, the
         least-squares slope of ``log |error|`` against ``log dt`` (1 for a first-order

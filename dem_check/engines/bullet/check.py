@@ -20,11 +20,11 @@ def engine_check(
     grain, sensor, law, velocity, time_step, compensate_damping
         As for :func:`drop_test` (no gravity: the reduced model has none).
     tolerances : dict, optional
-        Tolerances by quantity name (:data:`dem_check.compare.DEFAULT_TOLERANCES`).
+        Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         See :func:`dem_check.engines.check.engine_check`; ``notes`` also holds the damping
         passed to the engine and ``compensate_damping``.
     """

@@ -18,13 +18,13 @@ def engine_check(grain, sensor, law, velocity, time_step=None, *, tolerances=Non
     grain, sensor, law, velocity, time_step
         As for :func:`~dem_check.engines.lammps.drop.drop_test`.
     tolerances : dict, optional
-        Tolerances by quantity name (:data:`dem_check.compare.DEFAULT_TOLERANCES`).
+        Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
     **options
         ``drop_test``'s keywords (``plate_radius``, ``gap``).
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         See :func:`dem_check.engines.check.engine_check`; ``notes`` also holds the LAMMPS
         granular model's words and the plate radius.
     """

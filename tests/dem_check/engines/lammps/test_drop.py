@@ -16,6 +16,7 @@ import contactlab as cl
 import dem_check
 from contactlab import analytic
 from contactlab.errors import ParameterError, WindowWarning
+from contactlab.laws import lammps as lammps_laws
 from dem_check.engines.lammps import (
     LammpsError,
     convergence_study,
@@ -24,7 +25,6 @@ from dem_check.engines.lammps import (
     engine_check,
     session,
 )
-from dem_check.engines.lammps import laws as lammps_laws
 
 pytestmark = pytest.mark.lammps
 
