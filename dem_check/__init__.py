@@ -16,10 +16,10 @@ Each engine is also an attribute named after it (``dem_check.lammps.drop_test``,
 when first used, so an engine whose library is an optional extra costs nothing until then.
 """
 
-from contactlab.compare import Comparison, compare, compare_trace
-from contactlab.traces import Trace, TraceFormatError, read_trace, write_trace
 from dem_check.campaign import run_campaign
+from dem_check.compare import Comparison, compare, compare_trace
 from dem_check.engines import ENGINES, drop_test, engine_module
+from dem_check.traces import Trace, TraceFormatError, read_trace, write_trace
 
 __all__ = [
     "Comparison",

@@ -5,26 +5,11 @@ tests compare against golden traces), so the comparison moved down into contactl
 package hands the same names on for code written against ``dem_check.compare``.
 """
 
-from contactlab.compare import (
-    ALIGNMENTS,
-    DEFAULT_TOLERANCES,
-    ONSET_LEVEL,
-    QUANTITIES,
-    Comparison,
-    Quantity,
-    compare,
-    compare_trace,
-    noise_tolerances,
-)
+from contactlab import compare as _home
 
-__all__ = [
-    "ALIGNMENTS",
-    "DEFAULT_TOLERANCES",
-    "ONSET_LEVEL",
-    "QUANTITIES",
-    "Comparison",
-    "Quantity",
-    "compare",
-    "compare_trace",
-    "noise_tolerances",
-]
+__all__ = _home.__all__
+
+
+def __getattr__(name):
+    """Every public name of :mod:`contactlab.compare`, read there."""
+    return getattr(_home, name)

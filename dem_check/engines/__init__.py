@@ -51,25 +51,9 @@ lammps: LAMMPS GRANULAR, linear and Hertz family, an extra; kratos: Kratos DEM, 
 Hertz, damped Hertz, an extra)."""
 
 
-def engine_module(engine):
-    """The module of an engine named in :data:`ENGINES`.
-
-    Parameters
-    ----------
-    engine : str
-        Engine name, e.g. ``"bullet"``.
-
-    Returns
-    -------
-    module
-        It provides ``drop_test`` (see the module docstring).
-
-    Raises
-    ------
-    ParameterError
-        For a name not in :data:`ENGINES`; the message lists the valid names.
-    """
-    return load_engine(engine)
+engine_module = load_engine
+"""The module of an engine named in :data:`ENGINES` (:func:`contactlab.engines.load_engine`:
+an unknown name raises ParameterError listing the valid ones)."""
 
 
 def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", **options):

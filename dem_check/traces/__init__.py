@@ -5,32 +5,11 @@ golden-trace tests read them), so the readers moved down into contactlab; this p
 hands the same names on for code written against ``dem_check.traces``.
 """
 
-from contactlab.traces import (
-    FORMATS,
-    Trace,
-    TraceFormatError,
-    align,
-    detect_format,
-    detect_onset,
-    lowpass,
-    noise_level,
-    read_trace,
-    remove_baseline,
-    to_force,
-    write_trace,
-)
+from contactlab import traces as _home
 
-__all__ = [
-    "FORMATS",
-    "Trace",
-    "TraceFormatError",
-    "align",
-    "detect_format",
-    "detect_onset",
-    "lowpass",
-    "noise_level",
-    "read_trace",
-    "remove_baseline",
-    "to_force",
-    "write_trace",
-]
+__all__ = _home.__all__
+
+
+def __getattr__(name):
+    """Every public name of :mod:`contactlab.traces`, read there."""
+    return getattr(_home, name)
