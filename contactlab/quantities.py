@@ -103,6 +103,7 @@ QUANTITIES = _vocabulary(
     ("k2", "N/m", "linear contact stiffness (LinearViscoelastic.stiffness)"),
     ("c2", "N*s/m", "linear contact damping (LinearViscoelastic.damping)"),
     ("k_hertz", "N/m**1.5", "Hertz stiffness kH of F = kH d**1.5"),
+    ("damping", "N*s/m**1.25", "Hertz damping eta of F = kH d**1.5 + eta d**0.25 d'"),
     ("v0", "m/s", "grain speed towards the sensor at the touch (a batch row's velocity)"),
 )
 """The vocabulary: name -> :class:`Quantity`."""

@@ -8,6 +8,7 @@ law to the batch solvers (:mod:`contactlab.batch`) in one call.
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -100,7 +101,8 @@ def simulate_point(setup, overrides, factors):
     monotone in a scattered stiffness, damping or pulse length, so one of them is the
     shortest of all draws).
     """
-    grain, sensor, law, velocity = setup.at(overrides)
+    config = setup.config(overrides)
+    grain, sensor, law, velocity = config.grain, config.sensor, config.law, config.velocity
     extremes = {float(np.min(factors)), float(np.max(factors))}
     shortest = min(
         sensor.period,
@@ -120,42 +122,25 @@ def simulate_point(setup, overrides, factors):
     return {**{column: out[column] for column in varied}, **_with_errors(out)}
 
 
-def _linear_columns(law):
-    return {"k2 [N/m]": law.stiffness, "c2 [N*s/m]": law.damping}
-
-
-def _hertz_columns(law):
-    damping = law.damping if isinstance(law, HertzDamped) else 0.0
-    return {"k_hertz [N/m**1.5]": law.k_hertz, "damping [N*s/m**1.25]": damping}
-
-
 _BATCHED = {
-    LinearViscoelastic: (_linear_columns, linear_impacts, dask_linear_impacts),
-    HertzDamped: (_hertz_columns, hertz_impacts, dask_hertz_impacts),
-    Hertz: (_hertz_columns, hertz_impacts, dask_hertz_impacts),
+    LinearViscoelastic: (linear_impacts, dask_linear_impacts),
+    HertzDamped: (hertz_impacts, dask_hertz_impacts),
+    Hertz: (hertz_impacts, dask_hertz_impacts),
 }
-"""Laws a sweep hands to a batch solver: the law's batch columns, the solver, its Dask
-twin (elastic Hertz is the damped-Hertz batch with zero damping)."""
+"""Laws a sweep hands to a batch solver: the solver and its Dask twin (elastic Hertz is
+the damped-Hertz batch with zero damping; :meth:`ImpactConfig.batch_row` writes the
+rows)."""
 
 
-def _batch_frame(tasks, law_columns):
+def _batch_frame(tasks):
     """The batch solver's input rows of every impact of the tasks, and the drawn laws."""
     rows, laws = [], []
     for setup, overrides, factors in tasks:
-        grain, sensor, law, velocity = setup.at(overrides)
+        config = setup.config(overrides)
         for factor in factors:
-            drawn = setup.scattered(law, float(factor))
-            laws.append(drawn)
-            rows.append(
-                {
-                    "m1 [kg]": sensor.mass,
-                    "k1 [N/m]": sensor.stiffness,
-                    "c1 [N*s/m]": sensor.damping,
-                    "m2 [kg]": grain.mass,
-                    **law_columns(drawn),
-                    "v0 [m/s]": velocity,
-                }
-            )
+            drawn = replace(config, law=setup.scattered(config.law, float(factor)))
+            laws.append(drawn.law)
+            rows.append(drawn.batch_row())
     return pd.DataFrame(rows), laws
 
 
@@ -219,8 +204,8 @@ def simulate_points(tasks, *, client=None, progress=None):
     kind = _batch_kind(tasks) if tasks else None
     if kind is None:
         return [simulate_point(*task) for task in tasks]
-    law_columns, impacts, on_dask = kind
-    frame, laws = _batch_frame(tasks, law_columns)
+    impacts, on_dask = kind
+    frame, laws = _batch_frame(tasks)
     solved = _solve_batch(frame, impacts, on_dask, client, progress)
     results, start = [], 0
     for setup, _, factors in tasks:
