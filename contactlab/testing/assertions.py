@@ -9,9 +9,9 @@ closed forms hold, with the contact ending when the force returns to zero.
 import numpy as np
 
 from contactlab.bodies import Sensor
-from contactlab.compare import QUANTITIES
 from contactlab.errors import ParameterError
 from contactlab.laws import ContactLaw
+from contactlab.quantities import QUANTITIES
 from contactlab.solver import simulate_impact
 from contactlab.testing.closed_forms import ClosedForm, closed_forms_for
 from contactlab.testing.golden import compare_impacts

@@ -15,7 +15,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from contactlab import analytic
-from contactlab.compare import QUANTITIES
 from contactlab.errors import ParameterError
 from contactlab.laws import (
     Hertz,
@@ -28,6 +27,7 @@ from contactlab.laws import (
     Thornton,
     WaltonBraun,
 )
+from contactlab.quantities import QUANTITIES
 from contactlab.validation import check_choice, check_number
 
 __all__ = [

@@ -38,6 +38,7 @@ import numpy as np
 import contactlab
 from contactlab.compare import QUANTITIES
 from contactlab.errors import ParameterError, TraceFormatError
+from contactlab.quantities import column
 from contactlab.result import ImpactResult
 from contactlab.traces import Trace
 from contactlab.validation import check_count
@@ -258,7 +259,7 @@ class GoldenTrace:
             "contactlab_version": contactlab.__version__,
             "source": source,
             "setup": setup,
-            "quantities": {f"{q} [{QUANTITIES[q].unit}]": v for q, v in quantities.items()},
+            "quantities": {column(q): v for q, v in quantities.items()},
             "arrays": {"file": f"{name}.npz", "columns": columns, "stride": stride},
         }
         return cls(name, np.array(t[::stride]), channels, unit, quantities, metadata)

@@ -251,8 +251,8 @@ def test_material_size_dependence(setup):
     ]
     assert zeta[0] == pytest.approx(zeta[1], rel=1e-12)
     hertz = replace(setup, law=Hertz(1e6), size_dependence="material")
-    _, _, h2, _ = hertz.at({"grain.diameter": 2e-3})
-    _, _, h8, _ = hertz.at({"grain.diameter": 8e-3})
+    h2 = hertz.config({"grain.diameter": 2e-3}).law
+    h8 = hertz.config({"grain.diameter": 8e-3}).law
     assert h8.k_hertz / h2.k_hertz == pytest.approx(2.0, rel=1e-12)  # kH ~ sqrt(R)
     with pytest.raises(cl.ParameterError, match="cannot be swept"):
         run_grid(material, {"law.stiffness": [1e5]})
