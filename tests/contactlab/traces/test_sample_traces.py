@@ -38,7 +38,14 @@ CUTOFF_PER_RESONANCE = 10.0
 READING_K = 5.0
 """Onset threshold in noise standard deviations, as the sidecar's reading threshold."""
 
-INPUTS = {"generate.py", "README.md", "model_hard.toml", "model_soft.toml", "model_hertz.toml"}
+INPUTS = {
+    "generate.py",
+    "acquisitions.toml",
+    "README.md",
+    "model_hard.toml",
+    "model_soft.toml",
+    "model_hertz.toml",
+}
 """Files in data/traces that the generator reads or documents but does not write."""
 
 
