@@ -61,6 +61,7 @@ LAYERS = (
             "dem_check.engines",
             "dem_check.engines.kratos",
             "dem_check.campaign",
+            "dem_check.stream",
         ),
     ),
     ("dem_check's applications", ("dem_check.cli", "dem_check")),

@@ -256,7 +256,8 @@ def _build_parser():
         "--engines",
         default="",
         help="DEM engines beside, comma separated (lammps, kratos): normal tests 1, 2, 3, 9 "
-        "graded, test 4 in Kratos reported; lammps also runs tests 4-6 as --lammps",
+        "graded; test 4 in Kratos reported and attributed rule by rule (a figure per "
+        "material); lammps also runs tests 4-6 as --lammps",
     )
     p.set_defaults(func=_benchmark)
 
@@ -272,11 +273,12 @@ def _benchmark(args):
     from contactlab.benchmarks.chung_ooi import run_chung_ooi
 
     names = [name.strip() for name in args.engines.split(",") if name.strip()]
-    lammps = None
-    if args.lammps or "lammps" in names:
-        lammps = load_engine("lammps").oblique_impact
+    lammps = load_engine("lammps").oblique_impact if args.lammps or "lammps" in names else None
     report = run_chung_ooi(args.out, lammps=lammps, engines=_benchmark_engines(names))
     print(report["markdown"])
+    if report["attribution"]:
+        print("\nTest 4, rule by rule (figures chung_ooi_test4_attribution_*.png):")
+        print(report["attribution_markdown"])
     failed = sum(not r["passed"] for r in report["rows"])
     print(f"{len(report['rows']) - failed} passed, {failed} failed; figures in {args.out}")
 
