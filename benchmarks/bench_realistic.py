@@ -124,9 +124,9 @@ def _errors(row, true, rate, noise):
 
     return {
         "status": row["status"],
-        "significance": true["peak_signal [N]"] / noise,
+        "significance": true["peak_sensor_force [N]"] / noise,
         "onset [samples]": (row["onset [s]"] - true["onset [s]"]) * rate,
-        "peak_signal": relative("peak_signal [N]"),
+        "peak_sensor_force": relative("peak_sensor_force [N]"),
         "impulse": relative("impulse [N*s]"),
         "peak_force": relative("peak_contact_force [N]"),
         "contact_time": relative("contact_time [s]"),
@@ -169,7 +169,7 @@ def accuracy(names=None):
     print(table["status"].value_counts().to_string())
     ok = table[table["status"] == "ok"].copy()
     ok["band"] = pd.cut(ok["significance"], [0, 10, 30, 100, np.inf])
-    columns = ["onset [samples]", "peak_signal", "impulse", "peak_force", "contact_time"]
+    columns = ["onset [samples]", "peak_sensor_force", "impulse", "peak_force", "contact_time"]
     keys = ["configuration", "band"]
     grouped = ok.groupby(keys, observed=True, sort=False)[columns]
     largest = grouped.agg(lambda v: np.nanmax(np.abs(v)))

@@ -81,7 +81,7 @@ def scenarios(draw):
 def _ringing(truth, effects):
     """Largest amplitude of the structure's ringing (crosstalk of the impacts before) at
     each true onset [N]: every mode at its largest initial weight, decayed since."""
-    onsets, peaks = truth["onset [s]"].to_numpy(), truth["peak_signal [N]"].to_numpy()
+    onsets, peaks = truth["onset [s]"].to_numpy(), truth["peak_sensor_force [N]"].to_numpy()
     out = np.zeros(onsets.size)
     for k, at in enumerate(onsets):
         since = at - onsets[onsets < at]
@@ -104,7 +104,7 @@ def _check(record, sensor, effects):
     ringing = _ringing(record.truth, effects)
     for (_, row), structure in zip(record.truth.iterrows(), ringing, strict=True):
         noise = np.hypot(record.noise, structure / np.sqrt(2.0))
-        if row["peak_signal [N]"] >= CLEAR * noise:
+        if row["peak_sensor_force [N]"] >= CLEAR * noise:
             assert onsets.size and np.min(np.abs(onsets - row["onset [s]"])) <= MATCH, (
                 f"missed: {row.to_dict()} among {[(w.status, w.onset) for w in found.impacts]}"
             )
@@ -256,7 +256,7 @@ def test_a_clipped_impact_is_flagged_with_its_peak_as_a_lower_bound(hard_setup):
     )
     first, second = find_impacts(record.trace, sensor).impacts
     assert first.status == "clipped" and "lower bound" in first.reason
-    assert first.peak < record.truth["peak_signal [N]"][0]  # the true peak is above the rail
+    assert first.peak < record.truth["peak_sensor_force [N]"][0]  # the true peak is above the rail
     assert second.status == "ok"  # 1.6 N stays under the 2 N rail
 
 
