@@ -26,6 +26,7 @@ LAYERS = (
             "contactlab.roots",
             "contactlab.plausibility",
             "contactlab.strict_json",
+            "contactlab.compiled",
         ),
     ),
     ("closed forms and bodies", ("contactlab.analytic", "contactlab.bodies")),
