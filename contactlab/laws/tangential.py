@@ -51,7 +51,7 @@ from contactlab.analytic.tangential import (
 from contactlab.errors import ParameterError
 from contactlab.laws.hertz import Hertz, HertzDamped
 from contactlab.laws.linear import LinearViscoelastic
-from contactlab.validation import KeywordChecked, check_choice, check_number
+from contactlab.validation import KeywordChecked, check_choice, check_number, numbers_checked
 
 __all__ = [
     "DAMPING_FORMS",
@@ -72,6 +72,7 @@ DAMPING_FORMS = ("none", "tied")
 ``2 gamma sqrt(m* kt)`` with the normal law's damping ratio ``gamma`` (Kratos, EDEM)."""
 
 
+@numbers_checked()
 def mindlin_stiffness(overlap, k_mindlin):
     """Mindlin tangential stiffness ``kt = k_mindlin sqrt(d) = 8 G* a`` [N/m] (0 for d <= 0).
 
@@ -82,7 +83,10 @@ def mindlin_stiffness(overlap, k_mindlin):
     k_mindlin : float
         ``8 G* sqrt(R*)`` [N/m**1.5].
     """
-    overlap = np.asarray(overlap, dtype=float)
+    return _mindlin_stiffness(np.asarray(overlap, dtype=float), k_mindlin)
+
+
+def _mindlin_stiffness(overlap, k_mindlin):
     return k_mindlin * np.sqrt(np.maximum(overlap, 0.0))
 
 
@@ -362,7 +366,7 @@ class Mindlin(TangentialLaw):
     def stiffness(self, overlap):
         if isinstance(overlap, float):  # the solver's scalar path
             return self.k_mindlin * math.sqrt(overlap) if overlap > 0.0 else 0.0
-        return mindlin_stiffness(overlap, self.k_mindlin)
+        return _mindlin_stiffness(overlap, self.k_mindlin)
 
     def stiffness_slope(self, overlap):
         return 0.5 * self.k_mindlin / math.sqrt(overlap) if overlap > 0.0 else 0.0
