@@ -5,10 +5,11 @@ import os
 import stat
 
 from contactlab.errors import ParameterError
+from contactlab.validation import check_path
 from dem_check.traces.checks import fail
 from dem_check.traces.detect import detect_head
 from dem_check.traces.formats import FORMATS
-from dem_check.traces.prepare import to_force
+from dem_check.traces.prepare import check_trace, to_force
 from dem_check.traces.texthead import read_head
 
 __all__ = ["read_trace", "write_trace"]
@@ -66,7 +67,7 @@ def read_trace(path, format="auto", channel=None, sensitivity=None):
         The file cannot be opened (``FileNotFoundError``, ``PermissionError``). A folder,
         FIFO, socket or device is refused at once with a TraceFormatError.
     """
-    path = os.fspath(path)
+    path = os.fspath(check_path("path", path))
     reader = None if format == "auto" else _format(format)
     check_regular_file(path)
     head = read_head(path)
@@ -113,6 +114,8 @@ def write_trace(path, trace, format="generic", **options):
         contain a line break, and names and units may not contain the comma that separates
         cells: the file would not read back (a ParameterError names the option).
     """
+    check_path("path", path)
+    check_trace("trace", trace)
     writer = _format(format, writable=True)
     for name, value in options.items():
         _check_text_option(name, value)

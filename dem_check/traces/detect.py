@@ -1,5 +1,6 @@
 """Recognise a trace file by its content, never by its extension."""
 
+from contactlab.validation import check_path
 from dem_check.traces.formats import FORMATS
 from dem_check.traces.texthead import read_head
 
@@ -27,4 +28,4 @@ def detect_format(path):
     str
         A key of :data:`~dem_check.traces.formats.FORMATS`, e.g. ``"rigol-sequence"``.
     """
-    return detect_head(read_head(path))
+    return detect_head(read_head(check_path("path", path)))

@@ -1,5 +1,6 @@
 """The :class:`Trace`: one measured channel on its time axis, with where it came from."""
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -7,6 +8,7 @@ import pandas as pd
 
 from contactlab.errors import ParameterError
 from contactlab.metrics import pulse_metrics
+from contactlab.validation import check_samples
 from dem_check.traces.units import SI_VALUE_UNITS
 
 __all__ = ["Trace"]
@@ -63,9 +65,11 @@ class Trace:
     metadata: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        t = np.asarray(self.t, dtype=np.float64)
-        values = np.asarray(self.values, dtype=np.float64)
-        if t.ndim != 1 or values.shape != t.shape:
+        t = check_samples("t", self.t, unit="s")
+        values = check_samples("values", self.values, finite=False)  # overrange: inf
+        if not isinstance(self.metadata, Mapping):
+            raise ParameterError(f"metadata must be a dict; got {type(self.metadata).__name__}")
+        if values.shape != t.shape:
             raise ParameterError(
                 f"t and values must be 1-D arrays of equal length; got shapes {t.shape} "
                 f"and {values.shape}"
