@@ -8,7 +8,6 @@ All functions take a time axis ``t`` [s] (strictly increasing) and a signal ``y`
 or any unit) sampled on it. Crossing times are interpolated linearly between samples.
 """
 
-import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -43,12 +42,8 @@ def _as_signal(t, y):
 
 
 def _bound(name, value):
-    """A window bound [s]: None or an infinity is no bound; NaN and non-numbers are refused."""
-    if value is None:
-        return None
-    if isinstance(value, float | int) and not isinstance(value, bool) and math.isinf(value):
-        return None
-    return check_number(name, value, unit="s")
+    """A window bound [s]: a finite number, or None for no bound."""
+    return None if value is None else check_number(name, value, unit="s")
 
 
 def _crossing_time(t, y, i, level):

@@ -199,6 +199,9 @@ def run_grid(
     if not isinstance(setup, StudySetup):
         raise ParameterError(f"setup must be a StudySetup; got {type(setup).__name__}")
     seed = check_count("seed", seed, low=0)
+    check_count("workers", workers)  # here too: a linear law's grid never reaches the pool
+    if chunksize is not None:
+        check_count("chunksize", chunksize)
     names, values, points = _grid_points(setup, grid)
     factors = [
         setup.scatter.factors(np.random.SeedSequence(seed, spawn_key=(i,)))

@@ -729,12 +729,33 @@ def call(function, arguments):
         signal.signal(signal.SIGALRM, previous)
 
 
+def _pinned(names, defects):
+    return [
+        pytest.param(n, marks=pytest.mark.xfail(strict=True, reason=defects[n]))
+        if n in defects
+        else n
+        for n in names
+    ]
+
+
 def pytest_generate_tests(metafunc):
-    """``api_name``: every covered callable; ``cheap_name``: those not :func:`costly`."""
+    """``api_name``: every covered callable; ``cheap_name``: those not :func:`costly`.
+
+    Known defects (:data:`KNOWN_REFUSAL_DEFECTS`, :data:`KNOWN_HOSTILE_DEFECTS`) are strict
+    xfails: fixing one turns its test into a failure until its entry is removed.
+    """
     if "api_name" in metafunc.fixturenames:
-        metafunc.parametrize("api_name", covered())
+        metafunc.parametrize("api_name", _pinned(covered(), KNOWN_REFUSAL_DEFECTS))
     if "cheap_name" in metafunc.fixturenames:
-        metafunc.parametrize("cheap_name", [n for n in covered() if not costly(n)])
+        cheap = [n for n in covered() if not costly(n)]
+        metafunc.parametrize("cheap_name", _pinned(cheap, KNOWN_HOSTILE_DEFECTS))
+
+
+KNOWN_REFUSAL_DEFECTS = {}
+"""Callables that still accept, or fail on, a value they must refuse: what was measured."""
+
+KNOWN_HOSTILE_DEFECTS = {}
+"""Callables that still raise something else than ParameterError on a drawn value."""
 
 
 @pytest.fixture(autouse=True)
@@ -773,10 +794,15 @@ parameter has no ``None`` default, ``inf`` is dropped where it is the default (a
 body's modulus)."""
 
 
-def refusals(kind_, default):
+NONE_ALLOWED = {"threads", "damping_ratio"}
+"""Parameters with a number as default where ``None`` is documented too (every core; no
+damping)."""
+
+
+def refusals(kind_, default, parameter=""):
     """``[(label, value)]`` a parameter of this kind and default must refuse."""
     values = [(label, v) for label, v in MUST_REFUSE[kind_] if not _same(v, default)]
-    if default is not None and kind_ != "flag":
+    if default is not None and kind_ != "flag" and parameter not in NONE_ALLOWED:
         values.append(("None", None))
     return values
 

@@ -20,7 +20,7 @@ def test_bad_values_are_refused_naming_the_parameter(api, api_name):
     function, valid, kinds = api.baseline(api_name)
     problems = []
     for parameter, (kind, default) in kinds.items():
-        for label, value in api.refusals(kind, default):
+        for label, value in api.refusals(kind, default, parameter):
             try:
                 api.call(function, {**valid, parameter: value})
             except (ParameterError, TraceFormatError) as exc:
