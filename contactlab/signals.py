@@ -252,7 +252,7 @@ def lowpass(y, interval, cutoff, order=4):
     sos = signal.butter(order, cutoff, btype="low", output="sos", fs=1.0 / interval)
     pad = 3 * (2 * len(sos) + 1)
     if y.size <= pad:
-        raise ParameterError(f"lowpass of order {order} needs more than {pad} samples")
+        raise ParameterError(f"lowpass of order {order} needs more than {pad} samples in y")
     return signal.sosfiltfilt(sos, y)
 
 
@@ -275,7 +275,7 @@ def robust_noise(y):
     """
     y = check_samples("y", y)
     if y.size < 2:
-        raise ParameterError(f"robust_noise needs at least 2 finite samples; got {y.size}")
+        raise ParameterError(f"robust_noise needs at least 2 samples in y; got {y.size}")
     return MAD_TO_SIGMA * float(np.median(np.abs(y - np.median(y))))
 
 
@@ -372,7 +372,7 @@ def running_baseline(y, width, exclude=None):
     y = check_samples("y", y)
     if y.size < 2 * width:
         raise ParameterError(
-            f"running_baseline needs at least two blocks of {width} samples; got {y.size}"
+            f"running_baseline needs at least two blocks of {width} samples in y; got {y.size}"
         )
     edges, medians = _block_medians(y, width)
     index = np.arange(y.size)

@@ -103,4 +103,6 @@ class PlasticTrapezoid(KeywordChecked):
 
     def restitution(self, mass, velocity):
         """Always 0: the impulse equals the grain's momentum."""
+        check_positive("mass", mass, "kg")
+        check_positive("velocity", velocity, "m/s")
         return 0.0

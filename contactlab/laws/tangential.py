@@ -49,6 +49,7 @@ from contactlab.analytic.tangential import (
     mindlin_stiffness_coefficient,
 )
 from contactlab.errors import ParameterError
+from contactlab.laws.base import ContactLaw
 from contactlab.laws.hertz import Hertz, HertzDamped
 from contactlab.laws.linear import LinearViscoelastic
 from contactlab.validation import KeywordChecked, check_choice, check_number, numbers_checked
@@ -90,6 +91,16 @@ def _mindlin_stiffness(overlap, k_mindlin):
     return k_mindlin * np.sqrt(np.maximum(overlap, 0.0))
 
 
+def check_contact(normal_law, mass):
+    """Check the arguments of :meth:`TangentialLaw.for_contact`: a normal contact law and a
+    grain mass [kg]."""
+    if not isinstance(normal_law, ContactLaw):
+        raise ParameterError(
+            f"normal_law must be a contact law of contactlab.laws; got {type(normal_law).__name__}"
+        )
+    check_number("mass", mass, low=0.0, unit="kg")
+
+
 class TangentialLaw(KeywordChecked):
     """Base class of tangential laws (see the module docstring for the conventions).
 
@@ -120,6 +131,7 @@ class TangentialLaw(KeywordChecked):
     def for_contact(self, normal_law, mass):
         """This law as the solver applies it beside ``normal_law`` on a grain of ``mass``
         [kg] (a law whose damping is tied to the normal law binds it here)."""
+        check_contact(normal_law, mass)
         return self
 
     def trial_force(self, history, overlap, slip):
@@ -300,6 +312,7 @@ class Mindlin(TangentialLaw):
             If ``damping="tied"`` and the normal law has no damping ratio
             (:func:`damping_ratio`).
         """
+        check_contact(normal_law, mass)
         if self.damping_form == "none":
             return self
         bound = Mindlin(self.k_mindlin, self.friction, self.history, self.damping_form)

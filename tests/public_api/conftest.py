@@ -420,7 +420,8 @@ KINDS = {
     "labels": "label", "sources": "label", "unit": "label", "name": "label",
     "channel": "object",  # a name or an index: anything but a name or index is wrong
     "tolerances": "mapping", "fixed": "mapping", "overrides": "mapping", "grid": "mapping",
-    "client": "opaque", "ax": "object", "align": "text", "friction_steel": "number", "truth": "object", "metadata": "object",
+    "client": "opaque", "ax": "object", "align": "text", "friction_steel": "number",
+    "truth": "object", "metadata": "object",
 }  # fmt: skip
 """Parameters whose kind the valid value does not say."""
 
@@ -552,7 +553,7 @@ INSTANCES = {
 ABSTRACT = {
     "contactlab.laws.base.ContactLaw": "abstract: its methods run on every concrete law",
     "contactlab.laws.base.SmoothLaw": "abstract: its methods run on every concrete law",
-    "contactlab.laws.tangential.TangentialLaw": "base: its methods run on Mindlin and TangentialSpring",
+    "contactlab.laws.tangential.TangentialLaw": "base: its methods run on its subclasses",
 }
 """Base classes, neither constructed nor called (their subclasses are), with the reason."""
 
@@ -802,7 +803,7 @@ damping)."""
 def refusals(kind_, default, parameter=""):
     """``[(label, value)]`` a parameter of this kind and default must refuse."""
     values = [(label, v) for label, v in MUST_REFUSE[kind_] if not _same(v, default)]
-    if default is not None and kind_ != "flag" and parameter not in NONE_ALLOWED:
+    if default is not None and kind_ not in ("flag", "label") and parameter not in NONE_ALLOWED:
         values.append(("None", None))
     return values
 

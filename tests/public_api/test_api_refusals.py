@@ -12,8 +12,13 @@ thousand calls, each refused before any work.
 
 from contactlab.errors import ParameterError, TraceFormatError
 
-ALIASES = {}
-"""Words a refusal may use for a parameter instead of its name."""
+
+def names(parameter):
+    """The words a refusal may use for a parameter: its name, or the singular of a plural
+    (``velocities`` are refused one at a time: "velocity must be ...")."""
+    if parameter.endswith("ies"):
+        return parameter, parameter[:-3] + "y"
+    return (parameter, parameter[:-1]) if parameter.endswith("s") else (parameter,)
 
 
 def test_bad_values_are_refused_naming_the_parameter(api, api_name):
@@ -24,8 +29,7 @@ def test_bad_values_are_refused_naming_the_parameter(api, api_name):
             try:
                 api.call(function, {**valid, parameter: value})
             except (ParameterError, TraceFormatError) as exc:
-                words = (parameter, *ALIASES.get(parameter, ()))
-                if not any(w.lower() in str(exc).lower() for w in words):
+                if not any(w.lower() in str(exc).lower() for w in names(parameter)):
                     problems.append(f"{parameter}={label}: refused without naming it: {exc}")
             except Exception as exc:
                 problems.append(f"{parameter}={label}: {type(exc).__name__}: {exc}")
