@@ -13,6 +13,7 @@ import math
 import numbers
 import os
 import re
+from collections.abc import Hashable
 
 import numpy as np
 
@@ -216,7 +217,7 @@ def check_choice(name, value, choices):
 
     Near matches are suggested (PyBaMM habit) through :mod:`difflib`.
     """
-    if value in choices:
+    if isinstance(value, Hashable) and value in choices:  # an array or list is no choice
         return value
     close = difflib.get_close_matches(str(value), [str(c) for c in choices], n=1)
     hint = f" Did you mean {close[0]!r}?" if close else ""
@@ -365,7 +366,8 @@ def numbers_checked(*optional):
             bound = signature.bind(*args, **kwargs)
             for name, value in bound.arguments.items():
                 if not (value is None and name in optional):
-                    bound.arguments[name] = check_samples(name, value, ndim=None)
+                    array = check_samples(name, value, ndim=None)
+                    bound.arguments[name] = float(array) if array.ndim == 0 else array
             return function(*bound.args, **bound.kwargs)
 
         return checked

@@ -3,6 +3,7 @@
 import difflib
 import os
 import stat
+from collections.abc import Hashable
 
 from contactlab.errors import ParameterError
 from contactlab.validation import check_path
@@ -18,7 +19,7 @@ __all__ = ["read_trace", "write_trace"]
 def _format(name, *, writable=False):
     """The registry entry called ``name``, or a ParameterError listing the choices."""
     choices = [n for n, f in FORMATS.items() if f.write is not None or not writable]
-    if name in choices:
+    if isinstance(name, Hashable) and name in choices:  # an array or a list is no name
         return FORMATS[name]
     near = difflib.get_close_matches(str(name), choices, n=1)
     hint = f" (did you mean {near[0]!r}?)" if near else ""

@@ -74,7 +74,7 @@ class Trace:
                 f"t and values must be 1-D arrays of equal length; got shapes {t.shape} "
                 f"and {values.shape}"
             )
-        if self.unit not in SI_VALUE_UNITS:  # "mV" would be taken for volts downstream
+        if not isinstance(self.unit, str) or self.unit not in SI_VALUE_UNITS:  # "mV": volts?
             raise ParameterError(
                 f"unit must be one of {', '.join(SI_VALUE_UNITS)} (SI base units; scale "
                 f"the values instead); got {self.unit!r}"

@@ -35,13 +35,13 @@ def test_the_tables_name_only_public_callables(api):
         importlib.import_module(module)  # a stale module name fails here
 
 
-def test_the_valid_call_of_each_cheap_callable_succeeds(api, cheap_name):
+def test_the_valid_call_of_each_cheap_callable_succeeds(api, valid_name):
     """The refusals the other tests see are then caused by the hostile value alone.
 
     Costly callables (simulations, fits, studies) are not run here; their refusals are
     checked to name the hostile parameter instead (test_api_refusals.py).
     """
-    function, arguments, _ = api.baseline(cheap_name)
+    function, arguments, _ = api.baseline(valid_name)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ContactlabWarning)
         function(**arguments)
