@@ -289,6 +289,10 @@ OVERRIDES = {
     "dem_check.traces.api.write_trace": {"path": lambda: _temporary("trace.csv")},
     "contactlab.inverse.fit_result.ContactFit.to_json": {"path": lambda: _temporary("FIT.json")},
     "dem_check.traces.trace.Trace.derive": {"step": lambda: {"step": "test"}},
+    "contactlab.config.law_from_table": {
+        "table": lambda: {"law": "linear", "stiffness": 1e4, "damping": 0.3}},
+    "contactlab.config.sensor_from_table": {
+        "table": lambda: {"diameter": 10e-3, "thickness": 2e-3, "resonance": 40e3}},
     "dem_check.traces.trace.Trace": {"t": lambda: trace().t, "values": lambda: trace().values,
                                      "unit": lambda: "V"},
 }  # fmt: skip
