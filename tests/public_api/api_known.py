@@ -156,6 +156,12 @@ KNOWN_HOSTILE_DEFECTS = {
         "full", np.array([]), "ValueError: truth value of an empty array is ambiguous"),
     "contactlab.result.ImpactResult.audit": (
         "full", np.array([]), "ValueError: truth value of an empty array is ambiguous"),
+    "contactlab.plausibility.check_plausible": (
+        "value", "1e5", "TypeError: '<=' not supported between float and str"),
+    "contactlab.plausibility.implausible_rows": (
+        "values", [[1.0], [2.0, 3.0]], "ValueError: inhomogeneous shape"),
+    "contactlab.plausibility.likely_slips": (
+        "value", "1e5", "TypeError: can't multiply sequence by non-int of type 'float'"),
     "contactlab.signals.in_window": (
         "window", 0.0, "TypeError: cannot unpack non-iterable float object"),
     "contactlab.signals.lowpass": (
