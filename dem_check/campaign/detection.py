@@ -46,6 +46,8 @@ import numpy as np
 from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
+from contactlab.traces import Trace
+from contactlab.traces.prepare import check_trace
 from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
 from dem_check.campaign.noise import (
@@ -59,8 +61,6 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
-from dem_check.traces import Trace
-from dem_check.traces.prepare import check_trace
 
 __all__ = [
     "ANALYSED",
