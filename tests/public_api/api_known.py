@@ -123,9 +123,9 @@ KNOWN_REFUSAL_DEFECTS = {
     "dem_check.campaign.synthetic.synthetic_record": (
         "velocities text: ValueError; onsets text: ValueError"
     ),
-    "dem_check.compare.impacts.compare": "b number/text/list: refused without naming it",
-    "dem_check.compare.impacts.compare_trace": "tolerances number/text/list: TypeError",
-    "dem_check.traces.trace.Trace.derive": "step number/text/list: accepted",
+    "contactlab.compare.impacts.compare": "b number/text/list: refused without naming it",
+    "contactlab.compare.impacts.compare_trace": "tolerances number/text/list: TypeError",
+    "contactlab.traces.trace.Trace.derive": "step number/text/list: accepted",
 }  # fmt: skip
 """Callables that still accept, or fail on, a value they must refuse: what was measured."""
 
@@ -183,7 +183,7 @@ KNOWN_HOSTILE_DEFECTS = {
         "labels", 1.0, "TypeError: 'float' object is not iterable"),
     "dem_check.campaign.records.Effects.everything": (
         "peak", "5", "TypeError: can't multiply sequence by non-int of type 'float'"),
-    "dem_check.compare.impacts.compare_trace": (
+    "contactlab.compare.impacts.compare_trace": (
         "tolerances", [[1.0], [2.0, 3.0]], "TypeError: 'list' object is not a mapping"),
 }  # fmt: skip
 """Callables whose sweep found a value answered with something else than ParameterError:

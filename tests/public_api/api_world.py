@@ -285,15 +285,15 @@ OVERRIDES = {
         "expected": lambda: law().restitution(grain().mass, 2.0)},
     "contactlab.testing.golden_trace.GoldenTrace.read": {"directory": lambda: _golden()},
     "contactlab.testing.golden.GoldenStore.check": {"name": lambda: "case"},
-    "dem_check.compare.impacts.compare_trace": {"trace": lambda: _force_trace()},
-    "dem_check.traces.api.write_trace": {"path": lambda: _temporary("trace.csv")},
+    "contactlab.compare.impacts.compare_trace": {"trace": lambda: _force_trace()},
+    "contactlab.traces.api.write_trace": {"path": lambda: _temporary("trace.csv")},
     "contactlab.inverse.fit_result.ContactFit.to_json": {"path": lambda: _temporary("FIT.json")},
-    "dem_check.traces.trace.Trace.derive": {"step": lambda: {"step": "test"}},
+    "contactlab.traces.trace.Trace.derive": {"step": lambda: {"step": "test"}},
     "contactlab.config.law_from_table": {
         "table": lambda: {"law": "linear", "stiffness": 1e4, "damping": 0.3}},
     "contactlab.config.sensor_from_table": {
         "table": lambda: {"diameter": 10e-3, "thickness": 2e-3, "resonance": 40e3}},
-    "dem_check.traces.trace.Trace": {"t": lambda: trace().t, "values": lambda: trace().values,
+    "contactlab.traces.trace.Trace": {"t": lambda: trace().t, "values": lambda: trace().values,
                                      "unit": lambda: "V"},
 }  # fmt: skip
 """Values of one callable's parameters where the name alone does not tell."""
@@ -312,10 +312,10 @@ INSTANCES = {
     "contactlab.laws.base.Exit": lambda: _exit(),
     "contactlab.advisor.species.Species": species,
     "contactlab.analytic.pair.PairRebound": lambda: _pair(),
-    "dem_check.compare.comparison.Comparison": lambda: _comparison(),
+    "contactlab.compare.comparison.Comparison": lambda: _comparison(),
     "dem_check.engines.result.EngineResult": lambda: _engine_result(),
     "dem_check.campaign.result.CampaignResult": lambda: _campaign(),
-    "dem_check.traces.trace.Trace": trace,
+    "contactlab.traces.trace.Trace": trace,
     "contactlab.testing.golden.GoldenStore": lambda: _store(),
 }
 """Instances of public classes their constructor's baseline cannot build."""

@@ -73,14 +73,15 @@ EXEMPT = {
     "contactlab.laws.base.Branch": "a law's branch description, built by the law",
     "contactlab.laws.base.Exit": "a branch's exit condition, built by the law",
     "contactlab.advisor.advice.Advice": "result record built by advise",
-    "dem_check.compare.comparison.Comparison": "result record built by compare",
-    "dem_check.compare.quantities.Quantity": "a row of the tolerance table, built there",
+    "contactlab.compare.comparison.Comparison": "result record built by compare",
+    "contactlab.compare.quantities.Quantity": "a row of the tolerance table, built there",
     "dem_check.engines.result.EngineResult": "result record built by the engines",
     "dem_check.campaign.result.CampaignResult": "result record built by run_campaign",
     "contactlab.testing.closed_forms.ClosedForm": "record a closed-form function returns",
     "contactlab.testing.golden_trace.GoldenTrace": "record built by GoldenTrace.of/read",
     "contactlab.config.ImpactConfig": "record built by load_config/load_preset",
     "contactlab.plausibility.Range": "a row of the RANGES table, built there",
+    "contactlab.quantities.Quantity": "a row of the QUANTITIES vocabulary, built there",
     "contactlab.result.ImpactResult": "result record built by simulate_impact",
     "contactlab.oblique_result.ObliqueResult": "result record built by simulate_oblique",
 }
@@ -308,6 +309,11 @@ the oblique solver. The laws' user-facing methods (``force``, ``work``, ``impact
 PENDING = {
     "dem_check.stream": "arrived from main in the last merge of this change (issue 24); "
     "its valid arguments (a stream case, a detector, a LAMMPS run) are not written yet",
+    "contactlab.quantities": "arrived from main in the final merge (18:45); valid names "
+    "not written yet",
+    "contactlab.engines": "arrived from main in the final merge; not written yet",
+    "contactlab.study.setup.StudySetup.config": "arrived from main in the final merge",
+    "contactlab.study.setup.StudySetup.at": "its valid call changed in the final merge",
     "contactlab.config.law_from_table": "arrived from main in the last merge; the sweep "
     "found failures not triaged yet",
     "contactlab.config.sensor_from_table": "arrived from main in the last merge; the sweep "
