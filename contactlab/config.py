@@ -27,7 +27,7 @@ from contactlab.errors import ParameterError
 from contactlab.laws import LAWS, Hertz, HertzDamped, LinearViscoelastic
 from contactlab.quantities import column
 from contactlab.solver import simulate_impact
-from contactlab.validation import check_choice, unknown_keywords, with_suggestion
+from contactlab.validation import check_choice, check_path, unknown_keywords, with_suggestion
 
 __all__ = [
     "PRESET_DIR",
@@ -203,11 +203,12 @@ def read_document(path, what, kind="TOML"):
     -------
     dict
     """
-    loads, error = {
+    parsers = {
         "TOML": (tomllib.loads, tomllib.TOMLDecodeError),
         "JSON": (json.loads, json.JSONDecodeError),
-    }[kind]
-    path = Path(path)
+    }
+    loads, error = parsers[check_choice("kind", kind, tuple(parsers))]
+    path = Path(check_path("path", path))
     try:
         return loads(path.read_text(encoding="utf-8"))
     except FileNotFoundError:

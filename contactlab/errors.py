@@ -6,6 +6,7 @@ All errors derive from standard bases so callers can catch them generically
 
 __all__ = [
     "AuditWarning",
+    "CompiledCacheWarning",
     "ContactlabWarning",
     "ParameterError",
     "PlausibilityWarning",
@@ -60,3 +61,8 @@ class PlausibilityWarning(ContactlabWarning):
 
 class RowFailedWarning(ContactlabWarning):
     """Rows of a batch could not be solved: NaN there, the reason in the ``error`` column."""
+
+
+class CompiledCacheWarning(ContactlabWarning):
+    """A compiled solver's numba cache file could not be read and is being rebuilt; the
+    message names the cache folder (see :mod:`contactlab.compiled`)."""

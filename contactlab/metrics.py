@@ -13,7 +13,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_number
+from contactlab.validation import check_number, check_samples
 
 __all__ = [
     "PulseMetrics",
@@ -27,9 +27,8 @@ __all__ = [
 
 
 def _as_signal(t, y):
-    t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
-    if t.ndim != 1 or y.shape != t.shape:
+    t, y = check_samples("t", t, unit="s"), check_samples("y", y)
+    if y.shape != t.shape:
         raise ParameterError(
             f"t and y must be 1-D arrays of equal length; got shapes {t.shape} and {y.shape}"
         )
@@ -40,6 +39,11 @@ def _as_signal(t, y):
     if np.any(np.diff(t) <= 0):
         raise ParameterError("t must be strictly increasing")
     return t, y
+
+
+def _bound(name, value):
+    """A window bound [s]: a finite number, or None for no bound."""
+    return None if value is None else check_number(name, value, unit="s")
 
 
 def _crossing_time(t, y, i, level):
@@ -104,10 +108,11 @@ def peak(t, y, start=None, end=None):
         Time of the peak [s] and the peak value (signal unit). Sample-resolved.
     """
     t, y = _as_signal(t, y)
+    start, end = _bound("start", start), _bound("end", end)
     mask = np.ones(t.shape, dtype=bool)
-    if start is not None and np.isfinite(start):
+    if start is not None:
         mask &= t >= start
-    if end is not None and np.isfinite(end):
+    if end is not None:
         mask &= t <= end
     if not mask.any():
         raise ParameterError(f"no samples inside the window [{start}, {end}] s")
@@ -125,6 +130,7 @@ def impulse(t, y, start=None, end=None):
         Impulse [N*s] for a force signal.
     """
     t, y = _as_signal(t, y)
+    start, end = _bound("start", start), _bound("end", end)
     lo = t[0] if start is None else max(start, t[0])
     hi = t[-1] if end is None else min(end, t[-1])
     if hi <= lo:
@@ -138,6 +144,7 @@ def impulse(t, y, start=None, end=None):
 def rise_time(t, y, low=0.1, high=0.9):
     """10-90 % rise time (fractions configurable) of the first rise to the peak [s]."""
     t, y = _as_signal(t, y)
+    low, high = check_number("low", low, low=0.0, low_open=False), check_number("high", high)
     if not 0.0 <= low < high <= 1.0:
         raise ParameterError(f"need 0 <= low < high <= 1; got low={low}, high={high}")
     i_peak = int(np.argmax(y))
@@ -230,6 +237,7 @@ def pulse_metrics(t, y, threshold=0.0, unit="N", hysteresis=0.0):
 
 def relative_error(measured, true):
     """Signed relative error ``(measured - true) / true`` [-]."""
+    measured, true = check_number("measured", measured), check_number("true", true)
     if true == 0:
         raise ParameterError("relative error is undefined for a true value of 0")
     return (measured - true) / true

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactlab.errors import PlausibilityWarning
+from contactlab.validation import check_choice
 
 __all__ = [
     "RANGES",
@@ -222,12 +223,17 @@ def likely_slips(key, value):
         ``(SI value, unit the number was probably typed in)`` for every slip whose reading
         lies inside the plausible range.
     """
-    spec = RANGES[key]
+    spec = _spec(key)
     return [
         (value * factor, unit)
         for factor, unit in spec.slips
         if spec.low <= value * factor <= spec.high
     ]
+
+
+def _spec(key):
+    """The :data:`RANGES` entry of ``key``; an unknown key is a ParameterError listing them."""
+    return RANGES[check_choice("key", key, tuple(RANGES))]
 
 
 def _message(key, name, value):
@@ -267,7 +273,7 @@ def check_plausible(key, value, name=None):
     PlausibilityWarning
         Outside the plausible range, with the likely unit slip when there is one.
     """
-    spec = RANGES[key]
+    spec = _spec(key)
     name = name or key
     if not _QUIET.get() and not spec.low <= value <= spec.high:
         warnings.warn(_message(key, name, value), PlausibilityWarning, stacklevel=_caller_level())
@@ -293,7 +299,7 @@ def implausible_rows(key, values, labels, name=None):
     list
         The labels of the rows outside the range (one warning names them all).
     """
-    spec = RANGES[key]
+    spec = _spec(key)
     values = np.asarray(values, dtype=float)
     name = name or key
     outside = np.isfinite(values) & ((values < spec.low) | (values > spec.high))

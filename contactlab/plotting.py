@@ -1,5 +1,7 @@
 """Plots of impacts and studies. matplotlib is imported only here, only when plotting."""
 
+from contactlab.errors import ParameterError
+
 __all__ = ["axes_or_new", "finish_force_axes", "plot_impact", "plot_oblique"]
 
 
@@ -12,6 +14,10 @@ def axes_or_new(ax, figsize=(7.0, 4.0)):
     figsize : (float, float)
         Size of a new figure [inch].
     """
+    from matplotlib.axes import Axes
+
+    if ax is not None and not isinstance(ax, Axes):
+        raise ParameterError(f"ax must be matplotlib axes or None; got {ax!r}")
     if ax is None:
         import matplotlib.pyplot as plt
 

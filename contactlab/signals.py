@@ -21,7 +21,7 @@ import numpy as np
 from scipy import signal
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_count, check_number, check_samples
 
 __all__ = [
     "MAD_TO_SIGMA",
@@ -70,9 +70,8 @@ class Baseline(NamedTuple):
 
 
 def _trace(t, y):
-    t = np.asarray(t, dtype=np.float64)
-    y = np.asarray(y, dtype=np.float64)
-    if t.ndim != 1 or y.shape != t.shape:
+    t, y = check_samples("t", t, unit="s"), check_samples("y", y, finite=False)
+    if y.shape != t.shape:
         raise ParameterError(
             f"t and y must be 1-D arrays of equal length; got shapes {t.shape} and {y.shape}"
         )
@@ -243,19 +242,17 @@ def lowpass(y, interval, cutoff, order=4):
         trace no longer than the filter's edge padding, ``3 (2 ceil(order / 2) + 1)``
         samples.
     """
-    y = np.asarray(y, dtype=np.float64)
-    if y.ndim != 1:
-        raise ParameterError(f"y must be a 1-D array; got shape {y.shape}")
+    y = check_samples("y", y, finite=False)
     interval = check_number("interval", interval, low=0.0, unit="s")
     nyquist = 0.5 / interval
     cutoff = check_number("cutoff", cutoff, low=0.0, high=nyquist, high_open=True, unit="Hz")
     order = check_count("order", order)
     if not np.isfinite(y).all():
-        raise ParameterError("lowpass needs finite samples; the trace holds overrange samples")
+        raise ParameterError("lowpass needs finite y; the trace holds overrange samples")
     sos = signal.butter(order, cutoff, btype="low", output="sos", fs=1.0 / interval)
     pad = 3 * (2 * len(sos) + 1)
     if y.size <= pad:
-        raise ParameterError(f"lowpass of order {order} needs more than {pad} samples")
+        raise ParameterError(f"lowpass of order {order} needs more than {pad} samples in y")
     return signal.sosfiltfilt(sos, y)
 
 
@@ -276,9 +273,9 @@ def robust_noise(y):
     -------
     float
     """
-    y = np.asarray(y, dtype=np.float64)
-    if y.size < 2 or not np.isfinite(y).all():
-        raise ParameterError(f"robust_noise needs at least 2 finite samples; got {y.size}")
+    y = check_samples("y", y)
+    if y.size < 2:
+        raise ParameterError(f"robust_noise needs at least 2 samples in y; got {y.size}")
     return MAD_TO_SIGMA * float(np.median(np.abs(y - np.median(y))))
 
 
@@ -372,12 +369,10 @@ def running_baseline(y, width, exclude=None):
         Bad ``width``, non-finite samples or fewer than two blocks.
     """
     width = check_count("width", width, low=8)
-    y = np.asarray(y, dtype=np.float64)
-    if y.ndim != 1 or not np.isfinite(y).all():
-        raise ParameterError("running_baseline needs a 1-D array of finite samples")
+    y = check_samples("y", y)
     if y.size < 2 * width:
         raise ParameterError(
-            f"running_baseline needs at least two blocks of {width} samples; got {y.size}"
+            f"running_baseline needs at least two blocks of {width} samples in y; got {y.size}"
         )
     edges, medians = _block_medians(y, width)
     index = np.arange(y.size)

@@ -11,7 +11,11 @@ import functools
 import inspect
 import math
 import numbers
+import os
 import re
+from collections.abc import Hashable
+
+import numpy as np
 
 from contactlab.errors import ParameterError, UnknownParameterError
 
@@ -22,11 +26,14 @@ __all__ = [
     "check_inertia_factor",
     "check_non_negative",
     "check_number",
+    "check_path",
     "check_poisson_ratio",
     "check_positive",
     "check_probability",
+    "check_samples",
     "check_text",
     "keyword_checked",
+    "numbers_checked",
     "unknown_keywords",
     "with_suggestion",
 ]
@@ -97,6 +104,70 @@ def check_number(
     return x
 
 
+def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
+    """Return ``value`` as a float array after checking it holds finite real numbers.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : array_like
+        Numbers (a scalar, a sequence, an array). Text, ``None``, booleans, complex
+        numbers and objects are refused: ``numpy.asarray`` would read ``"1e5"`` as a
+        number and ``None`` as NaN.
+    ndim : int or None, default 1
+        Required number of dimensions; None accepts any (a scalar or an array that
+        broadcasts).
+    min_size : int, default 0
+        Fewest values.
+    unit : str
+        Unit shown in the message.
+    finite : bool, default True
+        Refuse NaN and infinite values; False lets them through (a recorder's overrange
+        samples, which the caller reports itself).
+
+    Returns
+    -------
+    numpy.ndarray of float
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``: not numbers, wrong dimensions, too few, NaN or infinite values.
+    """
+    unit_text = f" [{unit}]" if unit else ""
+    if isinstance(value, str | bytes) or value is None:
+        raise ParameterError(f"{name} must be numbers{unit_text}; got {value!r}")
+    try:
+        array = np.asarray(value)
+    except (TypeError, ValueError) as exc:  # ragged nesting
+        raise ParameterError(f"{name} must be an array of numbers{unit_text}; {exc}") from None
+    if array.dtype.kind not in "iuf":
+        raise ParameterError(f"{name} must hold real numbers{unit_text}; got {array.dtype} values")
+    array = array.astype(float)
+    if ndim is not None and array.ndim != ndim:
+        raise ParameterError(f"{name} must be a {ndim}-D array; got shape {array.shape}")
+    if array.size < min_size:
+        raise ParameterError(f"{name} needs at least {min_size} values; got {array.size}")
+    if finite and not np.isfinite(array).all():
+        raise ParameterError(f"{name} must be finite{unit_text} (no NaN or inf values)")
+    return array
+
+
+def check_path(name, value):
+    """Return ``value`` after checking it is a file path (``str`` or ``os.PathLike``).
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``, for anything else (a number, ``None``, a list) and for an empty
+        text.
+    """
+    if not isinstance(value, str | os.PathLike) or not os.fspath(value):
+        raise ParameterError(f"{name} must be a file path (str or pathlib.Path); got {value!r}")
+    return value
+
+
 def check_positive(name, value, unit=""):
     """Check a finite number ``> 0`` in ``unit``; return it as float."""
     return check_number(name, value, low=0.0, unit=unit)
@@ -146,7 +217,7 @@ def check_choice(name, value, choices):
 
     Near matches are suggested (PyBaMM habit) through :mod:`difflib`.
     """
-    if value in choices:
+    if isinstance(value, Hashable) and value in choices:  # an array or list is no choice
         return value
     close = difflib.get_close_matches(str(value), [str(c) for c in choices], n=1)
     hint = f" Did you mean {close[0]!r}?" if close else ""
@@ -274,6 +345,34 @@ def keyword_checked(function):
             raise
 
     return checked
+
+
+def numbers_checked(*optional):
+    """Decorator of a vectorised function: every argument must be finite real numbers.
+
+    Each argument (a scalar or an array that broadcasts) goes through
+    :func:`check_samples` with any number of dimensions before the call, so text,
+    ``None``, complex numbers and NaN are refused naming the argument instead of turning
+    into NaN or a ``TypeError`` deep in numpy. Arguments named in ``optional`` may also be
+    ``None``. A misspelt or missing argument raises :class:`UnknownParameterError`.
+    """
+
+    def decorate(function):
+        signature = inspect.signature(function)
+
+        @functools.wraps(function)
+        def checked(*args, **kwargs):
+            unknown_keywords(function.__name__, function, args, kwargs)
+            bound = signature.bind(*args, **kwargs)
+            for name, value in bound.arguments.items():
+                if not (value is None and name in optional):
+                    array = check_samples(name, value, ndim=None)
+                    bound.arguments[name] = float(array) if array.ndim == 0 else array
+            return function(*bound.args, **bound.kwargs)
+
+        return checked
+
+    return decorate
 
 
 class KeywordChecked:

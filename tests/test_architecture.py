@@ -26,6 +26,7 @@ LAYERS = (
             "contactlab.roots",
             "contactlab.plausibility",
             "contactlab.strict_json",
+            "contactlab.compiled",
             "contactlab.engines",
             "contactlab.quantities",
         ),

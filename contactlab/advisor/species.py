@@ -7,7 +7,7 @@ from pathlib import Path
 
 from contactlab.config import read_document
 from contactlab.errors import ParameterError
-from contactlab.validation import check_choice, check_number
+from contactlab.validation import check_choice, check_number, check_path
 
 __all__ = ["CASES", "SPECIES_DIR", "Species", "list_species", "load_species", "value_range"]
 
@@ -105,6 +105,7 @@ class Species:
         -------
         Species
         """
+        check_path("path", path)
         path = Path(path)
         data = read_document(path, "species")
         allowed = {"name", "description", *_PROPERTIES, *_OPTIONAL}

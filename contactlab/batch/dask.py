@@ -57,11 +57,12 @@ def _quietly(impacts, piece):
 def _on_cluster(impacts, columns, frame, client, partitions):
     """``impacts(frame)`` on a cluster: row partitions, results in the input order."""
     warn_implausible(check_frame(frame, columns), frame)
+    if partitions is not None:  # before connecting: a bad count must not wait for a cluster
+        partitions = check_count("partitions", partitions)
     with connected_client(client) as connected:
         if partitions is None:
             threads = max(1, sum(connected.nthreads().values()))
             partitions = max(1, min(len(frame), PARTITIONS_PER_THREAD * threads))
-        partitions = check_count("partitions", partitions)
         size = max(1, math.ceil(len(frame) / partitions))
         pieces = [frame.iloc[lo:hi] for lo, hi in chunk_bounds(len(frame), size)]
         if not pieces:

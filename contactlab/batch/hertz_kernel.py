@@ -20,7 +20,6 @@ its first lobe.
 import math
 
 import numpy as np
-from numba import njit
 
 from contactlab.batch.modal_kernel import (
     COND_LIMIT,
@@ -37,6 +36,7 @@ from contactlab.batch.modal_kernel import (
     row_parameters,
     signal,
 )
+from contactlab.compiled import njit
 from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
 from contactlab.solver.dop853_kernel import interpolate
 from contactlab.solver.impact import (

@@ -18,7 +18,6 @@ the signal's slope, found on the same scan) and the piece ends.
 import math
 
 import numpy as np
-from numba import njit
 
 from contactlab.batch.modal_kernel import (
     C1,
@@ -44,6 +43,7 @@ from contactlab.batch.modal_kernel import (
     start_piece,
     state,
 )
+from contactlab.compiled import njit
 from contactlab.solver.brent import WORK_SIZE
 from contactlab.solver.impact import (
     FIRST_CONTACT_HORIZON,

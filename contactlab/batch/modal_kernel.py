@@ -25,8 +25,8 @@ import cmath
 import math
 
 import numpy as np
-from numba import njit
 
+from contactlab.compiled import njit
 from contactlab.roots import SIDE_STEPS
 from contactlab.solver.brent import brent_next, brent_start
 from contactlab.solver.power_rhs import (

@@ -5,6 +5,7 @@ from contactlab.config import load_preset
 from contactlab.inverse.plots import plot_reconstruction
 from contactlab.inverse.reconstruct import reconstruct_force
 from contactlab.inverse.synthetic import synthetic_trace
+from contactlab.validation import check_path
 
 __all__ = ["reconstruction_demo"]
 
@@ -28,6 +29,7 @@ def reconstruction_demo(path, seed=0):
     dict
         Relative errors [-] of peak and contact time: raw signal, Tikhonov, inverse.
     """
+    check_path("path", path)
     import matplotlib.pyplot as plt
 
     case = load_preset("fig6")

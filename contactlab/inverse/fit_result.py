@@ -9,6 +9,7 @@ import numpy as np
 from contactlab.bodies import Grain, Sensor
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_quality import FitQuality
+from contactlab.validation import check_path
 
 __all__ = ["FORMAT", "ContactFit", "FittedParameter"]
 
@@ -160,6 +161,8 @@ class ContactFit:
 
     def to_json(self, path=None):
         """The :meth:`to_dict` layout as JSON text; also written to ``path`` if given."""
+        if path is not None:
+            check_path("path", path)
         text = json.dumps(self.to_dict(), indent=2)
         if path is not None:
             with open(path, "w", encoding="utf-8") as fh:

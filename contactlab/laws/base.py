@@ -28,7 +28,8 @@ from typing import ClassVar
 
 import numpy as np
 
-from contactlab.validation import KeywordChecked
+from contactlab.errors import ParameterError
+from contactlab.validation import KeywordChecked, check_samples
 
 __all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw", "use_wall_solver"]
 
@@ -230,8 +231,11 @@ class ContactLaw(KeywordChecked, ABC):
         numpy.ndarray
             Force, 0 for ``d <= 0`` and never negative [N].
         """
-        overlap = np.asarray(overlap, dtype=float)
-        return one_sided(overlap, self._force(overlap, np.asarray(rate, float), max_overlap))
+        overlap = check_samples("overlap", overlap, ndim=None, unit="m")
+        rate = check_samples("rate", rate, ndim=None, unit="m/s")
+        if max_overlap is not None:
+            max_overlap = check_samples("max_overlap", max_overlap, ndim=None, unit="m")
+        return one_sided(overlap, self._force(overlap, rate, max_overlap))
 
     initial_branch: ClassVar[str] = "load"
 
@@ -280,8 +284,12 @@ class ContactLaw(KeywordChecked, ABC):
         float
             ``integral F dd`` along the path; for a closed cycle, the energy dissipated.
         """
-        d = np.asarray(overlap, dtype=float)
-        rate = np.zeros_like(d) if rate is None else np.asarray(rate, dtype=float)
+        d = check_samples("overlap", overlap, min_size=2, unit="m")
+        rate = np.zeros_like(d) if rate is None else check_samples("rate", rate, unit="m/s")
+        if rate.shape != d.shape:
+            raise ParameterError(
+                f"rate must have the overlap path's shape {d.shape}; got {rate.shape}"
+            )
         d_max = np.maximum.accumulate(np.maximum(d, 0.0)) if self.has_history else None
         return float(np.trapezoid(self.force(d, rate, d_max), d))
 

@@ -11,6 +11,7 @@ from contactlab.validation import (
     check_number,
     check_positive,
     check_probability,
+    numbers_checked,
 )
 
 __all__ = [
@@ -29,6 +30,7 @@ def _hertz_raw(overlap, k_hertz):
     return k_hertz * signed_power(overlap, 1.5)
 
 
+@numbers_checked()
 def hertz_force(overlap, k_hertz):
     """Hertz elastic sphere-flat force ``kH d**1.5`` [N] (0 for ``d <= 0``).
 
@@ -53,6 +55,7 @@ def _hertz_damped_raw(overlap, rate, k_hertz, damping):
     return (k_hertz * overlap * root + damping * rate) * root
 
 
+@numbers_checked()
 def hertz_damped_force(overlap, rate, k_hertz, damping):
     """Damped Hertz force of Tsuji et al. / EDEM / LIGGGHTS ``kH d**1.5 + eta d**0.25 d'`` [N].
 
@@ -80,6 +83,7 @@ def _kuwabara_kono_raw(overlap, rate, k_hertz, dissipation):
     return k_hertz * (signed_power(overlap, 1.5) + 1.5 * dissipation * abs(overlap) ** 0.5 * rate)
 
 
+@numbers_checked()
 def kuwabara_kono_force(overlap, rate, k_hertz, dissipation):
     """Viscoelastic Hertz force ``kH (d**1.5 + 1.5 A d**0.5 d')`` [N].
 
@@ -107,6 +111,7 @@ def _hunt_crossley_raw(overlap, rate, stiffness, exponent, damping):
     return stiffness * signed_power(overlap, exponent) * (1.0 + 1.5 * damping * rate)
 
 
+@numbers_checked()
 def hunt_crossley_force(overlap, rate, stiffness, exponent, damping):
     """Hunt-Crossley force ``k d**n (1 + 1.5 chi d')`` [N].
 

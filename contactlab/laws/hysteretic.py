@@ -10,11 +10,12 @@ from contactlab.laws.base import (
     rate_turns,
     with_history,
 )
-from contactlab.validation import check_number, check_positive
+from contactlab.validation import check_number, check_positive, numbers_checked
 
 __all__ = ["WaltonBraun", "walton_braun_force"]
 
 
+@numbers_checked("max_overlap")
 def walton_braun_force(overlap, max_overlap, loading_stiffness, unloading_stiffness):
     """Walton-Braun hysteretic linear force [N].
 

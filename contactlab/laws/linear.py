@@ -4,7 +4,7 @@ import numpy as np
 
 from contactlab import analytic
 from contactlab.laws.base import PowerForm, SmoothLaw, one_sided
-from contactlab.validation import check_choice, check_non_negative, check_positive
+from contactlab.validation import check_choice, check_non_negative, check_positive, numbers_checked
 
 __all__ = ["LinearViscoelastic", "linear_viscoelastic_force"]
 
@@ -13,6 +13,7 @@ def _linear_raw(overlap, rate, stiffness, damping):
     return stiffness * overlap + damping * rate
 
 
+@numbers_checked()
 def linear_viscoelastic_force(overlap, rate, stiffness, damping):
     """Linear spring-dashpot (Kelvin-Voigt) contact force, one-sided.
 

@@ -14,11 +14,12 @@ from contactlab.laws.base import (
     signed_power,
     with_history,
 )
-from contactlab.validation import check_positive
+from contactlab.validation import check_positive, numbers_checked
 
 __all__ = ["LinearPlastic", "Thornton", "linear_plastic_force", "thornton_force"]
 
 
+@numbers_checked("max_overlap")
 def linear_plastic_force(overlap, max_overlap, stiffness, yield_force):
     """Linear spring with a force cap (elastic-perfectly-plastic, linear) [N].
 
@@ -41,6 +42,7 @@ def linear_plastic_force(overlap, max_overlap, stiffness, yield_force):
     return one_sided(d, np.minimum(f_max + stiffness * (d - d_max), yield_force))
 
 
+@numbers_checked("max_overlap")
 def thornton_force(overlap, max_overlap, effective_modulus, effective_radius, yield_pressure):
     """Thornton (1997) elastic-perfectly-plastic Hertz force [N].
 

@@ -4,11 +4,12 @@ import numpy as np
 
 from contactlab import analytic
 from contactlab.laws.base import ContactLaw
-from contactlab.validation import KeywordChecked, check_number, check_positive
+from contactlab.validation import KeywordChecked, check_number, check_positive, numbers_checked
 
 __all__ = ["PlasticTrapezoid", "plastic_trapezoid_force"]
 
 
+@numbers_checked()
 def plastic_trapezoid_force(time, amplitude, contact_time, ramp_time):
     """The paper's perfectly plastic pulse: a trapezoid in time [N].
 
@@ -102,4 +103,6 @@ class PlasticTrapezoid(KeywordChecked):
 
     def restitution(self, mass, velocity):
         """Always 0: the impulse equals the grain's momentum."""
+        check_positive("mass", mass, "kg")
+        check_positive("velocity", velocity, "m/s")
         return 0.0

@@ -49,9 +49,10 @@ from contactlab.analytic.tangential import (
     mindlin_stiffness_coefficient,
 )
 from contactlab.errors import ParameterError
+from contactlab.laws.base import ContactLaw
 from contactlab.laws.hertz import Hertz, HertzDamped
 from contactlab.laws.linear import LinearViscoelastic
-from contactlab.validation import KeywordChecked, check_choice, check_number
+from contactlab.validation import KeywordChecked, check_choice, check_number, numbers_checked
 
 __all__ = [
     "COULOMB_CAPS",
@@ -78,6 +79,7 @@ COULOMB_CAPS = ("total", "elastic")
 ``mu N`` with the viscous part cut to what is left (Kratos)."""
 
 
+@numbers_checked()
 def mindlin_stiffness(overlap, k_mindlin):
     """Mindlin tangential stiffness ``kt = k_mindlin sqrt(d) = 8 G* a`` [N/m] (0 for d <= 0).
 
@@ -88,8 +90,21 @@ def mindlin_stiffness(overlap, k_mindlin):
     k_mindlin : float
         ``8 G* sqrt(R*)`` [N/m**1.5].
     """
-    overlap = np.asarray(overlap, dtype=float)
+    return _mindlin_stiffness(np.asarray(overlap, dtype=float), k_mindlin)
+
+
+def _mindlin_stiffness(overlap, k_mindlin):
     return k_mindlin * np.sqrt(np.maximum(overlap, 0.0))
+
+
+def check_contact(normal_law, mass):
+    """Check the arguments of :meth:`TangentialLaw.for_contact`: a normal contact law and a
+    grain mass [kg]."""
+    if not isinstance(normal_law, ContactLaw):
+        raise ParameterError(
+            f"normal_law must be a contact law of contactlab.laws; got {type(normal_law).__name__}"
+        )
+    check_number("mass", mass, low=0.0, unit="kg")
 
 
 class TangentialLaw(KeywordChecked):
@@ -125,6 +140,7 @@ class TangentialLaw(KeywordChecked):
     def for_contact(self, normal_law, mass):
         """This law as the solver applies it beside ``normal_law`` on a grain of ``mass``
         [kg] (a law whose damping is tied to the normal law binds it here)."""
+        check_contact(normal_law, mass)
         return self
 
     def elastic_force(self, history, overlap):
@@ -324,6 +340,7 @@ class Mindlin(TangentialLaw):
             (:func:`damping_ratio`), or with ``history="total"`` beside a damped normal
             law (see the class docstring).
         """
+        check_contact(normal_law, mass)
         if self.damping_form == "none":
             return self
         bound = Mindlin(
@@ -407,7 +424,7 @@ class Mindlin(TangentialLaw):
     def stiffness(self, overlap):
         if isinstance(overlap, float):  # the solver's scalar path
             return self.k_mindlin * math.sqrt(overlap) if overlap > 0.0 else 0.0
-        return mindlin_stiffness(overlap, self.k_mindlin)
+        return _mindlin_stiffness(overlap, self.k_mindlin)
 
     def stiffness_slope(self, overlap):
         return 0.5 * self.k_mindlin / math.sqrt(overlap) if overlap > 0.0 else 0.0

@@ -20,8 +20,7 @@ scipy/optimize/Zeros/brentq.c (the variant ported here, step by step).
 
 import math
 
-from numba import njit
-
+from contactlab.compiled import njit
 from contactlab.roots import ROOT_RTOL
 
 __all__ = ["ROOT_XTOL", "WORK_SIZE", "brent_next", "brent_start"]

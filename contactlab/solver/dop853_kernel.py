@@ -18,9 +18,9 @@ Nonstiff Problems, 2nd ed., Springer, Sec. II.4-II.6. scipy.integrate.DOP853.
 import math
 
 import numpy as np
-from numba import njit
 from scipy.integrate import DOP853 as _SCIPY
 
+from contactlab.compiled import njit
 from contactlab.solver.power_rhs import rhs
 
 __all__ = [

@@ -288,6 +288,8 @@ def simulate_impact(
         check_output_size(duration, sample_rate)  # before any work
     method = check_choice("method", method, METHODS)
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
+    time_step = check_number("time_step", time_step, low=0.0, unit="s")  # euler's only
+    threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
     if method == "auto":
         method = "exact" if law.piecewise_linear else "adaptive"
     if method == "exact" and not law.piecewise_linear:
@@ -297,7 +299,6 @@ def simulate_impact(
         )
     system = System(grain, sensor)
     if method == "euler":
-        time_step = check_number("time_step", time_step, low=0.0, unit="s")
         segments, intervals, log, window = solve_euler(system, law, velocity, duration, time_step)
     elif law.prescribed:
         segments, intervals, log, window = _solve_pulse(system, law, velocity, duration)

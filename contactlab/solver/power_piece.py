@@ -13,8 +13,8 @@ batch kernel (:mod:`contactlab.batch.hertz_kernel`, thousands of impacts).
 import math
 
 import numpy as np
-from numba import njit
 
+from contactlab.compiled import njit
 from contactlab.roots import SIDE_STEPS
 from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
 from contactlab.solver.dop853_kernel import WORK_ROWS, initial_step, interpolant, interpolate, step

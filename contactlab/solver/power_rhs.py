@@ -20,7 +20,8 @@ state carries ``s = tau**(1/4)`` as a fifth component (see
 import math
 
 import numpy as np
-from numba import njit
+
+from contactlab.compiled import njit
 
 __all__ = [
     "C1",

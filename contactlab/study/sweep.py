@@ -26,7 +26,7 @@ from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_count
+from contactlab.validation import check_count, check_path
 
 __all__ = [
     "ERRORS",
@@ -124,6 +124,7 @@ class SweepResult:
         list of pathlib.Path
             The two files.
         """
+        check_path("directory", directory)
         directory = Path(directory)
         directory.mkdir(parents=True, exist_ok=True)
         paths = [directory / f"{name}.csv", directory / f"{name}_impacts.csv"]
@@ -199,6 +200,9 @@ def run_grid(
     if not isinstance(setup, StudySetup):
         raise ParameterError(f"setup must be a StudySetup; got {type(setup).__name__}")
     seed = check_count("seed", seed, low=0)
+    check_count("workers", workers)  # here too: a linear law's grid never reaches the pool
+    if chunksize is not None:
+        check_count("chunksize", chunksize)
     names, values, points = _grid_points(setup, grid)
     factors = [
         setup.scatter.factors(np.random.SeedSequence(seed, spawn_key=(i,)))

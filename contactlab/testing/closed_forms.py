@@ -301,6 +301,8 @@ def closed_forms_for(law, mass, velocity):
     NoClosedFormError
         If no closed form is registered for the law's class, or the function gave none.
     """
+    check_number("mass", mass, low=0.0, unit="kg")
+    check_number("velocity", velocity, low=0.0, unit="m/s")
     function = CLOSED_FORMS.get(type(law))
     if function is None:
         known = ", ".join(sorted(cls.__name__ for cls in CLOSED_FORMS))

@@ -22,7 +22,7 @@ from contactlab.testing.golden_trace import (
     GoldenTrace,
     reference_paths,
 )
-from contactlab.validation import check_count
+from contactlab.validation import check_count, check_path
 
 __all__ = ["GoldenStore", "compare_impacts", "regression_tolerances"]
 
@@ -123,6 +123,7 @@ class GoldenStore:
     """
 
     def __init__(self, directory, update=False, log=None, max_samples=DEFAULT_MAX_SAMPLES):
+        check_path("directory", directory)
         self.directory = Path(directory)
         self.update = bool(update)
         self.log = [] if log is None else log

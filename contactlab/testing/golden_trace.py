@@ -41,7 +41,7 @@ from contactlab.errors import ParameterError, TraceFormatError
 from contactlab.quantities import column
 from contactlab.result import ImpactResult
 from contactlab.traces import Trace
-from contactlab.validation import check_count
+from contactlab.validation import check_count, check_path
 
 __all__ = [
     "CHANNELS",
@@ -272,6 +272,7 @@ class GoldenTrace:
         tuple of pathlib.Path
             The JSON and NPZ paths.
         """
+        check_path("directory", directory)
         json_path, npz_path = reference_paths(directory, self.name)
         json_path.parent.mkdir(parents=True, exist_ok=True)
         columns = self.metadata["arrays"]["columns"]
@@ -292,6 +293,7 @@ class GoldenTrace:
         TraceFormatError
             If a file is not a readable golden reference (the message names it).
         """
+        check_path("directory", directory)
         json_path, npz_path = reference_paths(directory, _check_name(name))
         missing = [str(p) for p in (json_path, npz_path) if not p.is_file()]
         if missing:

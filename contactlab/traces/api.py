@@ -3,13 +3,15 @@
 import difflib
 import os
 import stat
+from collections.abc import Hashable
 
 from contactlab.errors import ParameterError
 from contactlab.traces.checks import fail
 from contactlab.traces.detect import detect_head
 from contactlab.traces.formats import FORMATS
-from contactlab.traces.prepare import to_force
+from contactlab.traces.prepare import check_trace, to_force
 from contactlab.traces.texthead import read_head
+from contactlab.validation import check_path
 
 __all__ = ["read_trace", "write_trace"]
 
@@ -17,7 +19,7 @@ __all__ = ["read_trace", "write_trace"]
 def _format(name, *, writable=False):
     """The registry entry called ``name``, or a ParameterError listing the choices."""
     choices = [n for n, f in FORMATS.items() if f.write is not None or not writable]
-    if name in choices:
+    if isinstance(name, Hashable) and name in choices:  # an array or a list is no name
         return FORMATS[name]
     near = difflib.get_close_matches(str(name), choices, n=1)
     hint = f" (did you mean {near[0]!r}?)" if near else ""
@@ -66,7 +68,7 @@ def read_trace(path, format="auto", channel=None, sensitivity=None):
         The file cannot be opened (``FileNotFoundError``, ``PermissionError``). A folder,
         FIFO, socket or device is refused at once with a TraceFormatError.
     """
-    path = os.fspath(path)
+    path = os.fspath(check_path("path", path))
     reader = None if format == "auto" else _format(format)
     check_regular_file(path)
     head = read_head(path)
@@ -113,6 +115,8 @@ def write_trace(path, trace, format="generic", **options):
         contain a line break, and names and units may not contain the comma that separates
         cells: the file would not read back (a ParameterError names the option).
     """
+    check_path("path", path)
+    check_trace("trace", trace)
     writer = _format(format, writable=True)
     for name, value in options.items():
         _check_text_option(name, value)

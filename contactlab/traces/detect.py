@@ -2,6 +2,7 @@
 
 from contactlab.traces.formats import FORMATS
 from contactlab.traces.texthead import read_head
+from contactlab.validation import check_path
 
 __all__ = ["detect_format", "detect_head"]
 
@@ -27,4 +28,4 @@ def detect_format(path):
     str
         A key of :data:`~contactlab.traces.formats.FORMATS`, e.g. ``"rigol-sequence"``.
     """
-    return detect_head(read_head(path))
+    return detect_head(read_head(check_path("path", path)))

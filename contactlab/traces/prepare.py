@@ -19,13 +19,22 @@ from contactlab import signals
 from contactlab.errors import ParameterError
 from contactlab.plausibility import check_plausible
 from contactlab.traces.checks import uniform_interval
+from contactlab.traces.trace import Trace
 from contactlab.validation import check_number
 
 __all__ = ["align", "detect_onset", "lowpass", "noise_level", "remove_baseline", "to_force"]
 
 
+def check_trace(name, value):
+    """Return ``value`` after checking it is a :class:`~dem_check.traces.Trace`."""
+    if not isinstance(value, Trace):
+        raise ParameterError(f"{name} must be a dem_check Trace; got {type(value).__name__}")
+    return value
+
+
 def _window(trace, pre_trigger):
     """The baseline window ``(start, end)`` [s]: from ``pre_trigger`` or the trigger."""
+    check_trace("trace", trace)
     if pre_trigger is None:
         trigger = trace.metadata.get("trigger_time")
         end = 0.0 if trigger is None else float(trigger)
@@ -122,6 +131,7 @@ def align(trace, onset):
     -------
     Trace
     """
+    check_trace("trace", trace)
     onset = check_number("onset", onset, unit="s")
     trigger = trace.metadata.get("trigger_time")
     return trace.derive(
@@ -153,6 +163,7 @@ def lowpass(trace, cutoff, order=4):
     -------
     Trace
     """
+    check_trace("trace", trace)
     interval = uniform_interval(trace, "lowpass needs uniform sampling")
     values = signals.lowpass(trace.values, interval, cutoff, order)
     step = {
@@ -180,6 +191,7 @@ def to_force(trace, sensitivity):
     Trace
         In newtons, with ``metadata["sensitivity [V/N]"]`` and a history entry.
     """
+    check_trace("trace", trace)
     sensitivity = check_number("sensitivity", sensitivity, low=0.0, unit="V/N")
     check_plausible("sensitivity", sensitivity, "sensitivity")
     if trace.unit != "V":

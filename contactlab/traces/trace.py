@@ -1,5 +1,6 @@
 """The :class:`Trace`: one measured channel on its time axis, with where it came from."""
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -8,6 +9,7 @@ import pandas as pd
 from contactlab.errors import ParameterError
 from contactlab.metrics import pulse_metrics
 from contactlab.traces.units import SI_VALUE_UNITS
+from contactlab.validation import check_samples
 
 __all__ = ["Trace"]
 
@@ -63,14 +65,16 @@ class Trace:
     metadata: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        t = np.asarray(self.t, dtype=np.float64)
-        values = np.asarray(self.values, dtype=np.float64)
-        if t.ndim != 1 or values.shape != t.shape:
+        t = check_samples("t", self.t, unit="s")
+        values = check_samples("values", self.values, finite=False)  # overrange: inf
+        if not isinstance(self.metadata, Mapping):
+            raise ParameterError(f"metadata must be a dict; got {type(self.metadata).__name__}")
+        if values.shape != t.shape:
             raise ParameterError(
                 f"t and values must be 1-D arrays of equal length; got shapes {t.shape} "
                 f"and {values.shape}"
             )
-        if self.unit not in SI_VALUE_UNITS:  # "mV" would be taken for volts downstream
+        if not isinstance(self.unit, str) or self.unit not in SI_VALUE_UNITS:  # "mV": volts?
             raise ParameterError(
                 f"unit must be one of {', '.join(SI_VALUE_UNITS)} (SI base units; scale "
                 f"the values instead); got {self.unit!r}"

@@ -44,8 +44,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactlab import signals
+from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
+from contactlab.traces.prepare import check_trace
 from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
 from dem_check.campaign.noise import (
@@ -211,6 +213,9 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     ParameterError
         Not uniformly sampled, too short, without noise, or bad limits.
     """
+    check_trace("trace", trace)
+    if not isinstance(sensor, Sensor):
+        raise ParameterError(f"sensor must be a Sensor; got {type(sensor).__name__}")
     min_force, min_separation = check_limits(min_force, min_separation)
     floor, signal, smoothed, lowpassed, local = noise_floor(trace, sensor)
     t, z = smoothed.t, np.asarray(smoothed.values)

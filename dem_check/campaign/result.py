@@ -7,6 +7,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from contactlab.validation import check_path
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import SKIPPED_STATUSES
 
@@ -127,6 +128,7 @@ class CampaignResult:
         list of pathlib.Path
             The files written.
         """
+        check_path("out", out)
         out = Path(out)
         out.mkdir(parents=True, exist_ok=True)
         tables = {

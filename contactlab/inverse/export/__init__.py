@@ -27,7 +27,7 @@ from contactlab.inverse.export.contact import (
     contact_from_fit,
     read_fit,
 )
-from contactlab.validation import check_choice
+from contactlab.validation import check_choice, check_poisson_ratio, check_positive
 
 __all__ = ["DEM_CODES", "export_dem", "read_fit"]
 
@@ -93,6 +93,12 @@ def export_dem(
     Antypov D., Elliott J.A. (2011) EPL 94, 50004. DOI 10.1209/0295-5075/94/50004
     """
     code = check_choice("code", code, tuple(DEM_CODES))
+    # checked here, not only where a Hertz fit uses them: a linear fit ignores them, but a
+    # NaN or a text there is a mistake to report, not to pass over
+    if poisson_ratio is not None:
+        check_poisson_ratio("poisson_ratio", poisson_ratio)
+    check_positive("plate_youngs_modulus", plate_youngs_modulus, "Pa")
+    check_poisson_ratio("plate_poisson_ratio", plate_poisson_ratio)
     contact = contact_from_fit(
         fit, source, poisson_ratio, plate_youngs_modulus, plate_poisson_ratio, friction
     )

@@ -1,0 +1,71 @@
+"""numba's ``njit``, with a damaged on-disk cache rebuilt instead of crashing.
+
+The compiled solvers are cached as ``*.nbi`` (index) and ``*.nbc`` (data) pickles beside
+their sources (:mod:`contactlab.batch.warm_up`). numba 0.68 catches only a missing file
+when it reads them: a zero-length, truncated or overwritten file (a full disk, a copy
+cut short, a shared drive) raised ``EOFError`` or ``pickle.UnpicklingError`` from the
+first call of any solver (issue 24), and kept doing so in every new process. A cache from
+another numba version or CPU is not damage: numba's own version stamp and index key
+already make it a miss.
+
+Every compiled module imports :func:`njit` from here instead of from numba. A cache entry
+that cannot be read is then reported once per cache folder with a
+:class:`~contactlab.errors.CompiledCacheWarning` naming the folder and the cure
+(``make clean-numba``), its index is emptied (numba's ``FunctionCache.flush``) and the
+function is compiled again, which rewrites the entry.
+"""
+
+import warnings
+
+import numba
+from numba.core.caching import FunctionCache
+
+from contactlab.errors import CompiledCacheWarning
+
+__all__ = ["njit"]
+
+_REPORTED = set()
+"""Cache folders already reported in this process."""
+
+
+class _RebuildingCache(FunctionCache):
+    """numba's per-function cache; an entry that fails to load is rebuilt, not raised."""
+
+    def __init__(self, py_func):
+        super().__init__(py_func)
+        self.function_name = f"{py_func.__module__}.{py_func.__qualname__}"
+
+    def load_overload(self, sig, target_context):
+        try:
+            return super().load_overload(sig, target_context)
+        except Exception as exc:  # anything failing while reading a cache entry is damage
+            if self.cache_path not in _REPORTED:
+                _REPORTED.add(self.cache_path)
+                warnings.warn(
+                    f"damaged numba cache in {self.cache_path} ({type(exc).__name__}: {exc} "
+                    f"while loading {self.function_name}): compiling it again and rewriting "
+                    "the entry; if this repeats, delete the cache ('make clean-numba', "
+                    "or the *.nbi and *.nbc files in that folder)",
+                    CompiledCacheWarning,
+                    stacklevel=2,
+                )
+            self.flush()  # an empty index: the save after compiling writes a readable one
+            return None
+
+
+def njit(*args, **options):
+    """:func:`numba.njit`, whose ``cache=True`` rebuilds a damaged cache entry.
+
+    Used as ``@njit(cache=True, error_model="numpy")`` (or bare ``@njit``); the options
+    are numba's.
+    """
+    if args and callable(args[0]):
+        return _rebuilding(numba.njit(*args, **options))
+    decorate = numba.njit(*args, **options)
+    return lambda function: _rebuilding(decorate(function))
+
+
+def _rebuilding(dispatcher):
+    if isinstance(getattr(dispatcher, "_cache", None), FunctionCache):
+        dispatcher._cache = _RebuildingCache(dispatcher.py_func)
+    return dispatcher

@@ -1,0 +1,91 @@
+"""A damaged numba cache is rebuilt with one warning, never a crash (issue 24).
+
+numba 0.68 reads its ``*.nbi``/``*.nbc`` pickles catching only a missing file: a
+zero-length or overwritten file raised ``EOFError``/``UnpicklingError`` from the first
+solver call, in every new process. :mod:`contactlab.compiled` rebuilds such an entry.
+The cache is redirected to a temporary folder (``NUMBA_CACHE_DIR``) and a small compiled
+module (Brent's root search, a few seconds to compile) runs in fresh processes, since a
+process that has compiled a function never reads its cache again.
+"""
+
+import ast
+import os
+import pickle
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+
+SCRIPT = """
+import warnings
+import numpy as np
+from contactlab.errors import CompiledCacheWarning
+from contactlab.solver.brent import brent_next, brent_start
+warnings.simplefilter("always", CompiledCacheWarning)
+work = np.zeros(9)
+print(brent_start(work, 0.0, -1.0, 2.0, 1.0), brent_next(work, 0.5))
+"""
+"""Brent on f(x) = x - 1 over [0, 2]: the secant's first guess is 1.0, the root."""
+
+
+def _run(cache):
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(cache)}
+    return subprocess.run(
+        [sys.executable, "-c", SCRIPT], env=environment, capture_output=True, text=True,
+        timeout=300, check=False,
+    )  # fmt: skip
+
+
+@pytest.fixture(scope="module")
+def damaged(tmp_path_factory):
+    """A warm cache, two of its files damaged, then one run on it: (folder, run, clean run)."""
+    cache = tmp_path_factory.mktemp("numba-cache")
+    clean = _run(cache)
+    assert clean.returncode == 0, clean.stderr
+    (folder,) = {path.parent for path in cache.rglob("*.nbi")}
+    (start_index,) = folder.glob("brent.brent_start-*.nbi")
+    (next_data,) = folder.glob("brent.brent_next-*.1.nbc")
+    start_index.write_bytes(b"garbage, not a pickle")  # UnpicklingError before the fix
+    next_data.write_bytes(b"")  # EOFError before the fix
+    return folder, _run(cache), clean
+
+
+def test_a_damaged_cache_is_rebuilt_with_one_warning_naming_its_folder(damaged):
+    folder, run, clean = damaged
+    assert run.returncode == 0, run.stderr
+    assert run.stdout == clean.stdout  # the same root search, now recompiled
+    assert run.stderr.count("CompiledCacheWarning") == 1, run.stderr  # once per folder
+    assert f"damaged numba cache in {folder}" in run.stderr
+    assert "make clean-numba" in run.stderr
+
+
+def test_the_rebuilt_cache_files_read_again(damaged):
+    folder, _, _ = damaged
+    for index in folder.glob("brent.brent_*.nbi"):
+        with index.open("rb") as stream:
+            pickle.load(stream)  # numba's version stamp
+            _, overloads = pickle.loads(stream.read())
+        assert overloads, f"{index.name} lists no compiled signature"
+        for data in overloads.values():
+            pickle.loads((folder / data).read_bytes())
+
+
+def test_every_cached_compiled_function_uses_the_rebuilding_njit():
+    """A module that caches compiled code imports ``njit`` from contactlab.compiled."""
+    offenders = []
+    for path in sorted((ROOT / "contactlab").rglob("*.py")) + sorted(
+        (ROOT / "dem_check").rglob("*.py")
+    ):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            numba_import = isinstance(node, ast.ImportFrom) and node.module == "numba"
+            if numba_import and any(alias.name in ("njit", "jit") for alias in node.names):
+                offenders.append(str(path.relative_to(ROOT)))
+            if isinstance(node, ast.Attribute) and node.attr in ("njit", "jit"):
+                if isinstance(node.value, ast.Name) and node.value.id == "numba":
+                    if path.name != "compiled.py":
+                        offenders.append(str(path.relative_to(ROOT)))
+    assert not offenders, f"use 'from contactlab.compiled import njit' in {offenders}"
