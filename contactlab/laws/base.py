@@ -102,7 +102,7 @@ class PowerForm:
     """A force of the form ``a sign(d) |d|**p + b D(d) d'`` with ``D(d) = |d|**q``
     (``sign(d) |d|**q`` when ``signed_damping``), the raw formula of every Hertz-family law.
 
-    The solvers compile this one formula (:mod:`contactlab.solver.power_rhs`) instead of
+    The solvers compile this one formula (:mod:`contactlab.kernels.power`) instead of
     calling the law's Python function at every stage of every step.
 
     Attributes

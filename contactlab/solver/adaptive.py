@@ -3,11 +3,11 @@
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from contactlab.kernels import power_piece
+from contactlab.kernels.power import pack
 from contactlab.roots import crossed_side, departure_root, is_past, locate_root, waits
-from contactlab.solver import power_piece
 from contactlab.solver.dop853 import DenseSteps, Stepper, interpolate
 from contactlab.solver.pieces import DenseStates
-from contactlab.solver.power_rhs import pack
 from contactlab.solver.segment import Segment
 from contactlab.solver.system import clipped, event_directions
 
@@ -107,7 +107,7 @@ def integrate_piece(fun, t0, y0, tau_max, rtol, atol, event_values, directions, 
 
 def compiled_piece(system, form, t0, y0, tau_max, rtol, atol, touch):
     """:func:`integrate_piece` for a :class:`~contactlab.laws.base.PowerForm` force, compiled
-    (:func:`contactlab.solver.power_piece.integrate`); same returns, the only event being
+    (:func:`contactlab.kernels.power_piece.integrate`); same returns, the only event being
     the contact's end (index 0)."""
     par = pack(form, system.m1, system.k1, system.c1, system.m2, system.rigid)
     status, warp, steps, switch, hit = power_piece.integrate(

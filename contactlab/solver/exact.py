@@ -9,10 +9,11 @@ import math
 
 import numpy as np
 
+from contactlab.kernels.rules import scan_step
 from contactlab.solver.pieces import AffineForceStates, LinearContactStates
 from contactlab.solver.propagators import first_event
 from contactlab.solver.segment import Segment
-from contactlab.solver.system import clipped, event_directions, overlap_rate, scan_step
+from contactlab.solver.system import clipped, event_directions, overlap_rate
 
 __all__ = ["exact_contact", "free_flight"]
 

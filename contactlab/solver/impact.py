@@ -32,6 +32,7 @@ import numpy as np
 from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
+from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.plausibility import check_plausible
 from contactlab.result import ImpactResult
@@ -49,19 +50,6 @@ METHODS = ("auto", "exact", "adaptive", "euler")
 
 DEFAULT_SAMPLES = 20001
 """Output samples over the window when no sample rate is given."""
-
-MAX_CONTACTS = 200
-"""Contact intervals after which the solver stops (a grain resting on a ringing plate)."""
-
-FIRST_CONTACT_HORIZON = 1.0
-"""How far the first contact is followed when no window is given [s]: a contact longer
-than a second is not an impact."""
-
-RINGING_PERIODS = 5.0
-"""Default window: sensor periods of ringing after the first contact."""
-
-WINDOW_PER_CONTACT = 1.5
-"""Default window: at least this many first-contact durations."""
 
 SPEED_OF_LIGHT = 299_792_458.0
 """No impact is faster [m/s]: the bound that keeps a velocity's squares and products
@@ -100,7 +88,7 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
     limit = math.inf if window is None else max(window, 0.0)
     while True:
         branch = law.branch(branch_name, max_overlap)
-        horizon = (limit if intervals else _contact_horizon(system, limit)) - t
+        horizon = (limit if intervals else contact_horizon(limit)) - t
         seg, y, event = contact_solver(system, branch, t, y, horizon)
         segments.append(seg)
         t = seg.t1
@@ -134,20 +122,10 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
     return segments, intervals, log, limit
 
 
-def _contact_horizon(system, limit):
-    """How far to follow the first contact when looking for its end [s]: a contact longer
-    than a second (or 100 windows) is not an impact."""
-    if math.isinf(limit):
-        return FIRST_CONTACT_HORIZON
-    return max(100.0 * limit, FIRST_CONTACT_HORIZON)
-
-
 def auto_window(system, contact_end):
-    """Window after the first contact when none was given: the contact and the ringing."""
-    ringing = (
-        0.0 if system.rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(system.k1 / system.m1)
-    )
-    return max(WINDOW_PER_CONTACT * contact_end, contact_end + ringing)
+    """Window after a contact when none was given: the contact and the ringing
+    (:func:`contactlab.kernels.rules.window_end`)."""
+    return window_end(contact_end, ringing_time(system.m1, system.k1, system.rigid))
 
 
 STEEP_RAMP = 1e-12

@@ -1,6 +1,6 @@
 """The compiled power-law contact piece against the Python stepper it ports, and physics.
 
-:func:`contactlab.solver.power_piece.integrate` (through
+:func:`contactlab.kernels.power_piece.integrate` (through
 :func:`contactlab.solver.adaptive.compiled_piece`) is the Python
 :func:`~contactlab.solver.adaptive.integrate_piece` compiled: same force formula, tables,
 step-size control, warped start and event rule. Its step sizes follow error estimates
@@ -18,10 +18,11 @@ from scipy.special import gamma
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.kernels import power_piece
+from contactlab.kernels.power import force, pack
 from contactlab.laws import Hertz, HertzDamped, HuntCrossley, KuwabaraKono, LinearViscoelastic
-from contactlab.solver import adaptive, power_piece
+from contactlab.solver import adaptive
 from contactlab.solver.pieces import DenseStates
-from contactlab.solver.power_rhs import force, pack
 from contactlab.solver.system import System, event_directions
 
 EPS = np.finfo(float).eps
