@@ -10,7 +10,7 @@ from contactlab import metrics
 from contactlab.quadrature import gauss_rule
 from contactlab.roots import ROOT_RTOL, locate_root
 
-__all__ = ["ImpactResult", "ImpactSignals"]
+__all__ = ["HEADLINE", "ImpactResult", "ImpactSignals"]
 
 _ZOOMS = 5
 """Zoom levels of the peak search (:meth:`ImpactResult._refined_max`)."""
@@ -125,6 +125,14 @@ class ImpactSignals:
         return plot_impact(self, ax=ax, **kwargs)
 
 
+HEADLINE = ("_contact_peak", "sensor_lobe", "_sensor_peak", "impulse", "rebound_velocity")
+"""Headline numbers a solver may hand to :class:`ImpactResult` already read (the compiled
+impact loop reads them exactly as it solves, :mod:`contactlab.kernels.impact_loop`):
+``(time [s], force [N])`` of the contact-force peak, the sensor lobe's ``(start, end)``
+[s], ``(time [s], signal [N])`` of its peak, the impulse [N*s] and the rebound speed
+[m/s]. Those not given are read from the dense solution below."""
+
+
 class ImpactResult(ImpactSignals):
     """One simulated impact (see :func:`contactlab.simulate_impact`).
 
@@ -135,7 +143,8 @@ class ImpactResult(ImpactSignals):
     ``contact_time`` [s], ``peak_contact_force`` [N], ``sensor_response_time`` [s],
     ``peak_sensor_force`` [N], ``impulse`` [N*s], ``restitution`` [-],
     ``rebound_velocity`` [m/s], ``contact_intervals`` [(start, end) s] and
-    ``energy_balance`` [J].
+    ``energy_balance`` [J]. The solver may hand some of them over already read
+    (``headline``, keys of :data:`HEADLINE`).
     """
 
     def __init__(
@@ -155,6 +164,7 @@ class ImpactResult(ImpactSignals):
         threshold=0.0,
         rtol=None,
         time_step=None,
+        headline=None,
     ):
         self.grain, self.sensor, self.law = grain, sensor, law
         self.velocity, self.duration, self.sample_rate = velocity, duration, sample_rate
@@ -172,6 +182,8 @@ class ImpactResult(ImpactSignals):
         states, self.contact_force = self._evaluate_grid()
         self.x1, self.v1, self.x2, self.v2 = states.T
         self.sensor_force = system.signal(states, self.contact_force)
+        # numbers the solver read while solving (see HEADLINE); the rest are read below
+        self.__dict__.update(headline or {})
 
     # -- dense evaluation ----------------------------------------------------
     def _evaluate(self, times):

@@ -41,6 +41,8 @@ from contactlab.kernels.modal import (
     SENSOR_PEAK_TIME,
     STATUS_FALLBACK,
     STATUS_OK,
+    STATUS_TOO_FAST,
+    TOO_FAST,
     conjugates_once,
     fastest,
     free_flight,
@@ -49,7 +51,13 @@ from contactlab.kernels.modal import (
     row_parameters,
     signal,
 )
-from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
+from contactlab.kernels.rules import (
+    MAX_CONTACTS,
+    MAX_SCAN_POINTS,
+    contact_horizon,
+    ringing_time,
+    window_end,
+)
 
 __all__ = [
     "PIECE_CAPACITY",
@@ -73,17 +81,19 @@ RESULT_FIELDS = (
     "window",
     "pieces",
     "rebound_velocity",
+    "end",
 )
 """What :func:`solve_impact` writes, in order: first contact's duration [s], the sensor
 lobe's duration [s] (nan if it does not end in the window), the peak contact force [N]
 and sensor signal [N], the restitution [-], the contacts [-] (the batch's six columns,
 :data:`contactlab.batch.rows.RESULT_COLUMNS`), then the times [s] of the two peaks, the
-impulse of the contacts [N*s], the window's end [s], the pieces recorded and the rebound
-speed [m/s]."""
+impulse of the contacts [N*s], the window's end [s], the pieces recorded, the rebound
+speed [m/s] and the time [s] where the loop stopped (the window's end, or the end of a
+contact that outlasted it)."""
 
 RESULTS = len(RESULT_FIELDS)
 CONTACT_TIME, RESPONSE_TIME, PEAK_CONTACT, PEAK_SENSOR, RESTITUTION, CONTACTS = range(6)
-PEAK_CONTACT_AT, PEAK_SENSOR_AT, IMPULSE, WINDOW, PIECES, REBOUND = range(6, RESULTS)
+PEAK_CONTACT_AT, PEAK_SENSOR_AT, IMPULSE, WINDOW, PIECES, REBOUND, END = range(6, RESULTS)
 
 PIECE_FIELDS = ("t0", "contact", "x1", "v1", "x2", "v2")
 """A recorded piece: its start [s], 1 for a contact (0 free), the state at its start."""
@@ -149,7 +159,9 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
         :data:`~contactlab.kernels.modal.STATUS_FALLBACK` for an impact this loop does
         not take (modes too close to defective, a first contact that does not end,
         :data:`~contactlab.kernels.rules.MAX_CONTACTS` contacts, a step size that
-        underflows, no rise of the sensor signal in the first contact).
+        underflows, no rise of the sensor signal in the first contact), or
+        :data:`~contactlab.kernels.modal.STATUS_TOO_FAST` (modes too fast for an event
+        scan of ``par[SCAN_CAP]`` points).
     """
     rigid = par[RIGID] > 0.0
     free_modes, cond = _free_modes(par)
@@ -180,6 +192,8 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
             end = linear_contact(modes, par, t, y, horizon, track, best, work)
         else:
             end = power_contact(setup, par, t, y, horizon, track, best, work)
+        if end == TOO_FAST:
+            return STATUS_TOO_FAST
         if end < 0.0 or (math.isnan(end) and contacts == 0):
             return STATUS_FALLBACK
         if math.isnan(end):  # the window ends in this contact
@@ -202,11 +216,14 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
         n = _record(pieces, n, t, 0.0, y)
         best[PIECE_START] = t
         tau = free_flight(y, limit - t, free_modes, par, track, best, work)
+        if tau == TOO_FAST:
+            return STATUS_TOO_FAST
         if tau < 0.0:  # free until the window ends
             break
         t += tau
     if track[0]:  # the lobe is still open at the window's end
         raise_peak(best, SENSOR_PEAK, signal(SENSOR, y, par), max(t, limit))
+    out[END] = max(t, limit)
     out[CONTACT_TIME], out[PEAK_CONTACT] = contact_time, best[CONTACT_PEAK]
     out[PEAK_CONTACT_AT] = best[CONTACT_PEAK_TIME]
     if rigid:  # the signal is the contact force
@@ -228,6 +245,7 @@ def solve_rows(m1, k1, c1, m2, a, b, v0, p, q, rtol, out, status):
     results, none = np.empty(RESULTS), np.empty((0, 6))
     linear = p == 1.0 and q == 0.0
     for i in range(m1.size):
-        par = row_parameters(a[i], p, b[i], q, m1[i], k1[i], c1[i], m2[i], math.isinf(k1[i]))
+        rigid = math.isinf(k1[i])
+        par = row_parameters(a[i], p, b[i], q, m1[i], k1[i], c1[i], m2[i], rigid, MAX_SCAN_POINTS)
         status[i] = solve_impact(par, linear, v0[i], rtol, math.nan, results, none)
         out[i, :] = results[:6]

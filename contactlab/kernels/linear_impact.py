@@ -25,6 +25,7 @@ from contactlab.kernels.modal import (
     M2,
     PIECE_START,
     RIGID,
+    TOO_FAST,
     conjugates_once,
     fastest,
     quadratic_modes,
@@ -84,7 +85,8 @@ def contact_modes(par):
 @njit(cache=True, error_model="numpy")
 def linear_contact(modes, par, t, y, horizon, track, best, work):
     """One linear contact piece from ``(t, y)`` [s, state]; returns its end time [s]
-    (nan: none within ``horizon`` [s]). ``y`` becomes the state at the end (at
+    (nan: none within ``horizon`` [s]; :data:`~contactlab.kernels.modal.TOO_FAST` if
+    its modes are too fast for the scan). ``y`` becomes the state at the end (at
     ``t + horizon`` if none); ``track`` and ``best`` as in
     :func:`contactlab.kernels.modal.scan`."""
     lam, vec, inv, nm, rate = modes
@@ -94,5 +96,7 @@ def linear_contact(modes, par, t, y, horizon, track, best, work):
     best[PIECE_START] = t
     step = scan_step(rate, horizon)
     tau = scan(piece, par, 0.0, horizon, step, CONTACT_END, -1, track, best, y, work)
+    if tau == TOO_FAST:
+        return TOO_FAST
     state(horizon if tau < 0.0 else tau, lam, vec, coef, nm, zeros, zeros, y0, y)
     return math.nan if tau < 0.0 else t + tau

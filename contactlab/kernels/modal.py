@@ -49,6 +49,8 @@ __all__ = [
     "SENSOR",
     "STATUS_FALLBACK",
     "STATUS_OK",
+    "STATUS_TOO_FAST",
+    "TOO_FAST",
     "falls",
     "free_flight",
     "may_exceed",
@@ -59,11 +61,12 @@ __all__ = [
     "state",
 ]
 
-STATUS_OK, STATUS_FALLBACK = 0, 1
+STATUS_OK, STATUS_FALLBACK, STATUS_TOO_FAST = 0, 1, 2
 """Row status of a batch kernel: solved; or handed to :func:`contactlab.simulate_impact`
 (a row the kernel cannot take: modes too close to defective for the modal form, a first
 contact that does not end, :data:`contactlab.kernels.rules.MAX_CONTACTS` contacts, a step
-size that underflows). A kernel writes the six numbers of
+size that underflows); or refused, its modes too fast for an event scan of
+:data:`contactlab.kernels.rules.MAX_SCAN_POINTS` points. A kernel writes the six numbers of
 :data:`contactlab.batch.rows.RESULT_COLUMNS` for a solved row."""
 
 COND_LIMIT = 1e7
@@ -77,11 +80,16 @@ _CHUNK = 256
 
 _TINY = np.finfo(np.float64).tiny
 
+TOO_FAST = -2.0
+"""What a scan returns when its piece's modes are too fast to follow (``SCAN_CAP``)."""
+
 # signals the scans and root searches read off a state
 CONTACT_END, RECONTACT, SENSOR, _SENSOR_SLOPE, _FORCE_SLOPE = range(5)
 # fields of the row's parameter array
 K2, C2 = STIFFNESS, DAMPING  # a linear contact's stiffness and damping, as in row_parameters
-IN_CONTACT = len(PARAMETERS)
+IN_CONTACT, SCAN_CAP = len(PARAMETERS), len(PARAMETERS) + 1
+"""Run-time fields after the law's and system's: 1 while a contact piece is scanned; the
+most scan points of one piece (:data:`contactlab.kernels.rules.MAX_SCAN_POINTS`)."""
 
 
 SENSOR_PEAK, CONTACT_PEAK, LOBE_END, SENSOR_PEAK_TIME, CONTACT_PEAK_TIME, PIECE_START = range(6)
@@ -235,17 +243,21 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
     maxima), [1] the contact force's maxima are wanted (first contact). ``best``
     (updated): the readings (:data:`READINGS`; the lobe's end is set when ``track[0]``
     turns False), with ``best[PIECE_START]`` the piece's start [s]. Returns the local
-    time of the event, or -1 when there is none (``event < 0`` scans for none).
+    time of the event, -1 when there is none (``event < 0`` scans for none), or
+    :data:`TOO_FAST` when ``par[SCAN_CAP]`` points passed without the event.
     """
     lam, vec, coef, nm, base, slope, y0 = piece
     prev, cur = np.zeros(5), np.zeros(5)
     state(tau0, lam, vec, coef, nm, base, slope, y0, y)
     _read(event, y, par, track, prev)
-    start, t_prev = tau0, tau0
+    start, t_prev, points = tau0, tau0, 0
     terms, ratio = np.empty(nm, np.complex128), np.empty(nm, np.complex128)
     for k in range(nm):
         ratio[k] = cmath.exp(lam[k] * step)
     while start < tau_max:
+        if points >= par[SCAN_CAP]:
+            return TOO_FAST
+        points += _CHUNK
         last = start
         for k in range(nm):  # modal terms at the chunk's start, then one product a point
             terms[k] = coef[k] * cmath.exp(lam[k] * start)
@@ -398,10 +410,11 @@ def recontact_horizon(y, par):
 
 
 @njit(cache=True, error_model="numpy")
-def row_parameters(a, p, b, q, m1, k1, c1, m2, rigid):
+def row_parameters(a, p, b, q, m1, k1, c1, m2, rigid, scan_cap):
     """Parameter array of a row with the force ``a d**p + b |d|**q d'``: the fields of
-    :func:`contactlab.kernels.power.pack` (unsigned damping), then ``IN_CONTACT`` (1)."""
-    return np.array([a, p, b, q, 0.0, m1, k1, c1, m2, 1.0 if rigid else 0.0, 1.0])
+    :func:`contactlab.kernels.power.pack` (unsigned damping), then ``IN_CONTACT`` (1) and
+    ``SCAN_CAP`` (``scan_cap``, scan points)."""
+    return np.array([a, p, b, q, 0.0, m1, k1, c1, m2, 1.0 if rigid else 0.0, 1.0, scan_cap])
 
 
 @njit(cache=True, error_model="numpy")
@@ -418,7 +431,8 @@ def free_flight(y, tau_max, free_modes, par, track, best, work):
     Returns
     -------
     float
-        Local time of the re-contact [s], or -1 when the flight lasts to ``tau_max``.
+        Local time of the re-contact [s], -1 when the flight lasts to ``tau_max``, or
+        :data:`TOO_FAST`.
     """
     lam, vec, inv, nm, rate = free_modes
     par[IN_CONTACT] = 0.0
@@ -432,8 +446,11 @@ def free_flight(y, tau_max, free_modes, par, track, best, work):
     free = (lam, vec, coef, nm, base, slope, y_sep)
     search = min(tau_max, recontact_horizon(y_sep, par))
     tau = scan(free, par, 0.0, search, scan_step(rate, search), RECONTACT, 1, track, best, y, work)
-    if tau < 0.0 and track[0] and search < tau_max:
+    if tau == -1.0 and track[0] and search < tau_max:
         step = scan_step(rate, tau_max - search)
-        scan(free, par, search, tau_max, step, -1, 1, track, best, y, work)
+        if scan(free, par, search, tau_max, step, -1, 1, track, best, y, work) == TOO_FAST:
+            return TOO_FAST
+    if tau == TOO_FAST:
+        return TOO_FAST
     state(tau_max if tau < 0.0 else tau, lam, vec, coef, nm, base, slope, y_sep, y)
     return tau

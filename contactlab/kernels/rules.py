@@ -13,9 +13,12 @@ import math
 import numpy as np
 from numba import njit
 
+from contactlab.errors import ParameterError
+
 __all__ = [
     "FIRST_CONTACT_HORIZON",
     "MAX_CONTACTS",
+    "MAX_SCAN_POINTS",
     "RINGING_PERIODS",
     "SCAN_STEPS_PER_RADIAN",
     "WINDOW_PER_CONTACT",
@@ -24,6 +27,7 @@ __all__ = [
     "happened",
     "ringing_time",
     "scan_step",
+    "too_fast_error",
     "window_end",
 ]
 
@@ -43,6 +47,24 @@ WINDOW_PER_CONTACT = 1.5
 SCAN_STEPS_PER_RADIAN = 5.0
 """Event scan: about 31 points per period of the fastest mode, so no two crossings of an
 event function fall between scan points."""
+
+
+MAX_SCAN_POINTS = 20_000_000
+"""Most scan points of one event search (about 25 s on one core): a piece whose fastest
+mode needs more before its event is refused. A linear contact damping of 1e6 N*s/m on a
+50 mg grain takes 1.3 million (1.4 s; a 5e-11 s relaxation time against a 13 us contact),
+1e7 N*s/m 13 million (16 s); the scan grows with the damping, and 1e9 N*s/m ran for half
+an hour. A 300 kHz sensor ringing through a second of free flight needs 1e7."""
+
+
+def too_fast_error(detail):
+    """The :class:`~contactlab.errors.ParameterError` of an event scan that reached
+    :data:`MAX_SCAN_POINTS` (``detail``: where it stood)."""
+    return ParameterError(
+        f"a mode of this impact is too fast to follow: {detail} ({MAX_SCAN_POINTS:.0e} "
+        "points); a contact damping or stiffness this large against the masses "
+        "(relaxation time ~ m/c) is beyond the solver: lower it to a physical value"
+    )
 
 
 @njit(cache=True, error_model="numpy")

@@ -37,6 +37,7 @@ from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.plausibility import check_plausible
 from contactlab.result import ImpactResult
 from contactlab.solver.adaptive import adaptive_contact
+from contactlab.solver.compiled import core_law, solve_on_core
 from contactlab.solver.euler import solve_euler
 from contactlab.solver.exact import exact_contact, free_flight
 from contactlab.solver.pieces import AffineForceStates
@@ -273,21 +274,23 @@ def simulate_impact(
             f"method='exact' needs a piecewise-linear law; {type(law).__name__} is "
             "nonlinear: use method='adaptive' (or 'auto')"
         )
-    system = System(grain, sensor)
+    system, headline = System(grain, sensor), None
     if method == "euler":
         time_step = check_number("time_step", time_step, low=0.0, unit="s")
         segments, intervals, log, window = solve_euler(system, law, velocity, duration, time_step)
     elif law.prescribed:
         segments, intervals, log, window = _solve_pulse(system, law, velocity, duration)
     else:
-        if method == "exact":
-            solver = exact_contact
+        branch = core_law(law) if method == "exact" else None
+        solved = None if branch is None else solve_on_core(system, branch, velocity, duration)
+        if solved is not None:
+            segments, intervals, log, window, headline = solved
+            if threshold != 0.0:  # the loop reads the sensor lobe at zero
+                del headline["sensor_lobe"], headline["_sensor_peak"]
         else:
-
-            def solver(sys_, branch, t0, y0, tau_max):
-                return adaptive_contact(sys_, branch, t0, y0, tau_max, rtol, velocity)
-
-        segments, intervals, log, window = _solve_pieces(system, law, velocity, duration, solver)
+            segments, intervals, log, window = _solve_pieces(
+                system, law, velocity, duration, _contact_solver(method, rtol, velocity)
+            )
         if not intervals:
             _no_contact_end(system, log[-1][0])
     _warn_window(intervals, log, window, duration)
@@ -310,12 +313,24 @@ def simulate_impact(
         threshold=threshold,
         rtol=rtol,
         time_step=time_step,
+        headline=headline,
     )
     if audit:
         warn_if_broken(result.audit(full=False), f"simulate_impact's result (method={method!r})")
     if verify:
         result.verification = _verify(result, rtol, time_step)
     return result
+
+
+def _contact_solver(method, rtol, velocity):
+    """The Python contact piece of ``method`` ("exact" or "adaptive")."""
+    if method == "exact":
+        return exact_contact
+
+    def solver(sys_, branch, t0, y0, tau_max):
+        return adaptive_contact(sys_, branch, t0, y0, tau_max, rtol, velocity)
+
+    return solver
 
 
 def _no_contact_end(system, horizon):
