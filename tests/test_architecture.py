@@ -28,6 +28,7 @@ LAYERS = (
             "contactlab.strict_json",
         ),
     ),
+    ("compiled numerical core", ("contactlab.kernels",)),
     ("closed forms and bodies", ("contactlab.analytic", "contactlab.bodies")),
     ("contact laws", ("contactlab.laws",)),
     (
