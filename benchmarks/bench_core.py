@@ -61,25 +61,6 @@ def _setup():
     return cl, grain, sensor
 
 
-def _grid_read(res):
-    """The same solution, its numbers read from the output grid (no solver readings)."""
-    from contactlab.result import ImpactResult
-
-    return ImpactResult(
-        grain=res.grain,
-        sensor=res.sensor,
-        law=res.law,
-        velocity=res.velocity,
-        duration=res.duration,
-        sample_rate=res.sample_rate,
-        method=res.method,
-        segments=res.segments,
-        contact_intervals=res.contact_intervals,
-        events=res.events,
-        system=res._system,
-    )
-
-
 def single_with_metrics():
     """Part 1: one linear impact with its metrics, core readings against grid readings."""
     cl, grain, sensor = _setup()
@@ -93,7 +74,7 @@ def single_with_metrics():
         return [getattr(res, name) for name in HEADLINE]
 
     def grid():
-        res = _grid_read(solve())
+        res = solve().grid_reading()
         return [getattr(res, name) for name in HEADLINE]
 
     t_core, t_grid = median_time(core), median_time(grid)

@@ -185,6 +185,32 @@ class ImpactResult(ImpactSignals):
         # numbers the solver read while solving (see HEADLINE); the rest are read below
         self.__dict__.update(headline or {})
 
+    def grid_reading(self):
+        """The same solution with every headline number read from the output grid and the
+        dense solution, none handed over by the solver (as for a law the compiled loop
+        does not take): an independent reading, for checks.
+
+        Returns
+        -------
+        ImpactResult
+        """
+        return ImpactResult(
+            grain=self.grain,
+            sensor=self.sensor,
+            law=self.law,
+            velocity=self.velocity,
+            duration=self.duration,
+            sample_rate=self.sample_rate,
+            method=self.method,
+            segments=self.segments,
+            contact_intervals=self.contact_intervals,
+            events=self.events,
+            system=self._system,
+            threshold=self.threshold,
+            rtol=self.rtol,
+            time_step=self.time_step,
+        )
+
     # -- dense evaluation ----------------------------------------------------
     def _evaluate(self, times):
         """States (n, 4) and contact force (n,) at arbitrary times [s] inside the solution."""

@@ -95,8 +95,9 @@ RESULTS = len(RESULT_FIELDS)
 CONTACT_TIME, RESPONSE_TIME, PEAK_CONTACT, PEAK_SENSOR, RESTITUTION, CONTACTS = range(6)
 PEAK_CONTACT_AT, PEAK_SENSOR_AT, IMPULSE, WINDOW, PIECES, REBOUND, END = range(6, RESULTS)
 
-PIECE_FIELDS = ("t0", "contact", "x1", "v1", "x2", "v2")
-"""A recorded piece: its start [s], 1 for a contact (0 free), the state at its start."""
+PIECE_FIELDS = ("t0", "contact", "horizon", "x1", "v1", "x2", "v2")
+"""A recorded piece: its start [s], 1 for a contact (0 free), how far it was followed at
+most [s], the state at its start."""
 
 PIECE_CAPACITY = 2 * MAX_CONTACTS + 2
 """Rows of the piece record that one impact can fill (a contact and a free flight per
@@ -104,11 +105,11 @@ contact, and the last piece)."""
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _record(pieces, n, t, contact, y):
+def _record(pieces, n, t, contact, horizon, y):
     """Write piece ``n`` (if ``pieces`` has room: the batch passes none); returns n + 1."""
     if n < pieces.shape[0]:
-        pieces[n, 0], pieces[n, 1] = t, contact
-        pieces[n, 2:] = y
+        pieces[n, 0], pieces[n, 1], pieces[n, 2] = t, contact, horizon
+        pieces[n, 3:] = y
     return n + 1
 
 
@@ -149,8 +150,8 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
     out : numpy.ndarray
         :data:`RESULTS` floats, written.
     pieces : numpy.ndarray
-        (:data:`PIECE_CAPACITY`, 6) to record the pieces into (:data:`PIECE_FIELDS`), or
-        (0, 6) to record none.
+        (:data:`PIECE_CAPACITY`, 7) to record the pieces into (:data:`PIECE_FIELDS`), or
+        (0, 7) to record none.
 
     Returns
     -------
@@ -185,8 +186,8 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
         par[IN_CONTACT] = 1.0
         if track[0]:  # a piece's start is a candidate for the sensor's peak
             raise_peak(best, SENSOR_PEAK, signal(SENSOR, y, par), t)
-        n = _record(pieces, n, t, 1.0, y)
         horizon = (contact_horizon(limit) if contacts == 0 else limit) - t
+        n = _record(pieces, n, t, 1.0, horizon, y)
         v_in = y[3]
         if linear:
             end = linear_contact(modes, par, t, y, horizon, track, best, work)
@@ -213,7 +214,7 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
             return STATUS_FALLBACK
         if limit - t <= 0.0:
             break
-        n = _record(pieces, n, t, 0.0, y)
+        n = _record(pieces, n, t, 0.0, limit - t, y)
         best[PIECE_START] = t
         tau = free_flight(y, limit - t, free_modes, par, track, best, work)
         if tau == TOO_FAST:
@@ -242,7 +243,7 @@ def solve_rows(m1, k1, c1, m2, a, b, v0, p, q, rtol, out, status):
     """The batch: :func:`solve_impact` on every row of a law ``a d**p + b |d|**q d'``
     (``p = 1, q = 0``: linear), default window, no pieces recorded; ``out`` (rows, 6)
     gets the first six :data:`RESULTS`, ``status`` (rows,) the status. GIL released."""
-    results, none = np.empty(RESULTS), np.empty((0, 6))
+    results, none = np.empty(RESULTS), np.empty((0, len(PIECE_FIELDS)))
     linear = p == 1.0 and q == 0.0
     for i in range(m1.size):
         rigid = math.isinf(k1[i])

@@ -281,8 +281,8 @@ def simulate_impact(
     elif law.prescribed:
         segments, intervals, log, window = _solve_pulse(system, law, velocity, duration)
     else:
-        branch = core_law(law) if method == "exact" else None
-        solved = None if branch is None else solve_on_core(system, branch, velocity, duration)
+        branch = core_law(law, method)
+        solved = None if branch is None else solve_on_core(system, branch, velocity, duration, rtol)
         if solved is not None:
             segments, intervals, log, window, headline = solved
             if threshold != 0.0:  # the loop reads the sensor lobe at zero
