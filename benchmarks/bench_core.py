@@ -29,8 +29,9 @@ import sys
 import time
 from pathlib import Path
 
+from bench_solver import median_time
+
 HERE = Path(__file__).resolve().parent
-REPEATS = 41
 WINDOW, SAMPLES = 500e-6, 20001
 HEADLINE = (
     "contact_time",
@@ -40,17 +41,6 @@ HEADLINE = (
     "restitution",
     "impulse",
 )
-
-
-def median_time(fn, repeats=REPEATS):
-    """Median wall time of ``fn()`` [s] after one warm-up call."""
-    fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def _setup():

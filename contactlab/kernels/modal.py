@@ -55,6 +55,7 @@ __all__ = [
     "free_flight",
     "may_exceed",
     "quadratic_modes",
+    "recontact_horizon",
     "row_parameters",
     "scan",
     "signal",
@@ -400,13 +401,20 @@ def start_piece(inv, nm, base, y0, coef):
 
 
 @njit(cache=True, error_model="numpy")
-def recontact_horizon(y, par):
-    """contactlab.solver.exact._recontact_horizon (threshold 0)."""
+def recontact_horizon(y, m1, k1, rigid, threshold):
+    """Latest local time [s] at which a free grain can reach the plate again.
+
+    The free plate's displacement never exceeds ``sqrt(2 E / k1)``, ``E`` its energy at
+    the start of the flight ``y`` (damping only removes energy; ``m1`` [kg], ``k1``
+    [N/m]), and a receding grain (``v2 < 0``) moves away at constant speed: beyond the
+    returned time the overlap cannot reach ``threshold`` [m]. Infinite for a grain that
+    is not receding.
+    """
     x1, v1, x2, v2 = y[0], y[1], y[2], y[3]
     if v2 >= 0.0:
         return math.inf
-    reach = 0.0 if par[RIGID] > 0.0 else math.sqrt(par[M1] * v1**2 / par[K1] + x1**2)
-    return max((x2 + reach - 0.0) / -v2, 0.0)
+    reach = 0.0 if rigid else math.sqrt(m1 * v1**2 / k1 + x1**2)
+    return max((x2 + reach - threshold) / -v2, 0.0)
 
 
 @njit(cache=True, error_model="numpy")
@@ -444,7 +452,7 @@ def free_flight(y, tau_max, free_modes, par, track, best, work):
     coef = np.zeros(max(nm, 1), np.complex128)
     start_piece(inv, nm, base, y_sep, coef)
     free = (lam, vec, coef, nm, base, slope, y_sep)
-    search = min(tau_max, recontact_horizon(y_sep, par))
+    search = min(tau_max, recontact_horizon(y_sep, par[M1], par[K1], par[RIGID] > 0.0, 0.0))
     tau = scan(free, par, 0.0, search, scan_step(rate, search), RECONTACT, 1, track, best, y, work)
     if tau == -1.0 and track[0] and search < tau_max:
         step = scan_step(rate, tau_max - search)

@@ -5,10 +5,9 @@ matrix exponential) of :mod:`contactlab.solver.pieces`, and its events are roots
 exact expressions, scanned and located by :func:`~contactlab.solver.propagators.first_event`.
 """
 
-import math
-
 import numpy as np
 
+from contactlab.kernels.modal import recontact_horizon
 from contactlab.kernels.rules import scan_step
 from contactlab.solver.pieces import AffineForceStates, LinearContactStates
 from contactlab.solver.propagators import first_event
@@ -91,23 +90,11 @@ def free_flight(system, law, max_overlap, t0, y0, tau_max):
         below = np.minimum(d - threshold, -np.finfo(float).tiny)
         return np.where(d > threshold, entry_force(d, r), below)[:, None]
 
-    search = min(tau_max, _recontact_horizon(system, y0, threshold))
+    horizon = recontact_horizon(
+        np.asarray(y0, float), system.m1, system.k1, system.rigid, threshold
+    )
+    search = min(tau_max, horizon)
     hit = first_event(values, search, scan_step(states.rate, search), [+1])
     tau_end = tau_max if hit is None else hit[0]
     seg = free_segment(t0, t0 + tau_end, states)
     return seg, states(tau_end)[0], None if hit is None else entry
-
-
-def _recontact_horizon(system, y0, threshold):
-    """Latest local time [s] at which a free grain can reach the plate again.
-
-    The free plate's displacement never exceeds ``sqrt(2 E / k1)``, ``E`` its energy at
-    the start (damping only removes energy), and a receding grain (``v2 < 0``) moves
-    away at constant speed: beyond the returned time the overlap cannot reach
-    ``threshold`` [m]. Infinite for a grain that is not receding.
-    """
-    x1, v1, x2, v2 = (float(v) for v in y0)
-    if v2 >= 0.0:
-        return math.inf
-    reach = 0.0 if system.rigid else math.sqrt(system.m1 * v1**2 / system.k1 + x1**2)
-    return max((x2 + reach - threshold) / -v2, 0.0)
