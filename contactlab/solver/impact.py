@@ -309,7 +309,6 @@ def simulate_impact(
         segments=segments,
         contact_intervals=intervals,
         events=log,
-        system=system,
         threshold=threshold,
         rtol=rtol,
         time_step=time_step,

@@ -72,14 +72,6 @@ class System:
 
         return f
 
-    def signal(self, states, contact_force):
-        """Sensor signal S1 [N]: ``k1 x1 + c1 v1``, or S2 itself on an immovable wall."""
-        if self.rigid:
-            return np.asarray(contact_force, dtype=float)
-        signal = states[:, 0] * self.k1
-        signal += self.c1 * states[:, 1]
-        return signal
-
 
 def force_scales(stiffness, mass):
     """Scales ``(k, k / omega)`` that make a mass's displacement and velocity forces [N].
