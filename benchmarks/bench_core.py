@@ -51,6 +51,11 @@ def _setup():
     return cl, grain, sensor
 
 
+def _read(res):
+    """Every headline number of a result (they are read lazily)."""
+    return [getattr(res, name) for name in HEADLINE]
+
+
 def single_with_metrics():
     """Part 1: one linear impact with its metrics, core readings against grid readings."""
     cl, grain, sensor = _setup()
@@ -60,12 +65,10 @@ def single_with_metrics():
         return cl.simulate_impact(grain, sensor, law, 2.0, WINDOW)
 
     def core():
-        res = solve()
-        return [getattr(res, name) for name in HEADLINE]
+        return _read(solve())
 
     def grid():
-        res = solve().grid_reading()
-        return [getattr(res, name) for name in HEADLINE]
+        return _read(solve().grid_reading())
 
     t_core, t_grid = median_time(core), median_time(grid)
     print(f"1. One linear impact, {SAMPLES} samples, with its {len(HEADLINE)} headline numbers")
@@ -95,9 +98,7 @@ def figures():
             return cl.simulate_impact(grain, sensor, law, 2.0, WINDOW, **options)
 
         out[f"single {name} [ms]"] = 1e3 * median_time(run)
-        out[f"single {name} + metrics [ms]"] = 1e3 * median_time(
-            lambda run=run: [getattr(run(), n) for n in HEADLINE]
-        )
+        out[f"single {name} + metrics [ms]"] = 1e3 * median_time(lambda run=run: _read(run()))
     frames = {
         "linear": (
             linear_impacts,

@@ -83,7 +83,7 @@ def audit_impact(result, full=True):
     if not result.contact_intervals:  # an Euler window that ends inside the first contact
         return Audit(None, ())
     start, end = result.contact_intervals[0]
-    final = result._evaluate([end])[0][0]
+    final = result._at(end)[0][0]
     m2 = result.grain.mass
     with np.errstate(over="ignore", invalid="ignore"):  # an overflowed state reads as inf
         ledger = EnergyLedger(
