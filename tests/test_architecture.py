@@ -57,6 +57,7 @@ LAYERS = (
             "dem_check.engines",
             "dem_check.engines.kratos",
             "dem_check.campaign",
+            "dem_check.stream",
             "contactlab.inverse",
         ),
     ),

@@ -25,7 +25,9 @@ law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigm
 * sliding: sticking becomes admissible, i.e. ``sigma dF_trial/dt < mu dN/dt`` along a
   sticking path (the limit of LAMMPS' rule "increment the history, then cap" as the time
   step vanishes). ``dN/dt`` comes from central differences of the normal law (relative step
-  1e-7: about 1e-13 relative error on smooth laws), the rest is exact.
+  1e-7: about 1e-13 relative error on smooth laws), the rest is exact. Kratos' cap of the
+  elastic force alone (``coulomb_cap="elastic"``) has slides of its own
+  (:mod:`contactlab.solver.coulomb_cap`).
 
 At the touch (``N = 0``) the phase is that of LAMMPS' rule in the limit ``t -> 0+``: the
 history starts from zero and the contact slides only if the trial force along a sticking
@@ -45,6 +47,8 @@ from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
 from contactlab.solver.conventions import LEVER_ARMS
+from contactlab.solver.coulomb_cap import ELASTIC_SLIDE, FREE_SLIDE, cap_rules
+from contactlab.solver.coulomb_cap import sign as _sign
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import (
@@ -106,6 +110,7 @@ class ObliqueModel:
         self.normal = normal_law.branch("load").force
         self.radius, self.inertia = radius, inertia
         self.contact_arm = lever_arm == "contact"
+        self.cap_rules = cap_rules(self)  # the slides of the law's Coulomb cap
 
     def arm(self, overlap):
         """Lever arm [m] at overlap ``d`` [m] (float or array): ``R`` or ``R - max(d, 0)``."""
@@ -137,12 +142,13 @@ class ObliqueModel:
         d = x2 - x1
         if phase == STICK:
             return self.law.trial_force(h, d, vt - self.arm(d) * w)
-        return phase * self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
+        return _sign(phase) * self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
 
     def rhs(self, phase):
         """``y' = f(y)`` in ``phase`` (STICK, +1 or -1)."""
         normal, law, arm, inertia = self.normal, self.law, self.arm, self.inertia
         m2, mu = self.system.m2, law.friction
+        free = abs(phase) == FREE_SLIDE  # Kratos' cap: the history goes on while sliding
 
         def f(y):
             x1, v1, x2, v2, vt, w, h = y.tolist()
@@ -153,7 +159,8 @@ class ObliqueModel:
             if phase == STICK:
                 force, dh = law.trial_force(h, d, slip), law.history_rate(h, d, r, slip)
             else:
-                force, dh = phase * mu * max(n, 0.0), 0.0
+                force = _sign(phase) * mu * max(n, 0.0)
+                dh = law.history_rate(h, d, r, slip) if free else 0.0
             a1, a2 = self._normal_accelerations(x1, v1, n)
             return np.array([v1, a1, v2, a2, force / m2, -lever * force / inertia, dh])
 
@@ -169,27 +176,32 @@ class ObliqueModel:
         return n_d * r + n_r * r_rate
 
     def slide_exit(self, phase, y):
-        """``sigma dF_trial/dt - mu dN/dt`` [N/s]: sliding goes on while >= 0."""
+        """``sigma dF_trial/dt - mu dN/dt`` [N/s]: sliding goes on while >= 0 (in an
+        elastic slide, the elastic force's rate instead of the trial force's)."""
         x1, v1, x2, v2, vt, w, _ = y[:7]
         d, r = x2 - x1, v2 - v1
         n = self.normal(d, r)
-        cap = phase * self.law.friction * max(n, 0.0)
+        cap = _sign(phase) * self.law.friction * max(n, 0.0)
         lever = self.arm(d)
         slip = vt - lever * w
         a1, a2 = self._normal_accelerations(x1, v1, n)
+        rate = self.law.friction * self._normal_force_rate(d, r, a2 - a1)
+        if abs(phase) == ELASTIC_SLIDE:
+            history = self.law.history_of(cap, d)
+            return _sign(phase) * self.law.elastic_force_rate(history, d, r, slip) - rate
         history = self.law.history_on_cap(cap, d, slip)
         # s' = F (1/m + arm**2/I) - arm' w, and arm' = -d' for the contact arm
         slip_rate = cap * (1.0 / self.system.m2 + lever**2 / self.inertia)
         if self.contact_arm:
             slip_rate += r * w
-        rate = self.law.trial_force_rate(history, d, r, slip, slip_rate)
-        return phase * rate - self.law.friction * self._normal_force_rate(d, r, a2 - a1)
+        return _sign(phase) * self.law.trial_force_rate(history, d, r, slip, slip_rate) - rate
 
     def events(self, phase):
         """Event functions ``values(y) -> list`` and their crossing directions.
 
         Event 0 is the contact end; in sticking, events 1 and 2 are the trial force
-        reaching ``+mu N`` and ``-mu N``; in sliding, event 1 is the end of sliding.
+        reaching ``+mu N`` and ``-mu N``; in sliding, the cap's
+        (:mod:`contactlab.solver.coulomb_cap`; LAMMPS': event 1 is the end of sliding).
         """
         normal, mu = self.normal, self.law.friction
 
@@ -203,12 +215,7 @@ class ObliqueModel:
 
             return values, [-1, +1, +1]
 
-        def values(y):
-            x1, v1, x2, v2 = y[:4].tolist()
-            n = normal(x2 - x1, v2 - v1)
-            return [_contact_value(n, x2 - x1), self.slide_exit(phase, y.tolist())]
-
-        return values, [-1, -1]
+        return self.cap_rules.events(phase, _contact_value)
 
     def touch_phase(self, y0, first_step, rtol, atol):
         """Phase at a touch: the limit ``t -> 0+`` of LAMMPS' rule.
@@ -230,7 +237,7 @@ class ObliqueModel:
         force = self.tangential_force(STICK, start)
         cap = self.law.friction * max(self.normal(start[2] - start[0], start[3] - start[1]), 0.0)
         if abs(force) > cap:
-            return +1 if force > 0.0 else -1
+            return self.cap_rules.slide_phase(+1 if force > 0.0 else -1, start)
         probe_time = _PROBE * first_step
         stepper = Stepper(self.rhs(STICK), 0.0, y0, rtol, atol, first_step=probe_time)
         stepper.step(probe_time)
@@ -239,7 +246,7 @@ class ObliqueModel:
         cap = self.law.friction * max(self.normal(probe[2] - probe[0], probe[3] - probe[1]), 0.0)
         if abs(force) <= cap:
             return STICK
-        return +1 if force > 0.0 else -1
+        return self.cap_rules.slide_phase(+1 if force > 0.0 else -1, probe)
 
 
 def _contact_value(normal_force, overlap):
@@ -310,17 +317,15 @@ def _solve_contact(model, y0, rtol, scale):
                 f"parameters and the velocity ({velocity:.4g} m/s)"
             )
         states = DenseStates(t, steps, start, switch, size=7)
-        pieces.append(ContactPiece(t, hit[0], phase, states))
+        pieces.append(ContactPiece(t, hit[0], _sign(phase), states))
         y = states(hit[0] - t)[0]
         t, touch = hit[0], False
         if hit[1] == 0:
             return pieces, y
         if phase == STICK:
-            phase = +1 if hit[1] == 1 else -1
+            phase = model.cap_rules.slide_phase(+1 if hit[1] == 1 else -1, y)
         else:
-            cap = phase * model.law.friction * max(model.normal(y[2] - y[0], y[3] - y[1]), 0.0)
-            y[6] = model.law.history_on_cap(cap, y[2] - y[0], model.slip(y.tolist()))
-            phase = STICK
+            phase = model.cap_rules.after_slide(phase, hit[1], y)
     raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
 
 
