@@ -187,7 +187,7 @@ def _run(stepper, end, event_values, directions, retaken, stop=None):
 
     ``hit`` is ``(time, index)`` of the first event crossing, or None. A step across the
     crossing of an event in ``retaken`` is taken again to just past the crossing located
-    on it, as long as :func:`contactlab.solver.power_piece.retake_bound` says so. For the
+    on it, as long as :func:`contactlab.kernels.power_piece.retake_bound` says so. For the
     contact's end (event 0) this is needed: the force formula is not smooth where it
     changes sign, and DOP853's error estimate misses that (the root cause is written
     there).
