@@ -23,7 +23,7 @@ import numpy as np
 import contactlab as cl
 from contactlab import analytic
 from contactlab.inverse import export_dem
-from contactlab.solver import wall_impact
+from contactlab.solver.wall import wall_contact_time, wall_impact
 from dem_check.engines import bullet
 from dem_check.engines.lammps import convergence_study, drop_test
 from dem_check.engines.lammps.realise import realise_snippet
@@ -91,7 +91,7 @@ def _convergence(grain, sensor, laws):
     print("2. Time-step convergence (signed errors; restitution absolute)")
     for name in ("linear", "hertz_damped"):
         law = laws[name]
-        contact = law.contact_time(grain.mass, V0)
+        contact = wall_contact_time(law, grain.mass, V0)
         base = min(contact, sensor.period)
         steps = [base / n for n in (50, 100, 200, 400, 800)]
         study = convergence_study(grain, sensor, law, V0, steps)

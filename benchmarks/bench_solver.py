@@ -12,7 +12,7 @@
    1e-6 of a reference solved at rtol = 1e-13 in this run; the errors of the other
    headline numbers at that tolerance are printed beside it, and so is the time at
    rtol = 1e-6, where every headline number is within 1e-6. Its contact pieces run
-   compiled (:mod:`contactlab.solver.power_piece`); the same impact on the Python stepper
+   compiled (:mod:`contactlab.kernels.power_piece`); the same impact on the Python stepper
    (the same law without its ``PowerForm``) is timed in the same run at rtol = 1e-6, with
    the ratio compiled / Python.
 

@@ -20,7 +20,14 @@ from contactlab.errors import (
 )
 from contactlab.oblique_result import ObliqueResult
 from contactlab.result import ImpactResult
-from contactlab.solver import simulate_impact, simulate_oblique
+from contactlab.solver import (
+    simulate_impact,
+    simulate_oblique,
+    wall_contact_time,
+    wall_dissipated_energy,
+    wall_impact,
+    wall_restitution,
+)
 
 __all__ = [
     "Grain",
@@ -38,6 +45,10 @@ __all__ = [
     "metrics",
     "simulate_impact",
     "simulate_oblique",
+    "wall_contact_time",
+    "wall_dissipated_energy",
+    "wall_impact",
+    "wall_restitution",
 ]
 
 __version__ = "0.1.0"

@@ -7,6 +7,8 @@ by the element, ``S1 = k1 x1 + c1 v1`` [N].
 
 import math
 
+import numpy as np
+
 from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.plausibility import check_plausible, internal
@@ -329,6 +331,22 @@ class Sensor(KeywordChecked):
     def is_rigid(self):
         """Whether this is an immovable wall."""
         return math.isinf(self.mass)
+
+    def signal(self, states, contact_force):
+        """Sensor signal S1 [N] of states ``[x1, v1, ...]`` (n, >= 2) [m, m/s]:
+        ``k1 x1 + c1 v1``, or on an immovable wall the contact force S2 [N] itself."""
+        if self.is_rigid:
+            return np.asarray(contact_force, dtype=float)
+        signal = states[:, 0] * self.stiffness
+        signal += self.damping * states[:, 1]
+        return signal
+
+    def energy(self, x1, v1):
+        """Kinetic and elastic energy [J] of the plate at displacement ``x1`` [m] and velocity
+        ``v1`` [m/s] (0 on an immovable wall)."""
+        if self.is_rigid:
+            return 0.0
+        return 0.5 * self.mass * v1**2 + 0.5 * self.stiffness * x1**2
 
     @property
     def angular_frequency(self):

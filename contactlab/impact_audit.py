@@ -79,19 +79,17 @@ def audit_impact(result, full=True):
         Without checks when the first contact has not ended in the window (the Euler
         method stops at the window's end).
     """
-    sys_ = result._system
+    sensor = result.sensor
     if not result.contact_intervals:  # an Euler window that ends inside the first contact
         return Audit(None, ())
     start, end = result.contact_intervals[0]
-    final = result._evaluate([end])[0][0]
-    m2 = sys_.m2
+    final = result._at(end)[0][0]
+    m2 = result.grain.mass
     with np.errstate(over="ignore", invalid="ignore"):  # an overflowed state reads as inf
         ledger = EnergyLedger(
             kinetic_in=0.5 * m2 * result.velocity**2,
             translation_out=0.5 * m2 * final[3] ** 2,
-            sensor_left=0.0
-            if sys_.rigid
-            else 0.5 * sys_.m1 * final[1] ** 2 + 0.5 * sys_.k1 * final[0] ** 2,
+            sensor_left=sensor.energy(final[0], final[1]),
         )
     energy_in = ledger.kinetic_in
     prescribed = (
@@ -119,8 +117,8 @@ def audit_impact(result, full=True):
         translation_out=ledger.translation_out,
         sensor_left=ledger.sensor_left,
         sensor_damper=0.0
-        if sys_.rigid
-        else result._integrate(lambda st, f: sys_.c1 * st[:, 1] ** 2, start, end),
+        if sensor.is_rigid
+        else result._integrate(lambda st, f: sensor.damping * st[:, 1] ** 2, start, end),
         normal_damper=work - left,
         normal_elastic_left=left,
     )

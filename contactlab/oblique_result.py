@@ -101,7 +101,7 @@ class ObliqueResult:
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
         self.slip = model.slip(states)
-        self.sensor_force = model.system.signal(states[:, :4], self.normal_force)
+        self.sensor_force = sensor.signal(states[:, :4], self.normal_force)
 
     # -- dense evaluation ------------------------------------------------------------------
     def _evaluate(self, times):

@@ -11,7 +11,7 @@ from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
 
-__all__ = ["HEADLINE", "SIGNALS", "ImpactResult", "ImpactSignals"]
+__all__ = ["HEADLINE", "SIGNALS", "SOLVER_READINGS", "ImpactResult", "ImpactSignals"]
 
 HEADLINE = (
     "velocity",
@@ -124,6 +124,14 @@ class ImpactSignals:
         return plot_impact(self, ax=ax, **kwargs)
 
 
+SOLVER_READINGS = ("_contact_peak", "sensor_lobe", "_sensor_peak", "impulse", "rebound_velocity")
+"""Headline numbers a solver may hand to :class:`ImpactResult` already read (the compiled
+impact loop reads them exactly as it solves, :mod:`contactlab.kernels.impact_loop`):
+``(time [s], force [N])`` of the contact-force peak, the sensor lobe's ``(start, end)``
+[s], ``(time [s], signal [N])`` of its peak, the impulse [N*s] and the rebound speed
+[m/s]. Those not given are read from the dense solution below."""
+
+
 class ImpactResult(ImpactSignals):
     """One simulated impact (see :func:`contactlab.simulate_impact`).
 
@@ -134,7 +142,8 @@ class ImpactResult(ImpactSignals):
     ``contact_time`` [s], ``peak_contact_force`` [N], ``sensor_response_time`` [s],
     ``peak_sensor_force`` [N], ``impulse`` [N*s], ``restitution`` [-],
     ``rebound_velocity`` [m/s], ``contact_intervals`` [(start, end) s] and
-    ``energy_balance`` [J].
+    ``energy_balance`` [J]. The solver may hand some of them over already read
+    (``headline``, keys of :data:`SOLVER_READINGS`).
     """
 
     def __init__(
@@ -150,10 +159,10 @@ class ImpactResult(ImpactSignals):
         segments,
         contact_intervals,
         events,
-        system,
         threshold=0.0,
         rtol=None,
         time_step=None,
+        headline=None,
     ):
         self.grain, self.sensor, self.law = grain, sensor, law
         self.velocity, self.duration, self.sample_rate = velocity, duration, sample_rate
@@ -163,14 +172,40 @@ class ImpactResult(ImpactSignals):
         self.contact_intervals = list(contact_intervals)
         self.events = list(events)
         self.verification = None
-        self._system = system
         self._starts = np.array([s.t0 for s in segments])
         n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
         self.t = np.arange(n, dtype=float)
         self.t /= sample_rate
         states, self.contact_force = self._evaluate_grid()
         self.x1, self.v1, self.x2, self.v2 = states.T
-        self.sensor_force = system.signal(states, self.contact_force)
+        self.sensor_force = sensor.signal(states, self.contact_force)
+        # numbers the solver read while solving (see SOLVER_READINGS); the rest are read below
+        self.__dict__.update(headline or {})
+
+    def grid_reading(self):
+        """The same solution with every headline number read from the output grid and the
+        dense solution, none handed over by the solver (as for a law the compiled loop
+        does not take): an independent reading, for checks.
+
+        Returns
+        -------
+        ImpactResult
+        """
+        return ImpactResult(
+            grain=self.grain,
+            sensor=self.sensor,
+            law=self.law,
+            velocity=self.velocity,
+            duration=self.duration,
+            sample_rate=self.sample_rate,
+            method=self.method,
+            segments=self.segments,
+            contact_intervals=self.contact_intervals,
+            events=self.events,
+            threshold=self.threshold,
+            rtol=self.rtol,
+            time_step=self.time_step,
+        )
 
     # -- dense evaluation ----------------------------------------------------
     def _evaluate(self, times):
@@ -219,10 +254,10 @@ class ImpactResult(ImpactSignals):
         return states, seg.force(tau, states)
 
     def _signal_at(self, t):
-        if self._system.rigid:
+        if self.sensor.is_rigid:
             return self._force_at(t)
         seg = self._segment_at(t)
-        return float(self._system.signal(seg.states(np.array([t - seg.t0])), None)[0])
+        return float(self.sensor.signal(seg.states(np.array([t - seg.t0])), None)[0])
 
     def _forces_on(self, times):
         """Contact force S2 [N] at several times [s]."""
@@ -230,7 +265,7 @@ class ImpactResult(ImpactSignals):
 
     def _signals_on(self, times):
         """Sensor signal S1 [N] at several times [s]."""
-        return self._system.signal(*self._evaluate(times))
+        return self.sensor.signal(*self._evaluate(times))
 
     def _force_at(self, t):
         return float(self._at(t)[1][0])
@@ -352,7 +387,7 @@ class ImpactResult(ImpactSignals):
     @cached_property
     def sensor_impulse(self):
         """Integral of the sensor signal S1 over the window [N*s]."""
-        return self._integrate(lambda st, f: self._system.signal(st, f), 0.0, self.duration)
+        return self._integrate(lambda st, f: self.sensor.signal(st, f), 0.0, self.duration)
 
     @cached_property
     def energy_balance(self):
@@ -364,18 +399,17 @@ class ImpactResult(ImpactSignals):
         the rest; zero up to the solver's accuracy). Integrals are Gauss-Legendre on the
         dense solution, independent of the solver's own bookkeeping.
         """
-        sys_ = self._system
-        m2, t_end = sys_.m2, self.duration
+        sensor, m2, t_end = self.sensor, self.grain.mass, self.duration
         final = self._evaluate([t_end])[0][0]
         out = {"kinetic_in": 0.5 * m2 * self.velocity**2}
         out["grain_kinetic_out"] = 0.5 * m2 * final[3] ** 2
         contact_loss = self._integrate(lambda st, f: f * (st[:, 3] - st[:, 1]), 0.0, t_end)
-        if sys_.rigid:
+        if sensor.is_rigid:
             out["sensor_energy_out"] = out["sensor_damping_loss"] = 0.0
         else:
-            out["sensor_energy_out"] = 0.5 * sys_.m1 * final[1] ** 2 + 0.5 * sys_.k1 * final[0] ** 2
+            out["sensor_energy_out"] = sensor.energy(final[0], final[1])
             out["sensor_damping_loss"] = self._integrate(
-                lambda st, f: sys_.c1 * st[:, 1] ** 2, 0.0, t_end
+                lambda st, f: sensor.damping * st[:, 1] ** 2, 0.0, t_end
             )
         out["contact_loss"] = contact_loss
         out["residual"] = out["kinetic_in"] - sum(

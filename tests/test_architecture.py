@@ -31,6 +31,7 @@ LAYERS = (
             "contactlab.quantities",
         ),
     ),
+    ("compiled numerical core", ("contactlab.kernels",)),
     ("closed forms and bodies", ("contactlab.analytic", "contactlab.bodies")),
     ("contact laws", ("contactlab.laws",)),
     (

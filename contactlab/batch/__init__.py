@@ -2,10 +2,10 @@
 
 * :func:`linear_impacts`: exact linear (Kelvin-Voigt) impacts with the single-impact
   solver's numbers, tens of thousands per second in one process
-  (:mod:`contactlab.batch.linear`, compiled kernel :mod:`contactlab.batch.linear_kernel`);
+  (:mod:`contactlab.batch.linear`, compiled kernel :mod:`contactlab.kernels.linear_impact`);
 * :func:`hertz_impacts`: damped-Hertz (Tsuji) impacts on the single solver's compiled
   contact pieces, thousands per second (:mod:`contactlab.batch.hertz`, kernel
-  :mod:`contactlab.batch.hertz_kernel`);
+  :mod:`contactlab.kernels.hertz_impact`);
 * :func:`dask_linear_impacts`, :func:`dask_hertz_impacts`: the same on a Dask cluster,
   partitioned by rows (:mod:`contactlab.batch.dask`).
 """

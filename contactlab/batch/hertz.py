@@ -5,15 +5,15 @@ solves a grain on a sensor (or a wall) through Tsuji's damped Hertz law
 (:class:`~contactlab.laws.HertzDamped`, the EDEM and LIGGGHTS normal law; ``damping = 0``
 is elastic Hertz), and adds the headline numbers as :class:`~contactlab.ImpactResult`
 defines them. The work is done row by row in a compiled kernel
-(:mod:`contactlab.batch.hertz_kernel`) that runs the single solver's own compiled
+(:mod:`contactlab.kernels.hertz_impact`) that runs the single solver's own compiled
 contact pieces; rows it hands back are solved by :func:`contactlab.simulate_impact`.
 """
 
 import numpy as np
 
 from contactlab.batch.frame import Column, impact_columns
-from contactlab.batch.hertz_kernel import solve_rows
 from contactlab.batch.rows import DEFAULT_CHUNK, fallback_row, run_kernel, solve_frame
+from contactlab.kernels.impact_loop import solve_rows
 from contactlab.laws import HertzDamped
 from contactlab.validation import check_number
 
@@ -35,7 +35,7 @@ worst 7e-8 at 1e-9; 1.4e-6 at 1e-8 (a sensor peak on an overdamped plate, where
 def _solver(rtol):
     def solve(arrays, lo, hi, out, failures):
         columns = [np.ascontiguousarray(arrays[c.name][lo:hi]) for c in HERTZ_INPUTS]
-        for i in run_kernel(solve_rows, columns, (rtol,), out):
+        for i in run_kernel(solve_rows, columns, (1.5, 0.25, rtol), out):  # Tsuji: p, q
             m1, k1, c1, m2, k_hertz, damping, v0 = (float(col[i]) for col in columns)
             law = HertzDamped(k_hertz, damping)
             options = {"method": "adaptive", "rtol": rtol}

@@ -3,17 +3,17 @@
 :func:`linear_impacts` solves every row of a frame as :func:`contactlab.simulate_impact`
 solves a grain on a sensor (or a wall) through a linear spring-dashpot
 (:class:`~contactlab.laws.LinearViscoelastic`), and adds the headline numbers as
-:class:`~contactlab.ImpactResult` defines them. The work is done row by row in a compiled
-kernel (:mod:`contactlab.batch.linear_kernel`); rows the kernel does not take (modes too
+:class:`~contactlab.ImpactResult` defines them. The work is done row by row in the
+compiled impact loop that :func:`contactlab.simulate_impact` runs too
+(:mod:`contactlab.kernels.impact_loop`); rows it does not take (modes too
 close to critical damping for the modal form, a grain that settles on the plate after
-:data:`contactlab.solver.impact.MAX_CONTACTS` contacts) are solved by
+:data:`contactlab.kernels.rules.MAX_CONTACTS` contacts) are solved by
 :func:`contactlab.simulate_impact` itself, so every row gets the single solver's answer.
 """
 
 import numpy as np
 
 from contactlab.batch.frame import Column, impact_columns
-from contactlab.batch.linear_kernel import solve_rows
 from contactlab.batch.rows import (
     DEFAULT_CHUNK,
     RESULT_COLUMNS,
@@ -21,6 +21,7 @@ from contactlab.batch.rows import (
     run_kernel,
     solve_frame,
 )
+from contactlab.kernels.impact_loop import solve_rows
 from contactlab.laws import LinearViscoelastic
 
 __all__ = ["LINEAR_INPUTS", "RESULT_COLUMNS", "linear_impacts", "solve_linear"]
@@ -38,7 +39,7 @@ def solve_linear(arrays, lo, hi, out, failures):
     Returns the number of rows the single solver took over.
     """
     columns = [np.ascontiguousarray(arrays[c.name][lo:hi]) for c in LINEAR_INPUTS]
-    handed = run_kernel(solve_rows, columns, (), out)
+    handed = run_kernel(solve_rows, columns, (1.0, 0.0, 0.0), out)  # p = 1, q = 0: linear
     for i in handed:
         m1, k1, c1, m2, k2, c2, v0 = (float(col[i]) for col in columns)
         fallback_row(out[i], failures, lo + i, m1, k1, c1, m2, LinearViscoelastic(k2, c2), v0)
@@ -87,7 +88,7 @@ def linear_impacts(frame, *, chunk=DEFAULT_CHUNK, threads=1):
     five sensor periods of ringing, at least 1.5 contact times), threshold 0. The kernel
     finds the events with the single solver's scan and root tolerance and reads the
     peaks and the lobe exactly, where ``ImpactResult`` refines them from its output
-    grid (:mod:`contactlab.batch.linear_kernel`): the two agree to about 1e-12
+    grid (:mod:`contactlab.kernels.impact_loop`): the two agree to about 1e-12
     relative, except where two local maxima of a signal are closer than the grid can
     tell apart.
 

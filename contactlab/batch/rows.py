@@ -16,9 +16,9 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from contactlab.batch.frame import check_frame, chunk_bounds
-from contactlab.batch.modal_kernel import STATUS_OK
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, RowFailedWarning
+from contactlab.kernels.modal import STATUS_OK
 from contactlab.plausibility import implausible_rows, internal
 from contactlab.quantities import columns
 from contactlab.solver import simulate_impact

@@ -19,13 +19,15 @@ import pandas as pd
 __all__ = ["COMPILED_MODULES", "cache_is_warm", "warm_up"]
 
 COMPILED_MODULES = (
-    "contactlab.solver.brent",
-    "contactlab.solver.power_rhs",
-    "contactlab.solver.dop853_kernel",
-    "contactlab.solver.power_piece",
-    "contactlab.batch.modal_kernel",
-    "contactlab.batch.linear_kernel",
-    "contactlab.batch.hertz_kernel",
+    "contactlab.kernels.brent",
+    "contactlab.kernels.rules",
+    "contactlab.kernels.power",
+    "contactlab.kernels.dop853",
+    "contactlab.kernels.power_piece",
+    "contactlab.kernels.modal",
+    "contactlab.kernels.linear_impact",
+    "contactlab.kernels.hertz_impact",
+    "contactlab.kernels.impact_loop",
 )
 """Modules with ``numba.njit(cache=True)`` functions."""
 

@@ -9,6 +9,7 @@ import numpy as np
 from contactlab.bodies import Grain, Sensor
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_quality import FitQuality
+from contactlab.solver.wall import wall_restitution
 from contactlab.validation import check_path
 
 __all__ = ["FORMAT", "ContactFit", "FittedParameter"]
@@ -103,7 +104,7 @@ class ContactFit:
         values = {name: p.value for name, p in self.parameters.items()} | self.fixed
         overlap = FIT_MODELS[self.law_name].overlap_rebound
         return {
-            "fitted_law [-]": float(self.law.restitution(self.grain.mass, self.velocity)),
+            "fitted_law [-]": float(wall_restitution(self.law, self.grain.mass, self.velocity)),
             "overlap_end [-]": None if overlap is None else float(overlap(values, self.grain)),
         }
 

@@ -16,9 +16,8 @@ loading, yielding, unloading) with linear exit conditions. History laws carry on
 variable: the largest overlap reached so far, ``max_overlap`` [m].
 
 A law defines forces only. Its impact on an immovable wall (restitution, contact time,
-dissipated energy) is simulated by :mod:`contactlab.solver`, which registers its wall
-impact here when it is imported (:func:`use_wall_solver`); :mod:`contactlab` imports the
-solver, so the convenience methods always work and this module never imports it.
+dissipated energy) is a simulation: :mod:`contactlab.solver.wall` (``wall_impact``,
+``wall_restitution``, ``wall_contact_time``, ``wall_dissipated_energy``), above the laws.
 """
 
 from abc import ABC, abstractmethod
@@ -31,7 +30,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.validation import KeywordChecked, check_samples
 
-__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw", "use_wall_solver"]
+__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw"]
 
 
 def one_sided(overlap, raw):
@@ -103,7 +102,7 @@ class PowerForm:
     """A force of the form ``a sign(d) |d|**p + b D(d) d'`` with ``D(d) = |d|**q``
     (``sign(d) |d|**q`` when ``signed_damping``), the raw formula of every Hertz-family law.
 
-    The solvers compile this one formula (:mod:`contactlab.solver.power_rhs`) instead of
+    The solvers compile this one formula (:mod:`contactlab.kernels.power`) instead of
     calling the law's Python function at every stage of every step.
 
     Attributes
@@ -156,27 +155,12 @@ class Branch:
     power: PowerForm | None = None
 
 
-def use_wall_solver(wall_impact):
-    """Register the function that simulates a law's impact on an immovable wall.
-
-    :mod:`contactlab.solver` registers :func:`contactlab.solver.wall_impact` when it is
-    imported, so that :meth:`ContactLaw.impact` and the properties derived from it work
-    without this module importing the solver (data flows laws -> solver only).
-
-    Parameters
-    ----------
-    wall_impact : callable
-        ``wall_impact(law, mass, velocity, **kwargs)`` -> ImpactResult.
-    """
-    ContactLaw._wall_impact = staticmethod(wall_impact)
-
-
 class ContactLaw(KeywordChecked, ABC):
     """Base class of normal contact laws.
 
     A law needs :meth:`_force` (the vectorised force from overlap, rate and history) and
-    :meth:`branch` (how the solvers see it). Restitution, contact time, dissipated
-    energy and work follow here.
+    :meth:`branch` (how the solvers see it); the work along a path follows here. Its
+    impact on a wall is :mod:`contactlab.solver.wall`'s.
 
     Sign convention: overlap ``d > 0`` in compression, rate ``d' > 0`` approaching, force
     ``>= 0`` always (0 for ``d <= 0``).
@@ -242,32 +226,6 @@ class ContactLaw(KeywordChecked, ABC):
     def reentry(self, max_overlap):
         """Overlap [m] at which a separated grain touches again, and the branch it enters."""
         return 0.0, self.initial_branch
-
-    _wall_impact: ClassVar[Callable | None] = None
-    """The solver's wall impact, ``f(law, mass, velocity, **kwargs) -> ImpactResult``;
-    set by :func:`use_wall_solver`."""
-
-    def impact(self, mass, velocity, **kwargs):
-        """Impact of a grain of ``mass`` [kg] at ``velocity`` [m/s] on an immovable wall.
-
-        Returns the :class:`~contactlab.result.ImpactResult` of
-        :func:`contactlab.solver.wall_impact`; keyword arguments go to
-        :func:`contactlab.simulate_impact`.
-        """
-        return ContactLaw._wall_impact(self, mass, velocity, **kwargs)
-
-    def restitution(self, mass, velocity):
-        """Coefficient of restitution on an immovable wall [-] (force-zero contact end)."""
-        return self.impact(mass, velocity).restitution
-
-    def contact_time(self, mass, velocity):
-        """Contact duration on an immovable wall [s] (force-zero contact end)."""
-        return self.impact(mass, velocity).contact_time
-
-    def dissipated_energy(self, mass, velocity):
-        """Energy lost in one impact on an immovable wall [J]: ``m v**2 (1 - e**2) / 2``."""
-        e = self.restitution(mass, velocity)
-        return 0.5 * mass * velocity**2 * (1.0 - e**2)
 
     def work(self, overlap, rate=None):
         """Work done by the contact force along an overlap path [J] (trapezoidal rule).

@@ -75,7 +75,6 @@ class PlasticTrapezoid(KeywordChecked):
     __repr__ = ContactLaw.__repr__
     __eq__ = ContactLaw.__eq__
     __hash__ = ContactLaw.__hash__
-    impact = ContactLaw.impact
 
     def amplitude(self, mass, velocity):
         """Plateau force [N] for a grain of ``mass`` [kg] at ``velocity`` [m/s]."""

@@ -9,12 +9,25 @@
 * :mod:`~contactlab.solver.dop853`: the lean DOP853 stepper;
 * :mod:`~contactlab.solver.euler`: the paper's explicit Euler (reference method);
 * :mod:`~contactlab.solver.segment`: one solved piece, as the results read it;
-* :mod:`~contactlab.solver.wall`: a law's impact on an immovable wall;
+* :mod:`~contactlab.solver.wall`: a law's impact on an immovable wall and its numbers;
 * :mod:`~contactlab.solver.oblique`: :func:`simulate_oblique`, friction and spin.
 """
 
 from contactlab.solver.impact import METHODS, simulate_impact
 from contactlab.solver.oblique import simulate_oblique
-from contactlab.solver.wall import wall_impact
+from contactlab.solver.wall import (
+    wall_contact_time,
+    wall_dissipated_energy,
+    wall_impact,
+    wall_restitution,
+)
 
-__all__ = ["METHODS", "simulate_impact", "simulate_oblique", "wall_impact"]
+__all__ = [
+    "METHODS",
+    "simulate_impact",
+    "simulate_oblique",
+    "wall_contact_time",
+    "wall_dissipated_energy",
+    "wall_impact",
+    "wall_restitution",
+]

@@ -5,11 +5,11 @@ import math
 import numpy as np
 from scipy.optimize import minimize_scalar
 
+from contactlab.kernels import power_piece
+from contactlab.kernels.power import pack
 from contactlab.roots import crossed_side, departure_root, is_past, locate_root, waits
-from contactlab.solver import power_piece
 from contactlab.solver.dop853 import DenseSteps, Stepper, interpolate
 from contactlab.solver.pieces import DenseStates
-from contactlab.solver.power_rhs import pack
 from contactlab.solver.segment import Segment
 from contactlab.solver.system import clipped, event_directions
 
@@ -128,7 +128,7 @@ def integrate_piece(
 
 def compiled_piece(system, form, t0, y0, tau_max, rtol, atol, touch):
     """:func:`integrate_piece` for a :class:`~contactlab.laws.base.PowerForm` force, compiled
-    (:func:`contactlab.solver.power_piece.integrate`); same returns, the only event being
+    (:func:`contactlab.kernels.power_piece.integrate`); same returns, the only event being
     the contact's end (index 0)."""
     par = pack(form, system.m1, system.k1, system.c1, system.m2, system.rigid)
     status, warp, steps, switch, hit = power_piece.integrate(
@@ -187,7 +187,7 @@ def _run(stepper, end, event_values, directions, retaken, stop=None):
 
     ``hit`` is ``(time, index)`` of the first event crossing, or None. A step across the
     crossing of an event in ``retaken`` is taken again to just past the crossing located
-    on it, as long as :func:`contactlab.solver.power_piece.retake_bound` says so. For the
+    on it, as long as :func:`contactlab.kernels.power_piece.retake_bound` says so. For the
     contact's end (event 0) this is needed: the force formula is not smooth where it
     changes sign, and DOP853's error estimate misses that (the root cause is written
     there).

@@ -21,8 +21,8 @@ import math
 import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
-from contactlab.solver.dop853_kernel import dense_states
-from contactlab.solver.dop853_kernel import interpolate as interpolate_into
+from contactlab.kernels.dop853 import dense_states
+from contactlab.kernels.dop853 import interpolate as interpolate_into
 
 __all__ = ["DenseSteps", "Stepper", "interpolate"]
 
@@ -155,7 +155,7 @@ class Stepper:
 
 def interpolate(F, y_old, x):
     """One step's interpolant (:meth:`Stepper.interpolant`) at ``x = (t - t_old) / h``
-    (the compiled :func:`contactlab.solver.dop853_kernel.interpolate`, into a new array)."""
+    (the compiled :func:`contactlab.kernels.dop853.interpolate`, into a new array)."""
     out = np.empty(y_old.size)
     interpolate_into(F, y_old, float(x), out)
     return out
@@ -193,7 +193,7 @@ class DenseSteps:
 
     def __call__(self, t, out=None):
         """States (len(t), n) at times ``t`` [s] (any order), into ``out`` if given
-        (compiled: :func:`contactlab.solver.dop853_kernel.dense_states`)."""
+        (compiled: :func:`contactlab.kernels.dop853.dense_states`)."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
         if out is None:
             out = np.empty((t.size, self._y_old.shape[1]))

@@ -5,16 +5,23 @@ matrix exponential) of :mod:`contactlab.solver.pieces`, and its events are roots
 exact expressions, scanned and located by :func:`~contactlab.solver.propagators.first_event`.
 """
 
-import math
-
 import numpy as np
 
+from contactlab.kernels.modal import recontact_horizon
+from contactlab.kernels.rules import scan_step
 from contactlab.solver.pieces import AffineForceStates, LinearContactStates
 from contactlab.solver.propagators import first_event
 from contactlab.solver.segment import Segment
-from contactlab.solver.system import clipped, event_directions, overlap_rate, scan_step
+from contactlab.solver.system import clipped, event_directions, overlap_rate
 
-__all__ = ["exact_contact", "free_flight"]
+__all__ = [
+    "contact_segment",
+    "contact_states",
+    "exact_contact",
+    "free_flight",
+    "free_segment",
+    "free_states",
+]
 
 
 def _branch_events(branch, contact_force):
@@ -29,31 +36,50 @@ def _branch_events(branch, contact_force):
     return values, directions
 
 
-def exact_contact(system, branch, t0, y0, tau_max):
-    """Exact contact piece on a linear branch; returns (Segment, y_end, event or None)."""
+def contact_states(system, branch, y0):
+    """Exact states of a contact piece on a linear branch from the state ``y0``."""
     k, c, f0 = branch.linear
     if k == 0.0 and c == 0.0:
-        states = AffineForceStates(system, f0, 0.0, y0)
-    else:
-        states = LinearContactStates(system, k, c, f0, y0)
-    force = branch.force
-    values, directions = _branch_events(branch, force)
+        return AffineForceStates(system, f0, 0.0, y0)
+    return LinearContactStates(system, k, c, f0, y0)
+
+
+def contact_segment(branch, t0, t1, states):
+    """The :class:`Segment` of a contact piece over [t0, t1] [s] with its ``states``."""
+    return Segment(t0, t1, "contact", branch.name, states, clipped(branch.force), states.grid)
+
+
+def _no_force(tau, states):
+    return np.zeros(len(states))
+
+
+def free_states(system, y0):
+    """Exact states of a free flight (no contact force) from the state ``y0``."""
+    return AffineForceStates(system, 0.0, 0.0, y0)
+
+
+def free_segment(t0, t1, states):
+    """The :class:`Segment` of a free flight over [t0, t1] [s] with its ``states``."""
+    return Segment(t0, t1, "free", None, states, _no_force, states.grid)
+
+
+def exact_contact(system, branch, t0, y0, tau_max):
+    """Exact contact piece on a linear branch; returns (Segment, y_end, event or None)."""
+    states = contact_states(system, branch, y0)
+    values, directions = _branch_events(branch, branch.force)
     hit = first_event(
         lambda tau: values(states(tau)), tau_max, scan_step(states.rate, tau_max), directions
     )
     tau_end = tau_max if hit is None else hit[0]
     event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
-    seg = Segment(t0, t0 + tau_end, "contact", branch.name, states, clipped(force), states.grid)
-    return seg, states(tau_end)[0], event
+    return contact_segment(branch, t0, t0 + tau_end, states), states(tau_end)[0], event
 
 
 def free_flight(system, law, max_overlap, t0, y0, tau_max):
     """Free flight until the plate and grain touch again; returns (Segment, y_end, hit)."""
-    states = AffineForceStates(system, 0.0, 0.0, y0)
-    seg_force = lambda tau, s: np.zeros(len(s))  # noqa: E731
+    states = free_states(system, y0)
     if law.prescribed or tau_max <= 0.0:
-        seg = Segment(t0, t0 + tau_max, "free", None, states, seg_force, states.grid)
-        return seg, None, None
+        return free_segment(t0, t0 + tau_max, states), None, None
     threshold, entry = law.reentry(max_overlap)
     entry_force = law.branch(entry, max_overlap).force
 
@@ -64,23 +90,11 @@ def free_flight(system, law, max_overlap, t0, y0, tau_max):
         below = np.minimum(d - threshold, -np.finfo(float).tiny)
         return np.where(d > threshold, entry_force(d, r), below)[:, None]
 
-    search = min(tau_max, _recontact_horizon(system, y0, threshold))
+    horizon = recontact_horizon(
+        np.asarray(y0, float), system.m1, system.k1, system.rigid, threshold
+    )
+    search = min(tau_max, horizon)
     hit = first_event(values, search, scan_step(states.rate, search), [+1])
     tau_end = tau_max if hit is None else hit[0]
-    seg = Segment(t0, t0 + tau_end, "free", None, states, seg_force, states.grid)
+    seg = free_segment(t0, t0 + tau_end, states)
     return seg, states(tau_end)[0], None if hit is None else entry
-
-
-def _recontact_horizon(system, y0, threshold):
-    """Latest local time [s] at which a free grain can reach the plate again.
-
-    The free plate's displacement never exceeds ``sqrt(2 E / k1)``, ``E`` its energy at
-    the start (damping only removes energy), and a receding grain (``v2 < 0``) moves
-    away at constant speed: beyond the returned time the overlap cannot reach
-    ``threshold`` [m]. Infinite for a grain that is not receding.
-    """
-    x1, v1, x2, v2 = (float(v) for v in y0)
-    if v2 >= 0.0:
-        return math.inf
-    reach = 0.0 if system.rigid else math.sqrt(system.m1 * v1**2 / system.k1 + x1**2)
-    return max((x2 + reach - threshold) / -v2, 0.0)

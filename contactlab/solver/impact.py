@@ -32,10 +32,12 @@ import numpy as np
 from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
+from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.plausibility import check_plausible
 from contactlab.result import ImpactResult
 from contactlab.solver.adaptive import adaptive_contact
+from contactlab.solver.compiled import core_law, solve_on_core
 from contactlab.solver.euler import solve_euler
 from contactlab.solver.exact import exact_contact, free_flight
 from contactlab.solver.pieces import AffineForceStates
@@ -49,19 +51,6 @@ METHODS = ("auto", "exact", "adaptive", "euler")
 
 DEFAULT_SAMPLES = 20001
 """Output samples over the window when no sample rate is given."""
-
-MAX_CONTACTS = 200
-"""Contact intervals after which the solver stops (a grain resting on a ringing plate)."""
-
-FIRST_CONTACT_HORIZON = 1.0
-"""How far the first contact is followed when no window is given [s]: a contact longer
-than a second is not an impact."""
-
-RINGING_PERIODS = 5.0
-"""Default window: sensor periods of ringing after the first contact."""
-
-WINDOW_PER_CONTACT = 1.5
-"""Default window: at least this many first-contact durations."""
 
 SPEED_OF_LIGHT = 299_792_458.0
 """No impact is faster [m/s]: the bound that keeps a velocity's squares and products
@@ -100,7 +89,7 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
     limit = math.inf if window is None else max(window, 0.0)
     while True:
         branch = law.branch(branch_name, max_overlap)
-        horizon = (limit if intervals else _contact_horizon(system, limit)) - t
+        horizon = (limit if intervals else contact_horizon(limit)) - t
         seg, y, event = contact_solver(system, branch, t, y, horizon)
         segments.append(seg)
         t = seg.t1
@@ -134,20 +123,10 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
     return segments, intervals, log, limit
 
 
-def _contact_horizon(system, limit):
-    """How far to follow the first contact when looking for its end [s]: a contact longer
-    than a second (or 100 windows) is not an impact."""
-    if math.isinf(limit):
-        return FIRST_CONTACT_HORIZON
-    return max(100.0 * limit, FIRST_CONTACT_HORIZON)
-
-
 def auto_window(system, contact_end):
-    """Window after the first contact when none was given: the contact and the ringing."""
-    ringing = (
-        0.0 if system.rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(system.k1 / system.m1)
-    )
-    return max(WINDOW_PER_CONTACT * contact_end, contact_end + ringing)
+    """Window after a contact when none was given: the contact and the ringing
+    (:func:`contactlab.kernels.rules.window_end`)."""
+    return window_end(contact_end, ringing_time(system.m1, system.k1, system.rigid))
 
 
 STEEP_RAMP = 1e-12
@@ -297,20 +276,22 @@ def simulate_impact(
             f"method='exact' needs a piecewise-linear law; {type(law).__name__} is "
             "nonlinear: use method='adaptive' (or 'auto')"
         )
-    system = System(grain, sensor)
+    system, headline = System(grain, sensor), None
     if method == "euler":
         segments, intervals, log, window = solve_euler(system, law, velocity, duration, time_step)
     elif law.prescribed:
         segments, intervals, log, window = _solve_pulse(system, law, velocity, duration)
     else:
-        if method == "exact":
-            solver = exact_contact
+        branch = core_law(law, method)
+        solved = None if branch is None else solve_on_core(system, branch, velocity, duration, rtol)
+        if solved is not None:
+            segments, intervals, log, window, headline = solved
+            if threshold != 0.0:  # the loop reads the sensor lobe at zero
+                del headline["sensor_lobe"], headline["_sensor_peak"]
         else:
-
-            def solver(sys_, branch, t0, y0, tau_max):
-                return adaptive_contact(sys_, branch, t0, y0, tau_max, rtol, velocity)
-
-        segments, intervals, log, window = _solve_pieces(system, law, velocity, duration, solver)
+            segments, intervals, log, window = _solve_pieces(
+                system, law, velocity, duration, _contact_solver(method, rtol, velocity)
+            )
         if not intervals:
             _no_contact_end(system, log[-1][0])
     _warn_window(intervals, log, window, duration)
@@ -329,16 +310,27 @@ def simulate_impact(
         segments=segments,
         contact_intervals=intervals,
         events=log,
-        system=system,
         threshold=threshold,
         rtol=rtol,
         time_step=time_step,
+        headline=headline,
     )
     if audit:
         warn_if_broken(result.audit(full=False), f"simulate_impact's result (method={method!r})")
     if verify:
         result.verification = _verify(result, rtol, time_step)
     return result
+
+
+def _contact_solver(method, rtol, velocity):
+    """The Python contact piece of ``method`` ("exact" or "adaptive")."""
+    if method == "exact":
+        return exact_contact
+
+    def solver(sys_, branch, t0, y0, tau_max):
+        return adaptive_contact(sys_, branch, t0, y0, tau_max, rtol, velocity)
+
+    return solver
 
 
 def _no_contact_end(system, horizon):

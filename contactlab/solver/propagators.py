@@ -17,6 +17,8 @@ import numpy as np
 from scipy.linalg import expm
 
 from contactlab.errors import ParameterError
+from contactlab.kernels import rules
+from contactlab.kernels.rules import too_fast_error
 from contactlab.roots import crosses, earliest_root
 
 __all__ = [
@@ -207,14 +209,6 @@ class Trajectory:
         return powers.view(float) @ self._weights  # columns Re, Im of each mode, interleaved
 
 
-MAX_SCAN_POINTS = 20_000_000
-"""Most scan points of one event search (about 25 s on one core): a piece whose fastest
-mode needs more before its event is refused. A linear contact damping of 1e6 N*s/m on a
-50 mg grain takes 1.3 million (1.4 s; a 5e-11 s relaxation time against a 13 us contact),
-1e7 N*s/m 13 million (16 s); the scan grows with the damping, and 1e9 N*s/m ran for half
-an hour. A 300 kHz sensor ringing through a second of free flight needs 1e7."""
-
-
 def first_event(values, tau_max, step, directions, chunk=256):
     """First zero crossing of any of several exact event functions on ``(0, tau_max]``.
 
@@ -241,11 +235,12 @@ def first_event(values, tau_max, step, directions, chunk=256):
     Raises
     ------
     ParameterError
-        If no event is found within :data:`MAX_SCAN_POINTS` scan points (a run-time limit).
+        If no event is found within :data:`contactlab.kernels.rules.MAX_SCAN_POINTS` scan
+        points (a run-time limit).
     """
     directions = np.asarray(directions)
     start, previous = 0.0, values(np.array([0.0]))[0]
-    for _ in range(math.ceil(MAX_SCAN_POINTS / chunk)):
+    for _ in range(math.ceil(rules.MAX_SCAN_POINTS / chunk)):
         if start >= tau_max:
             return None
         grid = np.minimum(start + step * np.arange(1, chunk + 1), tau_max)
@@ -267,9 +262,4 @@ def first_event(values, tau_max, step, directions, chunk=256):
         start, previous = grid[-1], vals[-1]
     if start >= tau_max:
         return None
-    raise ParameterError(
-        f"a mode of this impact is too fast to follow: scan step {step:.3g} s, still no "
-        f"event after {start:.3g} s ({MAX_SCAN_POINTS:.0e} points); a contact damping or "
-        "stiffness this large against the masses (relaxation time ~ m/c) is beyond the "
-        "solver: lower it to a physical value"
-    )
+    raise too_fast_error(f"scan step {step:.3g} s, still no event after {start:.3g} s")

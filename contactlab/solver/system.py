@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from contactlab.kernels.rules import contact_matrix
 from contactlab.solver.propagators import linear_flow
 
 __all__ = [
@@ -18,12 +19,7 @@ __all__ = [
     "event_directions",
     "force_scales",
     "overlap_rate",
-    "scan_step",
 ]
-
-SCAN_STEPS_PER_RADIAN = 5.0
-"""Event scan: about 31 points per period of the fastest mode, so no two crossings of an
-event function fall between scan points."""
 
 
 class System:
@@ -49,19 +45,9 @@ class System:
         return linear_flow(self.contact_matrix(k, c), scale)
 
     def contact_matrix(self, k, c):
-        """System matrix under a contact force ``k d + c d' + f0`` (rigid: grain only)."""
-        m1, m2 = self.m1, self.m2
-        if self.rigid:
-            return np.array([[0.0, 1.0], [-k / m2, -c / m2]])
-        k1, c1 = self.k1, self.c1
-        return np.array(
-            [
-                [0.0, 1.0, 0.0, 0.0],
-                [-(k1 + k) / m1, -(c1 + c) / m1, k / m1, c / m1],
-                [0.0, 0.0, 0.0, 1.0],
-                [k / m2, c / m2, -k / m2, -c / m2],
-            ]
-        )
+        """System matrix under a contact force ``k d + c d' + f0`` (rigid: grain only;
+        :func:`contactlab.kernels.rules.contact_matrix`)."""
+        return contact_matrix(self.m1, self.k1, self.c1, self.m2, k, c, self.rigid)
 
     def rhs(self, force):
         """Right-hand side ``y' = f(y)`` for a contact force function of (d, d').
@@ -86,14 +72,6 @@ class System:
 
         return f
 
-    def signal(self, states, contact_force):
-        """Sensor signal S1 [N]: ``k1 x1 + c1 v1``, or S2 itself on an immovable wall."""
-        if self.rigid:
-            return np.asarray(contact_force, dtype=float)
-        signal = states[:, 0] * self.k1
-        signal += self.c1 * states[:, 1]
-        return signal
-
 
 def force_scales(stiffness, mass):
     """Scales ``(k, k / omega)`` that make a mass's displacement and velocity forces [N].
@@ -107,13 +85,6 @@ def force_scales(stiffness, mass):
 
 def overlap_rate(states):
     return states[:, 2] - states[:, 0], states[:, 3] - states[:, 1]
-
-
-def scan_step(rate, tau_max):
-    """Scan step [s] for events of a piece whose fastest mode has ``|lambda| = rate``."""
-    return (
-        tau_max / 64.0 if rate == 0.0 else min(tau_max / 64.0, 1.0 / (SCAN_STEPS_PER_RADIAN * rate))
-    )
 
 
 def event_directions(branch):

@@ -1,17 +1,15 @@
 """A law's impact on an immovable wall: the simulation behind a law's restitution.
 
-:class:`contactlab.laws.ContactLaw` defines forces only; its convenience methods
-(:meth:`~contactlab.laws.ContactLaw.impact`, ``restitution``, ``contact_time``,
-``dissipated_energy``) call :func:`wall_impact`, which this module registers with the
-laws when the solver is imported (:func:`contactlab.laws.base.use_wall_solver`).
+:class:`contactlab.laws.ContactLaw` defines forces only; what a law does to a grain on
+an immovable wall is simulated here: :func:`wall_impact` and the numbers read off it
+(:func:`wall_restitution`, :func:`wall_contact_time`, :func:`wall_dissipated_energy`).
 """
 
 from contactlab.bodies import Grain, Sensor
-from contactlab.laws.base import use_wall_solver
 from contactlab.plausibility import internal
 from contactlab.solver.impact import simulate_impact
 
-__all__ = ["wall_impact"]
+__all__ = ["wall_contact_time", "wall_dissipated_energy", "wall_impact", "wall_restitution"]
 
 
 def wall_impact(law, mass, velocity, **kwargs):
@@ -45,4 +43,19 @@ def wall_impact(law, mass, velocity, **kwargs):
         return simulate_impact(grain, Sensor.rigid(), law, velocity=velocity, **kwargs)
 
 
-use_wall_solver(wall_impact)
+def wall_restitution(law, mass, velocity):
+    """Coefficient of restitution on an immovable wall [-] (force-zero contact end) of a
+    grain of ``mass`` [kg] at ``velocity`` [m/s]."""
+    return wall_impact(law, mass, velocity).restitution
+
+
+def wall_contact_time(law, mass, velocity):
+    """Contact duration on an immovable wall [s] (force-zero contact end) of a grain of
+    ``mass`` [kg] at ``velocity`` [m/s]."""
+    return wall_impact(law, mass, velocity).contact_time
+
+
+def wall_dissipated_energy(law, mass, velocity):
+    """Energy lost in one impact on an immovable wall [J]: ``m v**2 (1 - e**2) / 2``."""
+    e = wall_restitution(law, mass, velocity)
+    return 0.5 * mass * velocity**2 * (1.0 - e**2)

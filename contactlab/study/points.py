@@ -23,6 +23,7 @@ from contactlab.batch import (
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
 from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
+from contactlab.solver.wall import wall_contact_time
 from contactlab.study.execution import progress_bar
 
 __all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
@@ -61,7 +62,7 @@ _CLOSED_FORMS = {
 def _rigid_contact_time(law, mass, velocity):
     """Contact time of the law on an immovable wall [s]."""
     closed = _CLOSED_FORMS.get(law.name)
-    return law.contact_time(mass, velocity) if closed is None else closed(law, mass, velocity)
+    return wall_contact_time(law, mass, velocity) if closed is None else closed(law, mass, velocity)
 
 
 def error_percent(reading, truth):

@@ -8,7 +8,7 @@ spanning decades are drawn evenly in log scale. Needs ``hypothesis`` (the ``test
 
     @given(grain=grains(), law=laws(), velocity=impact_velocities())
     def test_restitution_is_a_fraction(grain, law, velocity):
-        assert 0.0 <= law.restitution(grain.mass, velocity) <= 1.0 + 1e-9
+        assert 0.0 <= wall_restitution(law, grain.mass, velocity) <= 1.0 + 1e-9
 """
 
 import math

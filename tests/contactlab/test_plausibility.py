@@ -14,6 +14,7 @@ from contactlab.advisor import list_species, load_species
 from contactlab.batch import linear_impacts
 from contactlab.errors import PlausibilityWarning, UnknownParameterError
 from contactlab.plausibility import RANGES, check_plausible, internal, likely_slips
+from contactlab.solver.wall import wall_restitution
 from contactlab.testing.strategies import grains, impact_velocities, sensors
 
 LAW = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1.0)
@@ -128,7 +129,7 @@ def test_internal_values_do_not_warn():
     with internal():
         _no_warning(lambda: cl.Grain(diameter=5.0, density=765.0))
     # and law conveniences at any mass and speed (wall impacts) never warn
-    _no_warning(lambda: LAW.restitution(1e3, 200.0))
+    _no_warning(lambda: wall_restitution(LAW, 1e3, 200.0))
 
 
 def test_a_batch_frame_warns_once_per_quantity_naming_its_rows():

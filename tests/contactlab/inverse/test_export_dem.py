@@ -11,6 +11,7 @@ import contactlab as cl
 from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.inverse import DEM_CODES, export_dem, read_fit
+from contactlab.solver.wall import wall_contact_time
 
 GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
 VELOCITY = 2.0  # [m/s]
@@ -136,7 +137,7 @@ def test_mercurydpm_linear_and_hertz():
         E_STAR, rel=REL
     )
     assert re.search(r"setElasticModulusAndRestitutionCoefficient\([^,]+, 0\.5\)", hertz)
-    t_hertz = HERTZ.contact_time(GRAIN.mass, VELOCITY)
+    t_hertz = wall_contact_time(HERTZ, GRAIN.mass, VELOCITY)
     assert _number(hertz, r"setTimeStep\(") == pytest.approx(t_hertz / 50, rel=REL)
     for text in (linear, hertz):
         code = [ln for ln in text.splitlines() if ln and not ln.startswith("//")]

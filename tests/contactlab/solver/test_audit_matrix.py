@@ -78,7 +78,7 @@ def test_thornton_on_a_wall_at_5_m_s_rebounds_at_its_closed_form(rtol):
     """Regression (issue 21, found by the sweep above): the step across the unloading
     branch's end, where ``k_u (d - d_p)**1.5`` is not smooth, was accepted 1e5 rtol off
     (restitution 1.03e-5 off at rtol 1e-10, 1.9e-7 at 1e-8); it is now taken again to just past
-    the end (:func:`contactlab.solver.power_piece.retake_bound`)."""
+    the end (:func:`contactlab.kernels.power_piece.retake_bound`)."""
     grain = cl.Grain(
         diameter=0.009156568638510328, density=1697.9375, youngs_modulus=1e6, poisson_ratio=0.25
     )

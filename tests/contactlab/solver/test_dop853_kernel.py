@@ -6,11 +6,11 @@ import pytest
 from scipy.integrate import DOP853
 
 import contactlab as cl
+from contactlab.kernels import dop853 as kernel
+from contactlab.kernels.power import pack, rhs
 from contactlab.laws import HertzDamped, HuntCrossley
 from contactlab.solver import adaptive
-from contactlab.solver import dop853_kernel as kernel
 from contactlab.solver.dop853 import Stepper
-from contactlab.solver.power_rhs import pack, rhs
 from contactlab.solver.system import System
 
 EPS = np.finfo(float).eps

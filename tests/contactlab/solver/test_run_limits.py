@@ -42,14 +42,20 @@ def test_huge_grids_raise_parameter_error_not_memory_or_overflow_errors(duration
 def test_a_mode_too_fast_to_follow_is_refused_not_run_for_hours(monkeypatch):
     """Linear damping 1e6 N*s/m on a 50 mg grain: 1.3 million scan points before the
     contact ends (its time grows with the damping; 1e9 N*s/m ran half an hour). With the
-    limit lowered to 1e5 points, the refusal comes at once and says why."""
-    from contactlab.solver import propagators
+    limit lowered to 1e5 points, the refusal comes at once and says why, from the compiled
+    loop and from the Python pieces (the same law seen as a history law, which the loop
+    does not take)."""
+    from contactlab.kernels import rules
 
-    monkeypatch.setattr(propagators, "MAX_SCAN_POINTS", 100_000)
+    class PythonPieces(cl.laws.LinearViscoelastic):
+        has_history = True  # its force ignores the history: the same law
+
+    monkeypatch.setattr(rules, "MAX_SCAN_POINTS", 100_000)
     law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1e6)
-    with pytest.raises(ParameterError, match="too fast to follow"):
-        cl.simulate_impact(GRAIN, SENSOR, law, 2.0)
-    monkeypatch.setattr(propagators, "MAX_SCAN_POINTS", 2_000_000)
+    for each in (law, PythonPieces(stiffness=1e5, damping=1e6)):
+        with pytest.raises(ParameterError, match="too fast to follow"):
+            cl.simulate_impact(GRAIN, SENSOR, each, 2.0)
+    monkeypatch.setattr(rules, "MAX_SCAN_POINTS", 2_000_000)
     assert cl.simulate_impact(GRAIN, SENSOR, law, 2.0).contact_time > 0  # under the limit
 
 

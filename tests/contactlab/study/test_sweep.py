@@ -11,6 +11,7 @@ import pytest
 import contactlab as cl
 from contactlab import metrics
 from contactlab.laws import Hertz, LinearViscoelastic, PlasticTrapezoid
+from contactlab.solver.wall import wall_contact_time
 from contactlab.study import (
     Scatter,
     StudySetup,
@@ -204,7 +205,7 @@ def test_the_grid_resolves_the_lobe_and_the_peaks(setup):
     for d, f in ((2.5e-3, 300e3), (5e-3, 10e3), (1e-3, 40e3)):
         config = setup.config({"grain.diameter": d, "sensor.resonance": f})
         grain, sensor, law, v = config.grain, config.sensor, config.law, config.velocity
-        period = min(sensor.period, law.contact_time(grain.mass, v))
+        period = min(sensor.period, wall_contact_time(law, grain.mass, v))
         res = cl.simulate_impact(
             grain, sensor, law, v, sample_rate=setup.samples_per_period / period
         )

@@ -21,6 +21,7 @@ import contactlab as cl
 import dem_check
 from contactlab import analytic
 from contactlab.errors import ParameterError
+from contactlab.solver.wall import wall_contact_time
 from dem_check.engines.kratos import drop_test, engine_check, load_kratos
 
 pytestmark = pytest.mark.kratos
@@ -130,7 +131,7 @@ def test_other_laws_are_refused_by_name(grain, law):
 
 def test_a_coarse_time_step_is_refused(grain, laws):
     law = laws["hertz"]
-    contact = law.contact_time(grain.mass, V0)
+    contact = wall_contact_time(law, grain.mass, V0)
     with pytest.raises(ParameterError, match="time_step"):
         drop_test(grain, cl.Sensor.rigid(), law, V0, time_step=contact / 5)
 

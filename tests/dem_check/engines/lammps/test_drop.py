@@ -17,6 +17,7 @@ import dem_check
 from contactlab import analytic
 from contactlab.errors import ParameterError, WindowWarning
 from contactlab.laws import lammps as lammps_laws
+from contactlab.solver.wall import wall_contact_time
 from dem_check.engines.lammps import (
     LammpsError,
     convergence_study,
@@ -108,7 +109,7 @@ def test_plate_radius_does_not_change_the_impact(grain, paper_sensor, laws):
 @pytest.mark.parametrize(("name", "order"), [("hertz", 2.0), ("kuwabara_kono", 1.0)])
 def test_convergence_order(grain, laws, name, order):
     law = laws[name]
-    contact = law.contact_time(grain.mass, V0)
+    contact = wall_contact_time(law, grain.mass, V0)
     steps = [contact / n for n in (50, 100, 200)]
     study = convergence_study(grain, cl.Sensor.rigid(), law, V0, steps)
     # a fitted slope over a factor 4 in dt: 0.2 separates orders 1 and 2 with room
@@ -131,7 +132,7 @@ def test_dispatch_by_engine_name(grain, laws):
 
 def test_default_time_step_resolves_contact_and_sensor(grain, paper_sensor, laws):
     law = laws["hertz"]
-    contact = law.contact_time(grain.mass, V0)
+    contact = wall_contact_time(law, grain.mass, V0)
     assert default_time_step(grain, cl.Sensor.rigid(), law, V0) == contact / 1000
     assert default_time_step(grain, paper_sensor, law, V0) == min(
         contact / 1000, paper_sensor.period / 200
@@ -141,7 +142,7 @@ def test_default_time_step_resolves_contact_and_sensor(grain, paper_sensor, laws
 def test_coarse_step_and_bad_input_are_named(grain, laws):
     law = laws["hertz"]
     with pytest.raises(ParameterError, match="time_step"):
-        drop_test(grain, cl.Sensor.rigid(), law, V0, law.contact_time(grain.mass, V0) / 10)
+        drop_test(grain, cl.Sensor.rigid(), law, V0, wall_contact_time(law, grain.mass, V0) / 10)
     with pytest.raises(ParameterError, match="velocity"):
         drop_test(grain, cl.Sensor.rigid(), law, -1.0)
     with pytest.raises(ParameterError, match="law WaltonBraun cannot be represented"):

@@ -2,12 +2,12 @@
 
 :func:`integrate` is :func:`contactlab.solver.adaptive.integrate_piece` compiled for the
 laws of :class:`contactlab.laws.base.PowerForm` (every Hertz-family law): the same
-stepper (:mod:`contactlab.solver.dop853_kernel`), the same start in
+stepper (:mod:`contactlab.kernels.dop853`), the same start in
 ``s = tau**(1/4)`` at a touch and hand-over to time, the same event (the contact force
 falling through zero, located by Brent's method on the step's interpolant to the
 solver's tolerance and taken on its crossed side, :func:`contactlab.roots.crossed_side`).
 It serves :func:`~contactlab.solver.adaptive.adaptive_contact` (one impact) and the
-batch kernel (:mod:`contactlab.batch.hertz_kernel`, thousands of impacts).
+batch kernel (:mod:`contactlab.kernels.hertz_impact`, thousands of impacts).
 """
 
 import math
@@ -15,10 +15,11 @@ import math
 import numpy as np
 
 from contactlab.compiled import njit
+from contactlab.kernels.brent import WORK_SIZE, brent_next, brent_start
+from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, interpolate, step
+from contactlab.kernels.power import force, rhs
+from contactlab.kernels.rules import happened
 from contactlab.roots import SIDE_STEPS
-from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
-from contactlab.solver.dop853_kernel import WORK_ROWS, initial_step, interpolant, interpolate, step
-from contactlab.solver.power_rhs import force, rhs
 
 __all__ = [
     "MAX_RETAKES",
@@ -137,7 +138,7 @@ def _locate(t_old, h, before, after, F, y_old, par, tmp, work):
     for _ in range(SIDE_STEPS):
         if t >= hi:
             return hi
-        if _event_on_step(t, t_old, h, after, F, y_old, par, tmp) <= 0.0:
+        if happened(_event_on_step(t, t_old, h, after, F, y_old, par, tmp), -1):
             return t
         t = np.nextafter(t, math.inf)
     return hi
@@ -194,7 +195,7 @@ def integrate(par, t0, y0, tau_max, rtol, atol, touch):
     Parameters
     ----------
     par : numpy.ndarray
-        Packed law and system (:func:`contactlab.solver.power_rhs.pack`).
+        Packed law and system (:func:`contactlab.kernels.power.pack`).
     t0 : float
         Start [s].
     y0 : numpy.ndarray

@@ -1,12 +1,9 @@
-"""Compiled kernel of :func:`contactlab.batch.hertz_impacts`: one damped-Hertz impact per row.
+"""The power-law contact piece of the compiled impact loop: DOP853 and readings on it.
 
-Each row is solved as :func:`contactlab.simulate_impact` solves a grain on a sensor (or a
-wall) through :class:`~contactlab.laws.HertzDamped` (Tsuji's ``kH d**1.5 + eta d**0.25
-d'``) with ``method="adaptive"``: every contact piece by the compiled DOP853 piece of the
-single solver (:func:`contactlab.solver.power_piece.integrate`: warped start at the
-touch, the contact's end located on the step's interpolant), every free flight exactly
-in modal form (:func:`contactlab.batch.modal_kernel.free_flight`), the same window and
-contact cap.
+A Hertz-family contact (``a d**p + b |d|**q d'``, :mod:`contactlab.kernels.power`) is
+integrated by the compiled DOP853 piece (:func:`contactlab.kernels.power_piece.integrate`:
+warped start at the touch, the contact's end located on the step's interpolant), the
+same piece :func:`contactlab.simulate_impact` runs for every Hertz-family law.
 
 The headline numbers are read on the dense solution as
 :class:`contactlab.ImpactResult` defines them: each contact step is sampled at points
@@ -21,33 +18,18 @@ import math
 
 import numpy as np
 
-from contactlab.batch.modal_kernel import (
-    COND_LIMIT,
-    IN_CONTACT,
-    SENSOR,
-    STATUS_FALLBACK,
-    STATUS_OK,
-    conjugates_once,
-    falls,
-    fastest,
-    free_flight,
-    may_exceed,
-    quadratic_modes,
-    row_parameters,
-    signal,
-)
 from contactlab.compiled import njit
-from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
-from contactlab.solver.dop853_kernel import interpolate
-from contactlab.solver.impact import (
-    FIRST_CONTACT_HORIZON,
-    MAX_CONTACTS,
-    RINGING_PERIODS,
-    WINDOW_PER_CONTACT,
+from contactlab.kernels.brent import brent_next, brent_start
+from contactlab.kernels.dop853 import interpolate
+from contactlab.kernels.modal import (
+    CONTACT_PEAK,
+    LOBE_END,
+    SENSOR_PEAK,
+    falls,
+    may_exceed,
+    raise_peak,
 )
-from contactlab.solver.power_piece import STATUS_OK as PIECE_OK
-from contactlab.solver.power_piece import contact_tolerances, integrate
-from contactlab.solver.power_rhs import (
+from contactlab.kernels.power import (
     C1,
     DAMPING,
     DAMPING_EXPONENT,
@@ -60,8 +42,10 @@ from contactlab.solver.power_rhs import (
     force,
     power,
 )
+from contactlab.kernels.power_piece import STATUS_OK as PIECE_OK
+from contactlab.kernels.power_piece import contact_tolerances, integrate
 
-__all__ = ["INTERVAL_PER_PERIOD", "solve_rows"]
+__all__ = ["INTERVAL_PER_PERIOD", "power_contact", "power_setup"]
 
 INTERVAL_PER_PERIOD = 0.18
 """Longest sample interval in which the signals' turns are looked for, as a fraction of
@@ -158,7 +142,7 @@ def _to_time(u, t0, warped):
 def _read_steps(steps, warped, t0, u_end, par, limits, track, best, z, work):
     """Read the signals' turns on a run of steps up to step variable ``u_end``.
 
-    ``track`` and ``best`` as in :func:`contactlab.batch.modal_kernel.scan`, with one
+    ``track`` and ``best`` as in :func:`contactlab.kernels.modal.scan`, with one
     more: track [0] the sensor lobe is open, [1] the contact force's peak is wanted,
     [2] the signal has not yet risen above ``floor`` [N]; best [0] sensor peak [N], [1]
     contact-force peak [N], [2] lobe end (absolute time [s]). ``limits`` is
@@ -189,22 +173,22 @@ def _read_steps(steps, warped, t0, u_end, par, limits, track, best, z, work):
             t_now = _to_time(u, t0, warped)
             dt = t_now - t_prev
             if track[1]:
-                best[1] = max(best[1], cur[_S2])
+                raise_peak(best, CONTACT_PEAK, cur[_S2], t_now)
                 turns = falls(prev[_S2_SLOPE], cur[_S2_SLOPE])
-                if turns and may_exceed(prev[_S2], prev[_S2_SLOPE], best[1], dt):
+                if turns and may_exceed(prev[_S2], prev[_S2_SLOPE], best[CONTACT_PEAK], dt):
                     top = _root(
                         _S2_SLOPE, u_prev, prev[_S2_SLOPE], u, cur[_S2_SLOPE], a, hj, Fj, yj,
                         par, z, values, work,
                     )  # fmt: skip
                     _at(top, a, hj, Fj, yj, par, z, values)
-                    best[1] = max(best[1], max(force(z[2] - z[0], z[3] - z[1], par), 0.0))
+                    peak = max(force(z[2] - z[0], z[3] - z[1], par), 0.0)
+                    raise_peak(best, CONTACT_PEAK, peak, _to_time(top, t0, warped))
             if track[2] and cur[_S1] > floor:
                 track[2], track[0] = False, True  # the lobe, started at the touch, is open
             elif track[0]:
                 interval = (u_prev, prev, u, cur, dt)
-                _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work)
-                if not track[0]:
-                    best[2] = _to_time(best[2], t0, warped)
+                clock = (t0, warped)
+                _read_lobe(interval, clock, a, hj, Fj, yj, par, z, values, track, best, work)
             prev, cur = cur, prev
             u_prev, t_prev = u, t_now
             if u >= u_end:
@@ -212,10 +196,12 @@ def _read_steps(steps, warped, t0, u_end, par, limits, track, best, z, work):
 
 
 @njit(cache=True, error_model="numpy", inline="always")
-def _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work):
+def _read_lobe(interval, clock, a, hj, Fj, yj, par, z, values, track, best, work):
     """The sensor lobe on one sample interval ``(u_prev, prev, u, cur, dt)`` (``dt`` its
-    length [s]): its peaks, its end (in the step variable); ``values`` is scratch."""
+    length [s]): its peaks and its end, in time through ``clock = (t0, warped)`` (the step
+    variable's origin [s] and whether it is ``s = tau**(1/4)``); ``values`` is scratch."""
     u_prev, prev, u, cur, dt = interval
+    t0, warped = clock
     end = u
     reach = prev[_S1] + 2.0 * prev[_S1_SLOPE] * dt  # the bound of may_exceed, both ways
     if falls(prev[_S1], cur[_S1]):
@@ -230,19 +216,19 @@ def _read_lobe(interval, a, hj, Fj, yj, par, z, values, track, best, work):
         if values[_S1] <= 0.0:
             bottom = values[_S1]
             end = _root(_S1, u_prev, prev[_S1], low, bottom, a, hj, Fj, yj, par, z, values, work)
-    if falls(prev[_S1_SLOPE], cur[_S1_SLOPE]) and reach >= best[0]:
+    if falls(prev[_S1_SLOPE], cur[_S1_SLOPE]) and reach >= best[SENSOR_PEAK]:
         top = _root(
             _S1_SLOPE, u_prev, prev[_S1_SLOPE], u, cur[_S1_SLOPE], a, hj, Fj, yj, par, z,
             values, work,
         )  # fmt: skip
         if top <= end:
             _at(top, a, hj, Fj, yj, par, z, values)
-            best[0] = max(best[0], values[_S1])
+            raise_peak(best, SENSOR_PEAK, values[_S1], _to_time(top, t0, warped))
     if end < u or cur[_S1] <= 0.0:
-        best[2] = end
+        best[LOBE_END] = _to_time(end, t0, warped)
         track[0] = False
     else:
-        best[0] = max(best[0], cur[_S1])
+        raise_peak(best, SENSOR_PEAK, cur[_S1], _to_time(u, t0, warped))
 
 
 @njit(cache=True, error_model="numpy")
@@ -256,9 +242,24 @@ def _state_at(steps, u, y):
 
 
 @njit(cache=True, error_model="numpy")
-def _contact(par, t, y, horizon, rtol, atol, limits, track, best, work):
-    """One contact piece from ``(t, y)``; returns its end time [s] (nan: none within
-    ``horizon``) or -1 on a step-size underflow. ``y`` becomes the state at the end."""
+def power_setup(par, v0, rtol):
+    """What every power-law contact piece of an impact at ``v0`` [m/s] shares:
+    ``(rtol, atol, limits)``, the integrator's tolerances
+    (:func:`contactlab.kernels.power_piece.contact_tolerances`) and the reading's noise
+    floor [N] and longest sample interval [s] (see :func:`_read_steps`)."""
+    atol = contact_tolerances(rtol, v0)
+    rigid = par[RIGID] > 0.0
+    floor = 0.0 if rigid else _NOISE * (par[K1] * atol[0] + par[C1] * atol[1])
+    return rtol, atol, (floor, INTERVAL_PER_PERIOD * _shortest_period(par, v0))
+
+
+@njit(cache=True, error_model="numpy")
+def power_contact(setup, par, t, y, horizon, track, best, work):
+    """One power-law contact piece from ``(t, y)`` [s, state]; returns its end time [s]
+    (nan: none within ``horizon`` [s]) or -1 on a step-size underflow. ``y`` becomes the
+    state at the end; ``setup`` is :func:`power_setup`'s; ``track`` and ``best`` as in
+    :func:`_read_steps`."""
+    rtol, atol, limits = setup
     touch = y[2] - y[0] == 0.0 and y[3] - y[1] > 0.0
     status, warp, steps, switch, hit = integrate(par, t, y, horizon, rtol, atol, touch)
     if status != PIECE_OK:
@@ -276,77 +277,3 @@ def _contact(par, t, y, horizon, rtol, atol, limits, track, best, work):
     else:
         _state_at(warp, (end - t) ** 0.25, y)
     return hit
-
-
-@njit(cache=True, error_model="numpy")
-def solve_row(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out):
-    """Solve one impact; write the six outputs into ``out``; return the row status."""
-    rigid = math.isinf(k1)
-    par = row_parameters(k_hertz, 1.5, damping, 0.25, m1, k1, c1, m2, rigid)
-    lam_f, vec_f = np.zeros(2, np.complex128), np.zeros((4, 2), np.complex128)
-    inv_f = np.zeros((2, 4), np.complex128)
-    nm_f = 0
-    if not rigid:
-        nm_f = 2
-        if not quadratic_modes(m1, c1, k1, 0, lam_f, vec_f, inv_f) < COND_LIMIT:
-            return STATUS_FALLBACK
-    rate_f = fastest(lam_f, nm_f)
-    nm_f = conjugates_once(lam_f, vec_f, inv_f, nm_f)
-    free_modes = (lam_f, vec_f, inv_f, nm_f, rate_f)
-    ringing = 0.0 if rigid else RINGING_PERIODS * 2.0 * math.pi / math.sqrt(k1 / m1)
-    atol = contact_tolerances(rtol, v0)
-    y, work = np.array([0.0, 0.0, 0.0, v0]), np.zeros(WORK_SIZE)
-    track = np.array([False, True, not rigid])
-    best = np.array([0.0, 0.0, math.nan])
-    floor = 0.0 if rigid else _NOISE * (k1 * atol[0] + c1 * atol[1])
-    limits = (floor, INTERVAL_PER_PERIOD * _shortest_period(par, v0))
-    t, limit, contacts, contact_time, rebound = 0.0, math.inf, 0, math.nan, math.nan
-    while True:
-        par[IN_CONTACT] = 1.0
-        if track[0]:  # a piece's start is a candidate for the sensor's peak
-            best[0] = max(best[0], signal(SENSOR, y, par))
-        horizon = (FIRST_CONTACT_HORIZON if contacts == 0 else limit) - t
-        end = _contact(par, t, y, horizon, rtol, atol, limits, track, best, work)
-        if end < 0.0 or (math.isnan(end) and contacts == 0):
-            return STATUS_FALLBACK
-        if math.isnan(end):  # the window ends in this contact
-            break
-        t = end
-        if contacts == 0:
-            contact_time = t
-            track[1] = False
-            if track[2]:  # no rise of the signal in the whole first contact
-                return STATUS_FALLBACK
-        limit = max(WINDOW_PER_CONTACT * t, t + ringing)  # auto_window, after every contact
-        contacts += 1
-        rebound = -y[3]
-        if contacts >= MAX_CONTACTS:
-            return STATUS_FALLBACK
-        if limit - t <= 0.0:
-            break
-        lobe_open = track[0]
-        tau = free_flight(y, limit - t, free_modes, par, track, best, work)
-        if lobe_open and not track[0]:
-            best[2] += t
-        if tau < 0.0:  # free until the window ends
-            break
-        t += tau
-    if track[0]:  # the lobe is still open at the window's end
-        best[0] = max(best[0], signal(SENSOR, y, par))
-    out[0] = contact_time
-    out[2] = best[1]
-    if rigid:
-        out[1], out[3] = contact_time, best[1]
-    else:
-        out[1], out[3] = best[2], best[0]
-    out[4] = rebound / v0
-    out[5] = contacts
-    return STATUS_OK
-
-
-@njit(cache=True, error_model="numpy", nogil=True)
-def solve_rows(m1, k1, c1, m2, k_hertz, damping, v0, rtol, out, status):
-    """Solve every row: ``out`` (rows, 6), ``status`` (rows,); GIL released."""
-    for i in range(m1.size):
-        row = (m1[i], k1[i], c1[i], m2[i], k_hertz[i], damping[i], v0[i])
-        status[i] = solve_row(*row, rtol, out[i])

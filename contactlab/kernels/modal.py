@@ -8,15 +8,15 @@ components the modes do not move set to zero, and ``coef = W (y0 - base)`` with
 :class:`contactlab.solver.propagators.Trajectory`. Its events are found by scanning
 their exact expressions on the points of
 :func:`contactlab.solver.propagators.first_event` (step
-:func:`contactlab.solver.system.scan_step`) and located by Brent's method to the solver's
-tolerance (:mod:`contactlab.solver.brent`); while it scans, :func:`scan` reads the
+:func:`contactlab.kernels.rules.scan_step`) and located by Brent's method to the solver's
+tolerance (:mod:`contactlab.kernels.brent`); while it scans, :func:`scan` reads the
 headline numbers as :class:`contactlab.ImpactResult` defines them (the sensor signal's
 first lobe and its peak, the contact force's peak).
 
 State ``y = [x1, v1, x2, v2]``. The row's parameters are one float array: the fields of
-:func:`contactlab.solver.power_rhs.pack` and a last one, ``IN_CONTACT``, set while a
+:func:`contactlab.kernels.power.pack` and a last one, ``IN_CONTACT``, set while a
 contact piece is scanned (:func:`row_parameters`). The contact
-law enters the event functions through :func:`contactlab.solver.power_rhs.force`, so a
+law enters the event functions through :func:`contactlab.kernels.power.force`, so a
 re-contact is found for any power-law contact; modal contact pieces are linear only
 (the force slope of :func:`signal` is the linear law's).
 """
@@ -27,9 +27,8 @@ import math
 import numpy as np
 
 from contactlab.compiled import njit
-from contactlab.roots import SIDE_STEPS
-from contactlab.solver.brent import brent_next, brent_start
-from contactlab.solver.power_rhs import (
+from contactlab.kernels.brent import brent_next, brent_start
+from contactlab.kernels.power import (
     C1,
     DAMPING,
     K1,
@@ -40,7 +39,8 @@ from contactlab.solver.power_rhs import (
     STIFFNESS,
     force,
 )
-from contactlab.solver.system import SCAN_STEPS_PER_RADIAN
+from contactlab.kernels.rules import happened, scan_step
+from contactlab.roots import SIDE_STEPS
 
 __all__ = [
     "COND_LIMIT",
@@ -49,22 +49,25 @@ __all__ = [
     "SENSOR",
     "STATUS_FALLBACK",
     "STATUS_OK",
+    "STATUS_TOO_FAST",
+    "TOO_FAST",
     "falls",
     "free_flight",
     "may_exceed",
     "quadratic_modes",
+    "recontact_horizon",
     "row_parameters",
     "scan",
-    "scan_step",
     "signal",
     "state",
 ]
 
-STATUS_OK, STATUS_FALLBACK = 0, 1
+STATUS_OK, STATUS_FALLBACK, STATUS_TOO_FAST = 0, 1, 2
 """Row status of a batch kernel: solved; or handed to :func:`contactlab.simulate_impact`
 (a row the kernel cannot take: modes too close to defective for the modal form, a first
-contact that does not end, :data:`contactlab.solver.impact.MAX_CONTACTS` contacts, a step
-size that underflows). A kernel writes the six numbers of
+contact that does not end, :data:`contactlab.kernels.rules.MAX_CONTACTS` contacts, a step
+size that underflows); or refused, its modes too fast for an event scan of
+:data:`contactlab.kernels.rules.MAX_SCAN_POINTS` points. A kernel writes the six numbers of
 :data:`contactlab.batch.rows.RESULT_COLUMNS` for a solved row."""
 
 COND_LIMIT = 1e7
@@ -78,11 +81,35 @@ _CHUNK = 256
 
 _TINY = np.finfo(np.float64).tiny
 
+TOO_FAST = -2.0
+"""What a scan returns when its piece's modes are too fast to follow (``SCAN_CAP``)."""
+
 # signals the scans and root searches read off a state
 CONTACT_END, RECONTACT, SENSOR, _SENSOR_SLOPE, _FORCE_SLOPE = range(5)
 # fields of the row's parameter array
 K2, C2 = STIFFNESS, DAMPING  # a linear contact's stiffness and damping, as in row_parameters
-IN_CONTACT = len(PARAMETERS)
+IN_CONTACT, SCAN_CAP = len(PARAMETERS), len(PARAMETERS) + 1
+"""Run-time fields after the law's and system's: 1 while a contact piece is scanned; the
+most scan points of one piece (:data:`contactlab.kernels.rules.MAX_SCAN_POINTS`)."""
+
+
+SENSOR_PEAK, CONTACT_PEAK, LOBE_END, SENSOR_PEAK_TIME, CONTACT_PEAK_TIME, PIECE_START = range(6)
+"""The readings an impact loop takes while it solves (its array ``best``): the largest
+sensor signal S1 in its first lobe [N], the largest contact force S2 in the first contact
+[N], the lobe's end [s], the times [s] of the two peaks, and the start [s] of the piece
+being read (local times of a piece are read as ``best[PIECE_START] + tau``)."""
+
+READINGS = 6
+"""Length of the readings array ``best``."""
+
+
+@njit(cache=True, error_model="numpy", inline="always")
+def raise_peak(best, which, value, t):
+    """Keep the larger of the peak ``best[which]`` and ``value`` [N] found at time ``t`` [s]
+    (the earlier one on a tie); ``which`` is :data:`SENSOR_PEAK` or :data:`CONTACT_PEAK`."""
+    if value > best[which]:
+        best[which] = value
+        best[which + 3] = t
 
 
 @njit(cache=True, error_model="numpy")
@@ -148,8 +175,7 @@ def _crossed_side(kind, direction, t, hi, piece, par, y):
         if t >= hi:
             return hi
         state(t, lam, vec, coef, nm, base, slope, y0, y)
-        v = signal(kind, y, par)
-        if (v <= 0.0) if direction < 0 else (v >= 0.0):
+        if happened(signal(kind, y, par), direction):
             return t
         t = np.nextafter(t, math.inf)
     return hi
@@ -216,19 +242,23 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
 
     ``track`` (flags, updated): [0] the sensor lobe is open (look for its end and its
     maxima), [1] the contact force's maxima are wanted (first contact). ``best``
-    (updated): [0] largest sensor signal so far, [1] largest contact force, [2] lobe end
-    (local time, found when ``track[0]`` turns False). Returns the local time of the
-    event, or -1 when there is none (``event < 0`` scans for none).
+    (updated): the readings (:data:`READINGS`; the lobe's end is set when ``track[0]``
+    turns False), with ``best[PIECE_START]`` the piece's start [s]. Returns the local
+    time of the event, -1 when there is none (``event < 0`` scans for none), or
+    :data:`TOO_FAST` when ``par[SCAN_CAP]`` points passed without the event.
     """
     lam, vec, coef, nm, base, slope, y0 = piece
     prev, cur = np.zeros(5), np.zeros(5)
     state(tau0, lam, vec, coef, nm, base, slope, y0, y)
     _read(event, y, par, track, prev)
-    start, t_prev = tau0, tau0
+    start, t_prev, points = tau0, tau0, 0
     terms, ratio = np.empty(nm, np.complex128), np.empty(nm, np.complex128)
     for k in range(nm):
         ratio[k] = cmath.exp(lam[k] * step)
     while start < tau_max:
+        if points >= par[SCAN_CAP]:
+            return TOO_FAST
+        points += _CHUNK
         last = start
         for k in range(nm):  # modal terms at the chunk's start, then one product a point
             terms[k] = coef[k] * cmath.exp(lam[k] * start)
@@ -255,15 +285,20 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     hit = _crossed_side(event, direction, hit, tau, piece, par, y)
             upto = tau if hit < 0.0 else hit
             h = tau - t_prev
-            if track[0] and falls(prev[2], cur[2]) and may_exceed(prev[1], prev[2], best[0], h):
+            if (
+                track[0]
+                and falls(prev[2], cur[2])
+                and may_exceed(prev[1], prev[2], best[SENSOR_PEAK], h)
+            ):
                 t_max = _root(_SENSOR_SLOPE, t_prev, prev[2], tau, cur[2], piece, par, y, work)
                 if t_max <= upto:
                     state(t_max, lam, vec, coef, nm, base, slope, y0, y)
-                    best[0] = max(best[0], signal(SENSOR, y, par))
+                    at = best[PIECE_START] + t_max
+                    raise_peak(best, SENSOR_PEAK, signal(SENSOR, y, par), at)
             if track[0] and falls(prev[1], cur[1]):
                 t_end = _root(SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:
-                    best[2] = t_end
+                    best[LOBE_END] = best[PIECE_START] + t_end
                     track[0] = False
             elif track[0] and prev[2] < 0.0 and cur[2] >= 0.0 and prev[1] + 2.0 * prev[2] * h <= 0:
                 # a dip between two scan points that may reach zero: its bottom decides
@@ -271,27 +306,26 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                 state(t_min, lam, vec, coef, nm, base, slope, y0, y)
                 bottom = signal(SENSOR, y, par)
                 if t_min <= upto and bottom <= 0.0:
-                    best[2] = _root(SENSOR, t_prev, prev[1], t_min, bottom, piece, par, y, work)
+                    t_end = _root(SENSOR, t_prev, prev[1], t_min, bottom, piece, par, y, work)
+                    best[LOBE_END] = best[PIECE_START] + t_end
                     track[0] = False
-            if track[1] and falls(prev[3], cur[3]) and may_exceed(prev[4], prev[3], best[1], h):
+            if (
+                track[1]
+                and falls(prev[3], cur[3])
+                and may_exceed(prev[4], prev[3], best[CONTACT_PEAK], h)
+            ):
                 t_max = _root(_FORCE_SLOPE, t_prev, prev[3], tau, cur[3], piece, par, y, work)
                 if t_max <= upto:
                     state(t_max, lam, vec, coef, nm, base, slope, y0, y)
-                    best[1] = max(best[1], _clipped_force(y, par))
+                    raise_peak(
+                        best, CONTACT_PEAK, _clipped_force(y, par), best[PIECE_START] + t_max
+                    )
             if hit >= 0.0:
                 return hit
             prev[:] = cur
             t_prev = tau
         start = last
     return -1.0
-
-
-@njit(cache=True, error_model="numpy")
-def scan_step(rate, tau_max):
-    """contactlab.solver.system.scan_step."""
-    if rate == 0.0:
-        return tau_max / 64.0
-    return min(tau_max / 64.0, 1.0 / (SCAN_STEPS_PER_RADIAN * rate))
 
 
 @njit(cache=True, error_model="numpy")
@@ -367,20 +401,28 @@ def start_piece(inv, nm, base, y0, coef):
 
 
 @njit(cache=True, error_model="numpy")
-def recontact_horizon(y, par):
-    """contactlab.solver.exact._recontact_horizon (threshold 0)."""
+def recontact_horizon(y, m1, k1, rigid, threshold):
+    """Latest local time [s] at which a free grain can reach the plate again.
+
+    The free plate's displacement never exceeds ``sqrt(2 E / k1)``, ``E`` its energy at
+    the start of the flight ``y`` (damping only removes energy; ``m1`` [kg], ``k1``
+    [N/m]), and a receding grain (``v2 < 0``) moves away at constant speed: beyond the
+    returned time the overlap cannot reach ``threshold`` [m]. Infinite for a grain that
+    is not receding.
+    """
     x1, v1, x2, v2 = y[0], y[1], y[2], y[3]
     if v2 >= 0.0:
         return math.inf
-    reach = 0.0 if par[RIGID] > 0.0 else math.sqrt(par[M1] * v1**2 / par[K1] + x1**2)
-    return max((x2 + reach - 0.0) / -v2, 0.0)
+    reach = 0.0 if rigid else math.sqrt(m1 * v1**2 / k1 + x1**2)
+    return max((x2 + reach - threshold) / -v2, 0.0)
 
 
 @njit(cache=True, error_model="numpy")
-def row_parameters(a, p, b, q, m1, k1, c1, m2, rigid):
+def row_parameters(a, p, b, q, m1, k1, c1, m2, rigid, scan_cap):
     """Parameter array of a row with the force ``a d**p + b |d|**q d'``: the fields of
-    :func:`contactlab.solver.power_rhs.pack` (unsigned damping), then ``IN_CONTACT`` (1)."""
-    return np.array([a, p, b, q, 0.0, m1, k1, c1, m2, 1.0 if rigid else 0.0, 1.0])
+    :func:`contactlab.kernels.power.pack` (unsigned damping), then ``IN_CONTACT`` (1) and
+    ``SCAN_CAP`` (``scan_cap``, scan points)."""
+    return np.array([a, p, b, q, 0.0, m1, k1, c1, m2, 1.0 if rigid else 0.0, 1.0, scan_cap])
 
 
 @njit(cache=True, error_model="numpy")
@@ -397,22 +439,26 @@ def free_flight(y, tau_max, free_modes, par, track, best, work):
     Returns
     -------
     float
-        Local time of the re-contact [s], or -1 when the flight lasts to ``tau_max``.
+        Local time of the re-contact [s], -1 when the flight lasts to ``tau_max``, or
+        :data:`TOO_FAST`.
     """
     lam, vec, inv, nm, rate = free_modes
     par[IN_CONTACT] = 0.0
     y_sep = y.copy()
     if track[0]:
-        best[0] = max(best[0], signal(SENSOR, y_sep, par))
+        raise_peak(best, SENSOR_PEAK, signal(SENSOR, y_sep, par), best[PIECE_START])
     base, slope = np.zeros(4), np.zeros(4)
     base[2], base[3], slope[2] = y_sep[2], y_sep[3], y_sep[3]
     coef = np.zeros(max(nm, 1), np.complex128)
     start_piece(inv, nm, base, y_sep, coef)
     free = (lam, vec, coef, nm, base, slope, y_sep)
-    search = min(tau_max, recontact_horizon(y_sep, par))
+    search = min(tau_max, recontact_horizon(y_sep, par[M1], par[K1], par[RIGID] > 0.0, 0.0))
     tau = scan(free, par, 0.0, search, scan_step(rate, search), RECONTACT, 1, track, best, y, work)
-    if tau < 0.0 and track[0] and search < tau_max:
+    if tau == -1.0 and track[0] and search < tau_max:
         step = scan_step(rate, tau_max - search)
-        scan(free, par, search, tau_max, step, -1, 1, track, best, y, work)
+        if scan(free, par, search, tau_max, step, -1, 1, track, best, y, work) == TOO_FAST:
+            return TOO_FAST
+    if tau == TOO_FAST:
+        return TOO_FAST
     state(tau_max if tau < 0.0 else tau, lam, vec, coef, nm, base, slope, y_sep, y)
     return tau

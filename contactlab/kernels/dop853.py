@@ -1,5 +1,5 @@
 """DOP853 compiled with numba: the lean stepper of :mod:`contactlab.solver.dop853`, step
-for step, for the power-law contact of :mod:`contactlab.solver.power_rhs`.
+for step, for the power-law contact of :mod:`contactlab.kernels.power`.
 
 The Python :class:`~contactlab.solver.dop853.Stepper` spends its time in interpreter
 overhead: twelve small numpy operations per stage on a four-component state. The same
@@ -21,7 +21,7 @@ import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
 from contactlab.compiled import njit
-from contactlab.solver.power_rhs import rhs
+from contactlab.kernels.power import rhs
 
 __all__ = [
     "STAGES",
