@@ -23,7 +23,7 @@ SCRIPT = """
 import warnings
 import numpy as np
 from contactlab.errors import CompiledCacheWarning
-from contactlab.solver.brent import brent_next, brent_start
+from contactlab.kernels.brent import brent_next, brent_start
 warnings.simplefilter("always", CompiledCacheWarning)
 work = np.zeros(9)
 print(brent_start(work, 0.0, -1.0, 2.0, 1.0), brent_next(work, 0.5))
