@@ -82,7 +82,7 @@ class ObliqueResult:
         angle,
         spin,
         model,
-        pieces,
+        contact,
         free,
         final_state,
         duration,
@@ -93,7 +93,7 @@ class ObliqueResult:
         self.normal_law, self.tangential_law = normal_law, tangential_law
         self.velocity, self.angle, self.spin = velocity, angle, spin
         self.duration, self.sample_rate = duration, sample_rate
-        self._model, self._pieces, self._free = model, pieces, free
+        self._model, self._contact, self._free = model, contact, free
         self._final = np.asarray(final_state, dtype=float)
         n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
         self.t = np.arange(n, dtype=float) / sample_rate
@@ -105,39 +105,23 @@ class ObliqueResult:
 
     # -- dense evaluation ------------------------------------------------------------------
     def _evaluate(self, times):
-        """States (n, 7), normal and tangential force (n,) at times [s] (any order)."""
+        """States (n, 7), normal and tangential force (n,) at increasing times [s]."""
         times = np.asarray(times, dtype=float)
         states = np.empty((times.size, 7))
         normal, tangential = np.zeros(times.size), np.zeros(times.size)
-        after = times >= self.contact_time
-        for piece in self._pieces:
-            inside = (times >= piece.t0) & (times < piece.t1)
-            if not inside.any():
-                continue
-            st = piece.states(times[inside] - piece.t0)
-            states[inside] = st
-            _, normal[inside], tangential[inside] = self._forces(piece.phase, st)
-        if after.any():
-            states[after, :4] = self._free.states(times[after] - self._free.t0)
-            states[after, 4:] = [self._final[4], self._final[5], 0.0]
+        split = int(np.searchsorted(times, self.contact_time, side="left"))
+        if split:
+            states[:split], _, normal[:split], tangential[:split] = self._contact(times[:split])
+        if split < times.size:
+            states[split:, :4] = self._free.states(times[split:] - self._free.t0)
+            states[split:, 4:] = [self._final[4], self._final[5], 0.0]
         return states, normal, tangential
-
-    def _forces(self, phase, st):
-        """Unclipped normal formula, normal force (>= 0) and tangential force [N] on states
-        (n, 7) of a contact piece in ``phase``."""
-        model = self._model
-        d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
-        raw = model.normal(d, r)
-        normal = np.maximum(raw, 0.0)
-        if phase == 0:
-            return raw, normal, model.law.trial_force(st[:, 6], d, model.slip(st))
-        return raw, normal, phase * model.law.friction * normal
 
     # -- rebound ---------------------------------------------------------------------------
     @property
     def contact_time(self):
         """Duration of the contact [s] (exact event time)."""
-        return self._pieces[-1].t1
+        return self._contact.end
 
     @property
     def normal_velocity(self):
@@ -211,14 +195,17 @@ class ObliqueResult:
     @property
     def phases(self):
         """Contact phases ``[(start [s], end [s], "stick" | "slide+" | "slide-"), ...]``."""
-        return [(p.t0, p.t1, _PHASE_NAMES[p.phase]) for p in self._pieces]
+        return [(t0, t1, _PHASE_NAMES[code]) for t0, t1, code in self._contact.phases()]
 
     @cached_property
     def _peaks(self):
         times = np.concatenate(
-            [np.linspace(p.t0, p.t1, _PEAK_SAMPLES, endpoint=False) for p in self._pieces]
+            [
+                np.linspace(t0, t1, _PEAK_SAMPLES, endpoint=False)
+                for t0, t1, _ in self._contact.phases()
+            ]
         )
-        _, normal, tangential = self._evaluate(times)
+        _, _, normal, tangential = self._contact(times)
         return float(normal.max()), float(np.abs(tangential).max())
 
     @property
@@ -306,12 +293,15 @@ class ObliqueResult:
             "m V R (angular momentum about the contact point)",
         )
 
-    def _gauss_nodes(self, piece):
-        """Gauss-Legendre nodes [s] and weights of a contact phase, graded at both ends and
-        at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`)."""
+    def _gauss_nodes(self):
+        """Per contact phase, Gauss-Legendre nodes [s] and weights graded at both ends and
+        at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`), with the
+        states and forces there (:meth:`_contact`)."""
         sys_ = self._model.system
         period = math.inf if sys_.rigid else 2.0 * math.pi / math.sqrt(sys_.k1 / sys_.m1)
-        return gauss_rule(piece.t0, piece.t1, period, graded=True, graded_end=True)
+        for t0, t1, _ in self._contact.phases():
+            nodes, weights = gauss_rule(t0, t1, period, graded=True, graded_end=True)
+            yield nodes, weights, *self._contact(nodes)
 
     def _arm_shortening_moment(self):
         """``integral d F dt`` [N*m*s] over the contact with ``lever_arm="contact"`` (the
@@ -320,10 +310,7 @@ class ObliqueResult:
         if not model.contact_arm:
             return 0.0
         total = 0.0
-        for piece in self._pieces:
-            nodes, weights = self._gauss_nodes(piece)
-            st = piece.states(nodes - piece.t0)
-            _, _, tangential = self._forces(piece.phase, st)
+        for _, weights, st, _, _, tangential in self._gauss_nodes():
             total += weights @ ((model.radius - model.arm(st[:, 2] - st[:, 0])) * tangential)
         return total
 
@@ -352,10 +339,7 @@ class ObliqueResult:
         sums = np.zeros(5)  # N d', -T s, c1 v1**2, N, T
         raw_worst, excess_worst = [], []
         peak = self.peak_normal_force
-        for piece in self._pieces:
-            nodes, weights = self._gauss_nodes(piece)
-            st = piece.states(nodes - piece.t0)
-            raw, normal, tangential = self._forces(piece.phase, st)
+        for nodes, weights, st, raw, normal, tangential in self._gauss_nodes():
             slip = model.slip(st)
             integrands = (
                 normal * (st[:, 3] - st[:, 1]),

@@ -40,6 +40,7 @@ LAMMPS documentation, pair_style granular: tangential ``linear_history``, ``mind
 """
 
 import math
+from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
@@ -57,6 +58,7 @@ __all__ = [
     "DAMPING_FORMS",
     "HISTORY_FORMS",
     "Mindlin",
+    "TangentialForm",
     "TangentialLaw",
     "TangentialSpring",
     "damping_ratio",
@@ -84,6 +86,45 @@ def mindlin_stiffness(overlap, k_mindlin):
     """
     overlap = np.asarray(overlap, dtype=float)
     return k_mindlin * np.sqrt(np.maximum(overlap, 0.0))
+
+
+@dataclass(frozen=True)
+class TangentialForm:
+    """A tangential law as one formula, for the compiled oblique solver
+    (:mod:`contactlab.solver.oblique_rhs`), as :class:`~contactlab.laws.base.PowerForm`
+    is a normal law's.
+
+    ``kt(d) = stiffness d**stiffness_exponent`` [N/m] and ``eta(d) = damping
+    d**damping_exponent`` [N*s/m]; an exponent 0 is a constant at every overlap, a
+    positive exponent is 0 at ``d <= 0``.
+
+    Attributes
+    ----------
+    friction : float
+        ``mu`` [-].
+    stiffness : float
+        ``k`` [N/m] (exponent 0) or ``k_mindlin`` [N/m**1.5] (exponent 0.5).
+    stiffness_exponent : float
+        0 or 0.5 [-].
+    damping : float
+        ``eta`` [N*s/m] (exponent 0) or ``2 gamma sqrt(m* k_mindlin)`` [N*s/m**1.25]
+        (exponent 0.25).
+    damping_exponent : float
+        0 or 0.25 [-].
+    force_history : bool
+        Whether the history is a force (``"force"`` :attr:`TangentialLaw.history_kind`).
+    rescaled : bool
+        Whether the stored force is rescaled while the overlap shrinks
+        (``history="incremental_rescaled"``).
+    """
+
+    friction: float
+    stiffness: float
+    stiffness_exponent: float
+    damping: float
+    damping_exponent: float
+    force_history: bool
+    rescaled: bool
 
 
 class TangentialLaw(KeywordChecked):
@@ -142,6 +183,10 @@ class TangentialLaw(KeywordChecked):
         damping = self.damping_coefficient(overlap) * slip_rate
         damping += self.damping_slope(overlap) * overlap_rate * slip
         return elastic - damping
+
+    def form(self):
+        """This law as a :class:`TangentialForm` (bound laws only: :meth:`for_contact`)."""
+        raise NotImplementedError
 
     def history_on_cap(self, force, overlap, slip):
         """History that makes the trial force equal ``force`` [N] (LAMMPS' rescaling).
@@ -213,6 +258,9 @@ class TangentialSpring(TangentialLaw):
 
     def stiffness_slope(self, overlap):
         return 0.0
+
+    def form(self):
+        return TangentialForm(self.friction, self.k, 0.0, self.damping, 0.0, False, False)
 
 
 class Mindlin(TangentialLaw):
@@ -366,6 +414,17 @@ class Mindlin(TangentialLaw):
 
     def stiffness_slope(self, overlap):
         return 0.5 * self.k_mindlin / math.sqrt(overlap) if overlap > 0.0 else 0.0
+
+    def form(self):
+        return TangentialForm(
+            self.friction,
+            self.k_mindlin,
+            0.5,
+            self._tied,
+            0.25,
+            self.history_kind == "force",
+            self.history == "incremental_rescaled",
+        )
 
 
 def damping_ratio(normal_law, mass):

@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 from scipy.integrate import DOP853 as _SCIPY
 
-from contactlab.solver.power_rhs import rhs
+from contactlab.solver.model_rhs import rhs
 
 __all__ = [
     "STAGES",

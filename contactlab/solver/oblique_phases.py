@@ -1,0 +1,132 @@
+"""The solved contact of an oblique impact: its phases and their states at any time.
+
+:class:`ContactPhases` holds what :func:`contactlab.solver.oblique_kernel.solve_contact`
+kept (each phase's start, end and code, and every step's interpolant) and evaluates
+states and forces at many times in one compiled pass (:func:`sample`): the output grid
+of :class:`~contactlab.ObliqueResult`, its peaks and its audit's quadrature nodes.
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from contactlab.solver.oblique_rhs import FRICTION, STICK, arm, trial_force
+from contactlab.solver.power_rhs import force
+
+__all__ = ["ContactPhases", "sample"]
+
+
+@njit(cache=True, error_model="numpy")
+def _step_index(t_old, lo, hi, t, j):
+    """The kept step of ``lo:hi`` holding ``t`` (the nearest one outside them), searched
+    from ``j`` (the last one found: the times are mostly increasing)."""
+    if j < lo or j >= hi or t < t_old[j]:
+        j = lo + np.searchsorted(t_old[lo:hi], t, side="right") - 1
+    while j + 1 < hi and t_old[j + 1] <= t:
+        j += 1
+    return min(max(j, lo), hi - 1)
+
+
+@njit(cache=True, error_model="numpy")
+def _interpolate(F, y_old, j, x, out, i):
+    """Step ``j``'s interpolant at ``x`` into ``out[i, :7]``: the seven-row form of
+    :func:`contactlab.solver.dop853_kernel.interpolate`, written out (a loop over the rows
+    with a view per sample is several times slower on the output grid)."""
+    u = 1.0 - x
+    for c in range(7):
+        acc = F[j, 6, c] * x
+        acc = (acc + F[j, 5, c]) * u
+        acc = (acc + F[j, 4, c]) * x
+        acc = (acc + F[j, 3, c]) * u
+        acc = (acc + F[j, 2, c]) * x
+        acc = (acc + F[j, 1, c]) * u
+        acc = (acc + F[j, 0, c]) * x
+        out[i, c] = acc + y_old[j, c]
+
+
+@njit(cache=True, error_model="numpy")
+def sample(par, table, warp, steps, times, states, raw, normal, tangential):
+    """States and forces of the contact at ``times`` [s] (each in ``[0, t_end]``).
+
+    Parameters
+    ----------
+    par : numpy.ndarray
+        Packed parameters (:func:`contactlab.solver.oblique_rhs.pack`).
+    table : numpy.ndarray
+        The phases (count, 8) of :func:`contactlab.solver.oblique_kernel.solve_contact`.
+    warp, steps : tuple
+        The kept steps ``(count, t_old, h, y_old, F)`` in ``s`` and in time.
+    times : numpy.ndarray
+        Times [s], any order (increasing is fastest).
+    states : numpy.ndarray
+        Out: states (len(times), 7).
+    raw, normal, tangential : numpy.ndarray
+        Out: the normal law's unclipped formula, the normal force (>= 0) and the
+        tangential force on the grain [N].
+    """
+    last = table.shape[0] - 1
+    starts = table[:, 0].copy()
+    _, w_t, w_h, w_y, w_F = warp
+    _, s_t, s_h, s_y, s_F = steps
+    mu = par[FRICTION]
+    jw = js = -1
+    for i in range(times.size):
+        t = times[i]
+        k = min(max(np.searchsorted(starts, t, side="right") - 1, 0), last)
+        t0, phase, switch = table[k, 0], table[k, 2], table[k, 3]
+        w0, w1, s0, s1 = int(table[k, 4]), int(table[k, 5]), int(table[k, 6]), int(table[k, 7])
+        tau = t - t0
+        if w1 > w0 and (s1 == s0 or tau < switch):
+            s = math.sqrt(math.sqrt(max(tau, 0.0)))
+            jw = _step_index(w_t, w0, w1, s, jw)
+            _interpolate(w_F, w_y, jw, (s - w_t[jw]) / w_h[jw], states, i)
+        else:
+            js = _step_index(s_t, s0, s1, t, js)
+            _interpolate(s_F, s_y, js, (t - s_t[js]) / s_h[js], states, i)
+        d = states[i, 2] - states[i, 0]
+        raw[i] = force(d, states[i, 3] - states[i, 1], par)
+        normal[i] = max(raw[i], 0.0)
+        if phase == STICK:
+            s_i = states[i, 4] - arm(d, par) * states[i, 5]
+            tangential[i] = trial_force(states[i, 6], d, s_i, par)
+        else:
+            tangential[i] = phase * mu * normal[i]
+
+
+class ContactPhases:
+    """The phases of one contact and their dense states.
+
+    Parameters
+    ----------
+    par : numpy.ndarray
+        Packed parameters (:func:`contactlab.solver.oblique_rhs.pack`).
+    table : numpy.ndarray
+        Rows ``(t0, t1, phase, switch, warped steps lo, hi, steps lo, hi)`` of the phases.
+    warp, steps : tuple
+        The kept steps (see :func:`sample`).
+    """
+
+    def __init__(self, par, table, warp, steps):
+        self._par, self._table, self._warp, self._steps = par, table, warp, steps
+
+    @property
+    def end(self):
+        """End of the contact [s]."""
+        return float(self._table[-1, 1])
+
+    def phases(self):
+        """``[(start [s], end [s], phase code), ...]``: stick 0, slide +1 or -1."""
+        return [(t0, t1, int(code)) for t0, t1, code in self._table[:, :3].tolist()]
+
+    def __call__(self, times):
+        """States (n, 7), unclipped normal formula, normal and tangential force [N] (n,)
+        at ``times`` [s] inside the contact."""
+        times = np.ascontiguousarray(times, dtype=float)
+        states = np.empty((times.size, 7))
+        raw, normal, tangential = np.empty(times.size), np.empty(times.size), np.empty(times.size)
+        sample(
+            self._par, self._table, self._warp, self._steps, times, states, raw, normal, tangential
+        )
+        return states, raw, normal, tangential
+
