@@ -58,8 +58,18 @@ def solve_rows(m1, k1, c1, m2, k_hertz, eta, k_mindlin, mu, v0, radius, angle, s
     for i in range(m2.size):
         inertia = kappa * m2[i] * radius[i] ** 2
         _parameters(
-            par, m1[i], k1[i], c1[i], m2[i], radius[i], inertia, k_hertz[i], eta[i],
-            k_mindlin[i], mu[i], options,
+            par,
+            m1[i],
+            k1[i],
+            c1[i],
+            m2[i],
+            radius[i],
+            inertia,
+            k_hertz[i],
+            eta[i],
+            k_mindlin[i],
+            mu[i],
+            options,
         )
         vn, vt = v0[i] * math.cos(angle[i]), v0[i] * math.sin(angle[i])
         y0[3], y0[4], y0[5] = vn, vt, spin[i]

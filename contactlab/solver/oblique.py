@@ -60,8 +60,8 @@ from contactlab.solver.oblique_kernel import (
     solve_contact,
     tolerances,
 )
-from contactlab.solver.oblique_rhs import STICK, pack
 from contactlab.solver.oblique_phases import ContactPhases
+from contactlab.solver.oblique_rhs import STICK, pack
 from contactlab.solver.power_rhs import pack as pack_normal
 from contactlab.solver.system import System
 from contactlab.validation import (
@@ -72,6 +72,7 @@ from contactlab.validation import (
 )
 
 __all__ = ["STICK", "ObliqueModel", "simulate_oblique"]
+
 
 class ObliqueModel:
     """Right-hand sides and event functions of the oblique impact, phase by phase.

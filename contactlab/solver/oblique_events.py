@@ -231,8 +231,8 @@ def first_crossing(step, count, armed, times, rows, par, phase, tmp, row, work, 
     phase : float
         Phase of the piece.
     tmp, row, work, rising : numpy.ndarray
-        Scratch: a state, an event row, Brent's work array (:data:`contactlab.solver.brent.WORK_SIZE`) and
-        :data:`SUBSTEPS` + 1 floats.
+        Scratch: a state, an event row, Brent's work array
+        (:data:`contactlab.solver.brent.WORK_SIZE`) and :data:`SUBSTEPS` + 1 floats.
     """
     best, best_j = math.inf, -1
     last = times.size - 1
@@ -259,4 +259,3 @@ def first_crossing(step, count, armed, times, rows, par, phase, tmp, row, work, 
         if not math.isnan(root) and root < best:
             best, best_j = root, j
     return best, best_j
-

@@ -129,4 +129,3 @@ class ContactPhases:
             self._par, self._table, self._warp, self._steps, times, states, raw, normal, tangential
         )
         return states, raw, normal, tangential
-

@@ -32,7 +32,8 @@ __all__ = [
     "trial_force",
 ]
 
-OBLIQUE_PARAMETERS = NORMAL_PARAMETERS + (
+OBLIQUE_PARAMETERS = (
+    *NORMAL_PARAMETERS,
     "phase",
     "friction",
     "force_history",
