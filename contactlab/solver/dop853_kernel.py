@@ -1,5 +1,6 @@
 """DOP853 compiled with numba: the lean stepper of :mod:`contactlab.solver.dop853`, step
-for step, for the power-law contact of :mod:`contactlab.solver.power_rhs`.
+for step, for the power-law contact of :mod:`contactlab.solver.power_rhs` and the oblique
+impact of :mod:`contactlab.solver.oblique_rhs` (:mod:`contactlab.solver.model_rhs`).
 
 The Python :class:`~contactlab.solver.dop853.Stepper` spends its time in interpreter
 overhead: twelve small numpy operations per stage on a four-component state. The same

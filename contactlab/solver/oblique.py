@@ -16,9 +16,12 @@ F``.
 
 Coulomb friction makes the right-hand side switch between *sticking* (``h`` follows the
 law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigma mu N``,
-``h`` slaved to the cap). Each phase is a smooth piece integrated with DOP853
-(:func:`contactlab.solver.adaptive.integrate_piece`, the adaptive solver's stepper, started in
-``s = t**(1/4)`` at the touch), ended by events located on the step interpolant:
+``h`` slaved to the cap). Each phase is a smooth piece integrated with DOP853 (the compiled
+stepper of the normal solver, :mod:`contactlab.solver.dop853_kernel`, started in
+``s = t**(1/4)`` at the touch), ended by events located on the step interpolant; the phase
+loop, the equations and the events are compiled (:mod:`contactlab.solver.oblique_kernel`,
+:mod:`contactlab.solver.oblique_rhs`, :mod:`contactlab.solver.oblique_events`) and shared
+with the batch (:func:`contactlab.batch.oblique_impacts`):
 
 * the normal force falls to zero (contact end);
 * sticking: the trial force reaches ``+mu N`` or ``-mu N``;
@@ -29,7 +32,7 @@ law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigm
 
 At the touch (``N = 0``) the phase is that of LAMMPS' rule in the limit ``t -> 0+``: the
 history starts from zero and the contact slides only if the trial force along a sticking
-path exceeds ``mu N`` already (:meth:`ObliqueModel.touch_phase`).
+path exceeds ``mu N`` already (``oblique_kernel._touch_phase``).
 """
 
 import math
@@ -75,7 +78,8 @@ __all__ = ["STICK", "ObliqueModel", "simulate_oblique"]
 
 
 class ObliqueModel:
-    """Right-hand sides and event functions of the oblique impact, phase by phase.
+    """The oblique impact's bodies and laws, as the compiled solver (:meth:`pack`) and the
+    result (lever arm, slip, normal law) read them.
 
     State ``y = [x1, v1, x2, v2, vt, w, h]``: sensor displacement and velocity, grain
     normal position and velocity, grain tangential velocity [m/s], spin [rad/s], and the
