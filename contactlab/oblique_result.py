@@ -97,25 +97,28 @@ class ObliqueResult:
         self._final = np.asarray(final_state, dtype=float)
         n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
         self.t = np.arange(n, dtype=float) / sample_rate
-        states, self.normal_force, self.tangential_force = self._evaluate(self.t)
+        states, self._raw, self.normal_force, self.tangential_force, self.slip = self._evaluate(
+            self.t
+        )
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
-        self.slip = model.slip(states)
         self.sensor_force = model.system.signal(states[:, :4], self.normal_force)
 
     # -- dense evaluation ------------------------------------------------------------------
     def _evaluate(self, times):
-        """States (n, 7), normal and tangential force (n,) at increasing times [s]."""
+        """States (n, 7), the normal law's unclipped formula (0 after the contact), normal and
+        tangential force [N] and slip [m/s] (n,) at increasing times [s]."""
         times = np.asarray(times, dtype=float)
-        states = np.empty((times.size, 7))
-        normal, tangential = np.zeros(times.size), np.zeros(times.size)
+        signals = (np.empty((times.size, 7)), *np.zeros((4, times.size)))
         split = int(np.searchsorted(times, self.contact_time, side="left"))
         if split:
-            states[:split], _, normal[:split], tangential[:split] = self._contact(times[:split])
+            self._contact(times[:split], tuple(a[:split] for a in signals))
         if split < times.size:
+            states = signals[0]
             states[split:, :4] = self._free.states(times[split:] - self._free.t0)
             states[split:, 4:] = [self._final[4], self._final[5], 0.0]
-        return states, normal, tangential
+            signals[4][split:] = self._model.slip(self._final[None, :])[0]
+        return signals
 
     # -- rebound ---------------------------------------------------------------------------
     @property
@@ -205,7 +208,7 @@ class ObliqueResult:
                 for t0, t1, _ in self._contact.phases()
             ]
         )
-        _, _, normal, tangential = self._contact(times)
+        _, _, normal, tangential, _ = self._contact(times)
         return float(normal.max()), float(np.abs(tangential).max())
 
     @property
@@ -259,13 +262,11 @@ class ObliqueResult:
         """
         checks = list(self._end_checks())
         if not full:
-            inside = self.t < self.contact_time
-            d, r = self.x2 - self.x1, self.v2 - self.v1
-            raw = np.where(inside, self._model.normal(d, r), 0.0)
+            inside = slice(0, int(np.searchsorted(self.t, self.contact_time, side="left")))
             checks += grid_checks(
                 self.t,
                 inside,
-                raw,
+                self._raw,
                 self.normal_force,
                 self.tangential_force,
                 self.tangential_law.friction,
@@ -310,7 +311,7 @@ class ObliqueResult:
         if not model.contact_arm:
             return 0.0
         total = 0.0
-        for _, weights, st, _, _, tangential in self._gauss_nodes():
+        for _, weights, st, _, _, tangential, _ in self._gauss_nodes():
             total += weights @ ((model.radius - model.arm(st[:, 2] - st[:, 0])) * tangential)
         return total
 
@@ -339,8 +340,7 @@ class ObliqueResult:
         sums = np.zeros(5)  # N d', -T s, c1 v1**2, N, T
         raw_worst, excess_worst = [], []
         peak = self.peak_normal_force
-        for nodes, weights, st, raw, normal, tangential in self._gauss_nodes():
-            slip = model.slip(st)
+        for nodes, weights, st, raw, normal, tangential, slip in self._gauss_nodes():
             integrands = (
                 normal * (st[:, 3] - st[:, 1]),
                 -tangential * slip,

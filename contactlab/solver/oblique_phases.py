@@ -46,7 +46,7 @@ def _interpolate(F, y_old, j, x, out, i):
 
 
 @njit(cache=True, error_model="numpy")
-def sample(par, table, warp, steps, times, states, raw, normal, tangential):
+def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip):
     """States and forces of the contact at ``times`` [s] (each in ``[0, t_end]``).
 
     Parameters
@@ -64,16 +64,18 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential):
     raw, normal, tangential : numpy.ndarray
         Out: the normal law's unclipped formula, the normal force (>= 0) and the
         tangential force on the grain [N].
+    slip : numpy.ndarray
+        Out: the contact-point slip [m/s].
     """
     last = table.shape[0] - 1
     starts = table[:, 0].copy()
     _, w_t, w_h, w_y, w_F = warp
     _, s_t, s_h, s_y, s_F = steps
     mu = par[FRICTION]
-    jw = js = -1
+    jw = js = k = -1
     for i in range(times.size):
         t = times[i]
-        k = min(max(np.searchsorted(starts, t, side="right") - 1, 0), last)
+        k = _step_index(starts, 0, last + 1, t, k)
         t0, phase, switch = table[k, 0], table[k, 2], table[k, 3]
         w0, w1, s0, s1 = int(table[k, 4]), int(table[k, 5]), int(table[k, 6]), int(table[k, 7])
         tau = t - t0
@@ -87,9 +89,9 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential):
         d = states[i, 2] - states[i, 0]
         raw[i] = force(d, states[i, 3] - states[i, 1], par)
         normal[i] = max(raw[i], 0.0)
+        slip[i] = states[i, 4] - arm(d, par) * states[i, 5]
         if phase == STICK:
-            s_i = states[i, 4] - arm(d, par) * states[i, 5]
-            tangential[i] = trial_force(states[i, 6], d, s_i, par)
+            tangential[i] = trial_force(states[i, 6], d, slip[i], par)
         else:
             tangential[i] = phase * mu * normal[i]
 
@@ -119,13 +121,12 @@ class ContactPhases:
         """``[(start [s], end [s], phase code), ...]``: stick 0, slide +1 or -1."""
         return [(t0, t1, int(code)) for t0, t1, code in self._table[:, :3].tolist()]
 
-    def __call__(self, times):
-        """States (n, 7), unclipped normal formula, normal and tangential force [N] (n,)
-        at ``times`` [s] inside the contact."""
+    def __call__(self, times, out=None):
+        """States (n, 7), unclipped normal formula, normal and tangential force [N] and the
+        contact-point slip [m/s] (n,) at ``times`` [s] inside the contact, into ``out``
+        (arrays of these shapes) if given."""
         times = np.ascontiguousarray(times, dtype=float)
-        states = np.empty((times.size, 7))
-        raw, normal, tangential = np.empty(times.size), np.empty(times.size), np.empty(times.size)
-        sample(
-            self._par, self._table, self._warp, self._steps, times, states, raw, normal, tangential
-        )
-        return states, raw, normal, tangential
+        if out is None:
+            out = (np.empty((times.size, 7)), *np.empty((4, times.size)))
+        sample(self._par, self._table, self._warp, self._steps, times, *out)
+        return out
