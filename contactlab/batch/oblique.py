@@ -72,16 +72,10 @@ def _single(row, kappa, history, damping, lever_arm, rtol):
             lever_arm=lever_arm,
             audit=False,
         )
-    return (
-        res.contact_time,
-        res.restitution,
-        res.tangential_velocity,
-        res.angular_velocity,
-        res.rebound_angle,
-        res.contact_rebound_angle,
-        res.tangential_restitution,
-        len(res.phases),
-    )
+    return [
+        len(res.phases) if name == "phases [-]" else getattr(res, name.split()[0])
+        for name in OBLIQUE_RESULTS
+    ]
 
 
 def _solver(kappa, history, damping, lever_arm, rtol):

@@ -115,3 +115,17 @@ def test_bad_options():
         oblique_impacts(frame, history="total", damping="tied")
     with pytest.raises(ParameterError, match="lever_arm"):
         oblique_impacts(frame, lever_arm="centre")
+
+
+def test_a_row_no_solver_finishes_costs_no_other_row():
+    """A contact still open after a second (k_hertz 1e-9 N/m**1.5 at 5 cm/s: minutes
+    long) is handed back to simulate_oblique, which refuses it: NaN and its reason."""
+    frame = _frame([0.1, 0.1], [0.0, 0.0])
+    frame.loc[1, "k_hertz [N/m**1.5]"] = 1e-9
+    frame.loc[1, "v0 [m/s]"] = 0.05
+    with pytest.warns(cl.errors.RowFailedWarning, match="1 of 2 rows"):
+        out = oblique_impacts(frame)
+    assert np.isnan(out[list(OBLIQUE_RESULTS)].iloc[1]).all()
+    assert "had not ended" in out["error"].iloc[1]
+    assert out["error"].iloc[0] == ""
+    assert out["restitution [-]"].iloc[0] == pytest.approx(1.0, abs=1e-7)  # elastic Hertz
