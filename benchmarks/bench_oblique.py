@@ -133,9 +133,10 @@ def main():
             print(
                 f"{history:12s} {degrees:4.0f} deg: contactlab {t_ours * 1e3:6.3f} ms (fastest "
                 f"{m_ours * 1e3:6.3f}) with 20 001 samples (target <= 1); contact alone "
-                f"{t_core * 1e3:6.3f} ms (fastest {m_core * 1e3:6.3f}); solve_ivp {t_ref * 1e3:6.2f} "
-                f"ms (fastest {m_ref * 1e3:6.2f}); ratio solve_ivp / contactlab {t_ref / t_ours:5.1f}"
-                f" (fastest {m_ref / m_ours:5.1f}; target >= 10), / contact alone "
+                f"{t_core * 1e3:6.3f} ms (fastest {m_core * 1e3:6.3f}); solve_ivp "
+                f"{t_ref * 1e3:6.2f} ms (fastest {m_ref * 1e3:6.2f}); ratio solve_ivp / "
+                f"contactlab {t_ref / t_ours:5.1f} (fastest {m_ref / m_ours:5.1f}; target >= 10),"
+                f" / contact alone "
                 f"{t_ref / t_core:5.1f}"
             )
             print(
