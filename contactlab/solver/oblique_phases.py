@@ -12,7 +12,7 @@ import numpy as np
 from numba import njit
 
 from contactlab.solver.oblique_rhs import FRICTION, STICK, arm, trial_force
-from contactlab.solver.power_rhs import force
+from contactlab.solver.power_rhs import RIGID, force
 
 __all__ = ["ContactPhases", "sample"]
 
@@ -29,12 +29,12 @@ def _step_index(t_old, lo, hi, t, j):
 
 
 @njit(cache=True, error_model="numpy")
-def _interpolate(F, y_old, j, x, out, i):
-    """Step ``j``'s interpolant at ``x`` into ``out[i, :7]``: the seven-row form of
+def _interpolate(F, y_old, j, x, out, i, first):
+    """Step ``j``'s interpolant at ``x`` into ``out[i, first:7]``: the seven-row form of
     :func:`contactlab.solver.dop853_kernel.interpolate`, written out (a loop over the rows
     with a view per sample is several times slower on the output grid)."""
     u = 1.0 - x
-    for c in range(7):
+    for c in range(first, 7):
         acc = F[j, 6, c] * x
         acc = (acc + F[j, 5, c]) * u
         acc = (acc + F[j, 4, c]) * x
@@ -72,6 +72,8 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
     _, w_t, w_h, w_y, w_F = warp
     _, s_t, s_h, s_y, s_F = steps
     mu = par[FRICTION]
+    first = 2 if par[RIGID] > 0.0 else 0  # on a wall x1 = v1 = 0: not interpolated
+    states[:, :first] = 0.0
     jw = js = k = -1
     for i in range(times.size):
         t = times[i]
@@ -82,10 +84,10 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
         if w1 > w0 and (s1 == s0 or tau < switch):
             s = math.sqrt(math.sqrt(max(tau, 0.0)))
             jw = _step_index(w_t, w0, w1, s, jw)
-            _interpolate(w_F, w_y, jw, (s - w_t[jw]) / w_h[jw], states, i)
+            _interpolate(w_F, w_y, jw, (s - w_t[jw]) / w_h[jw], states, i, first)
         else:
             js = _step_index(s_t, s0, s1, t, js)
-            _interpolate(s_F, s_y, js, (t - s_t[js]) / s_h[js], states, i)
+            _interpolate(s_F, s_y, js, (t - s_t[js]) / s_h[js], states, i, first)
         d = states[i, 2] - states[i, 0]
         raw[i] = force(d, states[i, 3] - states[i, 1], par)
         normal[i] = max(raw[i], 0.0)
