@@ -64,7 +64,7 @@ from contactlab.solver.oblique_kernel import (
     tolerances,
 )
 from contactlab.solver.oblique_phases import ContactPhases
-from contactlab.solver.oblique_rhs import STICK, pack
+from contactlab.solver.oblique_rhs import pack
 from contactlab.solver.power_rhs import pack as pack_normal
 from contactlab.solver.system import System
 from contactlab.validation import (
@@ -74,7 +74,7 @@ from contactlab.validation import (
     keyword_checked,
 )
 
-__all__ = ["STICK", "ObliqueModel", "simulate_oblique"]
+__all__ = ["ObliqueModel", "simulate_oblique"]
 
 
 class ObliqueModel:

@@ -132,7 +132,7 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
     while t < end:
         ok, t_new, h_next, h = step(t, y, f, h_try, end, rtol, atol, par, warped, K, y_new, f_new)
         if not ok:
-            return 1, t, y, (t_old, h, y_old, F), hit, hit_j, store
+            return STATUS_UNDERFLOW, t, y, (t_old, h, y_old, F), hit, hit_j, store
         t_old = t
         y_old[:] = y
         interpolant(K, h, y_old, y_new, f_new, par, warped, F)
@@ -162,7 +162,7 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
             break  # adaptive._warp_stops_paying: steps in time do as well from here
         for j in range(count):
             armed[j] = armed[j] or waits(rows[SUBSTEPS, j], direction(j, int(phase)))
-    return 0, t, y, (t_old, h, y_old, F), hit, hit_j, store
+    return STATUS_OK, t, y, (t_old, h, y_old, F), hit, hit_j, store
 
 
 @njit(cache=True, error_model="numpy")
@@ -183,7 +183,7 @@ def _piece(t0, y0, touch, rtol, atol, par, warp, steps, keep):
         status, s, z, last, hit_s, hit_j, warp = _run(
             0.0, z0, first_in_s, PIECE_LENGTH**0.25, rtol, z_tol, par, True, warp, keep
         )
-        if status != 0:
+        if status != STATUS_OK:
             return status, switch, hit, hit_j, y_hit, warp, steps, t0 + s**4
         switch, y, first = s**4, z[:n].copy(), s**4 - last[0] ** 4
         if hit_j >= 0:
@@ -199,11 +199,11 @@ def _piece(t0, y0, touch, rtol, atol, par, warp, steps, keep):
         status, t, _, last, hit, hit_j, steps = _run(
             t0 + switch, y, first, t0 + PIECE_LENGTH, rtol, atol, par, False, steps, keep
         )
-        if status != 0:
+        if status != STATUS_OK:
             return status, switch, hit, hit_j, y_hit, warp, steps, t
         if hit_j >= 0:
             interpolate(last[3], last[2], (hit - last[0]) / last[1], y_hit)
-    return 0, switch, hit, hit_j, y_hit, warp, steps, math.nan
+    return STATUS_OK, switch, hit, hit_j, y_hit, warp, steps, math.nan
 
 
 @njit(cache=True, error_model="numpy")
@@ -285,7 +285,7 @@ def solve_contact(par, y0, rtol, atol, keep):
         status, switch, hit, hit_j, y_hit, warp, steps, failed = _piece(
             t, y, touch, rtol, atol, par, warp, steps, keep
         )
-        if status != 0:
+        if status != STATUS_OK:
             return status, failed, y, pieces, k, warp, steps
         if hit_j < 0:
             return STATUS_OPEN, t + PIECE_LENGTH, y, pieces, k, warp, steps

@@ -19,8 +19,9 @@ __all__ = ["ContactPhases", "sample"]
 
 @njit(cache=True, error_model="numpy")
 def _step_index(t_old, lo, hi, t, j):
-    """The kept step of ``lo:hi`` holding ``t`` (the nearest one outside them), searched
-    from ``j`` (the last one found: the times are mostly increasing)."""
+    """The index in ``lo:hi`` of the last start ``t_old`` at or before ``t`` (the nearest
+    one outside them), searched from ``j`` (the last one found: the times are mostly
+    increasing)."""
     if j < lo or j >= hi or t < t_old[j]:
         j = lo + np.searchsorted(t_old[lo:hi], t, side="right") - 1
     while j + 1 < hi and t_old[j + 1] <= t:
