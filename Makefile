@@ -28,6 +28,7 @@ demo: $(STAMP_DEMO)
 	$(VENV)/bin/contactlab warm-up
 	$(VENV)/bin/contactlab demo --out results
 	$(VENV)/bin/dem-check lammps-check --out results
+	$(VENV)/bin/dem-check stream --out results/stream --pileup 200,1000,4000 --no-progress
 
 lint: $(STAMP_TEST)
 	$(VENV)/bin/ruff check .

@@ -7,13 +7,10 @@ and the attribution of Kratos' test-4 differences rule by rule (issue 27).
    Kratos' relative errors against the exact solver. Target: < 1 s per Kratos impact.
 2. ``contactlab benchmark chung-ooi`` alone, with LAMMPS, and with LAMMPS and Kratos
    (``--engines lammps,kratos``): wall time of each. Target: < 5 min with both engines.
-3. Test 4 (aluminium oxide, 3.9 m/s, mu 0.092, 5-85 deg): vt'/vt and the spin of Kratos,
-   of its replica with one rule switched to contactlab's at a time (lever arm R; history
-   incremental without rescaling; history total), contactlab's two Mindlin forms and
-   LAMMPS' (``benchmarks/kratos_rules.py``); with ``--damped`` the same at Kratos' own
-   e = 0.98, where the tied tangential damping acts. Printed as a Markdown table (the one
-   in ``docs/dem-conventions.md``); ``--figure PATH`` also draws it (vt'/vt and spin
-   against the angle, one curve per rule switched).
+3. Test 4 (aluminium oxide, 3.9 m/s, mu 0.092, 5-85 deg): Kratos against contactlab with
+   each of Kratos' rules switched alone (the package's attribution, as the benchmark
+   command runs it); with ``--damped`` the same at Kratos' own e = 0.98, where the tied
+   tangential damping and the Coulomb cap act. ``--figure FOLDER`` also draws it.
 """
 
 import math
@@ -23,21 +20,18 @@ import tempfile
 import time
 from pathlib import Path
 
-import numpy as np
-
 import contactlab as cl
 from contactlab import analytic
 from contactlab.benchmarks.chung_ooi import run_chung_ooi
+from contactlab.benchmarks.chung_ooi.attribution import attribute, markdown
 from contactlab.benchmarks.chung_ooi.cases import CASES
-from contactlab.benchmarks.chung_ooi.grading import grain
+from contactlab.benchmarks.chung_ooi.figures import save_attribution_figure
+from contactlab.benchmarks.chung_ooi.grading import grain, rebound
 from contactlab.benchmarks.chung_ooi.oblique import ANGLES
 from contactlab.cli import _benchmark_engines
 from contactlab.solver import wall_impact
+from contactlab.solver.conventions import DEM_CONVENTIONS
 from dem_check.engines import kratos, lammps
-from dem_check.engines.kratos.laws import hertz_gamma
-
-sys.path.insert(0, str(Path(__file__).parent))
-from kratos_rules import KRATOS, Rules, replica
 
 REPEATS = 3
 TARGET = 1.0  # [s] per Kratos impact
@@ -119,9 +113,13 @@ def benchmark_times():
     )
 
 
-def attribution(restitution=1.0, figure=None):
+def attribution(restitution=1.0, figure=None, steps=None):
+    """Test 4 at restitution ``e``, alumina: Kratos (at ``steps`` per contact; default
+    its own, 2000) against contactlab with each of its rules switched
+    (:mod:`contactlab.benchmarks.chung_ooi.attribution`)."""
     case = next(c for c in CASES if c.number == 4)
-    body = grain(case.materials[0], case.inputs["radius [m]"])
+    material = case.materials[0]
+    body = grain(material, case.inputs["radius [m]"])
     mu, speed = case.inputs["friction [-]"], case.inputs["speed [m/s]"]
     normal = cl.laws.Hertz.from_material(*body.material())
     if restitution < 1.0:
@@ -129,75 +127,33 @@ def attribution(restitution=1.0, figure=None):
             normal.k_hertz, body.mass, restitution, "force"
         )
         normal = cl.laws.HertzDamped(normal.k_hertz, damping)
-    gamma = hertz_gamma(normal, body.mass) if restitution < 1.0 else 0.0
-    mindlin = {
-        history: cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
-        for history in ("total", "incremental")
-    }
-    variants = {
-        "Kratos": KRATOS,
-        "arm R": Rules(arm="R"),
-        "no rescale": Rules(history="incremental"),
-        "total history": Rules(history="total"),
-        "no tangential damping": Rules(damping="none"),
-    }
-    curves = {name: [] for name in [*variants, "contactlab total", "contactlab incremental"]}
-    curves["LAMMPS mindlin/force"] = []
-    print(f"Test 4, e = {restitution:g}: vt'/vt and spin [rad/s]")
-    heads = [*variants, "contactlab total", "contactlab incremental", "LAMMPS mindlin/force"]
-    print("| angle | " + " | ".join(heads) + " |")
-    print("|---" * (len(heads) + 1) + "|")
+    mindlin = cl.laws.Mindlin.from_material(*body.material(), mu)
+    rebounds = []
     for degrees in ANGLES:
         angle = math.radians(degrees)
-        vt = speed * math.sin(angle)
-        dt = wall_impact(normal, body.mass, speed * math.cos(angle)).contact_time / 2000
-        k_m = mindlin["total"].k_mindlin
-        args = (body.mass, body.radius, normal.k_hertz, k_m, mu, gamma, speed, angle, 0.0, dt)
-        cells = [replica(*args, chosen) for chosen in variants.values()]
-        for history in ("total", "incremental"):
-            cells.append(
-                cl.simulate_oblique(body, cl.Sensor.rigid(), normal, mindlin[history], speed, angle)
-            )
-        cells.append(lammps.lammps_oblique(body, normal, mindlin["incremental"], speed, angle))
-        text = [f"{c.tangential_velocity / vt:.4f} / {c.angular_velocity:.1f}" for c in cells]
-        for name, cell in zip(curves, cells, strict=True):
-            curves[name].append((cell.tangential_velocity / vt, cell.angular_velocity))
-        print(f"| {degrees} | " + " | ".join(text) + " |")
+        step = None
+        if steps is not None:
+            step = wall_impact(normal, body.mass, speed * math.cos(angle)).contact_time / steps
+        res = kratos.kratos_oblique(body, normal, mindlin, speed, angle, time_step=step)
+        rebounds.append(rebound(res))
+    found = attribute(
+        body,
+        material.name,
+        normal,
+        mindlin,
+        speed,
+        ANGLES,
+        "kratos",
+        rebounds,
+        DEM_CONVENTIONS["kratos"],
+    )
+    at = "its own step" if steps is None else f"{steps} steps per contact"
+    print(f"Test 4, e = {restitution:g}, {material.name}, Kratos at {at}: worst difference")
+    print(markdown([found]))
     print()
     if figure is not None:
-        _draw(curves, restitution, figure)
-
-
-def _draw(curves, restitution, path):
-    """vt'/vt and spin against the angle, one curve per rule switched (test 4)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.2), layout="constrained")
-    kratos = np.array(curves["Kratos"])
-    for name, values in curves.items():
-        if name == "Kratos":
-            continue
-        values = np.array(values)
-        style = "--" if name.startswith(("contactlab", "LAMMPS")) else "o-"
-        axes[0].plot(ANGLES, values[:, 0] - kratos[:, 0], style, ms=3, label=name)
-        axes[1].plot(ANGLES, values[:, 1] / kratos[:, 1] - 1.0, style, ms=3, label=name)
-    axes[0].set_ylabel("vt'/vt minus Kratos' [-]")
-    axes[1].set_ylabel("spin over Kratos' - 1 [-]")
-    for ax in axes:
-        ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_xlabel("incidence angle [deg]")
-    axes[0].legend(frameon=False, fontsize=7)
-    fig.suptitle(
-        f"Chung & Ooi test 4 (e = {restitution:g}): one of Kratos' rules switched, or "
-        "another code, against Kratos",
-        fontsize=9,
-    )
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    print(f"figure: {path}")
+        Path(figure).mkdir(parents=True, exist_ok=True)
+        print(f"figure: {save_attribution_figure(case, material.name, [found], figure)}")
 
 
 if __name__ == "__main__":
@@ -207,4 +163,5 @@ if __name__ == "__main__":
         benchmark_times()
     attribution(figure=figure)
     if "--damped" in sys.argv:
-        attribution(0.98)
+        attribution(0.98, figure=figure and str(Path(figure) / "damped"))
+        attribution(0.98, figure=figure and str(Path(figure) / "damped_fine"), steps=8000)

@@ -26,7 +26,15 @@ Switches (``Rules``), each one of the DEM codes' conventions (``docs/dem-convent
   ``"total"`` (LAMMPS ``mindlin``, contactlab ``history="total"``: ``F = -Kt xi`` with the
   total slip ``xi``, ``xi`` cut back to ``mu N / Kt`` in sliding);
 * ``damping``: ``"tied"`` (Kratos: ``2 gamma sqrt(m Kt)``, ``gamma`` the normal one) or
-  ``"none"``.
+  ``"none"``;
+* ``cap``: ``"elastic"`` (Kratos' four Coulomb cases on the elastic and viscous parts) or
+  ``"total"`` (LAMMPS: the total scaled to ``mu N``, the elastic part set to the rest).
+
+The attribution of the differences rule by rule is the package's
+(:mod:`contactlab.benchmarks.chung_ooi.attribution`, run by ``contactlab benchmark
+chung-ooi --engines lammps,kratos``); this replica is the independent check of those
+rules against Kratos' own arithmetic (``tests/dem_check/engines/kratos/test_rules.py``,
+``tests/contactlab/solver/test_conventions.py``).
 """
 
 import math
@@ -42,6 +50,7 @@ class Rules:
     arm: str = "R-d"
     history: str = "rescaled"
     damping: str = "tied"
+    cap: str = "elastic"
 
 
 KRATOS = Rules()
@@ -55,6 +64,14 @@ class Rebound:
     rebound_normal_velocity: float
     tangential_velocity: float
     angular_velocity: float
+
+
+def _total_coulomb(fe, fv, limit):
+    """LAMMPS' cap: the total scaled to ``limit``, the viscous part kept and the elastic
+    (stored) part set to the rest (``gran_sub_mod_tangential.cpp``)."""
+    if abs(fe + fv) <= limit:
+        return fe, fv
+    return math.copysign(limit, fe + fv) - fv, fv
 
 
 def _coulomb(fe, fv, limit):
@@ -129,7 +146,8 @@ def replica(
                     else history
                 )
                 fe = old - kt * ds
-            fe, fv = _coulomb(fe, fv, friction * normal)
+            cap = _coulomb if rules.cap == "elastic" else _total_coulomb
+            fe, fv = cap(fe, fv, friction * normal)
             history = -fe / kt if rules.history == "total" else fe
             fx, fz = fe + fv, normal
             torque = -arm * fx

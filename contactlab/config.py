@@ -31,11 +31,13 @@ from contactlab.validation import check_choice, unknown_keywords, with_suggestio
 __all__ = [
     "PRESET_DIR",
     "ImpactConfig",
+    "law_from_table",
     "list_presets",
     "load",
     "load_config",
     "load_preset",
     "read_document",
+    "sensor_from_table",
 ]
 
 PRESET_DIR = Path(__file__).resolve().parent / "data" / "presets"
@@ -101,6 +103,17 @@ def _sensor(table):
     if "thickness" in table:
         return _build("sensor", Sensor.from_disc, **table)
     return _build("sensor", Sensor.from_resonance, **table)
+
+
+def law_from_table(table, grain):
+    """A contact law from a ``[contact]`` table (``law = ...`` and its parameters, or
+    ``from_material = true`` for the Hertz family, built from ``grain``'s material)."""
+    return _law(table, grain)
+
+
+def sensor_from_table(table):
+    """A sensor from a ``[sensor]`` table (``rigid``, ``resonance`` or ``m1, k1, c1``)."""
+    return _sensor(table)
 
 
 def _parse(data, where):

@@ -56,6 +56,7 @@ LAYERS = (
             "dem_check.engines",
             "dem_check.engines.kratos",
             "dem_check.campaign",
+            "dem_check.stream",
             "contactlab.inverse",
         ),
     ),

@@ -9,7 +9,7 @@ from contactlab.config import read_document
 from contactlab.errors import ParameterError
 from contactlab.validation import check_choice, check_number
 
-__all__ = ["CASES", "SPECIES_DIR", "Species", "list_species", "load_species"]
+__all__ = ["CASES", "SPECIES_DIR", "Species", "list_species", "load_species", "value_range"]
 
 SPECIES_DIR = Path(__file__).resolve().parent.parent / "data" / "species"
 """Folder of the species presets."""
@@ -30,8 +30,9 @@ _OPTIONAL = {"friction_steel": "-"}
 (a sensor head), for oblique impacts (:class:`contactlab.laws.Mindlin`)."""
 
 
-def _range(name, value, unit):
-    """(low, high) from a number or a [low, high] pair, both checked."""
+def value_range(name, value, unit):
+    """(low, high) from a number or a [low, high] pair, both checked (a ParameterError
+    naming ``name`` otherwise)."""
     if isinstance(value, (list, tuple)):
         if len(value) != 2:
             raise ParameterError(f"{name} must be a number or [low, high]; got {value!r}")
@@ -78,7 +79,9 @@ class Species:
 
     def __post_init__(self):
         for prop in ("diameter", "density", "youngs_modulus"):
-            object.__setattr__(self, prop, _range(prop, getattr(self, prop), _PROPERTIES[prop]))
+            object.__setattr__(
+                self, prop, value_range(prop, getattr(self, prop), _PROPERTIES[prop])
+            )
         object.__setattr__(
             self,
             "poisson_ratio",
@@ -86,7 +89,7 @@ class Species:
         )
         if self.friction_steel is not None:
             object.__setattr__(
-                self, "friction_steel", _range("friction_steel", self.friction_steel, "-")
+                self, "friction_steel", value_range("friction_steel", self.friction_steel, "-")
             )
 
     @classmethod

@@ -15,6 +15,7 @@ from contactlab.validation import (
 
 __all__ = [
     "HERTZ_TIME_FACTOR",
+    "HUNT_CROSSLEY_SERIES",
     "KUWABARA_KONO_C1",
     "KUWABARA_KONO_C2",
     "KUWABARA_KONO_MAX_PARAMETER",
@@ -355,6 +356,11 @@ def _x_minus_log1p(w):
     return math.fsum((-w) ** k / k for k in range(2, 40))
 
 
+HUNT_CROSSLEY_SERIES = 1e-6
+"""Below this ``y = 1.5 chi v`` [-], :func:`hunt_crossley_restitution` is the series
+``e = 1 - 2/3 y + 4/9 y**2``, whose remainder (about ``y**3 / 3``) is below 1e-18."""
+
+
 def hunt_crossley_restitution(damping, velocity):
     """Exact restitution of the Hunt-Crossley law F = k d^n (1 + (3/2) chi d').
 
@@ -379,7 +385,9 @@ def hunt_crossley_restitution(damping, velocity):
     throughout, the force is positive until d = 0: both contact-end conventions give this
     result. For y >~ 40, z = 1 to double
     precision and e = 1/y. For small y, e = 1 - chi v + O((chi v)^2)
-    (:func:`hunt_crossley_restitution_linearised`).
+    (:func:`hunt_crossley_restitution_linearised`); below :data:`HUNT_CROSSLEY_SERIES`
+    the series ``z / y = 1 - 2/3 y + 4/9 y^2 + O(y^3)`` (from ``z^2/2 + z^3/3 + ... =
+    y^2/2 - y^3/3 + ...``) is exact to rounding.
 
     References
     ----------
@@ -389,8 +397,10 @@ def hunt_crossley_restitution(damping, velocity):
     chi = check_non_negative("damping", damping, "s/m")
     v = check_positive("velocity", velocity, "m/s")
     y = 1.5 * chi * v
-    if y == 0.0:
-        return 1.0
+    if y < HUNT_CROSSLEY_SERIES:
+        # the root s ~ y lies far below Brent's [0, 1] bracket (y = 1e-151 did not converge
+        # in 100 iterations; below 1e-154 the target underflows): the series instead
+        return 1.0 - y * (2.0 / 3.0 - 4.0 / 9.0 * y)
     target = _x_minus_log1p(y)
 
     def excess(s):

@@ -19,6 +19,7 @@ from contactlab.batch.frame import Column, impact_columns
 from contactlab.batch.oblique_kernel import solve_rows
 from contactlab.batch.rows import DEFAULT_CHUNK, run_kernel, solve_frame
 from contactlab.bodies import Grain, Sensor
+from contactlab.errors import ParameterError
 from contactlab.laws import DAMPING_FORMS, HISTORY_FORMS, HertzDamped, Mindlin
 from contactlab.plausibility import internal
 from contactlab.solver.conventions import LEVER_ARMS
@@ -161,7 +162,12 @@ def oblique_impacts(
     """
     history = check_choice("history", history, HISTORY_FORMS)
     damping = check_choice("damping", damping, DAMPING_FORMS)
-    Mindlin(1.0, 0.0, history, damping)  # the law refuses the pair it cannot solve
+    if history == "total" and damping == "tied":
+        raise ParameterError(
+            "history='total' with damping='tied' is not supported (beside a damped normal "
+            "law the solver cannot decide the phase at the touch, Mindlin.for_contact); use "
+            "history='incremental' or 'incremental_rescaled' with damping='tied'"
+        )
     lever_arm = check_choice("lever_arm", lever_arm, LEVER_ARMS)
     kappa = check_inertia_factor("inertia_factor", inertia_factor)
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)

@@ -31,6 +31,7 @@ from contactlab.laws.linear import LinearViscoelastic, linear_viscoelastic_force
 from contactlab.laws.plastic import LinearPlastic, Thornton, linear_plastic_force, thornton_force
 from contactlab.laws.pulse import PlasticTrapezoid, plastic_trapezoid_force
 from contactlab.laws.tangential import (
+    COULOMB_CAPS,
     DAMPING_FORMS,
     HISTORY_FORMS,
     TANGENTIAL_LAWS,
@@ -43,6 +44,7 @@ from contactlab.laws.tangential import (
 from contactlab.validation import check_choice
 
 __all__ = [
+    "COULOMB_CAPS",
     "DAMPING_FORMS",
     "HISTORY_FORMS",
     "LAWS",

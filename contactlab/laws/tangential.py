@@ -40,7 +40,6 @@ LAMMPS documentation, pair_style granular: tangential ``linear_history``, ``mind
 """
 
 import math
-from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
@@ -52,9 +51,11 @@ from contactlab.analytic.tangential import (
 from contactlab.errors import ParameterError
 from contactlab.laws.hertz import Hertz, HertzDamped
 from contactlab.laws.linear import LinearViscoelastic
+from contactlab.laws.tangential_form import TangentialForm
 from contactlab.validation import KeywordChecked, check_choice, check_number
 
 __all__ = [
+    "COULOMB_CAPS",
     "DAMPING_FORMS",
     "HISTORY_FORMS",
     "Mindlin",
@@ -73,6 +74,11 @@ DAMPING_FORMS = ("none", "tied")
 """Values of ``Mindlin(damping=...)``: no tangential damping (LAMMPS ``xgamma_t = 0``), or
 ``2 gamma sqrt(m* kt)`` with the normal law's damping ratio ``gamma`` (Kratos, EDEM)."""
 
+COULOMB_CAPS = ("total", "elastic")
+"""Values of ``Mindlin(coulomb_cap=...)``: the total force (elastic + viscous) scaled to
+``mu N`` and the history rescaled to match (LAMMPS), or the elastic force alone capped at
+``mu N`` with the viscous part cut to what is left (Kratos)."""
+
 
 def mindlin_stiffness(overlap, k_mindlin):
     """Mindlin tangential stiffness ``kt = k_mindlin sqrt(d) = 8 G* a`` [N/m] (0 for d <= 0).
@@ -88,45 +94,6 @@ def mindlin_stiffness(overlap, k_mindlin):
     return k_mindlin * np.sqrt(np.maximum(overlap, 0.0))
 
 
-@dataclass(frozen=True)
-class TangentialForm:
-    """A tangential law as one formula, for the compiled oblique solver
-    (:mod:`contactlab.solver.oblique_rhs`), as :class:`~contactlab.laws.base.PowerForm`
-    is a normal law's.
-
-    ``kt(d) = stiffness d**stiffness_exponent`` [N/m] and ``eta(d) = damping
-    d**damping_exponent`` [N*s/m]; an exponent 0 is a constant at every overlap, a
-    positive exponent is 0 at ``d <= 0``.
-
-    Attributes
-    ----------
-    friction : float
-        ``mu`` [-].
-    stiffness : float
-        ``k`` [N/m] (exponent 0) or ``k_mindlin`` [N/m**1.5] (exponent 0.5).
-    stiffness_exponent : float
-        0 or 0.5 [-].
-    damping : float
-        ``eta`` [N*s/m] (exponent 0) or ``2 gamma sqrt(m* k_mindlin)`` [N*s/m**1.25]
-        (exponent 0.25).
-    damping_exponent : float
-        0 or 0.25 [-].
-    force_history : bool
-        Whether the history is a force (``"force"`` :attr:`TangentialLaw.history_kind`).
-    rescaled : bool
-        Whether the stored force is rescaled while the overlap shrinks
-        (``history="incremental_rescaled"``).
-    """
-
-    friction: float
-    stiffness: float
-    stiffness_exponent: float
-    damping: float
-    damping_exponent: float
-    force_history: bool
-    rescaled: bool
-
-
 class TangentialLaw(KeywordChecked):
     """Base class of tangential laws (see the module docstring for the conventions).
 
@@ -137,6 +104,9 @@ class TangentialLaw(KeywordChecked):
 
     history_kind: ClassVar[str] = "displacement"
     """``"displacement"`` [m] or ``"force"`` [N]: what the history variable holds."""
+
+    coulomb_cap = "total"
+    """What ``mu N`` caps (:data:`COULOMB_CAPS`); ``"total"`` unless a law says otherwise."""
 
     def stiffness(self, overlap):
         """Tangential stiffness ``kt`` [N/m] at overlap ``d`` [m]."""
@@ -159,12 +129,23 @@ class TangentialLaw(KeywordChecked):
         [kg] (a law whose damping is tied to the normal law binds it here)."""
         return self
 
+    def elastic_force(self, history, overlap):
+        """The elastic part of the tangential force [N] at history ``h``, overlap ``d`` [m]."""
+        if self.history_kind == "force":
+            return history
+        return -self.stiffness(overlap) * history
+
+    def history_of(self, elastic, overlap):
+        """The history whose elastic force is ``elastic`` [N] at overlap ``d`` [m] (zero
+        where the stiffness vanishes, at the touch of a Mindlin contact)."""
+        if self.history_kind == "force":
+            return elastic
+        kt = self.stiffness(overlap)
+        return 0.0 if kt == 0.0 else -elastic / kt
+
     def trial_force(self, history, overlap, slip):
         """Tangential force [N] before the Coulomb cap."""
-        damping = self.damping_coefficient(overlap) * slip
-        if self.history_kind == "force":
-            return history - damping
-        return -self.stiffness(overlap) * history - damping
+        return self.elastic_force(history, overlap) - self.damping_coefficient(overlap) * slip
 
     def history_rate(self, history, overlap, overlap_rate, slip):
         """``h'`` [m/s or N/s] while the contact sticks, at history ``h``, overlap ``d``
@@ -173,13 +154,16 @@ class TangentialLaw(KeywordChecked):
             return -self.stiffness(overlap) * slip
         return slip
 
+    def elastic_force_rate(self, history, overlap, overlap_rate, slip):
+        """Time derivative of :meth:`elastic_force` along a sticking path [N/s]."""
+        if self.history_kind == "force":
+            return self.history_rate(history, overlap, overlap_rate, slip)
+        kt_rate = self.stiffness_slope(overlap) * overlap_rate
+        return -self.stiffness(overlap) * slip - kt_rate * history
+
     def trial_force_rate(self, history, overlap, overlap_rate, slip, slip_rate):
         """Time derivative of :meth:`trial_force` along a sticking path [N/s]."""
-        if self.history_kind == "force":
-            elastic = self.history_rate(history, overlap, overlap_rate, slip)
-        else:
-            elastic = -self.stiffness(overlap) * slip
-            elastic -= self.stiffness_slope(overlap) * overlap_rate * history
+        elastic = self.elastic_force_rate(history, overlap, overlap_rate, slip)
         damping = self.damping_coefficient(overlap) * slip_rate
         damping += self.damping_slope(overlap) * overlap_rate * slip
         return elastic - damping
@@ -193,11 +177,7 @@ class TangentialLaw(KeywordChecked):
 
         Zero where the stiffness vanishes (at the touch of a Mindlin contact).
         """
-        viscous = self.damping_coefficient(overlap) * slip
-        if self.history_kind == "force":
-            return force + viscous
-        kt = self.stiffness(overlap)
-        return 0.0 if kt == 0.0 else -(force + viscous) / kt
+        return self.history_of(force + self.damping_coefficient(overlap) * slip, overlap)
 
     def parameters(self):
         """Parameters as a dict (name -> value)."""
@@ -290,7 +270,20 @@ class Mindlin(TangentialLaw):
         force ``-2 gamma sqrt(m* kt(d)) s`` whose ratio ``gamma`` is the normal law's
         (:func:`damping_ratio`; Kratos' ``CalculateViscoDampingForceWithFEM``, EDEM's
         ``2 sqrt(5/6) beta sqrt(S_t m*)``). The solver binds ``gamma`` and ``m*`` through
-        :meth:`for_contact`; it is zero beside an elastic normal law.
+        :meth:`for_contact`; it is zero beside an elastic normal law. With
+        ``history="total"`` it is refused beside a damped normal law (``gamma > 0``): the
+        sliding history ``-(mu N + eta s) / kt`` is unbounded at the touch and the solver
+        cannot decide the phase there (LIGGGHTS' ``tangential history`` with
+        ``tangential_damping on``; not run here).
+    coulomb_cap : {"total", "elastic"}
+        What ``mu N`` caps once the trial force exceeds it; the two differ only with a
+        tangential damping. ``"total"``: the total force (elastic + viscous) is scaled to
+        ``mu N`` and the history rescaled so that the trial force equals it (LAMMPS'
+        ``gran_sub_mod_tangential.cpp``). ``"elastic"``: the force is ``mu N``, the elastic
+        part is kept while it is below ``mu N`` (the viscous part takes the rest) and held
+        at ``mu N`` once it reaches it (the viscous part dropped): Kratos'
+        ``CalculateTangentialForceWithNeighbour`` (``if (dot_product >= 0.0)`` and its
+        ``else``, ``DEM_D_Hertz_viscous_Coulomb_CL.cpp``), taken to a vanishing step.
 
     Notes
     -----
@@ -311,19 +304,12 @@ class Mindlin(TangentialLaw):
 
     name = "mindlin"
 
-    def __init__(self, k_mindlin, friction, history="total", damping="none"):
+    def __init__(self, k_mindlin, friction, history="total", damping="none", coulomb_cap="total"):
         self.k_mindlin = check_number("k_mindlin", k_mindlin, low=0.0, unit="N/m**1.5")
         self.friction = _friction(friction)
         self.history = check_choice("history", history, HISTORY_FORMS)
         self.damping_form = check_choice("damping", damping, DAMPING_FORMS)
-        if self.history == "total" and self.damping_form == "tied":
-            # the phase at the touch is undecided there: the trial force and the damped cap
-            # both grow as t**0.25, and the solver switched stick/slide at t = 0 for ever
-            raise ParameterError(
-                "history='total' with damping='tied' is not supported (the solver cannot "
-                "decide the phase at the touch); use history='incremental' or "
-                "'incremental_rescaled' with damping='tied'"
-            )
+        self.coulomb_cap = check_choice("coulomb_cap", coulomb_cap, COULOMB_CAPS)
         self.history_kind = "displacement" if self.history == "total" else "force"
         self._params = {
             "k_mindlin": self.k_mindlin,
@@ -332,6 +318,8 @@ class Mindlin(TangentialLaw):
         }
         if self.damping_form != "none":  # the parameters of the untied law stay as they were
             self._params["damping"] = self.damping_form
+        if self.coulomb_cap != "total":
+            self._params["coulomb_cap"] = self.coulomb_cap
         self._tied = 0.0  # 2 gamma sqrt(m* k_mindlin) [N*s/m**1.25], bound by for_contact
 
     def for_contact(self, normal_law, mass):
@@ -342,12 +330,25 @@ class Mindlin(TangentialLaw):
         ------
         ParameterError
             If ``damping="tied"`` and the normal law has no damping ratio
-            (:func:`damping_ratio`).
+            (:func:`damping_ratio`), or with ``history="total"`` beside a damped normal
+            law (see the class docstring).
         """
         if self.damping_form == "none":
             return self
-        bound = Mindlin(self.k_mindlin, self.friction, self.history, self.damping_form)
+        bound = Mindlin(
+            self.k_mindlin, self.friction, self.history, self.damping_form, self.coulomb_cap
+        )
         gamma = damping_ratio(normal_law, mass)
+        if self.history == "total" and gamma > 0.0:
+            raise ParameterError(
+                f"tangential_law history='total' with damping='tied' beside a damped normal "
+                f"law (gamma = {gamma:.3g}) is not supported: the law is defined (LIGGGHTS' "
+                "tangential history with tangential_damping on), but its sliding history "
+                "-(mu N + eta s)/kt grows without bound at the touch (kt ~ d**0.5 while eta s "
+                "and N ~ d**0.25), so the solver cannot decide the phase there; use "
+                "history='incremental' or 'incremental_rescaled' with damping='tied', or an "
+                "elastic normal law (gamma = 0: no tangential damping)"
+            )
         bound._tied = 2.0 * gamma * math.sqrt(mass * self.k_mindlin)
         return bound
 
@@ -383,6 +384,7 @@ class Mindlin(TangentialLaw):
         other_poisson_ratio=0.0,
         history="total",
         damping="none",
+        coulomb_cap="total",
     ):
         """Mindlin law of a sphere on a flat from material data; a rigid flat by default.
 
@@ -400,12 +402,16 @@ class Mindlin(TangentialLaw):
             See the class docstring.
         damping : {"none", "tied"}
             See the class docstring.
+        coulomb_cap : {"total", "elastic"}
+            See the class docstring.
         """
         g_eff = effective_shear_modulus(
             youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio
         )
         radius = check_number("radius", radius, low=0.0, unit="m")
-        return cls(mindlin_stiffness_coefficient(g_eff, radius), friction, history, damping)
+        return cls(
+            mindlin_stiffness_coefficient(g_eff, radius), friction, history, damping, coulomb_cap
+        )
 
     def stiffness(self, overlap):
         if isinstance(overlap, float):  # the solver's scalar path

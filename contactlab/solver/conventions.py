@@ -13,7 +13,7 @@ choice; :meth:`Conventions.mindlin` and :attr:`Conventions.lever_arm` apply it::
 
 from dataclasses import dataclass
 
-from contactlab.laws import DAMPING_FORMS, HISTORY_FORMS, Mindlin
+from contactlab.laws import COULOMB_CAPS, DAMPING_FORMS, HISTORY_FORMS, Mindlin
 from contactlab.validation import check_choice
 
 __all__ = ["DEM_CONVENTIONS", "LEVER_ARMS", "Conventions"]
@@ -35,21 +35,26 @@ class Conventions:
         :class:`~contactlab.laws.Mindlin`'s history rule.
     damping : {"none", "tied"}
         :class:`~contactlab.laws.Mindlin`'s tangential damping.
+    coulomb_cap : {"total", "elastic"}, default "total"
+        :class:`~contactlab.laws.Mindlin`'s Coulomb cap (it acts with a tangential damping
+        only).
     """
 
     lever_arm: str
     history: str
     damping: str
+    coulomb_cap: str = "total"
 
     def __post_init__(self):
         check_choice("lever_arm", self.lever_arm, LEVER_ARMS)
         check_choice("history", self.history, HISTORY_FORMS)
         check_choice("damping", self.damping, DAMPING_FORMS)
+        check_choice("coulomb_cap", self.coulomb_cap, COULOMB_CAPS)
 
     def mindlin(self, law):
-        """``law`` (a :class:`~contactlab.laws.Mindlin`) with these history and damping
-        rules, its stiffness and friction kept."""
-        return Mindlin(law.k_mindlin, law.friction, self.history, self.damping)
+        """``law`` (a :class:`~contactlab.laws.Mindlin`) with these history, damping and
+        Coulomb cap rules, its stiffness and friction kept."""
+        return Mindlin(law.k_mindlin, law.friction, self.history, self.damping, self.coulomb_cap)
 
 
 DEM_CONVENTIONS = {
@@ -57,11 +62,13 @@ DEM_CONVENTIONS = {
     "lammps_mindlin": Conventions("radius", "total", "none"),
     "lammps_mindlin_force": Conventions("radius", "incremental", "none"),
     "lammps_mindlin_rescale_force": Conventions("radius", "incremental_rescaled", "none"),
-    "kratos": Conventions("contact", "incremental_rescaled", "tied"),
+    "kratos": Conventions("contact", "incremental_rescaled", "tied", "elastic"),
 }
 """Code -> its rules. LAMMPS (``pair granular``/``fix wall/gran granular``) at a wall: arm
 ``R`` (measured), the history named by its ``tangential`` keyword, ``xgamma_t = 0``
 (no damping; a non-zero ``xgamma_t`` is a multiple of the normal damping coefficient, not
 of ``gamma``). Kratos ``DEM_D_Hertz_viscous_Coulomb``: ``actual_arm_vector`` ``R - d``,
-``minoring_factor`` rescaling, ``2 gamma sqrt(m* Kt)`` damping. Sources:
+``minoring_factor`` rescaling, ``2 gamma sqrt(m* Kt)`` damping, the elastic force capped
+(``CalculateTangentialForceWithNeighbour``). LAMMPS caps the total force
+(``gran_sub_mod_tangential.cpp``). Sources:
 ``docs/dem-conventions.md``."""

@@ -118,9 +118,13 @@ class Stepper:
                 break
             h *= max(_MIN_FACTOR, _SAFETY * error**_EXPONENT)
             rejected = True
-        self.t_old, self.y_old, self._h_done = t, y, h
+        self.t_old, self.y_old, self._f_old, self._h_done = t, y, f, h
         self.t, self.y, self._f = t_new, y_new, f_new
         return True
+
+    def undo(self):
+        """Return to the last step's start (the next :meth:`step` may take a shorter one)."""
+        self.t, self.y, self._f = self.t_old, self.y_old, self._f_old
 
     @staticmethod
     def _error_norm(K, h, scale):

@@ -30,6 +30,7 @@ from contactlab.solver.oblique_rhs import (
     slip,
     trial_force,
 )
+from contactlab.solver.power_piece import retake_bound
 from contactlab.solver.power_rhs import force
 
 __all__ = [
@@ -129,19 +130,14 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
     for j in range(count):
         armed[j] = waits(rows[SUBSTEPS, j], direction(j, int(phase)))
     hit, hit_j, t_old, h = math.nan, -1, t, 0.0
+    bound, retakes = end, 0
     while t < end:
-        ok, t_new, h_next, h = step(t, y, f, h_try, end, rtol, atol, par, warped, K, y_new, f_new)
+        ok, t_new, h_next, h = step(t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new)
         if not ok:
             return STATUS_UNDERFLOW, t, y, (t_old, h, y_old, F), hit, hit_j, store
         t_old = t
         y_old[:] = y
         interpolant(K, h, y_old, y_new, f_new, par, warped, F)
-        if keep:
-            if store[0] == store[1].size:
-                store = _grow(store)
-            c = store[0]
-            store[1][c], store[2][c], store[3][c], store[4][c] = t_old, h, y_old, F
-            store = (c + 1, store[1], store[2], store[3], store[4])
         rows[0] = rows[SUBSTEPS]
         for i in range(SUBSTEPS + 1):
             times[i] = t_old + h * (i / SUBSTEPS)
@@ -150,12 +146,24 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
             events(tmp, par, phase, rows[i])
         times[SUBSTEPS] = t_old + h
         events(y_new, par, phase, rows[SUBSTEPS])
-        y[:] = y_new
-        f[:] = f_new
-        t, h_try = t_new, h_next
         hit, hit_j = first_crossing(
             (t_old, h, y_old, F), count, armed, times, rows, par, phase, tmp, row, work, rising
         )
+        if hit_j == 0:  # the contact's end: the step again, to just past it (power_piece)
+            again = retake_bound(t_old, hit, t_new, retakes)
+            if not math.isnan(again):
+                rows[SUBSTEPS] = rows[0]
+                h_try, bound, retakes = h_next, again, retakes + 1
+                continue
+        if keep:
+            if store[0] == store[1].size:
+                store = _grow(store)
+            c = store[0]
+            store[1][c], store[2][c], store[3][c], store[4][c] = t_old, h, y_old, F
+            store = (c + 1, store[1], store[2], store[3], store[4])
+        y[:] = y_new
+        f[:] = f_new
+        t, h_try, bound = t_new, h_next, end
         if hit_j >= 0:
             break
         if warped and t_old > 0.0 and t**4 - t_old**4 < t_old**4:

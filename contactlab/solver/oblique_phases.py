@@ -1,9 +1,11 @@
 """The solved contact of an oblique impact: its phases and their states at any time.
 
-:class:`ContactPhases` holds what :func:`contactlab.solver.oblique_kernel.solve_contact`
-kept (each phase's start, end and code, and every step's interpolant) and evaluates
-states and forces at many times in one compiled pass (:func:`sample`): the output grid
-of :class:`~contactlab.ObliqueResult`, its peaks and its audit's quadrature nodes.
+:func:`compiled_contact` runs :func:`contactlab.solver.oblique_kernel.solve_contact`;
+:class:`ContactPhases` holds what it kept (each phase's start, end and code, and every
+step's interpolant) and evaluates states and forces at many times in one compiled pass
+(:func:`sample`): the output grid of :class:`~contactlab.ObliqueResult`, its peaks and its
+audit's quadrature nodes. :class:`PiecePhases` gives the same view of the contact the
+Python phase loop solves (Kratos' elastic Coulomb cap, not compiled yet).
 """
 
 import math
@@ -11,10 +13,19 @@ import math
 import numpy as np
 from numba import njit
 
+from contactlab.errors import ParameterError
+from contactlab.solver.adaptive import underflow_message
+from contactlab.solver.oblique_kernel import (
+    MAX_PHASES,
+    STATUS_CHATTER,
+    STATUS_OPEN,
+    STATUS_UNDERFLOW,
+    solve_contact,
+)
 from contactlab.solver.oblique_rhs import FRICTION, STICK, arm, trial_force
 from contactlab.solver.power_rhs import RIGID, force
 
-__all__ = ["ContactPhases", "sample"]
+__all__ = ["ContactPhases", "PiecePhases", "compiled_contact", "sample"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -132,4 +143,79 @@ class ContactPhases:
         if out is None:
             out = (np.empty((times.size, 7)), *np.empty((4, times.size)))
         sample(self._par, self._table, self._warp, self._steps, times, *out)
+        return out
+
+
+def compiled_contact(model, y0, rtol, atol, velocity):
+    """The contact from the touch ``y0`` to the separation, compiled; returns
+    (:class:`ContactPhases`, y_end).
+
+    Parameters
+    ----------
+    model : contactlab.solver.oblique.ObliqueModel
+        The impact (its :meth:`~contactlab.solver.oblique.ObliqueModel.pack`).
+    y0 : numpy.ndarray
+        State at the touch.
+    rtol : float
+        Relative tolerance.
+    atol : numpy.ndarray
+        Absolute tolerances (:func:`contactlab.solver.oblique_kernel.tolerances`).
+    velocity : float
+        Impact speed [m/s] (for the messages).
+    """
+    par = model.pack()
+    status, failed, y_end, table, count, warp, steps = solve_contact(
+        par, np.asarray(y0, dtype=float), rtol, atol, True
+    )
+    if status == STATUS_UNDERFLOW:
+        raise RuntimeError(underflow_message(failed, rtol))
+    if status == STATUS_OPEN:
+        raise ParameterError(
+            f"the contact had not ended after {failed:.4g} s, so this is not an impact: "
+            f"check the units of the grain (mass {model.system.m2:.4g} kg), the laws' "
+            f"parameters and the velocity ({velocity:.4g} m/s)"
+        )
+    if status == STATUS_CHATTER:
+        raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
+    return ContactPhases(par, table[:count], warp, steps), y_end
+
+
+class PiecePhases:
+    """:class:`ContactPhases`' view of the contact solved in Python: pieces with ``t0``,
+    ``t1``, ``phase`` (its force's sign, 0 sticking) and dense ``states``."""
+
+    def __init__(self, model, pieces):
+        self._model, self._pieces = model, pieces
+
+    @property
+    def end(self):
+        """End of the contact [s]."""
+        return self._pieces[-1].t1
+
+    def phases(self):
+        """``[(start [s], end [s], phase code), ...]``: stick 0, slide +1 or -1."""
+        return [(p.t0, p.t1, p.phase) for p in self._pieces]
+
+    def __call__(self, times, out=None):
+        """As :meth:`ContactPhases.__call__`."""
+        times = np.asarray(times, dtype=float)
+        if out is None:
+            out = (np.empty((times.size, 7)), *np.empty((4, times.size)))
+        states, raw, normal, tangential, slip = out
+        model = self._model
+        for piece in self._pieces:
+            inside = (times >= piece.t0) & (times < piece.t1)
+            if piece is self._pieces[-1]:
+                inside |= times >= piece.t1
+            if not inside.any():
+                continue
+            st = piece.states(times[inside] - piece.t0)
+            d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
+            states[inside], raw[inside] = st, model.normal(d, r)
+            normal[inside] = np.maximum(raw[inside], 0.0)
+            slip[inside] = model.slip(st)
+            if piece.phase == STICK:
+                tangential[inside] = model.law.trial_force(st[:, 6], d, slip[inside])
+            else:
+                tangential[inside] = piece.phase * model.law.friction * normal[inside]
         return out

@@ -20,7 +20,16 @@ from contactlab.solver.brent import WORK_SIZE, brent_next, brent_start
 from contactlab.solver.dop853_kernel import WORK_ROWS, initial_step, interpolant, interpolate, step
 from contactlab.solver.power_rhs import force, rhs
 
-__all__ = ["STATUS_OK", "STATUS_UNDERFLOW", "contact_tolerances", "integrate"]
+__all__ = [
+    "MAX_RETAKES",
+    "RETAKE_FLOATS",
+    "RETAKE_SHARE",
+    "STATUS_OK",
+    "STATUS_UNDERFLOW",
+    "contact_tolerances",
+    "integrate",
+    "retake_bound",
+]
 
 STATUS_OK, STATUS_UNDERFLOW = 0, 1
 """Outcome of :func:`integrate`: done, or the step size underflowed."""
@@ -39,6 +48,57 @@ def contact_tolerances(rtol, velocity):
     """
     scale = velocity * 1e-6
     return 1e-3 * rtol * np.array([scale, velocity, scale, velocity])
+
+
+MAX_RETAKES = 8
+"""Most retakes of the step that ends one contact piece (:func:`retake_bound`); one or
+two are usual."""
+
+RETAKE_FLOATS = 128
+"""A contact's end closer than this many floats to its step's start is read on that step
+(:func:`retake_bound`): the interpolant is exact to first order at the step's start, so
+its error there is below ``(128 ulp / h)**2`` of the step's; and a shorter step would not
+give its 9 event samples (:data:`contactlab.solver.adaptive.SUBSTEPS`) distinct times."""
+
+RETAKE_SHARE = 2.0**-20
+"""Share of a step past the contact's end [-] up to which the step stands
+(:func:`retake_bound`). A retaken step is bounded half of it past the end located, so
+that it crosses the end by a margin no rounding removes and locates the end itself (a
+bound at the end would leave the event a rounding short of zero about half the time, and
+one more step); what the non-smooth force does in a millionth of a step past the end is
+below rounding (the error of a step across it falls like a power above 3 of that part)."""
+
+
+@njit(cache=True)
+def retake_bound(t_old, end, t_new, count):
+    """Where a step from ``t_old`` to ``t_new`` [s] across the contact's end, located at
+    ``end`` [s] on it, is taken again to from ``t_old`` [s], or nan where it stands
+    (``count`` retakes so far).
+
+    The root cause of Thornton's wrong rebounds (issue 21; 1e-5 off the closed form): the
+    force of a Hertz-family branch, ``k (d - d_p)**1.5``, is continued past the contact's
+    end as ``k x |x|**0.5`` (``x = d - d_p``; its sign change marks the end), which is
+    not smooth at ``x = 0`` (the overlap's fourth derivative grows like ``|x|**-0.5``).
+    DOP853's error estimate assumes a smooth solution over the step: on a step across
+    that point its 5th-order estimate, damped by a far larger 3rd-order one (``err5**2 /
+    sqrt(err5**2 + 0.01 err3**2)``), accepted steps whose end state, and the interpolant
+    the end was located on, were off by 1e5 times the tolerance. Such a step is taken
+    again, bounded just past the end located on it, until no more than
+    :data:`RETAKE_SHARE` of the step lies past the end, the end lies within
+    :data:`RETAKE_FLOATS` of the step's start, or :data:`MAX_RETAKES` is reached: the state
+    at the contact's end then comes from a step that does not cross the non-smooth point
+    (to a millionth of the step). A branch exit needs no retake for the step to hold (the
+    formula is smooth across it); the normal solver retakes those steps too, so that the
+    next branch starts from a step's end (:func:`contactlab.solver.adaptive.integrate_piece`).
+    """
+    ulp = np.nextafter(t_old, math.inf) - t_old
+    if (
+        count >= MAX_RETAKES
+        or end <= t_old + RETAKE_FLOATS * ulp
+        or t_new - end <= RETAKE_SHARE * (t_new - t_old)
+    ):
+        return math.nan
+    return end + 0.5 * RETAKE_SHARE * (end - t_old)
 
 
 @njit(cache=True, error_model="numpy")
@@ -98,24 +158,28 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
     rhs(y, par, warped, f)
     y = y.copy()
     before, hit, count, last_start = _event(y, par), math.nan, 0, t
+    bound, retaken = end, 0
     while t < end:
-        ok, t_new, h_next, h = step(t, y, f, h_try, end, rtol, atol, par, warped, K, y_new, f_new)
+        ok, t_new, h_next, h = step(t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new)
         if not ok:
             return STATUS_UNDERFLOW, count, t_old, hs, y_old, F, hit, t, y, last_start
         if count == t_old.size:
             t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
-        t_old[count], hs[count], y_old[count] = t, h, y
         interpolant(K, h, y, y_new, f_new, par, warped, F[count])
         after = _event(y_new, par)
+        if before > 0.0 and after <= 0.0:
+            hit = _locate(t, h, before, after, F[count], y, par, tmp, work)
+            again = retake_bound(t, hit, t_new, retaken)
+            if not math.isnan(again):  # the step again from t, to just past the end
+                h_try, bound, retaken, hit = h_next, again, retaken + 1, math.nan
+                continue
+        t_old[count], hs[count], y_old[count] = t, h, y
         last_start = t
         count += 1
         y[:] = y_new
         f[:] = f_new
-        t, h_try = t_new, h_next
-        if before > 0.0 and after <= 0.0:
-            hit = _locate(
-                last_start, h, before, after, F[count - 1], y_old[count - 1], par, tmp, work
-            )
+        t, h_try, bound = t_new, h_next, end
+        if not math.isnan(hit):
             break
         if warped and last_start > 0.0 and t**4 - last_start**4 < last_start**4:
             break  # adaptive._warp_stops_paying: steps in time do as well from here

@@ -40,7 +40,7 @@ from contactlab.validation import check_count, check_number
 from dem_check.campaign.synthetic import synthetic_record
 from dem_check.traces import Trace
 
-__all__ = ["Effects", "RealisticRecord", "realistic_record"]
+__all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record"]
 
 DRIFT_BAND = (0.2, 5.0)
 """Frequencies of the drift's sines [Hz]: thermal and charge-amplifier wander."""
@@ -187,6 +187,46 @@ def _adc(values, effects):
     return np.clip(np.round(values / lsb) * lsb, -top, top), clipped
 
 
+def add_effects(t, clean, effects, truth, noise, rng):
+    """A clean signal with white noise and a laboratory's :class:`Effects` added.
+
+    Parameters
+    ----------
+    t, clean : numpy.ndarray
+        Time [s] and the clean signal [N].
+    effects : Effects
+    truth : pandas.DataFrame
+        ``onset [s]`` and ``peak_signal [N]`` of each impact (the crosstalk rings after
+        each).
+    noise : float
+        White noise standard deviation [N].
+    rng : numpy.random.Generator
+
+    Returns
+    -------
+    values : numpy.ndarray
+        [N], quantised and clipped by the ADC if ``effects.full_scale`` is set.
+    rail : numpy.ndarray of bool
+        Samples at an ADC rail.
+    step_times : numpy.ndarray
+        Times of the offset steps [s].
+    """
+    _check_effects(effects)
+    white = rng.normal(0.0, check_number("noise", noise, low=0.0, low_open=False), t.size)
+    random_part = white + _pink(rng, t.size, effects.pink)
+    levels, step_times = _steps(rng, t, effects)
+    values = (
+        clean
+        + random_part
+        + _drift(rng, t, effects.drift)
+        + _hum(rng, t, effects)
+        + _crosstalk(rng, t, truth, effects)
+        + levels
+    )
+    values, rail = _adc(values, effects)
+    return values, rail, step_times
+
+
 def _check_effects(effects):
     if not isinstance(effects, Effects):
         raise ParameterError(f"effects must be a dem_check.campaign.Effects; got {effects!r}")
@@ -260,18 +300,7 @@ def realistic_record(
     )
     rng = np.random.default_rng(check_count("seed", seed, low=0))
     t = np.asarray(clean.t)
-    white = rng.normal(0.0, check_number("noise", noise, low=0.0, low_open=False), t.size)
-    random_part = white + _pink(rng, t.size, effects.pink)
-    levels, step_times = _steps(rng, t, effects)
-    values = (
-        np.asarray(clean.values)
-        + random_part
-        + _drift(rng, t, effects.drift)
-        + _hum(rng, t, effects)
-        + _crosstalk(rng, t, truth, effects)
-        + levels
-    )
-    values, rail = _adc(values, effects)
+    values, rail, step_times = add_effects(t, np.asarray(clean.values), effects, truth, noise, rng)
     lsb = 0.0 if effects.full_scale is None else 2.0 * effects.full_scale / 2**effects.bits
     truth["clipped"] = [
         bool(rail[(t >= at) & (t < at + 10.0 * sensor.period)].any()) for at in truth["onset [s]"]

@@ -4,21 +4,24 @@ from pathlib import Path
 
 import numpy as np
 
-from contactlab.benchmarks.chung_ooi.oblique import ANGLES
+from contactlab.benchmarks.chung_ooi.oblique import ANGLES, HISTORIES
 
-__all__ = ["DRAW", "save_figure"]
+__all__ = ["DRAW", "save_attribution_figure", "save_figure"]
 
 _STYLE = {"total": "o-", "incremental": "x--"}
 
 
 def save_figure(case, draw, out):
-    """Draw ``case`` with ``draw(ax)`` and save ``chung_ooi_test<N>.png`` in ``out``."""
+    """Draw ``case`` with ``draw(ax)`` (``draw(axes)`` when ``draw.panels`` > 1) and save
+    ``chung_ooi_test<N>.png`` in ``out``."""
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.0, 4.0), layout="constrained")
-    draw(ax)
-    ax.set_title(f"Chung & Ooi test {case.number}\n{case.title}", fontsize=9)
-    ax.legend(frameon=False, fontsize=7)
+    panels = getattr(draw, "panels", 1)
+    fig, axes = plt.subplots(1, panels, figsize=(6.0 * panels, 4.5), layout="constrained")
+    draw(axes)
+    fig.suptitle(f"Chung & Ooi test {case.number}\n{case.title}", fontsize=9)
+    for ax in np.atleast_1d(axes):
+        ax.legend(frameon=False, fontsize=6)
     path = Path(out) / f"chung_ooi_test{case.number}.png"
     fig.savefig(path, dpi=120)
     plt.close(fig)
@@ -30,10 +33,25 @@ def _lammps_points(ax, x, y, label):
         ax.plot(x, y, "k+", ms=7, label=label)
 
 
+_ENGINE_STYLE = {"lammps": "--", "kratos": ":"}
+
+
 def draw_hertz(case, curves):
+    """Force against time: contactlab, each engine, and Hertz' contact time and peak."""
+
     def draw(ax):
-        for name, (t, f) in curves.items():
-            ax.plot(t * 1e6, f, label=f"{name}: contactlab")
+        for name, runs in curves.items():
+            for run, (t, f) in runs.items():
+                if run != "theory":
+                    ax.plot(t * 1e6, f, _ENGINE_STYLE.get(run, "-"), label=f"{name}: {run}")
+            contact_time, peak = runs["theory"]
+            ax.plot(
+                [contact_time * 0.5e6, contact_time * 1e6],
+                [peak, 0.0],
+                "k*",
+                ms=8,
+                label=f"{name}: Hertz (peak, contact time)",
+            )
         ax.set_xlabel("time [µs]")
         ax.set_ylabel("contact force [N]")
 
@@ -41,10 +59,14 @@ def draw_hertz(case, curves):
 
 
 def draw_restitution(case, curves):
+    """Realised against requested restitution: contactlab and each engine."""
+
     def draw(ax):
-        for name, (asked, got) in curves.items():
-            ax.plot(asked, got, "o-", label=f"{name}: contactlab")
-        ax.plot([0, 1], [0, 1], "k:", label="requested")
+        for name, (asked, realised) in curves.items():
+            for run, got in realised.items():
+                style = "o-" if run == "contactlab" else "x"
+                ax.plot(asked, got, style, mfc="none", label=f"{name}: {run}")
+        ax.plot([0, 1], [0, 1], "k:", label="requested (theory)")
         ax.set_xlabel("requested restitution [-]")
         ax.set_ylabel("realised restitution [-]")
 
@@ -52,23 +74,89 @@ def draw_restitution(case, curves):
 
 
 def draw_oblique(case, curves):
+    """Two panels, ``vt'/vt`` and ``R w'/vt`` against the angle: theory (gross sliding),
+    contactlab's two Mindlin forms, LAMMPS' points, and each other engine (open squares)
+    beside contactlab with that engine's rules (dotted)."""
     mu = case.inputs["friction [-]"]
 
-    def draw(ax):
+    def draw(axes):
         angles = np.radians(ANGLES)
         for name, forms in curves.items():
-            for history, data in forms.items():
-                ax.plot(ANGLES, data[:, 0], _STYLE[history], label=f"{name}, Mindlin {history}")
-                _lammps_points(ax, ANGLES, data[:, 1], f"{name}, LAMMPS {history}")
-                if history == "total" and data.shape[1] > 2:  # an engine's own rules, once
-                    ax.plot(ANGLES, data[:, 2], "s", mfc="none", label=f"{name}, Kratos rules")
+            for history in HISTORIES:
+                data = forms[history]
+                for j, ax in enumerate(axes):
+                    ax.plot(ANGLES, data[:, j], _STYLE[history], ms=4, label=f"{name}, {history}")
+                    _lammps_points(ax, ANGLES, data[:, 2 + j], f"{name}, LAMMPS {history}")
+            for found in forms.get("attribution", ()):
+                if found.engine.startswith("lammps"):  # LAMMPS' points are drawn above
+                    continue
+                for j, ax in enumerate(axes):
+                    ax.plot(
+                        ANGLES,
+                        found.engine_values[:, j],
+                        "s",
+                        mfc="none",
+                        label=f"{name}, {found.engine}",
+                    )
+                    ax.plot(
+                        ANGLES,
+                        found.values[found.preset][:, j],
+                        ":",
+                        label=f"{name}, contactlab with {found.preset}",
+                    )
         ratio = 2 * mu / np.tan(angles)  # mu (1 + e) vn / vt with e = 1
         ok = 3.5 * ratio <= 1.0
-        ax.plot(np.array(ANGLES)[ok], 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")
-        ax.set_xlabel("incidence angle [deg]")
-        ax.set_ylabel("tangential restitution vt'/vt [-]")
+        sliding = np.array(ANGLES)[ok]
+        axes[0].plot(sliding, 1 - ratio[ok], "k-", lw=2, label="gross sliding (theory)")
+        # I w' = R mu (1 + e) m vn with I = 0.4 m R**2: R w'/vt = 2.5 ratio
+        axes[1].plot(sliding, 2.5 * ratio[ok], "k-", lw=2, label="gross sliding (theory)")
+        for ax, label in zip(axes, ("vt'/vt", "R w'/vt"), strict=True):
+            ax.set_xlabel("incidence angle [deg]")
+            ax.set_ylabel(f"{label} [-]")
 
+    draw.panels = 2
     return draw
+
+
+def save_attribution_figure(case, material, attributions, out):
+    """Each engine's test-4 difference from contactlab under every variant of the rules
+    (:mod:`~contactlab.benchmarks.chung_ooi.attribution`): one row per engine, ``vt'/vt``
+    and ``R w'/vt`` minus the engine's against the angle; saved as
+    ``chung_ooi_test<N>_attribution_<material>.png`` in ``out``."""
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(
+        len(attributions),
+        2,
+        figsize=(10.0, 3.2 * len(attributions)),
+        layout="constrained",
+        squeeze=False,
+    )
+    for row, found in zip(axes, attributions, strict=True):
+        for variant in found.values:
+            diff = found.differences(variant)
+            style = (
+                "k-" if variant == found.preset else "o-" if variant.startswith("only") else "x--"
+            )
+            for ax, column in zip(row, diff.T, strict=True):
+                ax.plot(found.angles, column, style, ms=3, lw=1.0, label=variant)
+        for ax, quantity in zip(row, ("vt'/vt", "R w'/vt"), strict=True):
+            ax.axhspan(-1e-3, 1e-3, color="0.85", lw=0)  # the engines' tolerance
+            ax.set_yscale("symlog", linthresh=1e-4)  # 1e-1 (a rule) to 1e-4 (a step error)
+            ax.axhline(0.0, color="k", lw=0.5)
+            ax.set_ylabel(f"{quantity} minus {found.engine}'s [-]", fontsize=8)
+            ax.set_xlabel("incidence angle [deg]")
+        row[0].legend(frameon=False, fontsize=6)
+    fig.suptitle(
+        f"Chung & Ooi test {case.number}, {material}: contactlab with one rule switched, "
+        "against each engine (grey: 1e-3; linear within 1e-4)",
+        fontsize=9,
+    )
+    slug = material.replace(" ", "_")
+    path = Path(out) / f"chung_ooi_test{case.number}_attribution_{slug}.png"
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
+    return path
 
 
 def draw_tangential_speed(case, curves):

@@ -44,8 +44,18 @@ def _graded(impacts, quantity):
     return {name: (getattr(res, quantity), True) for name, res in impacts.items()}
 
 
+def _force_curve(result):
+    """(t [s], contact force [N]) of an impact from the touch to the contact's end."""
+    inside = (result.t >= 0.0) & (result.t <= result.contact_time)
+    return result.t[inside], result.contact_force[inside]
+
+
 def hertz_test(case, material, pair, engines=None):
-    """Tests 1 (``pair``) and 2: contact time and peak force against Hertz."""
+    """Tests 1 (``pair``) and 2: contact time and peak force against Hertz.
+
+    The curves: ``{"contactlab" or engine: (t [s], force [N]), "theory": (contact time
+    [s], peak force [N])}``.
+    """
     radius = case.inputs["radius [m]"]
     if pair:
         mass, k_hertz = _identical_pair(material, radius)
@@ -58,13 +68,15 @@ def hertz_test(case, material, pair, engines=None):
     law = cl.laws.Hertz(k_hertz)
     res = cl.simulate_impact(cl.Grain.from_mass(mass), cl.Sensor.rigid(), law, speed)
     impacts = _engine_impacts(engines, mass, radius, law, speed)
+    contact_time = analytic.hertz_contact_time(k_hertz, mass, speed)
+    peak = analytic.hertz_max_force(k_hertz, mass, speed)
     rows = [
         row(
             case,
             material,
             "contact time [s]",
             res.contact_time,
-            analytic.hertz_contact_time(k_hertz, mass, speed),
+            contact_time,
             engines=_graded(impacts, "contact_time"),
         ),
         row(
@@ -72,16 +84,20 @@ def hertz_test(case, material, pair, engines=None):
             material,
             "peak force [N]",
             res.peak_contact_force,
-            analytic.hertz_max_force(k_hertz, mass, speed),
+            peak,
             engines=_graded(impacts, "peak_contact_force"),
         ),
     ]
-    inside = res.t <= res.contact_time
-    return rows, (res.t[inside], res.contact_force[inside])
+    curves = {"contactlab": _force_curve(res), "theory": (contact_time, peak)}
+    curves.update({name: _force_curve(got) for name, got in impacts.items()})
+    return rows, curves
 
 
 def restitution_test(case, material, pair, engines=None):
-    """Tests 3 (sphere on a plane) and 9 (``pair``): realised against requested restitution."""
+    """Tests 3 (sphere on a plane) and 9 (``pair``): realised against requested restitution.
+
+    The curves: ``(requested, {"contactlab" or engine: realised at the last speed})``.
+    """
     radius = case.inputs["radius [m]"]
     if pair:
         mass, k_hertz = _identical_pair(material, radius)
@@ -92,7 +108,7 @@ def restitution_test(case, material, pair, engines=None):
         mass = body.mass
         k_hertz = cl.laws.Hertz.from_material(*body.material()).k_hertz
         speeds = [case.inputs["speed [m/s]"]]
-    rows, realised = [], []
+    rows, realised = [], {name: [] for name in ["contactlab", *(engines or {})]}
     for e in case.inputs["restitution [-]"]:
         law = _normal_law(k_hertz, mass, e)
         for speed in speeds:
@@ -109,5 +125,7 @@ def restitution_test(case, material, pair, engines=None):
                     engines=_graded(impacts, "restitution"),
                 )
             )
-        realised.append(got.restitution)
+        realised["contactlab"].append(got.restitution)
+        for name, impact in impacts.items():
+            realised[name].append(impact.restitution)
     return rows, (case.inputs["restitution [-]"], realised)

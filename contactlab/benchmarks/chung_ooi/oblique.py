@@ -13,6 +13,7 @@ import numpy as np
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.benchmarks.chung_ooi import attribution
 from contactlab.benchmarks.chung_ooi.grading import engine_row, grain, rebound, row
 from contactlab.solver.conventions import DEM_CONVENTIONS
 
@@ -84,18 +85,32 @@ def _value(result, index):
     return None if result is None else result[index]
 
 
+_LAMMPS_RULES = {"total": "lammps_mindlin", "incremental": "lammps_mindlin_force"}
+"""LAMMPS' run of each history form: the preset of its keyword (``mindlin``,
+``mindlin/force``)."""
+
+
 def oblique_test(case, material, lammps=None, reported=None):
     """Test 4: constant speed, incidence 5-85 deg; vt' graded in gross sliding.
 
     ``reported``: ``{engine: oblique}`` run at every angle (once: an engine's own
     tangential rules take no history form) and reported beside, not graded (Kratos,
-    ``docs/dem-conventions.md``). Its ``vt'/vt`` and spin join the curves (columns 2 and
-    3) and the gross-sliding rows.
+    ``docs/dem-conventions.md``), in the gross-sliding rows.
+
+    ``curves[history]``: (17, 4) ``vt'/vt`` and ``R w'/vt`` of contactlab, then of LAMMPS
+    (NaN when not run), at each angle.
+
+    Every engine run (each reported engine with a preset in :data:`DEM_CONVENTIONS`, and
+    LAMMPS' ``mindlin`` and ``mindlin/force``) is then attributed rule by rule
+    (:mod:`~contactlab.benchmarks.chung_ooi.attribution`): contactlab with all of the
+    engine's rules is graded against it at every angle (rows "..., <engine>
+    conventions"), and ``curves["attribution"]`` holds each
+    :class:`~contactlab.benchmarks.chung_ooi.attribution.Attribution`.
     """
     radius, speed, mu = (case.inputs[k] for k in ("radius [m]", "speed [m/s]", "friction [-]"))
     body = grain(material, radius)
     normal = cl.laws.Hertz.from_material(*body.material())
-    rows, curves, others = [], {}, {}
+    rows, curves, others, lammps_runs = [], {}, {}, {}
     for history in HISTORIES:
         law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
         out = []
@@ -103,16 +118,16 @@ def oblique_test(case, material, lammps=None, reported=None):
             angle = math.radians(degrees)
             vn, vt = speed * math.cos(angle), speed * math.sin(angle)
             ours, theirs = impact(body, normal, law, speed, angle, 0.0, lammps)
+            lammps_runs[history, degrees] = theirs
             for name, oblique in (reported or {}).items():
                 if (name, degrees) not in others:
                     others[name, degrees] = rebound(oblique(body, normal, law, speed, angle))
-            extra = [others[name, degrees] for name in reported or {}]
             out.append(
                 (
                     ours[1] / vt,
+                    radius * ours[2] / vt,
                     _value(theirs, 1) / vt if theirs else math.nan,
-                    *(r[1] / vt for r in extra),
-                    *(r[2] for r in extra),
+                    radius * _value(theirs, 2) / vt if theirs else math.nan,
                 )
             )
             e = min(ours[0] / vn, 1.0)  # elastic: 1 to ~1e-9
@@ -132,48 +147,28 @@ def oblique_test(case, material, lammps=None, reported=None):
                     )
                 )
         curves[history] = np.array(out)
-    for name in reported or {}:
-        rows += _conventions_rows(case, material, body, normal, mu, speed, name, others)
-    return rows, curves
-
-
-def _conventions_rows(case, material, body, normal, mu, speed, engine, others):
-    """contactlab with ``engine``'s tangential rules (:data:`DEM_CONVENTIONS`) against the
-    engine at every angle: vt' (over vt) and R w' (over vt), graded; none without a preset."""
-    rules = DEM_CONVENTIONS.get(engine)
-    if rules is None:
-        return []
-    law = rules.mindlin(cl.laws.Mindlin.from_material(*body.material(), mu))
-    rows = []
-    for degrees in ANGLES:
-        angle = math.radians(degrees)
-        vt = speed * math.sin(angle)
-        ours = cl.simulate_oblique(
-            body, cl.Sensor.rigid(), normal, law, speed, angle, lever_arm=rules.lever_arm
+    runs = {  # label -> (engine column, rules, rebound at each angle)
+        name: (name, DEM_CONVENTIONS[name], [others[name, a] for a in ANGLES])
+        for name in reported or {}
+        if name in DEM_CONVENTIONS
+    }
+    if lammps is not None:
+        for history, preset in _LAMMPS_RULES.items():
+            label = preset.replace("_", " ", 1).replace("_", "/")
+            runs[label] = (
+                "lammps",
+                DEM_CONVENTIONS[preset],
+                [lammps_runs[history, a] for a in ANGLES],
+            )
+    mindlin = cl.laws.Mindlin.from_material(*body.material(), mu)
+    curves["attribution"] = []
+    for label, (column, rules, rebounds) in runs.items():
+        found = attribution.attribute(
+            body, material.name, normal, mindlin, speed, ANGLES, label, rebounds, rules
         )
-        theirs = others[engine, degrees]
-        label = f"at {degrees} deg, {engine} conventions"
-        rows += [
-            engine_row(
-                case,
-                material,
-                f"vt' {label} [m/s]",
-                ours.tangential_velocity,
-                theirs[1],
-                vt,
-                engine,
-            ),
-            engine_row(
-                case,
-                material,
-                f"R w' {label} [m/s]",
-                body.radius * ours.angular_velocity,
-                body.radius * theirs[2],
-                vt,
-                engine,
-            ),
-        ]
-    return rows
+        curves["attribution"].append(found)
+        rows += attribution.graded_rows(case, material, found, column)
+    return rows, curves
 
 
 def tangential_speed_test(case, material, lammps=None):

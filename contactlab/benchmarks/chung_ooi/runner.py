@@ -19,9 +19,9 @@ reported beside (:func:`~contactlab.benchmarks.chung_ooi.oblique.oblique_test`).
 from dataclasses import dataclass
 from pathlib import Path
 
-from contactlab.benchmarks.chung_ooi import normal, oblique, pairs
+from contactlab.benchmarks.chung_ooi import attribution, normal, oblique, pairs
 from contactlab.benchmarks.chung_ooi.cases import CASES, DISAGREEMENTS
-from contactlab.benchmarks.chung_ooi.figures import DRAW, save_figure
+from contactlab.benchmarks.chung_ooi.figures import DRAW, save_attribution_figure, save_figure
 from contactlab.benchmarks.chung_ooi.grading import ENGINES
 from contactlab.plausibility import internal
 from contactlab.validation import check_choice
@@ -95,7 +95,7 @@ def run_chung_ooi(out=None, lammps=None, engines=None, tests=None):
         ``not_run`` ({test: reason}), ``disagreements`` ({test: what the sources say and
         what is used}), ``figures`` (paths) and ``markdown`` (the table).
     """
-    rows, not_run, figures = [], {}, []
+    rows, not_run, figures, found = [], {}, [], []
     if out is not None:
         Path(out).mkdir(parents=True, exist_ok=True)
     chosen = None if tests is None else {check_choice("tests", n, range(1, 10)) for n in tests}
@@ -112,19 +112,34 @@ def run_chung_ooi(out=None, lammps=None, engines=None, tests=None):
             with internal():
                 got, curves[material.name] = _run_case(case, material, engine, engines or {})
             rows.extend(got)
+            attributions = curves[material.name].get("attribution", []) if case.number == 4 else []
+            found += attributions
+            if out is not None and attributions:
+                figures.append(save_attribution_figure(case, material.name, attributions, out))
         if out is not None:
             figures.append(save_figure(case, DRAW[case.number](case, curves), out))
     if out is not None:
-        import pandas as pd
-
-        pd.DataFrame(rows).to_csv(Path(out) / "chung_ooi.csv", index=False)
+        _write_tables(out, rows, found)
     return {
         "rows": rows,
         "not_run": not_run,
         "disagreements": dict(DISAGREEMENTS),
         "figures": figures,
+        "attribution": found,
         "markdown": _markdown(rows, not_run),
+        "attribution_markdown": attribution.markdown(found),
     }
+
+
+def _write_tables(out, rows, found):
+    """``chung_ooi.csv`` (the graded rows) and, when engines ran test 4,
+    ``chung_ooi_attribution.csv`` (every variant at every angle)."""
+    import pandas as pd
+
+    pd.DataFrame(rows).to_csv(Path(out) / "chung_ooi.csv", index=False)
+    if found:
+        table = [r for item in found for r in item.table()]
+        pd.DataFrame(table).to_csv(Path(out) / "chung_ooi_attribution.csv", index=False)
 
 
 def _number(value, missing="not run"):

@@ -446,6 +446,24 @@ def test_hunt_crossley_linearised_is_the_first_order_term(chi_v):
     assert (e - linear) / chi_v**2 == pytest.approx(1.0, abs=max(1.1 * chi_v, 1e-3))
 
 
+def test_hunt_crossley_series_meets_brent_at_its_threshold():
+    from contactlab.analytic.hertz import HUNT_CROSSLEY_SERIES
+
+    above = an.hunt_crossley_restitution(HUNT_CROSSLEY_SERIES / 1.5, 1.0)  # Brent
+    below = an.hunt_crossley_restitution(
+        math.nextafter(HUNT_CROSSLEY_SERIES, 0.0) / 1.5, 1.0
+    )  # the series, one float of y lower (moves e by 1e-22)
+    # both to rounding: a few eps of e = 1
+    assert below == pytest.approx(above, abs=4 * np.finfo(float).eps)
+
+
+@pytest.mark.parametrize("chi_v", [3.384e-152, 1e-75, 1e-300])
+def test_hunt_crossley_vanishing_damping(chi_v):
+    """Regression: chi v = 3.4e-152, drawn by the audit sweep, did not converge in Brent's
+    100 iterations on [0, 1] (the root s ~ chi v); it is e = 1 - chi v to rounding."""
+    assert an.hunt_crossley_restitution(chi_v, 1.0) == 1.0 - chi_v
+
+
 @pytest.mark.parametrize("y", [20.0, 40.0, 1e6])
 def test_hunt_crossley_high_damping_limit(y):
     # rebound speed -> 1/lam with 1 - z = exp(-(y - ln(1 + y) + 1)) (to first order)
