@@ -119,9 +119,10 @@ def run_oblique(examples, seed_value):
 
 class Rebounds:
     """Largest restitution error on an immovable wall against the law's closed form
-    (:func:`contactlab.testing.closed_forms_for`), per law and method: relative (absolute
-    for the prescribed pulse's exact 0), and for Kuwabara-Kono's truncated series as a
-    share of the series' own allowance (its remainder, not the solver, dominates)."""
+    (:func:`contactlab.testing.closed_forms_for`), per law and method: ``|e - e_cf|``, the
+    rebound speed's error in units of the impact speed (the scale of the solver's
+    tolerance), with the relative error at that case, and for a closed form with an
+    allowance (Kuwabara-Kono's truncated series) the error as a share of it."""
 
     def __init__(self):
         self.worst = collections.defaultdict(lambda: (-math.inf, None, None))
@@ -144,19 +145,20 @@ class Rebounds:
         self.count[key] += 1
         for form in (f for f in forms if f.quantity == "restitution"):
             gap = abs(res.restitution - form.value)
-            error = gap / abs(form.value) if form.value else gap
+            relative = gap / abs(form.value) if form.value else math.nan
             share = gap / form.atol if form.atol else None
-            if error > self.worst[key][0]:
-                self.worst[key] = (error, share, case)
+            if gap > self.worst[key][0]:
+                self.worst[key] = (gap, (relative, share), case)
 
     def report(self):
         print("\n## restitution on a wall against the closed form: worst per law and method")
         for key in sorted(self.worst):
-            error, share, case = self.worst[key]
-            allowance = "" if share is None else f" ({share:.3g} of its allowance)"
+            gap, (relative, share), case = self.worst[key]
+            allowance = "" if share is None else f", {share:.3g} of its allowance"
             skipped = f", {self.skipped[key]} beyond the series" if self.skipped[key] else ""
             print(
-                f"  {key[0]:18s} {key[1]:9s} {error: .3g}{allowance} [{self.count[key]}{skipped}]"
+                f"  {key[0]:18s} {key[1]:9s} |e - e_cf| {gap:.3g} (relative {relative:.3g}"
+                f"{allowance}) [{self.count[key]}{skipped}]"
             )
             print(f"      at {case}")
 

@@ -100,13 +100,13 @@ def accuracy(result, truth):
             continue
         rows.append(pd.DataFrame({c: found[c] for c in table.columns if c in found}))
         rows[-1]["true_onset"] = table["onset [s]"]
-        for column in ("peak_signal [N]", "peak_contact_force [N]", "contact_time [s]"):
+        for column in ("peak_sensor_force [N]", "peak_contact_force [N]", "contact_time [s]"):
             rows[-1][f"err {column}"] = found[column] / table[column] - 1.0
-        rows[-1]["raw error"] = table["peak_signal [N]"] / table["peak_contact_force [N]"] - 1
+        rows[-1]["raw error"] = table["peak_sensor_force [N]"] / table["peak_contact_force [N]"] - 1
     both = pd.concat(rows)
     return {
         "onset [us]": 1e6 * np.abs(both["onset [s]"] - both["true_onset"]).max(),
-        "peak signal [%]": 100 * both["err peak_signal [N]"].abs().max(),
+        "peak signal [%]": 100 * both["err peak_sensor_force [N]"].abs().max(),
         "peak contact force [%]": 100 * both["err peak_contact_force [N]"].abs().max(),
         "contact time [%]": 100 * both["err contact_time [s]"].abs().max(),
         "raw peak vs true force [%]": 100 * both["raw error"].mean(),
@@ -164,14 +164,14 @@ def accuracy_table():
         worst = {
             c: 100 * (rows[c] / truth[c] - 1).abs().max()
             for c in (
-                "peak_signal [N]",
+                "peak_sensor_force [N]",
                 "impulse [N*s]",
                 "peak_contact_force [N]",
                 "contact_time [s]",
             )
         }
         onset = 1e6 * (rows["onset [s]"] - truth["onset [s]"]).abs().max()
-        ratio = 100 * noise / truth["peak_signal [N]"].mean()
+        ratio = 100 * noise / truth["peak_sensor_force [N]"].mean()
         print(
             f"{law:<6}{rate / 1e6:>4.0f} MHz {noise:>6} N  {len(rows)}/{len(truth)}  "
             f"{ratio:>8.2f} %  {onset:>8.2f}  " + "  ".join(f"{v:5.2f}%" for v in worst.values())

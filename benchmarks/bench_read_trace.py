@@ -2,7 +2,7 @@
 
 Writes a generic CSV and a Rigol ``X,CH1,Start,Increment`` CSV of ``--samples`` samples
 to a temporary directory, then reads each in a fresh process (so peak memory is that of
-the read alone) with ``dem_check.traces.read_trace`` and with plain
+the read alone) with ``contactlab.traces.read_trace`` and with plain
 ``pandas.read_csv(engine="c")`` and ``numpy.loadtxt`` as references. Prints wall time,
 samples per second, peak resident memory above the process's size before the read, as a
 multiple of the final arrays' size (t and values, 16 bytes per sample), and the ratio of
@@ -25,7 +25,7 @@ import numpy as np
 CHILD = """
 import json, sys, time
 import numpy as np, pandas as pd
-from dem_check.traces import read_trace
+from contactlab.traces import read_trace
 
 def status_kib(key):
     with open("/proc/self/status") as fh:
@@ -53,7 +53,7 @@ print(json.dumps({{"seconds": seconds, "peak_kib": status_kib("VmHWM:") - before
 
 def write_files(directory, samples):
     """Write the two benchmark files; return {label: (path, header rows to skip)}."""
-    from dem_check.traces import Trace, write_trace
+    from contactlab.traces import Trace, write_trace
 
     rng = np.random.default_rng(0)
     increment = 4e-9

@@ -119,9 +119,11 @@ def accuracy():
                             "rate [MHz]": rate / 1e6,
                             "crosstalk": crosstalk,
                             "status": row["status"],
-                            "significance": true["peak_signal [N]"] / record.noise,
+                            "significance": true["peak_sensor_force [N]"] / record.noise,
                             "onset [samples]": (row["onset [s]"] - true["onset [s]"]) * rate,
-                            "peak_signal": row["peak_signal [N]"] / true["peak_signal [N]"] - 1,
+                            "peak_sensor_force": row["peak_sensor_force [N]"]
+                            / true["peak_sensor_force [N]"]
+                            - 1,
                             "impulse": row["impulse [N*s]"] / true["impulse [N*s]"] - 1,
                             "peak_force": row["peak_contact_force [N]"]
                             / true["peak_contact_force [N]"]
@@ -138,7 +140,7 @@ def accuracy():
     print(table["status"].value_counts().to_string())
     ok = table[table["status"].isin(["ok", "short pre-trigger"])].copy()
     ok["band"] = pd.cut(ok["significance"], [0, 10, 30, 100, np.inf])
-    columns = ["onset [samples]", "peak_signal", "impulse", "peak_force", "contact_time"]
+    columns = ["onset [samples]", "peak_sensor_force", "impulse", "peak_force", "contact_time"]
     keys = ["rate [MHz]", "crosstalk", "band"]
     summary = ok.groupby(keys, observed=True)[columns].agg(lambda v: np.nanmax(np.abs(v)))
     summary["impacts"] = ok.groupby(keys, observed=True).size()

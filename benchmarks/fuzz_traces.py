@@ -16,7 +16,7 @@ Run: ``.venv/bin/python benchmarks/fuzz_traces.py [copies per format and kind]``
 100 take about 30 s). Measured on this branch: 0 misread, 0 crash; 706 of 1000
 byte-mutated HDF5 and 727 TDMS copies read (the change hit a sample: undetectable without
 a checksum), every other damaged copy refused or read exactly.
-Exit status 1 if anything was misread or crashed. ``tests/dem_check/traces/test_fuzz.py``
+Exit status 1 if anything was misread or crashed. ``tests/contactlab/traces/test_fuzz.py``
 runs the same properties with hypothesis at 150-200 examples each.
 """
 
@@ -30,7 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from contactlab.errors import TraceFormatError
-from dem_check.traces import FORMATS, Trace, read_trace, write_trace
+from contactlab.traces import FORMATS, Trace, read_trace, write_trace
 
 TEXT = [name for name, f in FORMATS.items() if f.write is not None and name not in ("hdf5", "tdms")]
 BINARY = ["hdf5", "tdms"]

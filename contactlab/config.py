@@ -24,7 +24,8 @@ from pathlib import Path
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
-from contactlab.laws import LAWS
+from contactlab.laws import LAWS, Hertz, HertzDamped, LinearViscoelastic
+from contactlab.quantities import column
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, unknown_keywords, with_suggestion
 
@@ -49,12 +50,53 @@ _SIMULATION_KEYS = ("velocity", "duration", "sample_rate", "method", "threshold"
 
 @dataclass
 class ImpactConfig:
-    """A complete impact set-up: the arguments of :func:`contactlab.simulate_impact`."""
+    """A complete impact set-up: the arguments of :func:`contactlab.simulate_impact`.
+
+    The one shape of a set-up: a TOML file or preset reads into it, the study's grid
+    points are made of it (:meth:`contactlab.study.StudySetup.config`), and it writes its
+    own batch row (:meth:`batch_row`) and runs itself (:meth:`simulate`).
+    """
 
     grain: Grain
     sensor: Sensor
     law: object
     simulation: dict
+
+    @property
+    def velocity(self):
+        """Grain speed towards the sensor at the touch [m/s]."""
+        return self.simulation["velocity"]
+
+    def batch_row(self):
+        """The set-up as one input row of a batch solver (columns named as in
+        :mod:`contactlab.quantities`): :func:`contactlab.batch.linear_impacts` for a
+        LinearViscoelastic law, :func:`contactlab.batch.hertz_impacts` for Hertz and
+        HertzDamped (elastic Hertz: zero damping).
+
+        Raises
+        ------
+        ParameterError
+            For a law no batch solver takes.
+        """
+        law, sensor = self.law, self.sensor
+        if isinstance(law, LinearViscoelastic):
+            contact = {column("k2"): law.stiffness, column("c2"): law.damping}
+        elif type(law) in (Hertz, HertzDamped):
+            damping = law.damping if isinstance(law, HertzDamped) else 0.0
+            contact = {column("k_hertz"): law.k_hertz, column("damping"): damping}
+        else:
+            raise ParameterError(
+                f"law {type(law).__name__} has no batch solver (LinearViscoelastic, Hertz, "
+                "HertzDamped have); use simulate()"
+            )
+        return {
+            column("m1"): sensor.mass,
+            column("k1"): sensor.stiffness,
+            column("c1"): sensor.damping,
+            column("m2"): self.grain.mass,
+            **contact,
+            column("v0"): self.velocity,
+        }
 
     def simulate(self, **overrides):
         """Run :func:`contactlab.simulate_impact` with this set-up."""

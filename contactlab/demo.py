@@ -29,14 +29,14 @@ def run_demo(out, quick=False, workers=1):
         :func:`contactlab.study.paper.paper_study` writes (Figures 5-12 as PNG and SVG,
         ``error_vs_frequency.csv``, ``error_vs_diameter.csv``, ``summary.md``),
         ``reconstruction.png`` (:func:`contactlab.inverse.reconstruction_demo`) and the
-        engine check ``bullet_base_case.png/.csv/.json``
-        (:func:`dem_check.engines.bullet.base_case_check`).
+        engine check ``bullet_base_case.png/.csv/.json`` (the ``bullet`` engine's
+        ``base_case_check``, found through :func:`contactlab.engines.load_engine`).
     """
     import matplotlib.pyplot as plt
 
+    from contactlab.engines import load_engine
     from contactlab.inverse import reconstruction_demo
     from contactlab.study.paper import paper_study
-    from dem_check.engines.bullet import base_case_check
 
     out.mkdir(parents=True, exist_ok=True)
     # base case: the paper's grain, hard contact k2 = 1e5 N/m, c2 = 1 N*s/m, v0 = 2 m/s
@@ -62,18 +62,17 @@ def run_demo(out, quick=False, workers=1):
     summary["reconstruction_relative_errors"] = reconstruction_demo(path)
     written.append(path)
     # the rigid-body engine's drop test of the base case against the reduced model
-    engine_files = base_case_check(out)
+    engine_files = load_engine("bullet").base_case_check(out)
     summary["engine_check"] = json.loads(engine_files[-1].read_text())
     written += engine_files
     # oblique impacts: the Chung & Ooi (2011) benchmark against theory, and LAMMPS beside
     # when the lammps extra is installed (make demo installs it; the summary says if not)
     from contactlab.benchmarks.chung_ooi import run_chung_ooi
-    from dem_check.engines.lammps.oblique import lammps_oblique
-    from dem_check.engines.lammps.session import load_lammps
 
+    engine = load_engine("lammps")
     try:
-        load_lammps()
-        lammps, lammps_note = lammps_oblique, "run beside (tests 4-6)"
+        engine.load()
+        lammps, lammps_note = engine.oblique_impact, "run beside (tests 4-6)"
     except ImportError as exc:
         lammps, lammps_note = None, f"not run: {exc}"
     chung_ooi = run_chung_ooi(out, lammps=lammps)

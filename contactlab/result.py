@@ -8,9 +8,25 @@ import numpy as np
 
 from contactlab import metrics
 from contactlab.quadrature import gauss_rule
+from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
 
-__all__ = ["ImpactResult", "ImpactSignals"]
+__all__ = ["HEADLINE", "SIGNALS", "ImpactResult", "ImpactSignals"]
+
+HEADLINE = (
+    "velocity",
+    "contact_time",
+    "peak_contact_force",
+    "sensor_response_time",
+    "peak_sensor_force",
+    "impulse",
+    "restitution",
+    "rebound_velocity",
+)
+"""A normal impact's headline numbers, in ``summary()`` order (:mod:`contactlab.quantities`)."""
+
+SIGNALS = ("t", "contact_force", "sensor_force", "x1", "v1", "x2", "v2")
+"""A normal impact's signals, the columns of ``to_frame()`` (:mod:`contactlab.quantities`)."""
 
 _ZOOMS = 5
 """Zoom levels of the peak search (:meth:`ImpactResult._refined_max`)."""
@@ -60,14 +76,7 @@ class ImpactSignals:
             "law_parameters": self.law.parameters(),
             "grain": self.grain.to_dict(),
             "sensor": self.sensor.to_dict(),
-            "velocity [m/s]": self.velocity,
-            "contact_time [s]": self.contact_time,
-            "peak_contact_force [N]": self.peak_contact_force,
-            "sensor_response_time [s]": self.sensor_response_time,
-            "peak_sensor_force [N]": self.peak_sensor_force,
-            "impulse [N*s]": self.impulse,
-            "restitution [-]": self.restitution,
-            "rebound_velocity [m/s]": self.rebound_velocity,
+            **{column(name): getattr(self, name) for name in HEADLINE},
             "contact_intervals [s]": [list(iv) for iv in self.contact_intervals],
         }
 
@@ -101,17 +110,7 @@ class ImpactSignals:
         """Signals as a pandas DataFrame with unit-bearing column names."""
         import pandas as pd
 
-        return pd.DataFrame(
-            {
-                "t [s]": self.t,
-                "contact_force [N]": self.contact_force,
-                "sensor_force [N]": self.sensor_force,
-                "x1 [m]": self.x1,
-                "v1 [m/s]": self.v1,
-                "x2 [m]": self.x2,
-                "v2 [m/s]": self.v2,
-            }
-        )
+        return pd.DataFrame({column(name): getattr(self, name) for name in SIGNALS})
 
     def plot(self, ax=None, **kwargs):
         """Contact force (thick) and sensor signal (thin), as in the paper's Figures 5-9.

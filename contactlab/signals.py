@@ -3,7 +3,7 @@
 A trace here is a time axis ``t`` [s] (strictly increasing; not checked here, readers and
 the inverse methods check it) and samples ``y`` in any unit (V, or N after the
 sensitivity conversion) on it. These are the numerical cores that
-:mod:`dem_check.traces.prepare` applies to a measured ``Trace`` and that
+:mod:`contactlab.traces.prepare` applies to a measured ``Trace`` and that
 :mod:`contactlab.inverse` applies to arrays, so a ``Trace`` read from a file and the
 same samples as arrays give the same answer to the last bit.
 

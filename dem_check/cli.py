@@ -67,8 +67,8 @@ def _lammps_check(args):
 
 
 def _compare(args):
-    from dem_check.compare import compare_trace
-    from dem_check.traces import read_trace
+    from contactlab.compare import compare_trace
+    from contactlab.traces import read_trace
 
     config = load(args.model, args.preset)
     trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)

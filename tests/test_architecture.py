@@ -26,12 +26,14 @@ LAYERS = (
             "contactlab.roots",
             "contactlab.plausibility",
             "contactlab.strict_json",
+            "contactlab.engines",
+            "contactlab.quantities",
         ),
     ),
     ("closed forms and bodies", ("contactlab.analytic", "contactlab.bodies")),
     ("contact laws", ("contactlab.laws",)),
     (
-        "results and metrics",
+        "results, metrics and traces",
         (
             "contactlab.metrics",
             "contactlab.signals",
@@ -41,6 +43,7 @@ LAYERS = (
             "contactlab.quadrature",
             "contactlab.audit",
             "contactlab.impact_audit",
+            "contactlab.traces",
         ),
     ),
     ("solver", ("contactlab.solver", "contactlab.batch", "contactlab")),
@@ -48,8 +51,10 @@ LAYERS = (
         "set-ups and studies",
         ("contactlab.config", "contactlab.study", "contactlab.advisor", "contactlab.benchmarks"),
     ),
+    ("measurements", ("contactlab.compare", "contactlab.inverse")),
+    ("applications", ("contactlab.testing", "contactlab.demo", "contactlab.cli")),
     (
-        "measurements and engines",
+        "DEM engines and campaigns",
         (
             "dem_check.traces",
             "dem_check.compare",
@@ -57,13 +62,9 @@ LAYERS = (
             "dem_check.engines.kratos",
             "dem_check.campaign",
             "dem_check.stream",
-            "contactlab.inverse",
         ),
     ),
-    (
-        "applications",
-        ("contactlab.testing", "contactlab.demo", "contactlab.cli", "dem_check.cli", "dem_check"),
-    ),
+    ("dem_check's applications", ("dem_check.cli", "dem_check")),
 )
 """Layers from the bottom up, as module-name prefixes; the longest matching prefix places
 a module (a package's own name, ``contactlab`` or ``dem_check``, places only its
@@ -166,37 +167,40 @@ def test_laws_never_simulate():
     assert not reach, f"contactlab.laws imports {sorted(reach)}"
 
 
-def _core_imports_of_dem_check(graph):
-    """``"module imports dep"`` for each import of dem_check by contactlab below its
-    applications layer."""
-    applications = len(LAYERS) - 1
+def _contactlab_imports_of_dem_check(graph):
+    """``"module imports dep"`` for each import of dem_check by a contactlab module."""
     return [
         f"{name} imports {dep}"
         for name, deps in graph.items()
-        if name.split(".")[0] == "contactlab" and _layer(name) < applications
+        if name.split(".")[0] == "contactlab"
         for dep in sorted(deps)
         if dep.split(".")[0] == "dem_check"
     ]
 
 
-def test_core_never_imports_dem_check():
-    """dem_check builds on contactlab; below the applications, contactlab stands alone."""
-    reach = _core_imports_of_dem_check(GRAPH)
+def test_contactlab_never_imports_dem_check():
+    """dem_check builds on contactlab, never the other way, lazily or not: contactlab's
+    commands find DEM engines through the ``contactlab.engines`` entry points."""
+    reach = _contactlab_imports_of_dem_check(GRAPH)
     assert not reach, "\n".join(reach)
 
 
-def test_core_check_catches_a_function_level_import(tmp_path):
-    """The check itself: a lazy import inside a function of contactlab.inverse is found,
-    and the applications layer may import dem_check."""
-    source = tmp_path / "module.py"
-    source.write_text("def f():\n    from dem_check.traces import Trace\n", encoding="utf-8")
-    graph = {
-        name: _imports(name, source)
-        for name in ("contactlab.inverse.reconstruct", "contactlab.cli.inverse")
-    }
-    assert _core_imports_of_dem_check(graph) == [
-        "contactlab.inverse.reconstruct imports dem_check.traces"
-    ]
+@pytest.mark.parametrize(
+    "source",
+    [
+        "def f():\n    from dem_check.traces import Trace\n",
+        "def f():\n    import dem_check.engines\n",
+        "class A:\n    def f(self):\n        from dem_check import engines\n",
+    ],
+)
+def test_dem_check_check_catches_a_function_level_import(tmp_path, source):
+    """The check itself: a lazy import inside a function (or a method) of any contactlab
+    module, its applications included, is found; dem_check importing itself is not."""
+    path = tmp_path / "module.py"
+    path.write_text(source, encoding="utf-8")
+    graph = {name: _imports(name, path) for name in ("contactlab.cli.inverse", "dem_check.cli")}
+    found = _contactlab_imports_of_dem_check(graph)
+    assert len(found) == 1 and found[0].startswith("contactlab.cli.inverse imports dem_check")
 
 
 @pytest.mark.parametrize("name", sorted(MODULES))

@@ -100,7 +100,7 @@ TRACE = __import__("pathlib").Path(__file__).parent.parent / "data" / "traces" /
 )
 def test_read_trace_answers_any_argument_with_parameter_or_format_error(name, value):
     from contactlab.errors import TraceFormatError
-    from dem_check.traces import read_trace
+    from contactlab.traces import read_trace
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", ContactlabWarning)  # a warning is an answer too

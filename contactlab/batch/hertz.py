@@ -69,7 +69,7 @@ def hertz_impacts(frame, *, rtol=DEFAULT_RTOL, chunk=DEFAULT_CHUNK, threads=1):
     -------
     pandas.DataFrame
         A copy of ``frame`` with the columns of :func:`contactlab.batch.linear_impacts`:
-        ``contact_time [s]``, ``response_time [s]``, ``peak_contact_force [N]``,
+        ``contact_time [s]``, ``sensor_response_time [s]``, ``peak_contact_force [N]``,
         ``peak_sensor_force [N]``, ``restitution [-]``, ``contacts [-]``.
 
     Raises

@@ -67,7 +67,7 @@ def linear_impacts(frame, *, chunk=DEFAULT_CHUNK, threads=1):
     -------
     pandas.DataFrame
         A copy of ``frame`` (same index and order) with the columns
-        ``contact_time [s]`` (first contact), ``response_time [s]`` (first lobe of the
+        ``contact_time [s]`` (first contact), ``sensor_response_time [s]`` (first lobe of the
         sensor signal S1 above zero, as ``ImpactResult.sensor_response_time``; nan when
         it does not end in the window), ``peak_contact_force [N]`` (largest S2 in the
         first contact), ``peak_sensor_force [N]`` (largest S1 in that lobe),

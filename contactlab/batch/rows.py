@@ -20,6 +20,7 @@ from contactlab.batch.modal_kernel import STATUS_OK
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, RowFailedWarning
 from contactlab.plausibility import implausible_rows, internal
+from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_count
 
@@ -36,13 +37,13 @@ __all__ = [
     "warn_implausible",
 ]
 
-RESULT_COLUMNS = (
-    "contact_time [s]",
-    "response_time [s]",
-    "peak_contact_force [N]",
-    "peak_sensor_force [N]",
-    "restitution [-]",
-    "contacts [-]",
+RESULT_COLUMNS = columns(
+    "contact_time",
+    "sensor_response_time",
+    "peak_contact_force",
+    "peak_sensor_force",
+    "restitution",
+    "contacts",
 )
 """Columns a batch solver adds, in the order of its kernel's outputs."""
 

@@ -10,6 +10,7 @@ from contactlab.cli.inverse import add_inverse_parsers
 from contactlab.cli.output import dump
 from contactlab.cli.running import Parser, add_strict, run
 from contactlab.cli.setup import add_setup_parsers
+from contactlab.engines import load_engine
 from contactlab.errors import ParameterError
 
 __all__ = ["main"]
@@ -272,7 +273,7 @@ def _benchmark(args):
     from contactlab.benchmarks.chung_ooi import run_chung_ooi
 
     names = [name.strip() for name in args.engines.split(",") if name.strip()]
-    lammps = _engine("lammps").lammps_oblique if args.lammps or "lammps" in names else None
+    lammps = load_engine("lammps").oblique_impact if args.lammps or "lammps" in names else None
     report = run_chung_ooi(args.out, lammps=lammps, engines=_benchmark_engines(names))
     print(report["markdown"])
     if report["attribution"]:
@@ -280,13 +281,6 @@ def _benchmark(args):
         print(report["attribution_markdown"])
     failed = sum(not r["passed"] for r in report["rows"])
     print(f"{len(report['rows']) - failed} passed, {failed} failed; figures in {args.out}")
-
-
-def _engine(name):
-    """The DEM engine module named ``name``: the benchmark's one way to an engine."""
-    from dem_check.engines import engine_module
-
-    return engine_module(name)
 
 
 def _benchmark_engines(names):
@@ -300,7 +294,7 @@ def _benchmark_engines(names):
     runners = {}
     for name in names:
         check_choice("--engines", name, ENGINES)
-        module = _engine(name)
+        module = load_engine(name)
 
         def normal(grain, law, speed, drop_test=module.drop_test):
             # a rigid plane: the impact is over when the contact ends; 1.5 wall contact
@@ -310,7 +304,7 @@ def _benchmark_engines(names):
 
         # LAMMPS runs tests 4-6 graded, through run_chung_ooi's lammps; Kratos' test 4 under
         # its own tangential rules is reported
-        oblique = module.kratos_oblique if name == "kratos" else None
+        oblique = module.oblique_impact if name == "kratos" else None
         runners[name] = EngineRunner(normal, oblique)
     return runners
 

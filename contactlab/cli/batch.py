@@ -116,7 +116,7 @@ def add_batch_parser(sub):
         "batch",
         help="many impacts from a CSV table (one per row) with the batch solvers",
         description="Solve one impact per row of a CSV table and add contact_time [s], "
-        "response_time [s], peak_contact_force [N], peak_sensor_force [N], restitution [-] "
+        "sensor_response_time [s], peak_contact_force [N], peak_sensor_force [N], restitution [-] "
         "and contacts [-]. Columns: m1 [kg], k1 [N/m] (inf: a wall), c1 [N*s/m], m2 [kg], "
         "v0 [m/s], and k2 [N/m], c2 [N*s/m] (linear) or k_hertz [N/m**1.5], "
         "damping [N*s/m**1.25] (hertz).",

@@ -11,7 +11,7 @@ __all__ = ["add_inverse_parsers"]
 
 def _read_trace(args, force=True):
     """The trace named on the command line, in newtons unless ``force`` is False."""
-    from dem_check.traces import TraceFormatError, read_trace
+    from contactlab.traces import TraceFormatError, read_trace
 
     try:
         trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)

@@ -2,7 +2,7 @@
 
 A signal is a pair ``(t, y)`` of 1-D arrays: time [s], strictly increasing and uniformly
 sampled, and the sensor's output (force [N] after the sensitivity conversion). Baseline,
-noise and onset are read by :mod:`contactlab.signals`, as :mod:`dem_check.traces.prepare`
+noise and onset are read by :mod:`contactlab.signals`, as :mod:`contactlab.traces.prepare`
 reads a measured trace, so a trace and an array give the same answer.
 """
 
@@ -23,7 +23,7 @@ __all__ = [
 
 UNIFORM_RTOL = 1e-4
 """Largest deviation of a time step from the mean interval, relative to it (the rule of
-:mod:`dem_check.traces.checks`)."""
+:mod:`contactlab.traces.checks`)."""
 
 BASELINE_MIN_SAMPLES = 16
 """Fewest pre-trigger samples that give a usable noise estimate (standard deviation known

@@ -8,6 +8,7 @@ law to the batch solvers (:mod:`contactlab.batch`) in one call.
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -20,19 +21,31 @@ from contactlab.batch import (
     linear_impacts,
 )
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
+from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
 from contactlab.study.execution import progress_bar
 
 __all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
 
-_IMPACT_COLUMNS = (
-    "contact_time [s]",
-    "sensor_response_time [s]",
-    "peak_contact_force [N]",
-    "peak_sensor_force [N]",
-    "time_error [%]",
-    "force_error [%]",
+_READING_NAMES = (
+    "contact_time",
+    "sensor_response_time",
+    "peak_contact_force",
+    "peak_sensor_force",
 )
+"""An impact's readings kept per point, as :mod:`contactlab.quantities` names them."""
+
+_READINGS = columns(*_READING_NAMES)
+
+
+def _with_errors(readings):
+    """The readings (column -> array) and the study's two errors [%] computed from them."""
+    time, response, force, signal = (np.asarray(readings[name]) for name in _READINGS)
+    return {
+        **{name: np.asarray(readings[name]).tolist() for name in _READINGS},
+        "time_error [%]": error_percent(response, time).tolist(),
+        "force_error [%]": error_percent(signal, force).tolist(),
+    }
 
 
 _CLOSED_FORMS = {
@@ -88,66 +101,46 @@ def simulate_point(setup, overrides, factors):
     monotone in a scattered stiffness, damping or pulse length, so one of them is the
     shortest of all draws).
     """
-    grain, sensor, law, velocity = setup.at(overrides)
+    config = setup.config(overrides)
+    grain, sensor, law, velocity = config.grain, config.sensor, config.law, config.velocity
     extremes = {float(np.min(factors)), float(np.max(factors))}
     shortest = min(
         sensor.period,
         *(_rigid_contact_time(setup.scattered(law, f), grain.mass, velocity) for f in extremes),
     )
     sample_rate = setup.samples_per_period / shortest
-    columns = setup.varied_columns()
-    out = {name: [] for name in (*columns, *_IMPACT_COLUMNS)}
+    varied = setup.varied_columns()
+    out = {name: [] for name in (*varied, *_READINGS)}
     for factor in factors:
         drawn = setup.scattered(law, float(factor))
         res = simulate_impact(grain, sensor, drawn, velocity, sample_rate=sample_rate)
         params = drawn.parameters()
-        for name, column in zip(setup.varied, columns, strict=True):
+        for name, column in zip(setup.varied, varied, strict=True):
             out[column].append(params[name])
-        out["contact_time [s]"].append(res.contact_time)
-        out["sensor_response_time [s]"].append(res.sensor_response_time)
-        out["peak_contact_force [N]"].append(res.peak_contact_force)
-        out["peak_sensor_force [N]"].append(res.peak_sensor_force)
-        out["time_error [%]"].append(error_percent(res.sensor_response_time, res.contact_time))
-        out["force_error [%]"].append(error_percent(res.peak_sensor_force, res.peak_contact_force))
-    return out
-
-
-def _linear_columns(law):
-    return {"k2 [N/m]": law.stiffness, "c2 [N*s/m]": law.damping}
-
-
-def _hertz_columns(law):
-    damping = law.damping if isinstance(law, HertzDamped) else 0.0
-    return {"k_hertz [N/m**1.5]": law.k_hertz, "damping [N*s/m**1.25]": damping}
+        for column, name in zip(_READINGS, _READING_NAMES, strict=True):
+            out[column].append(getattr(res, name))
+    return {**{column: out[column] for column in varied}, **_with_errors(out)}
 
 
 _BATCHED = {
-    LinearViscoelastic: (_linear_columns, linear_impacts, dask_linear_impacts),
-    HertzDamped: (_hertz_columns, hertz_impacts, dask_hertz_impacts),
-    Hertz: (_hertz_columns, hertz_impacts, dask_hertz_impacts),
+    LinearViscoelastic: (linear_impacts, dask_linear_impacts),
+    HertzDamped: (hertz_impacts, dask_hertz_impacts),
+    Hertz: (hertz_impacts, dask_hertz_impacts),
 }
-"""Laws a sweep hands to a batch solver: the law's batch columns, the solver, its Dask
-twin (elastic Hertz is the damped-Hertz batch with zero damping)."""
+"""Laws a sweep hands to a batch solver: the solver and its Dask twin (elastic Hertz is
+the damped-Hertz batch with zero damping; :meth:`ImpactConfig.batch_row` writes the
+rows)."""
 
 
-def _batch_frame(tasks, law_columns):
+def _batch_frame(tasks):
     """The batch solver's input rows of every impact of the tasks, and the drawn laws."""
     rows, laws = [], []
     for setup, overrides, factors in tasks:
-        grain, sensor, law, velocity = setup.at(overrides)
+        config = setup.config(overrides)
         for factor in factors:
-            drawn = setup.scattered(law, float(factor))
-            laws.append(drawn)
-            rows.append(
-                {
-                    "m1 [kg]": sensor.mass,
-                    "k1 [N/m]": sensor.stiffness,
-                    "c1 [N*s/m]": sensor.damping,
-                    "m2 [kg]": grain.mass,
-                    **law_columns(drawn),
-                    "v0 [m/s]": velocity,
-                }
-            )
+            drawn = replace(config, law=setup.scattered(config.law, float(factor)))
+            laws.append(drawn.law)
+            rows.append(drawn.batch_row())
     return pd.DataFrame(rows), laws
 
 
@@ -211,8 +204,8 @@ def simulate_points(tasks, *, client=None, progress=None):
     kind = _batch_kind(tasks) if tasks else None
     if kind is None:
         return [simulate_point(*task) for task in tasks]
-    law_columns, impacts, on_dask = kind
-    frame, laws = _batch_frame(tasks, law_columns)
+    impacts, on_dask = kind
+    frame, laws = _batch_frame(tasks)
     solved = _solve_batch(frame, impacts, on_dask, client, progress)
     results, start = [], 0
     for setup, _, factors in tasks:
@@ -222,16 +215,7 @@ def simulate_points(tasks, *, client=None, progress=None):
             column: [law.parameters()[name] for law in laws[start:stop]]
             for name, column in zip(setup.varied, setup.varied_columns(), strict=True)
         }
-        out["contact_time [s]"] = part["contact_time [s]"].tolist()
-        out["sensor_response_time [s]"] = part["response_time [s]"].tolist()
-        out["peak_contact_force [N]"] = part["peak_contact_force [N]"].tolist()
-        out["peak_sensor_force [N]"] = part["peak_sensor_force [N]"].tolist()
-        out["time_error [%]"] = error_percent(
-            part["response_time [s]"], part["contact_time [s]"]
-        ).tolist()
-        out["force_error [%]"] = error_percent(
-            part["peak_sensor_force [N]"], part["peak_contact_force [N]"]
-        ).tolist()
+        out.update(_with_errors(part))
         results.append(out)
         start = stop
     return results

@@ -14,6 +14,7 @@ follows the grain's size. A grid point changes any of its parameters by name:
 """
 
 import math
+import warnings
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -21,6 +22,7 @@ from scipy.special import ndtr, ndtri
 
 from contactlab import analytic
 from contactlab.bodies import Grain, Sensor
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from contactlab.laws import ContactLaw, Hertz, HertzDamped, LinearViscoelastic, PlasticTrapezoid
 from contactlab.validation import check_choice, check_count, check_number
@@ -308,7 +310,19 @@ class StudySetup:
 
     # -- building one grid point -----------------------------------------------
     def at(self, overrides):
-        """Grain, sensor, mean law and impact speed at a grid point.
+        """Deprecated: the 4-tuple ``(grain, sensor, law, velocity)`` of
+        :meth:`config`, which returns the one set-up shape, an ImpactConfig."""
+        warnings.warn(
+            "StudySetup.at is deprecated: StudySetup.config returns the set-up as an "
+            "ImpactConfig (.grain, .sensor, .law, .velocity)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        config = self.config(overrides)
+        return config.grain, config.sensor, config.law, config.velocity
+
+    def config(self, overrides):
+        """The set-up at a grid point: grain, sensor, mean law and impact speed.
 
         Parameters
         ----------
@@ -317,12 +331,8 @@ class StudySetup:
 
         Returns
         -------
-        grain : Grain
-        sensor : Sensor
-        law : ContactLaw or PlasticTrapezoid
-            The law before scatter.
-        velocity : float
-            [m/s]
+        ImpactConfig
+            ``law`` is the law before scatter; ``simulation`` holds the velocity [m/s].
         """
         grain_kw = {
             "diameter": self.grain.diameter,
@@ -353,7 +363,7 @@ class StudySetup:
             law = _MATERIAL[self.law.name](self, grain, velocity)
         else:
             law = type(self.law)(**law_kw)
-        return grain, sensor, law, velocity
+        return ImpactConfig(grain, sensor, law, {"velocity": velocity})
 
     def scattered(self, law, factor):
         """The law with its :attr:`vary` parameters multiplied by ``factor`` [-]."""

@@ -221,7 +221,8 @@ def run_grid(
     frames = []
     for i, (point, result) in enumerate(zip(points, results, strict=True)):
         n = len(result["contact_time [s]"])
-        grain, sensor, _, _ = setup.at(point)
+        config = setup.config(point)
+        grain, sensor = config.grain, config.sensor
         head = {"point [-]": [i] * n, "repetition [-]": list(range(n))}
         head.update({grid_columns[name]: [point[name]] * n for name in names})
         head.setdefault("diameter [m]", [grain.diameter] * n)

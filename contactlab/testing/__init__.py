@@ -10,7 +10,7 @@ tolerance and the closed form used with its reference):
 - :func:`assert_passive`: no energy created over a loading-unloading cycle;
 - :func:`assert_trace_matches`: an impact against a reference (a golden trace, another
   simulation or a measured trace): headline quantities and waveforms, compared by
-  :func:`dem_check.compare.compare` at regression tolerances (:func:`compare_impacts`
+  :func:`contactlab.compare.compare` at regression tolerances (:func:`compare_impacts`
   gives the table without raising).
 
 Golden traces (:class:`GoldenStore`, :class:`GoldenTrace`) store an impact with its

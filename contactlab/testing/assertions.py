@@ -11,11 +11,11 @@ import numpy as np
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import ContactLaw
+from contactlab.quantities import QUANTITIES
 from contactlab.solver import simulate_impact
 from contactlab.testing.closed_forms import ClosedForm, closed_forms_for
 from contactlab.testing.golden import compare_impacts
 from contactlab.validation import check_count, check_number
-from dem_check.compare import QUANTITIES
 
 __all__ = [
     "CLOSED_FORM_RTOL",
@@ -248,7 +248,7 @@ def assert_passive(law, max_overlap, rate=0.0, samples=1001, rtol=PASSIVE_RTOL):
 def assert_trace_matches(actual, reference, tolerances=None, align=None):
     """Assert that an impact matches a reference: headline quantities and waveforms.
 
-    The comparison is :func:`dem_check.compare.compare`'s (contact time, peak contact
+    The comparison is :func:`contactlab.compare.compare`'s (contact time, peak contact
     and sensor forces, sensor response time, restitution, and the RMS and largest
     differences of the sensor signals over the reference's peak), at regression
     tolerances (:data:`contactlab.testing.golden_trace.REGRESSION_RTOL`, 1e-6) unless told
@@ -262,14 +262,14 @@ def assert_trace_matches(actual, reference, tolerances=None, align=None):
         a measured trace in newtons).
     tolerances : dict, optional
         Quantity name -> tolerance, replacing 1e-6 for that quantity (names and how each
-        error is measured: :data:`dem_check.compare.QUANTITIES`).
+        error is measured: :data:`contactlab.compare.QUANTITIES`).
     align : {None, "onset", "xcorr"}, default None
         Time alignment of the sensor signals (None keeps the time axes: right for a rerun;
         use ``"onset"`` for a measured trace).
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         The comparison, when everything available is within tolerance.
 
     Raises

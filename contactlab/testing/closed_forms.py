@@ -27,8 +27,8 @@ from contactlab.laws import (
     Thornton,
     WaltonBraun,
 )
+from contactlab.quantities import QUANTITIES
 from contactlab.validation import check_choice, check_number
-from dem_check.compare import QUANTITIES
 
 __all__ = [
     "CLOSED_FORMS",

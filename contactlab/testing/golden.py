@@ -5,13 +5,14 @@
 only on request (``update=True``; in pytest, ``--contactlab-update-golden``), and every
 write is recorded in :attr:`GoldenStore.log`; a missing reference fails with a message
 saying how to create it. Nothing is rewritten silently. Comparisons are
-:func:`dem_check.compare.compare`'s, quantity by quantity, at :data:`REGRESSION_RTOL`
+:func:`contactlab.compare.compare`'s, quantity by quantity, at :data:`REGRESSION_RTOL`
 unless told otherwise.
 """
 
 import math
 from pathlib import Path
 
+from contactlab.compare import QUANTITIES, compare
 from contactlab.errors import ParameterError, TraceFormatError
 from contactlab.testing.golden_trace import (
     DEFAULT_MAX_SAMPLES,
@@ -22,7 +23,6 @@ from contactlab.testing.golden_trace import (
     reference_paths,
 )
 from contactlab.validation import check_count
-from dem_check.compare import QUANTITIES, compare
 
 __all__ = ["GoldenStore", "compare_impacts", "regression_tolerances"]
 
@@ -31,7 +31,7 @@ _LABELS = ("this run", "golden")
 
 
 def regression_tolerances(tolerances=None):
-    """Tolerances for :func:`dem_check.compare.compare`: every quantity at
+    """Tolerances for :func:`contactlab.compare.compare`: every quantity at
     :data:`REGRESSION_RTOL`, updated with ``tolerances`` (quantity name -> tolerance)."""
     if tolerances is not None and not isinstance(tolerances, dict):
         raise ParameterError(
@@ -43,7 +43,7 @@ def regression_tolerances(tolerances=None):
 def compare_impacts(actual, reference, tolerances=None, align=None, labels=("actual", "reference")):
     """Compare an impact with a reference at regression tolerances; never raises on a mismatch.
 
-    Delegates to :func:`dem_check.compare.compare` after reading ``actual`` on the
+    Delegates to :func:`contactlab.compare.compare` after reading ``actual`` on the
     reference's grid when the reference is a :class:`GoldenTrace`.
 
     Parameters
@@ -51,7 +51,7 @@ def compare_impacts(actual, reference, tolerances=None, align=None, labels=("act
     actual, reference : ImpactResult, GoldenTrace or dem_check Trace
         The impact under test and its reference.
     tolerances : dict, optional
-        Quantity name (from :data:`dem_check.compare.QUANTITIES`) -> tolerance, replacing
+        Quantity name (from :data:`contactlab.compare.QUANTITIES`) -> tolerance, replacing
         :data:`REGRESSION_RTOL` for that quantity.
     align : {None, "onset", "xcorr"}, default None
         Time alignment of the waveforms (None: the time axes as they are, right for a
@@ -61,7 +61,7 @@ def compare_impacts(actual, reference, tolerances=None, align=None, labels=("act
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         ``.passed``, ``.failed`` and ``.table``; ``str()`` gives the table.
 
     Raises
@@ -73,7 +73,7 @@ def compare_impacts(actual, reference, tolerances=None, align=None, labels=("act
     if units[0] != units[1]:
         raise ParameterError(
             f"cannot compare signals in {units[0]!r} with signals in {units[1]!r}; convert "
-            "the trace to force first (dem_check.traces.to_force)"
+            "the trace to force first (contactlab.traces.to_force)"
         )
     if isinstance(reference, GoldenTrace) and not isinstance(actual, GoldenTrace):
         actual = reference.on_grid(actual)
@@ -143,7 +143,7 @@ class GoldenStore:
 
         Returns
         -------
-        dem_check.compare.Comparison
+        contactlab.compare.Comparison
             The comparison with the reference (after writing it, when updating).
 
         Raises

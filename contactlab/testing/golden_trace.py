@@ -19,7 +19,7 @@ saying how to create it. Nothing is rewritten silently.
 
 This module holds the reference itself (:class:`GoldenTrace`: reading, writing, reading
 a run on its grid); :mod:`contactlab.testing.golden` holds the store and the comparison.
-Comparisons are :func:`dem_check.compare.compare`'s, quantity by quantity, at
+Comparisons are :func:`contactlab.compare.compare`'s, quantity by quantity, at
 :data:`REGRESSION_RTOL` unless told otherwise; a run is first read on the reference's
 time grid (:meth:`GoldenTrace.on_grid`), so a rerun of the same set-up compares sample
 for sample.
@@ -36,11 +36,12 @@ from pathlib import Path
 import numpy as np
 
 import contactlab
+from contactlab.compare import QUANTITIES
 from contactlab.errors import ParameterError, TraceFormatError
+from contactlab.quantities import column
 from contactlab.result import ImpactResult
+from contactlab.traces import Trace
 from contactlab.validation import check_count
-from dem_check.compare import QUANTITIES
-from dem_check.traces import Trace
 
 __all__ = [
     "CHANNELS",
@@ -73,7 +74,7 @@ library versions; 1e-6 leaves three decades of margin and still catches any chan
 physics (1 % more damping moves the numbers by ~1e-3)."""
 
 STORED_QUANTITIES = tuple(name for name, q in QUANTITIES.items() if q.basis != "peak")
-"""Headline quantities a reference keeps: the scalars :func:`dem_check.compare.compare`
+"""Headline quantities a reference keeps: the scalars :func:`contactlab.compare.compare`
 compares (the waveform errors are computed from the stored signals)."""
 
 CHANNELS = ("contact_force", "sensor_force")
@@ -180,7 +181,7 @@ class GoldenTrace:
     -----
     Quantities and channels also read as attributes, like an ImpactResult's
     (``golden.restitution``, ``golden.sensor_force``), which is what
-    :func:`dem_check.compare.compare` reads; those a reference lacks (a measured trace has
+    :func:`contactlab.compare.compare` reads; those a reference lacks (a measured trace has
     no contact force) raise AttributeError, which ``compare`` reports as not available.
     """
 
@@ -258,7 +259,7 @@ class GoldenTrace:
             "contactlab_version": contactlab.__version__,
             "source": source,
             "setup": setup,
-            "quantities": {f"{q} [{QUANTITIES[q].unit}]": v for q, v in quantities.items()},
+            "quantities": {column(q): v for q, v in quantities.items()},
             "arrays": {"file": f"{name}.npz", "columns": columns, "stride": stride},
         }
         return cls(name, np.array(t[::stride]), channels, unit, quantities, metadata)

@@ -3,10 +3,10 @@
 Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
 segment (local baseline, impact, decayed ringing):
 
-- ``response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
+- ``sensor_response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
   :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
   noise), with the same hysteresis so that only a return to zero ends it;
-- ``peak_signal [N]``: the largest value of the low-passed signal (flat pass band) in
+- ``peak_sensor_force [N]``: the largest value of the low-passed signal (flat pass band) in
   that lobe;
 - ``impulse [N*s]``: the integral of the signal from the end of the local baseline to
   the end of the decayed ringing. The sensor returns to rest, so this is the impulse of
@@ -108,8 +108,8 @@ def _signal_numbers(t, raw, smooth, flat, base, span):
     peak = np.max(flat[in_lobe]) - smooth[in_base].mean() if in_lobe.any() else np.nan
     return {
         "noise [N]": float(np.std(raw[in_base], ddof=1)),
-        "peak_signal [N]": float(peak),
-        "response_time [s]": float(lobe[1] - lobe[0]),
+        "peak_sensor_force [N]": float(peak),
+        "sensor_response_time [s]": float(lobe[1] - lobe[0]),
         "impulse [N*s]": impulse(t, raw - _impulse_baseline(t, raw, in_base, span[1]), *span),
     }
 
@@ -149,7 +149,7 @@ def _too_coarse(row, span, dt, what):
     """The row with the reason that the record is too coarse to reconstruct."""
     note = (
         f"too coarse to reconstruct: the {what} lasts {span / dt:.3g} samples (need "
-        f"{MIN_SAMPLES_PER_CONTACT}); peak_signal, impulse and onset are read, no "
+        f"{MIN_SAMPLES_PER_CONTACT}); peak_sensor_force, impulse and onset are read, no "
         "contact force or contact time is given"
     )
     reason = "; ".join(r for r in (row["reason"], note) if r)
@@ -214,8 +214,8 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     dt = float(t[1] - t[0])
-    if not row["response_time [s]"] >= MIN_SAMPLES_PER_CONTACT * dt:
-        return _too_coarse(row, row["response_time [s]"], dt, "signal's first lobe"), None
+    if not row["sensor_response_time [s]"] >= MIN_SAMPLES_PER_CONTACT * dt:
+        return _too_coarse(row, row["sensor_response_time [s]"], dt, "signal's first lobe"), None
     part = _reconstruction_part(t, base, window.end, sensor)
     try:
         rec = reconstruct_force(t[part], raw[part], sensor, baseline_window=base)

@@ -10,6 +10,7 @@ import pandas as pd
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse import FIT_MODELS
+from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number
 from dem_check.campaign import detection, noise
 from dem_check.campaign.analysis import analyse_impact, window_row
@@ -32,15 +33,17 @@ IMPACT_COLUMNS = (
     "impact",
     "status",
     "reason",
-    "onset [s]",
-    "significance [-]",
-    "noise [N]",
-    "peak_signal [N]",
-    "response_time [s]",
-    "impulse [N*s]",
-    "velocity_change [m/s]",
-    "peak_contact_force [N]",
-    "contact_time [s]",
+    *columns(
+        "onset",
+        "significance",
+        "noise",
+        "peak_sensor_force",
+        "sensor_response_time",
+        "impulse",
+        "velocity_change",
+        "peak_contact_force",
+        "contact_time",
+    ),
 )
 """Columns of the impact table (``velocity_change`` only with a grain), before the
 ``fit_*`` columns and the joined metadata."""

@@ -45,6 +45,7 @@ import numpy as np
 
 from contactlab import signals
 from contactlab.errors import ParameterError
+from contactlab.traces import Trace
 from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
 from dem_check.campaign.noise import (
@@ -58,7 +59,6 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
-from dem_check.traces import Trace
 
 __all__ = [
     "ANALYSED",

@@ -29,7 +29,7 @@ tables and CSV files hold the full-resolution numbers."""
 DISTRIBUTIONS = (
     ("peak_contact_force [N]", "reconstructed peak force [N]"),
     ("contact_time [s]", "reconstructed contact time [us]"),
-    ("peak_signal [N]", "peak sensor signal [N]"),
+    ("peak_sensor_force [N]", "peak sensor signal [N]"),
     ("impulse [N*s]", "impulse [mN*s]"),
 )
 """Histogram panels: column and axis label (times in us, impulses in mN*s)."""

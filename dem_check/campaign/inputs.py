@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from contactlab.errors import ParameterError, TraceFormatError
-from dem_check.traces import read_trace, to_force
+from contactlab.traces import read_trace, to_force
 
 __all__ = [
     "SIDECAR_SUFFIXES",

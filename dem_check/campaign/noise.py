@@ -28,8 +28,8 @@ from scipy.stats import norm
 
 from contactlab import signals
 from contactlab.errors import ParameterError
-from dem_check.traces import Trace, lowpass
-from dem_check.traces.checks import uniform_interval
+from contactlab.traces import Trace, lowpass
+from contactlab.traces.checks import uniform_interval
 
 __all__ = [
     "BLOCK_MIN_SAMPLES",

@@ -1,12 +1,12 @@
 """Each analysed impact of a campaign against what its grain can physically produce.
 
 An impact whose velocity change (impulse / grain mass) or reconstructed peak force lies
-outside the bounds of :func:`dem_check.compare.physics.physics_problems` gets the status
+outside the bounds of :func:`contactlab.compare.physics.physics_problems` gets the status
 ``"implausible"`` with the reason, so it is listed in the report and left out of the
 statistics, instead of counting as ``"ok"``. Without a grain nothing can be checked.
 """
 
-from dem_check.compare.physics import physics_problems
+from contactlab.compare.physics import physics_problems
 
 __all__ = ["IMPLAUSIBLE", "physics_status"]
 

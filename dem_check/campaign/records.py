@@ -36,9 +36,9 @@ import numpy as np
 import pandas as pd
 
 from contactlab.errors import ParameterError
+from contactlab.traces import Trace
 from contactlab.validation import check_count, check_number
 from dem_check.campaign.synthetic import synthetic_record
-from dem_check.traces import Trace
 
 __all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record"]
 
@@ -159,7 +159,7 @@ def _crosstalk(rng, t, truth, effects):
     ringing = np.zeros(t.size)
     if effects.crosstalk == 0.0:
         return ringing
-    for onset, peak in zip(truth["onset [s]"], truth["peak_signal [N]"], strict=True):
+    for onset, peak in zip(truth["onset [s]"], truth["peak_sensor_force [N]"], strict=True):
         after = t >= onset
         s = t[after] - onset
         for frequency, zeta in effects.plate_modes:
@@ -196,7 +196,7 @@ def add_effects(t, clean, effects, truth, noise, rng):
         Time [s] and the clean signal [N].
     effects : Effects
     truth : pandas.DataFrame
-        ``onset [s]`` and ``peak_signal [N]`` of each impact (the crosstalk rings after
+        ``onset [s]`` and ``peak_sensor_force [N]`` of each impact (the crosstalk rings after
         each).
     noise : float
         White noise standard deviation [N].

@@ -71,7 +71,7 @@ def _gallery(result):
     for file, impact in chosen:
         row = onsets.loc[(file, impact)]
         title = (
-            f"{file} #{impact}: signal {row['peak_signal [N]']:.3g} N, "
+            f"{file} #{impact}: signal {row['peak_sensor_force [N]']:.3g} N, "
             f"force {row['peak_contact_force [N]']:.3g} N, "
             f"{row['contact_time [s]'] * 1e6:.4g} us"
         )
@@ -117,7 +117,7 @@ _CANDIDATE_COLUMNS = (
     "status",
     "onset [s]",
     "significance [-]",
-    "peak_signal [N]",
+    "peak_sensor_force [N]",
     "reason",
 )
 

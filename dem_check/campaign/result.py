@@ -57,7 +57,7 @@ class CampaignResult:
     impacts : pandas.DataFrame
         One row per impact found: ``file``, ``impact`` (0-based index in its file),
         ``status`` (``"ok"`` or why it was not analysed), ``reason``, ``onset [s]``,
-        ``noise [N]``, ``peak_signal [N]``, ``response_time [s]``, ``impulse [N*s]``,
+        ``noise [N]``, ``peak_sensor_force [N]``, ``sensor_response_time [s]``, ``impulse [N*s]``,
         ``peak_contact_force [N]``, ``contact_time [s]``; with a grain
         ``velocity_change [m/s]``; with a fit the ``fit_*`` columns.
     files : pandas.DataFrame

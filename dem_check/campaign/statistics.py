@@ -15,6 +15,7 @@ import pandas as pd
 from scipy import stats
 
 from contactlab.errors import ParameterError
+from contactlab.quantities import columns
 from dem_check.campaign.detection import ANALYSED
 
 __all__ = [
@@ -50,13 +51,13 @@ quantity's unit (named in ``quantity``); ``std`` is the sample standard deviatio
 RESPONSES = ("peak_contact_force [N]", "contact_time [s]")
 """Responses regressed on every numeric metadata column."""
 
-_MEASURED = (
-    "peak_signal [N]",
-    "response_time [s]",
-    "impulse [N*s]",
-    "peak_contact_force [N]",
-    "contact_time [s]",
-    "velocity_change [m/s]",
+_MEASURED = columns(
+    "peak_sensor_force",
+    "sensor_response_time",
+    "impulse",
+    "peak_contact_force",
+    "contact_time",
+    "velocity_change",
 )
 _KEYS = ("file", "impact")
 

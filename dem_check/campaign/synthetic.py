@@ -14,9 +14,10 @@ import pandas as pd
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
+from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
+from contactlab.traces import Trace
 from contactlab.validation import check_count, check_number
-from dem_check.traces import Trace
 
 __all__ = ["OVERSAMPLING", "RINGING_LEFT", "synthetic_record"]
 
@@ -29,15 +30,15 @@ RINGING_LEFT = 1e-4
 its peak signal [-]; the rest of the record holds no signal from it (a truncation far
 below any usable noise level)."""
 
-TRUTH_COLUMNS = (
-    "onset [s]",
-    "velocity [m/s]",
-    "peak_signal [N]",
-    "response_time [s]",
-    "impulse [N*s]",
-    "peak_contact_force [N]",
-    "contact_time [s]",
-    "restitution [-]",
+TRUTH_COLUMNS = columns(
+    "onset",
+    "velocity",
+    "peak_sensor_force",
+    "sensor_response_time",
+    "impulse",
+    "peak_contact_force",
+    "contact_time",
+    "restitution",
 )
 """Columns of the truth table, named as in :attr:`CampaignResult.impacts`."""
 
@@ -96,8 +97,8 @@ def synthetic_record(
         The record (``metadata["format"] == "synthetic"``, no trigger time).
     truth : pandas.DataFrame
         One row per impact, columns :data:`TRUTH_COLUMNS`: the exact onset and the
-        model's headline numbers (``peak_signal [N]`` is the sensor's
-        ``peak_sensor_force``, ``response_time [s]`` its ``sensor_response_time``).
+        model's headline numbers (``peak_sensor_force [N]`` is the sensor's
+        ``peak_sensor_force``, ``sensor_response_time [s]`` its ``sensor_response_time``).
 
     Raises
     ------

@@ -26,54 +26,34 @@ provides::
   sensor, raises :class:`~contactlab.errors.ParameterError` naming it;
 * the result is an :class:`~dem_check.engines.result.EngineResult`: time from the first
   touch, the model's axis (x along the grain's travel, into the sensor), contact force S2
-  and sensor signal S1 = k1 x1 + c1 v1 [N], so :func:`dem_check.compare` reads it as it
+  and sensor signal S1 = k1 x1 + c1 v1 [N], so :func:`contactlab.compare` reads it as it
   reads :class:`contactlab.ImpactResult`.
 
 Adding an engine is one module beside :mod:`dem_check.engines.bullet` and one line in
-:data:`ENGINES`. Engines are imported when first asked for, so one whose library is an
-optional extra costs nothing until it is used.
+``pyproject.toml``'s ``[project.entry-points."contactlab.engines"]`` (the registry
+:mod:`contactlab.engines` reads, so contactlab's own commands find the engine too, without
+importing dem_check). Engines are imported when first asked for, so one whose library is
+an optional extra costs nothing until it is used.
 """
 
-import difflib
-import importlib
+from importlib.metadata import entry_points
 
 from contactlab.audit import warn_if_broken
-from contactlab.errors import ParameterError
+from contactlab.engines import GROUP, load_engine
 from dem_check.engines.result import EngineResult
 
 __all__ = ["ENGINES", "EngineResult", "drop_test", "engine_module"]
 
-ENGINES = {
-    "bullet": "dem_check.engines.bullet",  # pybullet's soft contact (LinearViscoelastic)
-    "lammps": "dem_check.engines.lammps",  # LAMMPS GRANULAR (linear, Hertz family; extra)
-    "kratos": "dem_check.engines.kratos",  # Kratos DEM (linear, Hertz, damped Hertz; extra)
-}
-"""Engine name -> the module that implements the interface (see the module docstring)."""
+ENGINES = {point.name: point.value for point in entry_points(group=GROUP)}
+"""Engine name -> the module that implements the interface (see the module docstring), as
+registered in ``pyproject.toml`` (bullet: pybullet's soft contact, LinearViscoelastic;
+lammps: LAMMPS GRANULAR, linear and Hertz family, an extra; kratos: Kratos DEM, linear,
+Hertz, damped Hertz, an extra)."""
 
 
-def engine_module(engine):
-    """The module of an engine named in :data:`ENGINES`.
-
-    Parameters
-    ----------
-    engine : str
-        Engine name, e.g. ``"bullet"``.
-
-    Returns
-    -------
-    module
-        It provides ``drop_test`` (see the module docstring).
-
-    Raises
-    ------
-    ParameterError
-        For a name not in :data:`ENGINES`; the message lists the valid names.
-    """
-    if not isinstance(engine, str) or engine not in ENGINES:
-        near = difflib.get_close_matches(str(engine), ENGINES, n=1)
-        hint = f" (did you mean {near[0]!r}?)" if near else ""
-        raise ParameterError(f"unknown engine {engine!r}{hint}; valid names: {', '.join(ENGINES)}")
-    return importlib.import_module(ENGINES[engine])
+engine_module = load_engine
+"""The module of an engine named in :data:`ENGINES` (:func:`contactlab.engines.load_engine`:
+an unknown name raises ParameterError listing the valid ones)."""
 
 
 def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", **options):

@@ -11,7 +11,7 @@ import numpy as np
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 
-__all__ = ["base_case_check", "convergence_study", "engine_check"]
+__all__ = ["EngineChecks", "base_case_check", "convergence_study", "engine_check"]
 
 _NOTES = ("time_step [s]", "numerical_damping [N*s/m]", "steps", "wall_time [s]")
 """Engine metadata every check copies into its comparison's notes."""
@@ -29,7 +29,7 @@ def engine_check(
     grain, sensor, law, velocity, time_step
         As for ``drop_test`` (no gravity: the reduced model has none).
     tolerances : dict, optional
-        Tolerances by quantity name (:data:`dem_check.compare.DEFAULT_TOLERANCES`).
+        Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
     notes : sequence of str
         Further keys of the engine result's ``metadata`` to copy into the notes.
     **options
@@ -37,14 +37,14 @@ def engine_check(
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         ``a`` is the :class:`EngineResult`, ``b`` the :class:`~contactlab.ImpactResult`
         (exact solver) over the same window. Both start at the first touch, so the
         waveforms are compared without shifting (``align=None``). ``notes`` holds the time
         step, the numerical damping, the steps and their wall time, and ``notes``' keys.
     """
+    from contactlab.compare import compare
     from contactlab.solver import simulate_impact
-    from dem_check.compare import compare
 
     engine = drop_test(grain, sensor, law, velocity, time_step, **options)
     model = simulate_impact(grain, sensor, law, velocity, duration=float(engine.t[-1]))
@@ -71,7 +71,7 @@ def convergence_study(drop_test, grain, sensor, law, velocity, time_steps, **opt
     -------
     pandas.DataFrame
         One row per step: ``time_step [s]``, ``wall_time [s]`` and the error of each
-        quantity of :data:`dem_check.compare.QUANTITIES` as ``<name> error [-]`` (signed
+        quantity of :data:`contactlab.compare.QUANTITIES` as ``<name> error [-]`` (signed
         relative errors; restitution: signed absolute; waveforms: over the model's peak).
         ``attrs["order"]`` maps each quantity to the observed order of convergence, the
         least-squares slope of ``log |error|`` against ``log dt`` (1 for a first-order
@@ -156,3 +156,51 @@ def base_case_check(drop_test, name, out_dir, time_step=None, *, notes=(), **opt
     comparison.table.to_csv(paths[1], index=False)
     paths[2].write_text(json.dumps(comparison.to_dict(), indent=2), encoding="utf-8")
     return paths
+
+
+class EngineChecks:
+    """The checks of one engine, bound to its ``drop_test``: what an engine's ``check``
+    module hands on (:mod:`dem_check.engines.lammps.check`,
+    :mod:`dem_check.engines.kratos.check`).
+
+    Parameters
+    ----------
+    drop_test : callable
+        The engine's ``drop_test``.
+    name : str
+        Engine name, the base case's file prefix.
+    notes : sequence of str
+        The engine's own metadata keys copied into every comparison's notes.
+    """
+
+    def __init__(self, drop_test, name, notes):
+        self.drop_test, self.name, self.notes = drop_test, name, tuple(notes)
+
+    def engine_check(
+        self, grain, sensor, law, velocity, time_step=None, *, tolerances=None, **options
+    ):
+        """Run the impact in the engine and in the reduced model, and compare them
+        (:func:`engine_check`; ``options`` are the engine's ``drop_test`` keywords)."""
+        return engine_check(
+            self.drop_test,
+            grain,
+            sensor,
+            law,
+            velocity,
+            time_step,
+            tolerances=tolerances,
+            notes=self.notes,
+            **options,
+        )
+
+    def convergence_study(self, grain, sensor, law, velocity, time_steps, **options):
+        """Errors of the engine against the reduced model as the time step shrinks
+        (:func:`convergence_study`; ``attrs["order"]``: the observed orders)."""
+        return convergence_study(
+            self.drop_test, grain, sensor, law, velocity, time_steps, **options
+        )
+
+    def base_case_check(self, out_dir, time_step=None):
+        """The engine's check of the paper's base case, written to a folder
+        (:func:`base_case_check`: ``<name>_base_case.png``, ``.csv`` and ``.json``)."""
+        return base_case_check(self.drop_test, self.name, out_dir, time_step, notes=self.notes)

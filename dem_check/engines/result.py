@@ -3,7 +3,7 @@
 Every engine of :mod:`dem_check.engines` records its steps and hands them to
 :class:`EngineResult`, whose headline numbers are those of
 :class:`contactlab.ImpactResult` (:class:`~contactlab.result.ImpactSignals`), so
-:func:`dem_check.compare` takes either. :func:`contact_crossings` locates contacts between
+:func:`contactlab.compare` takes either. :func:`contact_crossings` locates contacts between
 steps.
 """
 

@@ -71,7 +71,7 @@ class ParticleKind:
     ``diameter_classes * density_classes`` classes (the midpoints of equal-probability
     bins), each a LAMMPS atom type with its own exactly mapped contact law, because
     LAMMPS' mapping depends on the contact's ``m*`` and ``R*``
-    (:func:`dem_check.engines.lammps.laws.granular_model`).
+    (:func:`contactlab.laws.lammps.granular_model`).
     """
 
     name: str

@@ -5,7 +5,7 @@ Why the plate is built this way (the exact-physics argument):
 * The plate is a **region wall**, ``region plate block ... side out move NULL NULL v_zp``
   with ``fix wall/gran/region granular``: an exactly flat, finite plate (edges and
   corners included), against which LAMMPS' contact has ``m* =`` the particle's mass and
-  ``R* =`` its radius, the values :func:`~dem_check.engines.lammps.laws.granular_model`
+  ``R* =`` its radius, the values :func:`~contactlab.laws.lammps.granular_model`
   maps the law with, so every particle-plate contact realises the toolkit's law exactly,
   as in the single-impact bench. A sphere of large radius (the drop bench's plate) is
   not flat, and a rigid body of particles is bumpy; LAMMPS 2025 has no moving mesh wall
@@ -33,7 +33,7 @@ Sign: LAMMPS z is the plate's outward normal (up); ``x1 = z_rest - z_sensor`` (i
 sensor) and ``S1 = k1 x1 + c1 v1``; the contact force is ``sum fz`` of the particles.
 """
 
-from dem_check.engines.lammps.laws import TANGENTIAL, granular_model
+from contactlab.laws.lammps import TANGENTIAL, granular_model
 from dem_check.engines.lammps.oblique import tangential_words
 
 __all__ = [

@@ -5,7 +5,7 @@ the truth (:mod:`dem_check.stream.truth`) and return a :class:`StreamResult`. It
 :meth:`~StreamResult.trace` samples the sensor signal ``S1`` at an oscilloscope's rate
 (point samples of the step series, linearly interpolated between steps, plus white noise
 ``noise`` [N] from the seed, and optionally a laboratory's effects:
-:class:`dem_check.campaign.Effects`): a :class:`~dem_check.traces.Trace` in newtons that
+:class:`dem_check.campaign.Effects`): a :class:`~contactlab.traces.Trace` in newtons that
 :func:`dem_check.run_campaign` analyses. :meth:`~StreamResult.write` puts in a folder:
 
 * ``trace.csv``: that trace (generic CSV, read by :func:`dem_check.read_trace`);
@@ -22,12 +22,12 @@ import numpy as np
 import pandas as pd
 
 from contactlab.errors import ParameterError
+from contactlab.traces.api import write_trace
 from contactlab.validation import check_count, check_number
 from dem_check.campaign.records import add_effects
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
 from dem_check.traces import Trace
-from dem_check.traces.api import write_trace
 
 __all__ = ["StreamResult", "run_stream"]
 
@@ -110,7 +110,10 @@ class StreamResult:
         if effects is not None:
             impacts = self.truth[self.truth["contact"] == 0]
             truth = pd.DataFrame(
-                {"onset [s]": impacts["touch [s]"], "peak_signal [N]": impacts["peak_force [N]"]}
+                {
+                    "onset [s]": impacts["touch [s]"],
+                    "peak_sensor_force [N]": impacts["peak_force [N]"],
+                }
             )
             values = add_effects(t, values, effects, truth, noise, rng)[0]
         elif noise > 0.0:

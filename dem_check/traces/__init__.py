@@ -1,43 +1,15 @@
-"""Measured traces: read oscilloscope and DAQ exports, prepare them, write test layouts.
+"""Measured traces, kept under their old name: they live in :mod:`contactlab.traces`.
 
->>> from dem_check.traces import read_trace, remove_baseline
->>> trace = read_trace("impact.csv", channel="CH1", sensitivity=0.0225)  # doctest: +SKIP
->>> trace = remove_baseline(trace)                                      # doctest: +SKIP
->>> trace.metrics(threshold=0.05)                                       # doctest: +SKIP
-
-Formats are recognised by content (see :data:`FORMATS`): generic CSV with units in the
-header; Tektronix TDS and MSO/MDO/DPO, Rigol (both layouts), Keysight InfiniiVision,
-PicoScope and LeCroy CSV; and, with ``pip install contactlab[traces]``, oscilloscope
-binaries through RigolWFM, NI TDMS and HDF5. Malformed files raise
-:class:`~contactlab.errors.TraceFormatError` naming the file and line; nothing is
-dropped, clipped or guessed.
+Reading a measured sensor trace is contactlab's own business (force reconstruction and the
+golden-trace tests read them), so the readers moved down into contactlab; this package
+hands the same names on for code written against ``dem_check.traces``.
 """
 
-from contactlab.errors import TraceFormatError
-from dem_check.traces.api import read_trace, write_trace
-from dem_check.traces.detect import detect_format
-from dem_check.traces.formats import FORMATS
-from dem_check.traces.prepare import (
-    align,
-    detect_onset,
-    lowpass,
-    noise_level,
-    remove_baseline,
-    to_force,
-)
-from dem_check.traces.trace import Trace
+from contactlab import traces as _home
 
-__all__ = [
-    "FORMATS",
-    "Trace",
-    "TraceFormatError",
-    "align",
-    "detect_format",
-    "detect_onset",
-    "lowpass",
-    "noise_level",
-    "read_trace",
-    "remove_baseline",
-    "to_force",
-    "write_trace",
-]
+__all__ = _home.__all__
+
+
+def __getattr__(name):
+    """Every public name of :mod:`contactlab.traces`, read there."""
+    return getattr(_home, name)

@@ -72,6 +72,7 @@ class ExportContact:
     plate_poisson_ratio: float = math.nan
     friction: float = PLACEHOLDER_FRICTION
     friction_fitted: bool = False
+    contact_law: object = None  # the fitted law itself (a contactlab.laws law)
 
     def __post_init__(self):
         """Every number a writer may print is finite and physical (SI units)."""
@@ -217,6 +218,7 @@ def contact_from_fit(
         "density": float(grain["density [kg/m^3]"]),
         "velocity": velocity,
         "contact_time": wall_impact(law, mass, velocity).contact_time,
+        "contact_law": law,
     }
     if friction is not None:
         common["friction"] = check_number("friction", friction, low=0.0, low_open=False)

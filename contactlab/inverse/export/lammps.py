@@ -6,15 +6,19 @@ sets the grain-grain pair model, the sensor plate as the plane ``z = 0`` (grain 
 moving towards -z) and the time step; it creates no atoms, sets no velocity, integrates
 nothing and does not run.
 
-The grain-plate contact is the fitted law exactly (LAMMPS 22 Jul 2025, GRANULAR package;
-see :mod:`dem_check.engines.lammps.laws` for the formulas). A plane wall has ``R* = R`` and
-``m* = m`` of the grain, and LAMMPS takes a wall's coefficients as given (no mixing), so:
+The grain-plate contact is the fitted law exactly, in the words of the one law -> LAMMPS
+mapping, :func:`contactlab.laws.lammps.granular_model` (which the LAMMPS engine of
+:mod:`dem_check.engines.lammps` runs too; LAMMPS 22 Jul 2025, GRANULAR package). A plane
+wall has ``R* = R`` and ``m* = m`` of the grain, and LAMMPS takes a wall's coefficients
+as given (no mixing), so:
 
 * linear ``(k, c)``: ``hooke k c damping velocity``;
-* Hertz family ``(E*, e)``: ``hertz (4/3) E* e damping coeff_restitution`` (``F = k a d``
+* Hertz ``(E*)``: ``hertz (4/3) E* 0 damping velocity``;
+* damped Hertz ``(E*, e)``: ``hertz (4/3) E* e damping coeff_restitution`` (``F = k a d``
   with ``a = sqrt(R d)`` is ``(4/3) E* sqrt(R) d**1.5 = kH d**1.5``, and the damping is
   ``sqrt(5) beta sqrt(m* Fe/d) d'`` with ``beta = -ln e/sqrt(pi^2 + ln^2 e)``: the fit's
-  Tsuji damping, independent of the grain size);
+  Tsuji damping, independent of the grain size, so the mapping's input is the fit's
+  ``e``);
 * ``limit_damping``: the force never pulls, as in the fitted law, so the realised rebound
   is the fitted law's (not ``e``).
 
@@ -27,6 +31,7 @@ placeholders (NOT FITTED): Mindlin with ``8 G*`` of grain and plate (Hertz) or
 """
 
 from contactlab.inverse.export.contact import number
+from contactlab.laws.lammps import granular_model
 
 __all__ = ["LAMMPS_STEPS_PER_CONTACT", "write"]
 
@@ -49,29 +54,25 @@ def write(c):
     step = c.contact_time / LAMMPS_STEPS_PER_CONTACT
     why = f"contact time / {LAMMPS_STEPS_PER_CONTACT} (first-order damping: < 0.2 % in rebound)"
     mu = number(c.friction)
+    model = granular_model(c.contact_law, c.mass, c.radius)  # a plane wall: m* = m, R* = R
     if c.family == "linear":
-        k, damp = number(c.stiffness), number(c.damping)
         tangential = f"tangential linear_history {number(2.0 / 7.0 * c.stiffness)} 0.0 {mu}"
-        pair = f"hooke {k} {damp} damping velocity {tangential} limit_damping"
-        wall = pair
+        pair = wall = model.words(tangential, number)
         notes = [
             "# grain-grain: NOT FITTED, the fitted k and c taken as they are",
             f"# tangential: NOT FITTED (kt = 2/7 k, no tangential damping); friction: "
             f"{c.friction_note()}",
         ]
     else:
-        e = number(c.restitution)
-        damping = f"damping coeff_restitution tangential mindlin {{kt}} 1.0 {mu} limit_damping"
+        wall = model.words(f"tangential mindlin {number(_mindlin_stiffness(c))} 1.0 {mu}", number)
         pair = (
-            f"hertz/material {number(c.youngs_modulus)} {e} {number(c.poisson_ratio)} "
-            + damping.format(kt="NULL")
-        )
-        wall = f"hertz {number(4.0 / 3.0 * c.effective_modulus)} {e} " + damping.format(
-            kt=number(_mindlin_stiffness(c))
+            f"hertz/material {number(c.youngs_modulus)} {number(model.damping_coefficient)} "
+            f"{number(c.poisson_ratio)} damping {model.damping} "
+            f"tangential mindlin NULL 1.0 {mu} limit_damping"
         )
         notes = [
             "# grain-grain: NOT FITTED, Hertz of the grain's own E and nu (E* = E/(2(1-nu^2)))",
-            "# and the same restitution input (same Tsuji damping factor, same rebound)",
+            "# and the same damping input (same Tsuji damping factor, same rebound)",
             "# hertz k = (4/3) E*: F = k sqrt(R d) d = kH d**1.5 on the plane (R = grain radius)",
             f"# tangential: NOT FITTED (Mindlin, 8 G* of grain and plate); friction: "
             f"{c.friction_note()}",

@@ -7,7 +7,7 @@ Run once, with the five ``measurements_<n>.npy`` files of ladisk/pyFRF at commit
 
 Each source file holds three rows of 25600 float64 values: time [s], the impact
 hammer's force [N] and the response. Only the force row is kept, every sample, as
-float64 (bit for bit), in the HDF5 convention of ``dem_check.traces.hdf5`` (gzip).
+float64 (bit for bit), in the HDF5 convention of ``contactlab.traces.hdf5`` (gzip).
 """
 
 import sys

@@ -2,7 +2,7 @@
 
 :func:`drop_test` drops a sphere on a plate in pybullet and reads the result as
 :func:`contactlab.simulate_impact` does, so the two can be compared number by number
-(:func:`engine_check`, :func:`dem_check.compare`).
+(:func:`engine_check`, :func:`contactlab.compare`).
 
 The scene (SI units, engine z axis up; the model's x axis points down, into the sensor):
 

@@ -3,11 +3,14 @@ paper's base case (:mod:`dem_check.engines.check` with pybullet's drop test)."""
 
 from dem_check.engines import check
 from dem_check.engines.bullet.drop import drop_test
+from dem_check.engines.check import EngineChecks
 
 __all__ = ["base_case_check", "convergence_study", "engine_check"]
 
 _NOTES = ("contact_damping_passed [N*s/m]", "compensate_damping")
 """pybullet's own settings copied into a comparison's notes."""
+
+_CHECKS = EngineChecks(drop_test, "bullet", _NOTES)
 
 
 def engine_check(
@@ -20,23 +23,21 @@ def engine_check(
     grain, sensor, law, velocity, time_step, compensate_damping
         As for :func:`drop_test` (no gravity: the reduced model has none).
     tolerances : dict, optional
-        Tolerances by quantity name (:data:`dem_check.compare.DEFAULT_TOLERANCES`).
+        Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
 
     Returns
     -------
-    dem_check.compare.Comparison
+    contactlab.compare.Comparison
         See :func:`dem_check.engines.check.engine_check`; ``notes`` also holds the damping
         passed to the engine and ``compensate_damping``.
     """
-    return check.engine_check(
-        drop_test,
+    return _CHECKS.engine_check(
         grain,
         sensor,
         law,
         velocity,
         time_step,
         tolerances=tolerances,
-        notes=_NOTES,
         compensate_damping=compensate_damping,
     )
 
@@ -62,10 +63,6 @@ def convergence_study(
     return frame
 
 
-def base_case_check(out_dir, time_step=None):
-    """pybullet check of the paper's base case, written to a folder (``make demo``).
-
-    See :func:`dem_check.engines.check.base_case_check`: ``bullet_base_case.png``,
-    ``.csv`` and ``.json``.
-    """
-    return check.base_case_check(drop_test, "bullet", out_dir, time_step, notes=_NOTES)
+base_case_check = _CHECKS.base_case_check
+"""pybullet check of the paper's base case, written to a folder (``make demo``):
+``bullet_base_case.png``, ``.csv`` and ``.json``."""

@@ -3,7 +3,7 @@ DEM code, beside LAMMPS.
 
 :func:`drop_test` drops the grain on the sensor in Kratos DEM and reads the impact as
 :func:`contactlab.simulate_impact` does (an :class:`~dem_check.engines.result.EngineResult`,
-so :func:`dem_check.compare` takes it). Kratos is the ``kratos`` extra (``pip install
+so :func:`contactlab.compare` takes it). Kratos is the ``kratos`` extra (``pip install
 'contactlab[kratos]'``); without it the functions raise ImportError naming the extra.
 
 * :mod:`~dem_check.engines.kratos.session`: importing Kratos without its banner, on one
@@ -37,5 +37,11 @@ __all__ = [
     "kratos_contact",
     "kratos_oblique",
     "kratos_version",
+    "load",
     "load_kratos",
+    "oblique_impact",
 ]
+
+# the plug-in interface's names (contactlab.engines): contactlab finds Kratos through them
+oblique_impact = kratos_oblique
+load = load_kratos

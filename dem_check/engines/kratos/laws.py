@@ -62,8 +62,8 @@ from contactlab.laws import (
     WaltonBraun,
     damping_ratio,
 )
+from contactlab.laws.engine_support import refuse_unsupported
 from contactlab.validation import check_positive
-from dem_check.engines.law_support import refuse_unsupported
 
 __all__ = [
     "ENGINE_LAWS",

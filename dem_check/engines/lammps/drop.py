@@ -83,7 +83,7 @@ def drop_test(
         particle of mass ``m1`` on a spring ``k1`` and damper ``c1``
         (:mod:`~dem_check.engines.lammps.scene`).
     law : LinearViscoelastic, Hertz, HertzDamped or KuwabaraKono
-        Grain-sensor contact, mapped exactly (:mod:`~dem_check.engines.lammps.laws`);
+        Grain-sensor contact, mapped exactly (:mod:`~contactlab.laws.lammps`);
         other laws raise ParameterError.
     velocity : float
         Grain speed towards the sensor at release [m/s] (no gravity: the impact speed).

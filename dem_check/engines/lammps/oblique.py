@@ -4,7 +4,7 @@ One sphere (``units si``, z up) starts a few steps above ``fix wall/gran granula
 zplane 0.0 NULL`` with velocity ``(vt, 0, -vn)`` and angular velocity ``(0, spin, 0)``: its
 contact point (at ``-R z``) moves at ``vt - R spin`` along x, the sign convention of
 :func:`contactlab.simulate_oblique`. The normal law is mapped exactly by
-:func:`~dem_check.engines.lammps.laws.granular_model` (``m* = m``, ``R* = R`` at a plane
+:func:`~contactlab.laws.lammps.granular_model` (``m* = m``, ``R* = R`` at a plane
 wall); the tangential law by :func:`tangential_words`:
 
 ====================================================  ====================================
@@ -36,10 +36,10 @@ from dataclasses import dataclass
 
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
+from contactlab.laws.lammps import granular_model
 from contactlab.solver import wall_impact
 from contactlab.validation import check_number
 from dem_check.engines.audit import STEP_ENERGY, audit_oblique_rebound
-from dem_check.engines.lammps.laws import granular_model
 from dem_check.engines.lammps.session import LammpsSession
 from dem_check.engines.rebound import ObliqueRebound
 

@@ -12,7 +12,7 @@ Geometry (``units si``, LAMMPS z up; the model's x axis points down, into the se
   NULL`` keeping it on the impact axis. Its displacement ``x1`` (down) and velocity give
   ``S1 = k1 x1 + c1 v1``. The grain-plate contact is ``pair_style granular`` with
   ``m* = m1 m2 / (m1 + m2)`` and ``R* = R2 Rp / (R2 + Rp)``; the law is mapped with these
-  (:func:`~dem_check.engines.lammps.laws.granular_model`), so the force against the
+  (:func:`~contactlab.laws.lammps.granular_model`), so the force against the
   overlap is the law's whatever the plate's radius: the radius brings no error in the
   force (the sphere's curvature enters only through ``R*``, which the mapping absorbs).
   What it brings is rounding: the overlap is ``R2 + Rp - r`` from centre distances of
@@ -28,7 +28,7 @@ the grain's z force (the contact force: nothing else acts on the grain).
 
 from dataclasses import dataclass
 
-from dem_check.engines.lammps.laws import granular_model
+from contactlab.laws.lammps import granular_model
 from dem_check.engines.record import COLUMNS, PLATE_RADIUS_FACTOR, drop_geometry
 
 __all__ = ["COLUMNS", "PLATE_RADIUS_FACTOR", "RECORD", "DropDeck", "drop_deck"]

@@ -126,7 +126,7 @@ def test_wall_rows_follow_the_closed_forms(restitution):
         np.testing.assert_allclose(got["contact_time [s]"], t_c, rtol=1e-7)
         np.testing.assert_allclose(got["peak_contact_force [N]"], peak, rtol=1e-7)
     # on a wall the signal is the contact force: its lobe is the contact
-    np.testing.assert_array_equal(got["response_time [s]"], got["contact_time [s]"])
+    np.testing.assert_array_equal(got["sensor_response_time [s]"], got["contact_time [s]"])
     np.testing.assert_array_equal(got["peak_sensor_force [N]"], got["peak_contact_force [N]"])
     assert (got["contacts [-]"] == 1).all()
 

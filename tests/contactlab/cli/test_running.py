@@ -123,8 +123,8 @@ def test_simulate_json_is_strict_with_reasons_for_nulls(tmp_path, capsys):
 def test_identify_sensor_labels_a_volt_trace_in_volts(tmp_path, capsys):
     import numpy as np
 
+    from contactlab.traces import Trace
     from dem_check import write_trace
-    from dem_check.traces import Trace
 
     t = np.arange(-50e-6, 600e-6, 2e-7)
     ring = np.where(t > 0, np.exp(-0.02 * 2 * math.pi * 40e3 * t), 0.0)
@@ -141,8 +141,8 @@ def test_identify_sensor_labels_a_volt_trace_in_volts(tmp_path, capsys):
 def test_dem_check_json_is_strict(tmp_path, capsys):
     import numpy as np
 
+    from contactlab.traces import Trace
     from dem_check import write_trace
-    from dem_check.traces import Trace
 
     config = load_config(PRESET_DIR / "fig6.toml")
     model = config.simulate()

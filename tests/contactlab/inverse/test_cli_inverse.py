@@ -8,7 +8,7 @@ import pytest
 import contactlab as cl
 from contactlab.cli import main
 from contactlab.inverse import synthetic_trace
-from dem_check.traces import Trace, write_trace
+from contactlab.traces import Trace, write_trace
 
 SENSITIVITY = 0.0225  # [V/N] (22.5 mV/N)
 MODEL = """

@@ -26,7 +26,7 @@ from contactlab.inverse import (
 )
 from contactlab.inverse.fit_quality import ALPHA, ljung_box
 from contactlab.inverse.noise_window import clean_noise_window
-from dem_check.traces import read_trace
+from contactlab.traces import read_trace
 
 TRACES = Path(__file__).resolve().parents[3] / "data" / "traces"
 SENSITIVITY = 0.01124  # [V/N], every sample file (data/traces/README.md)

@@ -24,7 +24,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab import analytic
 from contactlab.batch import hertz_impacts, linear_impacts
-from contactlab.errors import WindowWarning
+from contactlab.errors import ParameterError, PlausibilityWarning, WindowWarning
 from contactlab.testing.strategies import normal_impacts, oblique_impacts
 
 MATRIX = settings(
@@ -48,7 +48,17 @@ def _solved(solve, *args, **kwargs):
 @MATRIX
 @given(case=oblique_impacts())
 def test_oblique_impacts_audit_clean(case):
-    res = _solved(cl.simulate_oblique, **case)
+    try:
+        res = _solved(cl.simulate_oblique, **case)
+    except ParameterError:
+        # a first contact longer than 1 s is refused as no impact (grazing incidence: at 90
+        # deg minus one float a Hertz contact lasts 1.4 s, found by a random sweep); the
+        # normal side is the normal impact alone, which must be refused as well
+        normal_speed = case["velocity"] * math.cos(case["angle"])
+        with warnings.catch_warnings(), pytest.raises(ParameterError, match="not an impact"):
+            warnings.simplefilter("ignore", PlausibilityWarning)  # a speed of 1e-17 m/s
+            cl.simulate_impact(case["grain"], case["sensor"], case["normal_law"], normal_speed)
+        return
     audit = res.audit()
     assert audit.ok, [c.describe() for c in audit.failures]
     if case["tangential_law"].name != "mindlin":  # the spring never returns more than stored
@@ -81,6 +91,71 @@ def test_thornton_on_a_wall_at_5_m_s_rebounds_at_its_closed_form(rtol):
     assert res.restitution == pytest.approx(closed, rel=10.0 * rtol, abs=0.0)
     audit = res.audit()
     assert audit.ok, [c.describe() for c in audit.failures]
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="open, found by benchmarks/audit_matrix.py: an elastic contact (Thornton below "
+    "yield, and Hertz with its kH) of a 0.88 g grain at 1.23 m/s rebounds 1.06e-8 (106 rtol) "
+    "off e = 1 at rtol 1e-10 (6.7e-9 at 1e-8, 2.3e-11 at 1e-12): the first warped step after "
+    "the touch (t 1e-9 -> 1.5e-5 s) is accepted with its energy 2.1e-8 off, DOP853's error "
+    "norm letting the overlap's large 3rd-order estimate shrink the velocity's 5th-order one; "
+    "combined per component it gives 2.6e-10, but step counts then follow rounding "
+    "(docs/verification.md, known limits)",
+)
+@pytest.mark.parametrize("law", ["thornton", "hertz"])
+def test_elastic_rebound_after_a_long_first_warped_step(law):
+    grain = cl.Grain(
+        diameter=0.01,
+        density=1682.0131005723867,
+        youngs_modulus=1.486e9,
+        poisson_ratio=0.3399843133332635,
+    )
+    laws = {
+        "thornton": cl.laws.Thornton(1e6, 0.00131901, 6.09324e6),  # yields at 472 m/s
+        "hertz": cl.laws.Hertz(analytic.hertz_stiffness(1e6, 0.00131901)),
+    }
+    res = cl.simulate_impact(grain, cl.Sensor.rigid(), laws[law], 1.2328923077566711, audit=False)
+    # a few rtol of global error, as in the regression above: 10 rtol
+    assert res.restitution == pytest.approx(1.0, abs=10.0 * 1e-10)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="open, found by benchmarks/audit_matrix.py (oblique, seed 21, 600 draws; the code "
+    "before issue 21's retakes gives the same numbers): Hunt-Crossley at chi v = 19.8 on a "
+    "128.5 kHz, 7.8 g sensor, normal incidence: the normal formula pulls at t = 2.1445 ms, "
+    "7 us before the located end (2.1519 ms), by 1.26e-8 of the peak force in simulate_impact "
+    "(tolerance 1e-8) and 1.89e-8 in simulate_oblique (tolerance 1e-9): a contact end missed "
+    "where the plate's ringing brings the force to zero and back (docs/verification.md, "
+    "known limits)",
+)
+@pytest.mark.parametrize("solver", ["normal", "oblique"])
+def test_strongly_damped_hunt_crossley_on_a_stiff_sensor_stays_one_sided(solver):
+    grain = cl.Grain(
+        diameter=0.00906,
+        density=2927.666720347371,
+        youngs_modulus=1e6,
+        poisson_ratio=0.2602749094872413,
+    )
+    sensor, law = cl.Sensor(0.007824, 5.102e9, 0.0), cl.laws.HuntCrossley(96259.5, 1.5, 26.4076)
+    if solver == "normal":
+        res = _solved(cl.simulate_impact, grain, sensor, law, 0.75, audit=False)
+    else:
+        spring = cl.laws.Mindlin(122788.0, 0.697108, history="total")
+        # the drawn angle and spin (at exactly 0 the oblique contact stays one-sided)
+        res = _solved(
+            cl.simulate_oblique,
+            grain,
+            sensor,
+            law,
+            spring,
+            0.75,
+            5.269733254376209e-221,
+            spin=7.843109249393857e-195,
+            audit=False,
+        )
+    assert res.audit()["one_sided"].passed
 
 
 def _frame(rows):

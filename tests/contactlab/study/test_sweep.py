@@ -202,7 +202,8 @@ def test_the_grid_resolves_the_lobe_and_the_peaks(setup):
     """Reading the metrics off the study's output grid changes them far less than the errors
     the study reports (0.5-200 %): the grid is fine enough for either reading."""
     for d, f in ((2.5e-3, 300e3), (5e-3, 10e3), (1e-3, 40e3)):
-        grain, sensor, law, v = setup.at({"grain.diameter": d, "sensor.resonance": f})
+        config = setup.config({"grain.diameter": d, "sensor.resonance": f})
+        grain, sensor, law, v = config.grain, config.sensor, config.law, config.velocity
         period = min(sensor.period, law.contact_time(grain.mass, v))
         res = cl.simulate_impact(
             grain, sensor, law, v, sample_rate=setup.samples_per_period / period
@@ -239,8 +240,8 @@ def test_scatter_distributions_and_validation():
 
 def test_material_size_dependence(setup):
     material = replace(setup, size_dependence="material")
-    _, _, small, _ = material.at({"grain.diameter": 2e-3})
-    _, _, large, _ = material.at({"grain.diameter": 4e-3})
+    small = material.config({"grain.diameter": 2e-3}).law
+    large = material.config({"grain.diameter": 4e-3}).law
     # equivalent linear stiffness of a Hertz contact grows in proportion to the diameter
     assert large.stiffness / small.stiffness == pytest.approx(2.0, rel=1e-12)
     # and keeps the base law's damping ratio
@@ -250,8 +251,8 @@ def test_material_size_dependence(setup):
     ]
     assert zeta[0] == pytest.approx(zeta[1], rel=1e-12)
     hertz = replace(setup, law=Hertz(1e6), size_dependence="material")
-    _, _, h2, _ = hertz.at({"grain.diameter": 2e-3})
-    _, _, h8, _ = hertz.at({"grain.diameter": 8e-3})
+    h2 = hertz.config({"grain.diameter": 2e-3}).law
+    h8 = hertz.config({"grain.diameter": 8e-3}).law
     assert h8.k_hertz / h2.k_hertz == pytest.approx(2.0, rel=1e-12)  # kH ~ sqrt(R)
     with pytest.raises(cl.ParameterError, match="cannot be swept"):
         run_grid(material, {"law.stiffness": [1e5]})

@@ -9,6 +9,7 @@ from hypothesis import strategies as st
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.compare import QUANTITIES
 from contactlab.config import load_preset
 from contactlab.laws import LAWS, Branch, ContactLaw, Hertz, LinearViscoelastic, PlasticTrapezoid
 from contactlab.testing import (
@@ -30,8 +31,7 @@ from contactlab.testing import (
 from contactlab.testing import closed_forms as closed_forms_module
 from contactlab.testing.golden_trace import REGRESSION_RTOL, STORED_QUANTITIES
 from contactlab.testing.strategies import grains, impact_velocities, laws, sensors
-from dem_check.compare import QUANTITIES
-from dem_check.traces import Trace
+from contactlab.traces import Trace
 
 M = 5.0e-5  # grain mass [kg]
 GRAIN = cl.Grain.from_mass(M)
@@ -183,7 +183,7 @@ def test_passive_rejects_bad_input():
         assert_passive(Hertz(K_HERTZ), 1e-4, samples=1)
 
 
-# --- trace comparison (dem_check.compare at regression tolerances) ------------------------
+# --- trace comparison (contactlab.compare at regression tolerances) ------------------------
 def test_result_matches_itself_on_every_quantity():
     res = impact()
     comparison = assert_trace_matches(res, res)

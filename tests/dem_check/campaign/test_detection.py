@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from contactlab.errors import ParameterError
+from contactlab.traces import Trace
 from dem_check.campaign import find_impacts, synthetic_record
-from dem_check.traces import Trace
 
 RATE = 2e6
 NOISE = 0.03  # [N], about 1 % of the hard grain's peaks

@@ -79,7 +79,7 @@ def test_campaign_on_the_real_records(tmp_path):
         peak, impulse, _ = _reference(read_trace(path))
         # the low-pass is skipped (cutoff above Nyquist): the peak is the largest sample,
         # less a baseline that differs from the reference median by the wander (< 0.1 N)
-        assert row["peak_signal [N]"] == pytest.approx(peak, abs=0.1)
+        assert row["peak_sensor_force [N]"] == pytest.approx(peak, abs=0.1)
         # impulse of a 0.3 ms hit from a plain sum over 80 samples (3 ms); the two
         # baselines differ by up to the +-0.1 N wander, over 3 ms 2 % of the 12-15 mN*s
         assert row["impulse [N*s]"] == pytest.approx(impulse, rel=0.02)

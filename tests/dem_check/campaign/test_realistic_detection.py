@@ -78,7 +78,7 @@ def _check(record, sensor):
         assert distance <= MATCH, f"invented: {window}"
     onsets = np.array([w.onset for w in found.impacts])
     for _, row in record.truth.iterrows():
-        if row["peak_signal [N]"] >= CLEAR * record.noise:
+        if row["peak_sensor_force [N]"] >= CLEAR * record.noise:
             assert onsets.size and np.min(np.abs(onsets - row["onset [s]"])) <= MATCH, (
                 f"missed: {row.to_dict()} among {[(w.status, w.onset) for w in found.impacts]}"
             )
@@ -225,7 +225,7 @@ def test_a_clipped_impact_is_flagged_with_its_peak_as_a_lower_bound(hard_setup):
     )
     first, second = find_impacts(record.trace, sensor).impacts
     assert first.status == "clipped" and "lower bound" in first.reason
-    assert first.peak < record.truth["peak_signal [N]"][0]  # the true peak is above the rail
+    assert first.peak < record.truth["peak_sensor_force [N]"][0]  # the true peak is above the rail
     assert second.status == "ok"  # 1.6 N stays under the 2 N rail
 
 

@@ -89,7 +89,7 @@ def test_crosstalk_rings_at_the_plate_modes_after_each_impact(hard_setup):
     t = np.asarray(rec.trace.t)
     ringing = np.asarray(rec.trace.values) - np.asarray(plain.trace.values)
     assert not ringing[t < 0.02].any()
-    peak = rec.truth["peak_signal [N]"][0]
+    peak = rec.truth["peak_sensor_force [N]"][0]
     # each mode starts at 0.5-1 times crosstalk * peak; three modes add up to at most 3
     assert 0.02 * peak < np.abs(ringing).max() < 3 * 0.05 * peak
     f, psd = signal.periodogram(ringing, fs=RATE)

@@ -38,7 +38,9 @@ def test_sample_impacts_against_their_truth(samples):
         truth = json.loads(Path(row["file"] + ".json").read_text(encoding="utf-8"))["truth"]
         # the targets, on 8-16 bit quantised records with 0.2-0.6 mV noise
         assert abs(row["onset [s]"] - truth["onset_time [s]"]) < 10e-6
-        assert row["peak_signal [N]"] == pytest.approx(truth["peak_sensor_force [N]"], rel=0.02)
+        assert row["peak_sensor_force [N]"] == pytest.approx(
+            truth["peak_sensor_force [N]"], rel=0.02
+        )
         assert row["peak_contact_force [N]"] == pytest.approx(
             truth["peak_contact_force [N]"], rel=0.05
         )

@@ -30,12 +30,6 @@ V0 = 2.0  # impact speed [m/s]
 
 
 @pytest.fixture(scope="module")
-def grain():
-    """The paper's 5 mm grain (5.007e-5 kg)."""
-    return cl.Grain(diameter=5e-3, density=765.0)
-
-
-@pytest.fixture(scope="module")
 def elastic():
     """Undamped hard contact, k2 = 1e5 N/m."""
     return cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)

@@ -26,11 +26,12 @@ NORMAL_TESTS = {1, 2, 3, 9}
 def report(tmp_path_factory):
     """The tests with engine columns, as ``--engines lammps,kratos`` runs them (LAMMPS'
     tests 5-6 are test_oblique.py's, the contactlab-only tests 5-8 test_chung_ooi.py's)."""
-    from contactlab.cli import _benchmark_engines, _engine
+    from contactlab.cli import _benchmark_engines
+    from contactlab.engines import load_engine
 
     out = tmp_path_factory.mktemp("chung_ooi_engines")
     engines = _benchmark_engines(["lammps", "kratos"])
-    lammps = _engine("lammps").lammps_oblique
+    lammps = load_engine("lammps").oblique_impact
     return run_chung_ooi(out, lammps=lammps, engines=engines, tests=(1, 2, 3, 4, 9))
 
 

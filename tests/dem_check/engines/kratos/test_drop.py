@@ -26,26 +26,6 @@ from dem_check.engines.kratos import drop_test, engine_check, load_kratos
 pytestmark = pytest.mark.kratos
 
 V0 = 2.0  # impact speed [m/s]
-E_STAR = 21.6e6  # the paper's grain on a rigid flat, E* [Pa]
-
-
-@pytest.fixture(scope="module")
-def grain():
-    """The paper's 5 mm grain (5.007e-5 kg)."""
-    return cl.Grain(diameter=5e-3, density=765.0)
-
-
-@pytest.fixture(scope="module")
-def laws(grain):
-    """One law of each mapped kind, at the paper's scale."""
-    k_hertz = analytic.hertz_stiffness(E_STAR, grain.radius)
-    return {
-        "linear": cl.laws.LinearViscoelastic(1e5, 1.0),
-        "hertz": cl.laws.Hertz(k_hertz),
-        "hertz_damped": cl.laws.HertzDamped.from_material(
-            E_STAR, 0.2, grain.radius, 0.5, grain.mass
-        ),
-    }
 
 
 LAW_NAMES = ("linear", "hertz", "hertz_damped")

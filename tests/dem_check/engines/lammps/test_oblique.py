@@ -124,5 +124,7 @@ def test_chung_ooi_lammps_column(tmp_path):
     assert all(r["passed"] for r in report["rows"]), [r for r in report["rows"] if not r["passed"]]
     with_lammps = [r for r in report["rows"] if r["lammps"] is not None]
     assert {r["test"] for r in with_lammps} == {4, 5, 6}
-    # gross-sliding rows of tests 4 and 5 (84) and test 6's beta against LAMMPS (68)
-    assert len(with_lammps) == 84 + 68
+    # gross-sliding rows of tests 4 and 5 (84), test 6's beta against LAMMPS (68), and
+    # test 4 against contactlab with LAMMPS' rules (mindlin, mindlin/force; vt' and R w';
+    # 17 angles, 2 materials: 136, the attribution)
+    assert len(with_lammps) == 84 + 68 + 136

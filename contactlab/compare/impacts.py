@@ -1,0 +1,190 @@
+"""Compare two impacts quantity by quantity (:func:`compare`), or a measured trace with
+the model of its set-up (:func:`compare_trace`)."""
+
+import numpy as np
+
+from contactlab import metrics, signals
+from contactlab.compare.comparison import Comparison, quantity_row, waveform_row
+from contactlab.compare.physics import physics_problems
+from contactlab.compare.quantities import merged_tolerances, noise_tolerances
+from contactlab.compare.waveform import (
+    ALIGNMENTS,
+    alignment_shift,
+    sensor_signal,
+    waveform_errors,
+)
+from contactlab.config import ImpactConfig
+from contactlab.errors import ParameterError
+from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
+from contactlab.traces.prepare import noise_level, remove_baseline
+from contactlab.traces.trace import Trace
+from contactlab.validation import check_choice, check_number
+
+__all__ = ["compare", "compare_trace"]
+
+_SCALARS = (
+    "contact_time",
+    "peak_contact_force",
+    "peak_sensor_force",
+    "sensor_response_time",
+    "restitution",
+)
+_SENSOR_SCALARS = {"peak_sensor_force": "peak", "sensor_response_time": "duration"}
+
+
+def _scalar(obj, name, threshold, hysteresis):
+    """Value of a scalar quantity, or None when the object does not have it."""
+    if name not in _SENSOR_SCALARS:
+        return getattr(obj, name, None)  # a trace has no contact force or grain velocity
+    if isinstance(obj, Trace):
+        pulse = obj.metrics(threshold or 0.0, hysteresis)
+    elif threshold is not None:
+        pulse = metrics.pulse_metrics(obj.t, obj.sensor_force, threshold, hysteresis=hysteresis)
+    else:
+        return getattr(obj, name)
+    return getattr(pulse, _SENSOR_SCALARS[name])
+
+
+def _label(obj):
+    if isinstance(obj, Trace):
+        return "trace"
+    return str(getattr(obj, "method", type(obj).__name__))
+
+
+def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, hysteresis=0.0):
+    """Compare two impacts quantity by quantity.
+
+    Parameters
+    ----------
+    a : ImpactResult, EngineResult or Trace
+        The impact under test (engine run, measurement).
+    b : ImpactResult, EngineResult or Trace
+        The reference (usually :func:`contactlab.simulate_impact`); relative errors are
+        ``(a - b) / |b|``.
+    tolerances : dict, optional
+        Tolerances by quantity name, replacing :data:`DEFAULT_TOLERANCES` (same basis);
+        unknown names raise ParameterError listing the valid ones.
+    align : {"onset", "xcorr", None}, default "onset"
+        Time alignment of the sensor signals before the waveform errors (see
+        :mod:`contactlab.compare.waveform`). Durations and peaks do not depend on it.
+    threshold : float, optional
+        Read both sensor signals' first lobes with :func:`contactlab.metrics.pulse_metrics`
+        at this level [N] (e.g. a few times a trace's noise). Default: each result's own
+        reading (exact for :class:`~contactlab.ImpactResult`), and 0 for a trace.
+    labels : (str, str), optional
+        Names of a and b in the table and plot; default from their types.
+    hysteresis : float, default 0
+        With ``threshold``: how far below it a signal must fall to end its lobe [N] (see
+        :func:`contactlab.metrics.first_lobe`).
+
+    Returns
+    -------
+    Comparison
+
+    Examples
+    --------
+    >>> import contactlab as cl
+    >>> law = cl.laws.LinearViscoelastic(1e5, 1.0)
+    >>> grain = cl.Grain(diameter=5e-3, density=765.0)
+    >>> res = cl.simulate_impact(grain, cl.Sensor.rigid(), law, 2.0)
+    >>> compare(res, res).passed
+    True
+    """
+    tolerances = merged_tolerances(tolerances)
+    align = check_choice("align", align, ALIGNMENTS)
+    if threshold is not None:
+        threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False, unit="N")
+    labels = tuple(labels) if labels is not None else (_label(a), _label(b))
+    if len(labels) != 2:
+        raise ParameterError(f"labels must be two names; got {labels!r}")
+    sig_a, sig_b = sensor_signal(a, labels[0]), sensor_signal(b, labels[1])
+    rows = []
+    for name in _SCALARS:
+        va = _scalar(a, name, threshold, hysteresis)
+        vb = _scalar(b, name, threshold, hysteresis)
+        missing = [lab for lab, v in zip(labels, (va, vb), strict=True) if v is None]
+        note = f"not available: {' and '.join(missing)} has no {name}" if missing else ""
+        rows.append(quantity_row(name, va, vb, tolerances[name], note))
+    shift = alignment_shift(sig_a, sig_b, align)
+    rms, largest, window = waveform_errors(sig_a, sig_b, shift)
+    scale = float(np.max(np.abs(sig_b[1])))
+    note = f"sensor signal, over b's peak {scale:.4g} N"
+    rows.append(
+        waveform_row("waveform_rms_error", rms, scale, tolerances["waveform_rms_error"], note)
+    )
+    rows.append(
+        waveform_row("waveform_max_error", largest, scale, tolerances["waveform_max_error"], note)
+    )
+    return Comparison(rows, a, b, labels, align, shift, window, threshold)
+
+
+def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshold=None):
+    """Compare a measured sensor trace with the model of an impact set-up.
+
+    The trace's baseline (its samples before the trigger) is removed when it has one, and
+    both sensor signals are then read at ``k`` times the trace's noise, so the
+    measurement and the model are read alike. A lobe ends at its last crossing of that
+    level before the signal is back at the baseline (hysteresis equal to the threshold),
+    so noise on a slow rise or fall cannot cut it short. A trace with fewer than 16
+    samples before its trigger (one that starts at the impact) takes its baseline and
+    noise from its quietest stretch (:func:`contactlab.signals.quiet_window`);
+    :attr:`Comparison.notes` says which was done.
+
+    Parameters
+    ----------
+    trace : Trace
+        The measured sensor signal in newtons (read it with ``sensitivity=``).
+    config : contactlab.config.ImpactConfig
+        The impact set-up (:func:`contactlab.config.load_config`); simulated with its
+        ``[simulation]`` settings.
+    tolerances : dict, optional
+        See :func:`compare`; by default the engine tolerances widened by the trace's
+        noise (:func:`noise_tolerances`), and any given here replace those.
+    align : {"onset", "xcorr", None}, default "onset"
+    k : float, default 5
+        Lobe threshold in units of the baseline noise [-].
+    threshold : float, optional
+        Lobe threshold [N] instead of ``k`` times the noise.
+
+    Returns
+    -------
+    Comparison
+        ``a`` is the measurement (after baseline removal), ``b`` the model;
+        ``physics`` lists what in the measurement the grain cannot produce (its impulse
+        from the trigger on over the grain's mass, its peak;
+        :func:`contactlab.compare.physics.physics_problems`), which fails the comparison.
+    """
+    sensor_signal(trace, "measured")
+    if not isinstance(config, ImpactConfig):
+        raise ParameterError(
+            "config must be a contactlab.config.ImpactConfig (from load_config or "
+            f"load_preset); got {type(config).__name__}"
+        )
+    k = check_number("k", k, low=0.0, low_open=False)
+    trigger = trace.metadata.get("trigger_time")
+    trigger = 0.0 if trigger is None else trigger
+    before = int(np.count_nonzero(trace.t < trigger))
+    if before >= BASELINE_MIN_SAMPLES:
+        trace = remove_baseline(trace)
+        baseline = f"removed: mean of the {before} samples before {trigger:.6g} s"
+        noise = noise_level(trace)
+    else:
+        window = signals.quiet_window(trace.t, trace.values)
+        noise = noise_level(trace, window)
+        trace = remove_baseline(trace, window)
+        baseline = (
+            f"removed: only {before} samples before the trigger, so the mean of the "
+            f"record's quietest stretch, {window[0]:.6g} to {window[1]:.6g} s"
+        )
+    if threshold is None:
+        threshold = k * noise
+    model = config.simulate()
+    tolerances = {**noise_tolerances(noise, model.peak_sensor_force), **(tolerances or {})}
+    result = compare(
+        trace, model, tolerances, align, threshold, ("measured", "model"), hysteresis=threshold
+    )
+    result.notes.update({"baseline": baseline, "lobe threshold [N]": threshold})
+    velocity_change = metrics.impulse(trace.t, trace.values, 0.0) / config.grain.mass
+    result.physics = physics_problems(config.grain, float(np.max(trace.values)), velocity_change)
+    return result
