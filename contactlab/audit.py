@@ -258,7 +258,7 @@ def grid_checks(t, inside, normal_raw, normal, tangential, friction, peak, toler
     ----------
     t : numpy.ndarray
         Times [s].
-    inside : numpy.ndarray of bool
+    inside : numpy.ndarray of bool or slice
         Samples inside the contact.
     normal_raw : numpy.ndarray or None
         The normal law's unclipped formula on the samples [N] (None: no one-sided check).

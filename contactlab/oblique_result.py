@@ -82,7 +82,7 @@ class ObliqueResult:
         angle,
         spin,
         model,
-        pieces,
+        contact,
         free,
         final_state,
         duration,
@@ -93,51 +93,38 @@ class ObliqueResult:
         self.normal_law, self.tangential_law = normal_law, tangential_law
         self.velocity, self.angle, self.spin = velocity, angle, spin
         self.duration, self.sample_rate = duration, sample_rate
-        self._model, self._pieces, self._free = model, pieces, free
+        self._model, self._contact, self._free = model, contact, free
         self._final = np.asarray(final_state, dtype=float)
         n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
         self.t = np.arange(n, dtype=float) / sample_rate
-        states, self.normal_force, self.tangential_force = self._evaluate(self.t)
+        states, self._raw, self.normal_force, self.tangential_force, self.slip = self._evaluate(
+            self.t
+        )
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
-        self.slip = model.slip(states)
         self.sensor_force = sensor.signal(states[:, :4], self.normal_force)
 
     # -- dense evaluation ------------------------------------------------------------------
     def _evaluate(self, times):
-        """States (n, 7), normal and tangential force (n,) at times [s] (any order)."""
+        """States (n, 7), the normal law's unclipped formula (0 after the contact), normal and
+        tangential force [N] and slip [m/s] (n,) at increasing times [s]."""
         times = np.asarray(times, dtype=float)
-        states = np.empty((times.size, 7))
-        normal, tangential = np.zeros(times.size), np.zeros(times.size)
-        after = times >= self.contact_time
-        for piece in self._pieces:
-            inside = (times >= piece.t0) & (times < piece.t1)
-            if not inside.any():
-                continue
-            st = piece.states(times[inside] - piece.t0)
-            states[inside] = st
-            _, normal[inside], tangential[inside] = self._forces(piece.phase, st)
-        if after.any():
-            states[after, :4] = self._free.states(times[after] - self._free.t0)
-            states[after, 4:] = [self._final[4], self._final[5], 0.0]
-        return states, normal, tangential
-
-    def _forces(self, phase, st):
-        """Unclipped normal formula, normal force (>= 0) and tangential force [N] on states
-        (n, 7) of a contact piece in ``phase``."""
-        model = self._model
-        d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
-        raw = model.normal(d, r)
-        normal = np.maximum(raw, 0.0)
-        if phase == 0:
-            return raw, normal, model.law.trial_force(st[:, 6], d, model.slip(st))
-        return raw, normal, phase * model.law.friction * normal
+        signals = (np.empty((times.size, 7)), *np.zeros((4, times.size)))
+        split = int(np.searchsorted(times, self.contact_time, side="left"))
+        if split:
+            self._contact(times[:split], tuple(a[:split] for a in signals))
+        if split < times.size:
+            states = signals[0]
+            states[split:, :4] = self._free.states(times[split:] - self._free.t0)
+            states[split:, 4:] = [self._final[4], self._final[5], 0.0]
+            signals[4][split:] = self._model.slip(self._final[None, :])[0]
+        return signals
 
     # -- rebound ---------------------------------------------------------------------------
     @property
     def contact_time(self):
         """Duration of the contact [s] (exact event time)."""
-        return self._pieces[-1].t1
+        return self._contact.end
 
     @property
     def normal_velocity(self):
@@ -211,14 +198,17 @@ class ObliqueResult:
     @property
     def phases(self):
         """Contact phases ``[(start [s], end [s], "stick" | "slide+" | "slide-"), ...]``."""
-        return [(p.t0, p.t1, _PHASE_NAMES[p.phase]) for p in self._pieces]
+        return [(t0, t1, _PHASE_NAMES[code]) for t0, t1, code in self._contact.phases()]
 
     @cached_property
     def _peaks(self):
         times = np.concatenate(
-            [np.linspace(p.t0, p.t1, _PEAK_SAMPLES, endpoint=False) for p in self._pieces]
+            [
+                np.linspace(t0, t1, _PEAK_SAMPLES, endpoint=False)
+                for t0, t1, _ in self._contact.phases()
+            ]
         )
-        _, normal, tangential = self._evaluate(times)
+        _, _, normal, tangential, _ = self._contact(times)
         return float(normal.max()), float(np.abs(tangential).max())
 
     @property
@@ -272,13 +262,11 @@ class ObliqueResult:
         """
         checks = list(self._end_checks())
         if not full:
-            inside = self.t < self.contact_time
-            d, r = self.x2 - self.x1, self.v2 - self.v1
-            raw = np.where(inside, self._model.normal(d, r), 0.0)
+            inside = slice(0, int(np.searchsorted(self.t, self.contact_time, side="left")))
             checks += grid_checks(
                 self.t,
                 inside,
-                raw,
+                self._raw,
                 self.normal_force,
                 self.tangential_force,
                 self.tangential_law.friction,
@@ -306,12 +294,15 @@ class ObliqueResult:
             "m V R (angular momentum about the contact point)",
         )
 
-    def _gauss_nodes(self, piece):
-        """Gauss-Legendre nodes [s] and weights of a contact phase, graded at both ends and
-        at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`)."""
+    def _gauss_nodes(self):
+        """Per contact phase, Gauss-Legendre nodes [s] and weights graded at both ends and
+        at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`), with the
+        states and forces there (:meth:`_contact`)."""
         sys_ = self._model.system
         period = math.inf if sys_.rigid else 2.0 * math.pi / math.sqrt(sys_.k1 / sys_.m1)
-        return gauss_rule(piece.t0, piece.t1, period, graded=True, graded_end=True)
+        for t0, t1, _ in self._contact.phases():
+            nodes, weights = gauss_rule(t0, t1, period, graded=True, graded_end=True)
+            yield nodes, weights, *self._contact(nodes)
 
     def _arm_shortening_moment(self):
         """``integral d F dt`` [N*m*s] over the contact with ``lever_arm="contact"`` (the
@@ -320,10 +311,7 @@ class ObliqueResult:
         if not model.contact_arm:
             return 0.0
         total = 0.0
-        for piece in self._pieces:
-            nodes, weights = self._gauss_nodes(piece)
-            st = piece.states(nodes - piece.t0)
-            _, _, tangential = self._forces(piece.phase, st)
+        for _, weights, st, _, _, tangential, _ in self._gauss_nodes():
             total += weights @ ((model.radius - model.arm(st[:, 2] - st[:, 0])) * tangential)
         return total
 
@@ -352,11 +340,7 @@ class ObliqueResult:
         sums = np.zeros(5)  # N d', -T s, c1 v1**2, N, T
         raw_worst, excess_worst = [], []
         peak = self.peak_normal_force
-        for piece in self._pieces:
-            nodes, weights = self._gauss_nodes(piece)
-            st = piece.states(nodes - piece.t0)
-            raw, normal, tangential = self._forces(piece.phase, st)
-            slip = model.slip(st)
+        for nodes, weights, st, raw, normal, tangential, slip in self._gauss_nodes():
             integrands = (
                 normal * (st[:, 3] - st[:, 1]),
                 -tangential * slip,

@@ -31,24 +31,38 @@ class Column:
         ``True``: values must be ``> 0``; ``False``: ``>= 0``.
     allow_inf : bool
         Whether ``+inf`` is allowed (an immovable wall's ``k1``).
+    signed : bool
+        Whether any finite number is allowed (``low_open`` then does not apply).
+    below : float
+        Values must be below it (an angle of incidence below ``pi/2``).
     """
 
     name: str
     meaning: str
     low_open: bool = True
     allow_inf: bool = False
+    signed: bool = False
+    below: float = np.inf
 
     def bad_rows(self, values):
         """Boolean mask of the values this column refuses."""
         with np.errstate(invalid="ignore"):
-            bad = np.isnan(values) | (values <= 0.0 if self.low_open else values < 0.0)
+            bad = np.isnan(values)
+            if not self.signed:
+                bad |= values <= 0.0 if self.low_open else values < 0.0
+            if self.below < np.inf:
+                bad |= values >= self.below
         if not self.allow_inf:
             bad |= np.isinf(values)
         return bad
 
     def rule(self):
         """The allowed range, in words."""
+        if self.signed:
+            return "a finite number"
         bound = "> 0" if self.low_open else ">= 0"
+        if self.below < np.inf:
+            bound += f" and < {self.below!r}"
         return f"a number {bound}" + (" (inf allowed)" if self.allow_inf else ", finite")
 
 

@@ -167,7 +167,7 @@ def _solve_chunks(solve, arrays, results, chunk, threads, failures):
                 job.result()
 
 
-def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
+def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1, results=RESULT_COLUMNS):
     """Check a batch frame, solve it chunk by chunk, return it with the results added.
 
     Parameters
@@ -184,11 +184,13 @@ def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
         Rows solved at a time.
     threads : int or None
         Threads (None: every core).
+    results : sequence of str, default :data:`RESULT_COLUMNS`
+        Names of the columns ``solve`` fills, in order.
 
     Returns
     -------
     pandas.DataFrame
-        A copy of ``frame`` with :data:`RESULT_COLUMNS` added. If a row could not be
+        A copy of ``frame`` with the ``results`` columns added. If a row could not be
         solved, its numbers are NaN, an ``error`` column gives its reason (empty for the
         other rows, which are all solved) and a :class:`RowFailedWarning` names the rows.
     """
@@ -197,11 +199,11 @@ def solve_frame(frame, columns, solve, *, chunk=DEFAULT_CHUNK, threads=1):
     arrays = check_frame(frame, columns, chunk)
     _check_sensor_pairs(arrays, frame)
     warn_implausible(arrays, frame)
-    results = np.empty((len(frame), len(RESULT_COLUMNS)))
+    names, results = results, np.empty((len(frame), len(results)))
     failures = {}
     _solve_chunks(solve, arrays, results, chunk, threads, failures)
     out = frame.copy()
-    for j, name in enumerate(RESULT_COLUMNS):
+    for j, name in enumerate(names):
         out[name] = results[:, j]
     if failures:
         rows = sorted(failures)

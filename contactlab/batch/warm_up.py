@@ -1,8 +1,9 @@
 """The numba-compiled solvers, compiled once and cached: check the cache, warm it.
 
-The Hertz-family contact pieces of :func:`contactlab.simulate_impact` and both batch
-kernels are compiled with numba on first use (20-50 s on a free 2-core machine, 156 s
-measured on a busy one) and cached as ``*.nbi``/``*.nbc`` files in the ``__pycache__``
+The Hertz-family contact pieces of :func:`contactlab.simulate_impact`, the oblique solver
+(:func:`contactlab.simulate_oblique`) and the batch kernels are compiled with numba on
+first use (20-50 s on a free 2-core machine, 156 s measured on a busy one, and the oblique
+kernels about 50 s of CPU time more) and cached as ``*.nbi``/``*.nbc`` files in the ``__pycache__``
 folders beside their sources; a new process then loads them in about 0.1 s. ``make demo``
 and ``make test`` pay the compile through :func:`warm_up` (``contactlab warm-up``), so no
 timed command hides it.
@@ -28,6 +29,12 @@ COMPILED_MODULES = (
     "contactlab.kernels.linear_impact",
     "contactlab.kernels.hertz_impact",
     "contactlab.kernels.impact_loop",
+    "contactlab.kernels.model_rhs",
+    "contactlab.kernels.oblique_rhs",
+    "contactlab.kernels.oblique_events",
+    "contactlab.kernels.oblique_kernel",
+    "contactlab.solver.oblique_phases",
+    "contactlab.batch.oblique_kernel",
 )
 """Modules with ``numba.njit(cache=True)`` functions."""
 
@@ -77,9 +84,10 @@ def warm_up():
     """
     from contactlab.batch.hertz import hertz_impacts
     from contactlab.batch.linear import linear_impacts
+    from contactlab.batch.oblique import oblique_impacts
     from contactlab.bodies import Grain, Sensor
-    from contactlab.laws import HertzDamped
-    from contactlab.solver import simulate_impact
+    from contactlab.laws import HertzDamped, Mindlin
+    from contactlab.solver import simulate_impact, simulate_oblique
 
     start = time.perf_counter()
     grain = Grain(diameter=5e-3, density=765.0)
@@ -88,4 +96,16 @@ def warm_up():
     simulate_impact(grain, sensor, law, 2.0)
     linear_impacts(_one_row_frame(**{"k2 [N/m]": 1e5, "c2 [N*s/m]": 1.0}))
     hertz_impacts(_one_row_frame(**{"k_hertz [N/m**1.5]": 3.0e6, "damping [N*s/m**1.25]": 2.0}))
+    simulate_oblique(grain, sensor, law, Mindlin(1e6, 0.3, "incremental"), 2.0, 0.5, spin=10.0)
+    oblique = _one_row_frame(
+        **{
+            "k_hertz [N/m**1.5]": 3.0e6,
+            "damping [N*s/m**1.25]": 2.0,
+            "k_mindlin [N/m**1.5]": 1e6,
+            "friction [-]": 0.3,
+        }
+    )
+    oblique_impacts(
+        oblique.assign(**{"radius [m]": 2.5e-3, "angle [rad]": 0.5, "spin [rad/s]": 0.0})
+    )
     return time.perf_counter() - start

@@ -1,5 +1,6 @@
 """DOP853 compiled with numba: the lean stepper of :mod:`contactlab.solver.dop853`, step
-for step, for the power-law contact of :mod:`contactlab.kernels.power`.
+for step, for the power-law contact of :mod:`contactlab.kernels.power` and the oblique
+impact of :mod:`contactlab.kernels.oblique_rhs` (:mod:`contactlab.kernels.model_rhs`).
 
 The Python :class:`~contactlab.solver.dop853.Stepper` spends its time in interpreter
 overhead: twelve small numpy operations per stage on a four-component state. The same
@@ -21,7 +22,7 @@ import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
 from contactlab.compiled import njit
-from contactlab.kernels.power import rhs
+from contactlab.kernels.model_rhs import rhs
 
 __all__ = [
     "STAGES",

@@ -52,6 +52,7 @@ from contactlab.errors import ParameterError
 from contactlab.laws.base import ContactLaw
 from contactlab.laws.hertz import Hertz, HertzDamped
 from contactlab.laws.linear import LinearViscoelastic
+from contactlab.laws.tangential_form import TangentialForm
 from contactlab.validation import KeywordChecked, check_choice, check_number, numbers_checked
 
 __all__ = [
@@ -59,6 +60,7 @@ __all__ = [
     "DAMPING_FORMS",
     "HISTORY_FORMS",
     "Mindlin",
+    "TangentialForm",
     "TangentialLaw",
     "TangentialSpring",
     "damping_ratio",
@@ -182,6 +184,10 @@ class TangentialLaw(KeywordChecked):
         damping += self.damping_slope(overlap) * overlap_rate * slip
         return elastic - damping
 
+    def form(self):
+        """This law as a :class:`TangentialForm` (bound laws only: :meth:`for_contact`)."""
+        raise NotImplementedError
+
     def history_on_cap(self, force, overlap, slip):
         """History that makes the trial force equal ``force`` [N] (LAMMPS' rescaling).
 
@@ -248,6 +254,9 @@ class TangentialSpring(TangentialLaw):
 
     def stiffness_slope(self, overlap):
         return 0.0
+
+    def form(self):
+        return TangentialForm(self.friction, self.k, 0.0, self.damping, 0.0, False, False)
 
 
 class Mindlin(TangentialLaw):
@@ -428,6 +437,17 @@ class Mindlin(TangentialLaw):
 
     def stiffness_slope(self, overlap):
         return 0.5 * self.k_mindlin / math.sqrt(overlap) if overlap > 0.0 else 0.0
+
+    def form(self):
+        return TangentialForm(
+            self.friction,
+            self.k_mindlin,
+            0.5,
+            self._tied,
+            0.25,
+            self.history_kind == "force",
+            self.history == "incremental_rescaled",
+        )
 
 
 def damping_ratio(normal_law, mass):

@@ -74,7 +74,8 @@ def integrate_piece(
     fun, t0, y0, tau_max, rtol, atol, event_values, directions, touch, retaken=(0,)
 ):
     """DOP853 from ``t0`` until an event or ``t0 + tau_max``, started in ``s = tau**(1/4)``
-    at a touch (see :func:`adaptive_contact`); shared with the oblique solver.
+    at a touch (see :func:`adaptive_contact`), for branches with exits; the oblique
+    solver runs the same rule compiled (:mod:`contactlab.kernels.oblique_kernel`).
 
     Parameters
     ----------

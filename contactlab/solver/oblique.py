@@ -32,6 +32,13 @@ law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigm
 At the touch (``N = 0``) the phase is that of LAMMPS' rule in the limit ``t -> 0+``: the
 history starts from zero and the contact slides only if the trial force along a sticking
 path exceeds ``mu N`` already (:meth:`ObliqueModel.touch_phase`).
+
+With LAMMPS' cap (``coulomb_cap="total"``, the default) the same phase loop, equations,
+events and touch rule run compiled on the normal solver's DOP853 kernel
+(:mod:`contactlab.kernels.oblique_kernel`, :mod:`contactlab.kernels.oblique_rhs`,
+:mod:`contactlab.kernels.oblique_events`; issue 25), shared with the batch
+(:func:`contactlab.batch.oblique_impacts`); Kratos' elastic cap still runs the Python loop
+of this module.
 """
 
 import math
@@ -43,6 +50,9 @@ from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
 from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError, WindowWarning
+from contactlab.kernels.oblique_kernel import tolerances
+from contactlab.kernels.oblique_rhs import pack
+from contactlab.kernels.power import pack as pack_normal
 from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
@@ -57,6 +67,7 @@ from contactlab.solver.impact import (
     auto_window,
     check_output_size,
 )
+from contactlab.solver.oblique_phases import PiecePhases, compiled_contact
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
 from contactlab.validation import (
@@ -107,7 +118,8 @@ class ObliqueModel:
 
     def __init__(self, system, normal_law, tangential_law, radius, inertia, lever_arm="radius"):
         self.system, self.law = system, tangential_law.for_contact(normal_law, system.m2)
-        self.normal = normal_law.branch("load").force
+        branch = normal_law.branch("load")
+        self.normal, self._form = branch.force, branch.power
         self.radius, self.inertia = radius, inertia
         self.contact_arm = lever_arm == "contact"
         self.cap_rules = cap_rules(self)  # the slides of the law's Coulomb cap
@@ -128,6 +140,12 @@ class ObliqueModel:
         return states[..., 4] - self.arm(states[..., 2] - states[..., 0]) * states[..., 5]
 
     # -- pieces of the right-hand side ----------------------------------------------------
+    def pack(self):
+        """Packed parameters of the compiled solver (:func:`kernels.oblique_rhs.pack`)."""
+        sys_ = self.system
+        normal = pack_normal(self._form, sys_.m1, sys_.k1, sys_.c1, sys_.m2, sys_.rigid)
+        return pack(normal, self.law.form(), self.radius, self.inertia, self.contact_arm)
+
     def _normal_accelerations(self, x1, v1, n):
         """(a1, a2): sensor and grain normal accelerations [m/s**2] under force ``n``."""
         sys_ = self.system
@@ -270,38 +288,20 @@ class ContactPiece:
 
 
 def _solve_contact(model, y0, rtol, scale):
-    """Integrate the contact from the touch to the separation; returns (pieces, y_end)."""
+    """Integrate the contact from the touch to the separation; returns (contact phases,
+    y_end): compiled (:func:`contactlab.solver.oblique_phases.compiled_contact`) for
+    LAMMPS' Coulomb cap, in Python (:func:`contactlab.solver.adaptive.integrate_piece`)
+    for Kratos' elastic cap (:mod:`contactlab.solver.coulomb_cap`), not compiled yet."""
     velocity, force_scale = scale
-    # absolute tolerances: 1e-3 rtol of what 1 us of motion changes; the normal states at
-    # the normal speed, which near grazing incidence is many decades below the impact speed
-    # (at 90 deg minus one float, 1e-16 of it), the tangential ones at the impact speed
-    normal = y0[3] / velocity
-    length = velocity * 1e-6  # displacement scale [m]: 1 us of travel at impact speed
-    if model.law.history_kind == "displacement":
-        history_scale = length
-    else:  # a force, capped at mu N: on the normal force's scale
-        history_scale = normal * force_scale
-    spin_scale = velocity / model.radius
-    atol = (
-        1e-3
-        * rtol
-        * np.array(
-            [
-                normal * length,
-                normal * velocity,
-                normal * length,
-                normal * velocity,
-                velocity,
-                spin_scale,
-                history_scale,
-            ]
-        )
-    )
+    force_history = model.law.history_kind == "force"
+    atol = tolerances(rtol, velocity, y0[3], force_scale, force_history, model.radius)
     if not (atol > 0.0).all():  # a velocity near 1e-300 m/s: its scales underflow to 0
         raise ParameterError(
             f"velocity = {velocity!r} m/s is too small for the integrator's absolute "
             "tolerances, which scale with it (they underflow to 0)"
         )
+    if model.law.coulomb_cap == "total":
+        return compiled_contact(model, y0, rtol, atol, velocity)
     first = Stepper(model.rhs(STICK), 0.0, y0, rtol, atol).initial_step()
     phase = model.touch_phase(y0, first, rtol, atol)
     pieces, t, y, touch = [], 0.0, np.asarray(y0, dtype=float), True
@@ -321,7 +321,7 @@ def _solve_contact(model, y0, rtol, scale):
         y = states(hit[0] - t)[0]
         t, touch = hit[0], False
         if hit[1] == 0:
-            return pieces, y
+            return PiecePhases(model, pieces), y
         if phase == STICK:
             phase = model.cap_rules.slide_phase(+1 if hit[1] == 1 else -1, y)
         else:
@@ -447,8 +447,8 @@ def simulate_oblique(
     vn, vt = velocity * math.cos(angle), velocity * math.sin(angle)
     y0 = np.array([0.0, 0.0, 0.0, vn, vt, spin, 0.0])
     force_scale = grain.mass * velocity / 1e-6  # momentum over 1 us [N]
-    pieces, y_end = _solve_contact(model, y0, rtol, (velocity, force_scale))
-    t_end = pieces[-1].t1
+    contact, y_end = _solve_contact(model, y0, rtol, (velocity, force_scale))
+    t_end = contact.end
     window = auto_window(system, t_end) if duration is None else duration
     if window < t_end:
         warnings.warn(
@@ -479,7 +479,7 @@ def simulate_oblique(
         angle=angle,
         spin=spin,
         model=model,
-        pieces=pieces,
+        contact=contact,
         free=free,
         final_state=y_end,
         duration=window,

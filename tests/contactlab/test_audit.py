@@ -73,13 +73,22 @@ def test_elastic_energy_is_the_closed_form():
     assert elastic_energy(cl.laws.WaltonBraun(1e5, 3e5), d) == 0.0  # ends at zero force
 
 
-def test_the_audit_catches_the_unfixed_solver(monkeypatch):
-    """Put back issue 21's defect (an event starting its phase at zero is never armed): the
-    default cheap audit warns about Coulomb, the full audit names it."""
-    import contactlab.solver.adaptive as adaptive
+def test_the_audit_catches_a_solver_that_breaks_coulomb(monkeypatch):
+    """A solver whose events let the tangential force past ``mu N`` (issue 21's defect let a
+    phase that started at zero never arm its Coulomb events; since issue 25 those events are
+    compiled, so the defect is put back as a kernel that caps at ten times the law's
+    friction): the default cheap audit warns about Coulomb, the full audit names it."""
+    from contactlab.kernels.oblique_rhs import FRICTION
+    from contactlab.solver.oblique import ObliqueModel
 
-    monkeypatch.setattr(adaptive, "is_past", lambda value, direction: False)
-    monkeypatch.setattr(adaptive, "_grazing_root", lambda *args: None)
+    packed = ObliqueModel.pack
+
+    def broken(model):
+        par = packed(model)
+        par[FRICTION] *= 10.0
+        return par
+
+    monkeypatch.setattr(ObliqueModel, "pack", broken)
     normal, spring = cl.laws.KuwabaraKono(K_HERTZ, 2e-6), cl.laws.TangentialSpring(2e5, 0.3)
     with pytest.warns(AuditWarning, match="coulomb"):
         res = cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), normal, spring, 3.0, math.radians(85))
