@@ -193,6 +193,24 @@ def test_verify_reports_small_differences(paper_grain, paper_sensor):
     assert res.verification["reference_method"] == "adaptive"
 
 
+def test_a_rate_at_the_resolution_minimum_up_to_round_off_does_not_warn(paper_grain):
+    # a rigid wall: the minimum is ten samples per contact time, 10 / (t_end - t_touch)
+    law = LinearViscoelastic(1e5, 1.0)
+    (start, end), *_ = cl.simulate_impact(
+        paper_grain, cl.Sensor.rigid(), law, 2.0
+    ).contact_intervals
+    minimum = 10.0 / (end - start)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        # one ulp below the minimum: round-off of the rate, not too few samples
+        cl.simulate_impact(
+            paper_grain, cl.Sensor.rigid(), law, 2.0, sample_rate=np.nextafter(minimum, 0.0)
+        )
+    with pytest.warns(cl.ResolutionWarning, match="at least"):
+        # 1 % below is a real shortfall
+        cl.simulate_impact(paper_grain, cl.Sensor.rigid(), law, 2.0, sample_rate=0.99 * minimum)
+
+
 def test_bad_input_and_warnings(paper_grain, paper_sensor):
     law = LinearViscoelastic(1e5, 1.0)
     with pytest.raises(cl.ParameterError, match="velocity"):
