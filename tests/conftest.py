@@ -6,8 +6,10 @@ The paper's grains and sensors (``paper_grain``, ``paper_grain_small``, ``paper_
 """
 
 import os
+import sys
 
 import matplotlib
+import pytest
 from hypothesis import settings
 
 matplotlib.use("Agg")
@@ -24,3 +26,13 @@ pytest_plugins = ["pytester"]  # the plugin's own tests run pytest in temporary 
 
 PAPER_MASS = 765.0 * 3.141592653589793 * (5e-3) ** 3 / 6.0
 """The paper's 5 mm grain at 765 kg/m^3 [kg]."""
+
+
+@pytest.fixture(autouse=True)
+def _close_figures():
+    """Close the figures a test left open: pyplot keeps them, and the 21st open figure
+    raises matplotlib's RuntimeWarning (an error here) in whichever test draws next."""
+    yield
+    pyplot = sys.modules.get("matplotlib.pyplot")
+    if pyplot is not None:
+        pyplot.close("all")

@@ -224,9 +224,9 @@ def simulate_impact(
         always solved to its end; if it outlasts the window a :class:`WindowWarning`
         says how long the window must be.
     sample_rate : float, optional
-        Output sample rate [Hz]. Default: 20 001 samples over the window. A
-        :class:`ResolutionWarning` gives the minimum rate when the grid cannot resolve
-        the sensor period or the contact (10 samples each).
+        Output sample rate [Hz]. Default: 20 001 samples over the window, or more where
+        that cannot resolve the sensor period or the contact (10 samples each). A given
+        rate below that gets a :class:`ResolutionWarning` with the minimum rate.
     method : {"auto", "exact", "adaptive", "euler"}
         Solver (see :mod:`contactlab.solver`). ``"exact"`` needs a piecewise-linear law.
     verify : bool, default False
@@ -295,8 +295,8 @@ def simulate_impact(
         if not intervals:
             _no_contact_end(system, log[-1][0])
     _warn_window(intervals, log, window, duration)
-    if sample_rate is None:
-        sample_rate = (DEFAULT_SAMPLES - 1) / window
+    if sample_rate is None:  # a contact or sensor period long against the window's: more
+        sample_rate = max((DEFAULT_SAMPLES - 1) / window, _resolving_rate(sensor, intervals))
     check_output_size(window, sample_rate)
     _warn_resolution(sensor, intervals, sample_rate)
     result = ImpactResult(
@@ -361,15 +361,19 @@ def _warn_window(intervals, log, window, duration):
         )
 
 
-def _warn_resolution(sensor, intervals, sample_rate):
+def _resolving_rate(sensor, intervals):
+    """Lowest sample rate [Hz] with 10 samples per sensor period and per first contact."""
     needs = []
     if not sensor.is_rigid:
         needs.append(10.0 * sensor.resonance)
     if intervals:
         needs.append(10.0 / (intervals[0][1] - intervals[0][0]))
-    minimum = max(needs, default=0.0)
-    # a rate equal to the minimum up to round-off resolves it (ten samples each): the
-    # default rate, 20 000 intervals per window, is exactly that at a 2 000-period window
+    return max(needs, default=0.0)
+
+
+def _warn_resolution(sensor, intervals, sample_rate):
+    minimum = _resolving_rate(sensor, intervals)
+    # a rate equal to the minimum up to round-off resolves it (ten samples each)
     if sample_rate < minimum * (1.0 - 1e-12):
         warnings.warn(
             f"sample_rate = {sample_rate:.4g} Hz cannot resolve the sensor period and the "

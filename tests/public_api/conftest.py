@@ -316,6 +316,8 @@ PENDING = {
     "contactlab.study.setup.StudySetup.at": "its valid call changed in the final merge",
     "contactlab.config.law_from_table": "arrived from main in the last merge; the sweep "
     "found failures not triaged yet",
+    "contactlab.batch.oblique": "arrived with the oblique core (issue 25, merged last): "
+    "its valid frame (oblique columns) is not written yet",
     "contactlab.bodies.Sensor.signal": "arrived with the compiled core (issue 25, merged "
     "last): reads solver state arrays; valid arguments not written yet",
     "contactlab.bodies.Sensor.energy": "arrived with the compiled core (issue 25, merged "
