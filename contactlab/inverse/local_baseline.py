@@ -71,6 +71,9 @@ RESOLVED_PERIOD_SAMPLES = 4
 class LocalBaseline:
     """The local baseline of one impact and what it gives."""
 
+    window: tuple
+    """The baseline window's part that was fitted ``[start, end)`` [s] (its last
+    :data:`PRE_PERIODS` periods before the impact)."""
     values: np.ndarray
     """The baseline at every sample of the segment [N]."""
     post: tuple
@@ -133,10 +136,10 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
     post_start = contact_end if resolved else end
     post_start = min(post_start, float(t[-1]) - POST_MIN_SAMPLES * dt)
     post = (post_start, min(post_start + length, float(t[-1])))
-    in_base = (t >= base[0]) & (t < base[1])
     if base[1] <= start:  # a baseline before the impact: its last PRE_PERIODS
         near = max(PRE_PERIODS * sensor.period, POST_MIN_SAMPLES * dt)
-        in_base &= t >= base[1] - near
+        base = (max(base[0], base[1] - near), base[1])
+    in_base = (t >= base[0]) & (t < base[1])
     in_post = (t >= post[0]) & (t <= post[1]) & ~in_base
     fitted = in_base | in_post
     centre = float(t[fitted].mean())
@@ -164,6 +167,7 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
         total = impulse(t, y - line, start, end)
     drift = float(np.interp(post[0], t, line) - np.interp(start, t, line))
     return LocalBaseline(
+        window=tuple(base),
         values=line,
         post=post,
         impulse=float(total),

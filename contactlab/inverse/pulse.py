@@ -73,8 +73,9 @@ class PulseBaseline:
     onset: float
     """The pulse's onset [s]: its crossing of ``k`` noise sigmas."""
     window: tuple
-    """The baseline window before the pulse ``[start, end)`` [s] (empty, after the pulse,
-    for a short pre-trigger)."""
+    """The baseline window fitted before the pulse ``[start, end)`` [s]: the last
+    :data:`~contactlab.inverse.local_baseline.PRE_PERIODS` sensor periods before it
+    (empty, after the pulse, for a short pre-trigger); ``noise`` is read there."""
     contact: tuple
     """The window the contact lies in ``(start, end)`` [s]: a quarter sensor period
     before the onset to one lobe-length after the end of the signal's largest lobe."""
@@ -141,7 +142,8 @@ def _windows(t, y, sensor, window, k):
         mean, noise, _ = signals.baseline(t, y, pre, name="baseline_window")
         return pre, _onset_back(t, np.abs(y - mean), k * noise, peak), mean
     mean, _, onset, pre = baseline(t, y, window, k)
-    pre = (pre[0], min(pre[1], onset - margin))
+    if window is None:  # an oscilloscope's pre-trigger holds the pulse's start: cut it
+        pre = (pre[0], min(pre[1], onset - margin))
     if int(signals.in_window(t, pre).sum()) < BASELINE_MIN_SAMPLES:
         return None, onset, mean
     return pre, onset, mean
@@ -188,8 +190,9 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0):
         The sensor (its period sets the windows; its resonance and damping ratio the
         free ringing fitted after the contact).
     window : (float, float), optional
-        Baseline window ``[start, end)`` [s] before the pulse (its samples up to a quarter
-        period before the onset are fitted). Default: the samples before ``t = 0``;
+        Baseline window ``[start, end)`` [s], used as given (a window that holds the
+        pulse's start inflates the noise, which a fit's quality judgement then reports).
+        Default: the samples before ``t = 0`` up to a quarter period before the onset;
         a record with fewer than 16 of them (no pre-trigger) takes the
         :data:`~contactlab.inverse.local_baseline.PRE_PERIODS` periods before the pulse
         it finds on its running baseline, and a record that starts at the pulse a
@@ -228,7 +231,7 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0):
         values=base.values,
         noise=float(noise),
         onset=float(onset),
-        window=tuple(pre) if pre else after,
+        window=base.window,
         contact=contact,
         post=base.post,
         drift=base.drift,
