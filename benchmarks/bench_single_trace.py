@@ -3,7 +3,7 @@
 One impact of the hard test grain (k2 = 4e4 N/m, c2 = 0.5 N*s/m on the 40 kHz disc
 sensor, contact 100 us) at 2 m/s in a 4 ms record at 2 MHz, white noise 1 % of the 3 N
 peak signal, with one laboratory effect at a time at the levels of
-``Effects.everything`` (``dem_check.campaign.realistic_record``); the impact 1 ms into
+``Effects.everything`` (and a drift five times larger) (``dem_check.campaign.realistic_record``); the impact 1 ms into
 the record, or at its first sample. Each record is read as a user would, with the
 defaults:
 
@@ -40,6 +40,7 @@ EFFECTS = {
     "1/f noise 1 sigma": Effects(pink=NOISE),
     "hum 1.5 sigma": Effects(hum=1.5 * NOISE),
     "drift 20 sigma": Effects(drift=20 * NOISE),
+    "drift 100 sigma": Effects(drift=100 * NOISE),
     "crosstalk 2 %": Effects(crosstalk=0.02),
     "bounce 40 %, 2 ms later": Effects(bounce=0.4),
 }

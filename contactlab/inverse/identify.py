@@ -12,6 +12,7 @@ offset (``scipy.optimize.least_squares``) refines them on every sample, and its 
 and residual variance give the standard errors.
 """
 
+import itertools
 import math
 from dataclasses import asdict, dataclass
 
@@ -228,7 +229,7 @@ def _auto_window(t, y):
     standard deviations (read on the record's sample-to-sample differences, which drift
     and hum do not reach).
     """
-    start, end = lobe_around_peak(t, y, float(np.median(y)))
+    start, end = lobe_around_peak(t, y - _level(t, y))
     t0 = end + (end - start)
     noise = _difference_noise(y)
     block = max(round(2.0 * (end - start) / (t[1] - t[0])), 2)
@@ -238,6 +239,25 @@ def _auto_window(t, y):
         if 0.5 * float(np.ptp(piece)) < ENVELOPE_SIGMAS * noise:
             return t0, float(t0 + (k + 1) * block * (t[1] - t[0]))
     return t0, float(t[-1])
+
+
+LEVEL_BLOCKS = 16
+"""Blocks whose medians give the record's level (:func:`_level`) [-]."""
+
+
+def _level(t, y):
+    """The record's baseline as a line: the Theil-Sen line through the medians of
+    :data:`LEVEL_BLOCKS` blocks, which a pulse and its ringing move little (a median is
+    robust, and the line through the medians as well). Under a drift of 20 noise sigmas
+    over 4 ms the record's median put the largest lobe's end 0.6 ms late, and the window
+    after the ringing (``docs/campaign.md``)."""
+    from scipy.stats import theilslopes  # scipy.stats is slow to import: only here
+
+    edges = np.linspace(0, y.size, min(LEVEL_BLOCKS, y.size) + 1).astype(int)
+    medians = [np.median(y[a:b]) for a, b in itertools.pairwise(edges)]
+    centres = [0.5 * (t[a] + t[b - 1]) for a, b in itertools.pairwise(edges)]
+    slope, intercept, *_ = theilslopes(medians, centres)
+    return intercept + slope * t
 
 
 def _difference_noise(y):
@@ -320,8 +340,9 @@ def identify_sensor(t, signal, window=None, *, max_pencil_samples=1000):
     per correlation length.
 
     The automatic window starts one lobe-length after the end of the largest lobe of
-    the signal (the lobe is the run of samples on one side of the median around the
-    largest deviation). A contact cannot outlast that point: a pulse shorter than half
+    the signal (the lobe is the run of samples on one side of the record's level around
+    the largest deviation; the level is a line through block medians, which follows a
+    drift). A contact cannot outlast that point: a pulse shorter than half
     a sensor period ends inside the lobe, a longer one is tracked by the signal. A
     first fit runs to where the ringing has decayed into the noise (its half range over
     blocks of two lobe-lengths under :data:`ENVELOPE_SIGMAS` noise sigmas, or the
