@@ -3,8 +3,9 @@
 One impact of the hard test grain (k2 = 4e4 N/m, c2 = 0.5 N*s/m on the 40 kHz disc
 sensor, contact 100 us) at 2 m/s in a 4 ms record at 2 MHz, white noise 1 % of the 3 N
 peak signal, with one laboratory effect at a time at the levels of
-``Effects.everything`` (and a drift five times larger) (``dem_check.campaign.realistic_record``); the impact 1 ms into
-the record, or at its first sample. Each record is read as a user would, with the
+``Effects.everything`` and a drift five times larger
+(``dem_check.campaign.realistic_record``); the impact 1 ms into the record, or at its
+first sample. Each record is read as a user would, with the
 defaults:
 
 - ``identify_sensor`` (default window): resonance and damping ratio against the

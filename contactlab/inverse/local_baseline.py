@@ -88,7 +88,9 @@ class LocalBaseline:
     """Root-mean-square residual of the baseline and free ringing in the post-contact
     window [N]: the noise, if that window holds only the sensor's free ringing."""
     drift: float
-    """Change of the baseline from the impact's start to ``post[0]`` [N] (signed)."""
+    """Change of the baseline from the impact's start to ``post[0]`` [N] (signed); for a
+    constant baseline (one side only), the change of a line through the fit's residual
+    over the fitted samples: a drift the constant could not follow."""
 
 
 def _ringing(s, sensor):
@@ -165,7 +167,11 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
         total = impulse(t, y - line, start, post[0]) + tail
     else:
         total = impulse(t, y - line, start, end)
-    drift = float(np.interp(post[0], t, line) - np.interp(start, t, line))
+    if degree > 0:
+        drift = float(np.interp(post[0], t, line) - np.interp(start, t, line))
+    else:  # a constant: how far a line through what it leaves moves over the fitted span
+        slope = np.polynomial.polynomial.polyfit(t[fitted], residual[fitted], 1)[1]
+        drift = float(slope * np.ptp(t[fitted]))
     return LocalBaseline(
         window=tuple(base),
         values=line,

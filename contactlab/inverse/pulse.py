@@ -159,7 +159,15 @@ def _describe(base, pre, contact, noise, sensor):
             f"constant fitted with the sensor's free ringing on {base.post[0]:.6g} to "
             f"{base.post[1]:.6g} s, after the contact; a drift under the pulse is not seen"
         )
-    if abs(base.drift) > DRIFT_SIGMAS * noise:
+    if abs(base.drift) > DRIFT_SIGMAS * noise and pre is None:
+        flags.append("drifting baseline")
+        notes.append(
+            f"the baseline changes by {base.drift:+.3g} N ({abs(base.drift) / noise:.1f} noise "
+            f"sigmas) over {base.post[0]:.6g} to {base.post[1]:.6g} s after the contact; with "
+            "nothing before the pulse it is removed as a constant, so the figures can be off "
+            "by about that much: record a pre-trigger"
+        )
+    elif abs(base.drift) > DRIFT_SIGMAS * noise:
         flags.append("drifting baseline")
         notes.append(
             f"the baseline changes by {base.drift:+.3g} N ({abs(base.drift) / noise:.1f} noise "
