@@ -23,9 +23,9 @@ settings.register_profile("derandomized", derandomize=True)
 settings.register_profile("random", derandomize=False)
 settings.load_profile("random" if os.environ.get("CONTACTLAB_RANDOM_SWEEPS") else "derandomized")
 
-# helper modules of the tests themselves (tests/documents.py) import by name: importlib mode
-# puts no test folder on the path
-sys.path.insert(0, str(Path(__file__).parent))
+# helper modules of the tests themselves (tests/support/) import by name: importlib mode puts
+# no test folder on the path (and tests/ itself would shadow the packages with its folders)
+sys.path.insert(0, str(Path(__file__).parent / "support"))
 
 pytest_plugins = ["pytester"]  # the plugin's own tests run pytest in temporary folders
 
