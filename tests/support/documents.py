@@ -31,6 +31,9 @@ duration = 500.0e-6
 """
 """The paper's base case (Figure 6: linear law, 40 kHz sensor) as a TOML config."""
 
+PAPER_SENSOR = "resonance = 40.0e3\nmass = 1.233e-3\ndamping_ratio = 0.02"
+"""The ``[sensor]`` table's keys in :data:`PAPER_CASE`."""
+
 
 def fit_document(law_name, law, fitted, grain=GRAIN, velocity=VELOCITY):
     """The FIT.json layout of ``ContactFit.to_dict`` for a known law, fitted exactly.
