@@ -10,7 +10,7 @@ from contactlab.solver import wall_impact
 from contactlab.validation import check_number
 from dem_check.engines.record import GAP_STEPS
 
-__all__ = ["ObliqueRebound", "ObliqueStart", "oblique_start"]
+__all__ = ["MIN_STEPS", "ObliqueRebound", "ObliqueStart", "oblique_start"]
 
 MIN_STEPS = 20
 """Fewest steps per wall contact accepted for ``time_step``."""
