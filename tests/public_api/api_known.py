@@ -37,7 +37,7 @@ KNOWN_REFUSAL_DEFECTS = {
         "reconstruction number/text/list: AttributeError; truth number: TypeError; truth "
         "text/list: ValueError"
     ),
-    "contactlab.inverse.reconstruct.ForceReconstruction.plot": (
+    "contactlab.inverse.reconstruction.ForceReconstruction.plot": (
         "truth number/text/list: RuntimeWarning"
     ),
     "contactlab.laws.tangential.damping_ratio": (
