@@ -421,6 +421,8 @@ def fit_contact(
         goodness=goodness,
         quality=quality,
         simulation=simulation,
+        baseline_status=pulse.status,
+        baseline_notes=pulse.notes,
     )
     _warn(fit, max_nfev)
     return fit

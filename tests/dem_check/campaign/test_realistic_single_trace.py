@@ -173,6 +173,9 @@ def test_fit_recovers_the_law_under_drift(hard_setup):
     # is the campaign's figure for a linear fit at 1 % noise (docs/campaign.md)
     assert fit.parameters["stiffness"].value == pytest.approx(law.stiffness, rel=0.01)
     assert fit.parameters["damping"].value == pytest.approx(law.damping, rel=0.01)
+    assert fit.baseline_status == "drifting baseline"  # 4.5-6 noise sigmas (measured)
+    assert "baseline: drifting baseline" in fit.summary()
+    assert fit.to_dict()["baseline_notes"] == list(fit.baseline_notes)
     # the residuals are noise: chi-squared near 1 (0.95 measured; the noise is read on
     # 400 samples, its square known to 7 %: 0.8-1.2 is about three of those)
     assert 0.8 < fit.goodness["reduced_chi_squared [-]"] < 1.2
