@@ -251,9 +251,12 @@ def check_fit(data, where):
         raise ParameterError(f"{where}: velocity_measured must be true or false")
     if not isinstance(data.get("baseline_status", ""), str):
         raise ParameterError(f"{where}: baseline_status must be text")
+    check_text(f"{where}: baseline_status", data.get("baseline_status", ""))
     notes = data.get("baseline_notes", [])
     if not isinstance(notes, list) or not all(isinstance(note, str) for note in notes):
         raise ParameterError(f"{where}: baseline_notes must be a list of texts")
+    for note in notes:
+        check_text(f"{where}: baseline_notes", note)
     not_identifiable = data.get("not_identifiable", [])
     if not isinstance(not_identifiable, list):
         raise ParameterError(f"{where}: not_identifiable must be a list of parameter names")

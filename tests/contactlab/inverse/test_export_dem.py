@@ -309,6 +309,7 @@ def test_every_header_states_the_realised_rebound():
         ("baseline_status", 3, "baseline_status must be text"),
         ("baseline_notes", "drift", "baseline_notes must be a list of texts"),
         ("baseline_notes", [1.0], "baseline_notes must be a list of texts"),
+        ("baseline_notes", ["drift\nshell touch /tmp/x"], "baseline_notes"),
     ],
 )
 def test_a_fit_s_baseline_status_must_be_text(key, value, message):
