@@ -19,11 +19,10 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import check_window, lobe_around_peak, uniform_signal
-from contactlab.inverse.pulse import RINGING_EXCESS
+from contactlab.inverse.pulse import RINGING_EXCESS, difference_noise
 from contactlab.validation import check_count
 
 __all__ = ["SensorIdentification", "identify_sensor", "matrix_pencil"]
@@ -231,7 +230,7 @@ def _auto_window(t, y):
     """
     start, end = lobe_around_peak(t, y - _level(t, y))
     t0 = end + (end - start)
-    noise = _difference_noise(y)
+    noise = difference_noise(y)
     block = max(round(2.0 * (end - start) / (t[1] - t[0])), 2)
     after = y[t >= t0]
     for k in range(1, after.size // block):
@@ -258,13 +257,6 @@ def _level(t, y):
     centres = [0.5 * (t[a] + t[b - 1]) for a, b in itertools.pairwise(edges)]
     slope, intercept, *_ = theilslopes(medians, centres)
     return intercept + slope * t
-
-
-def _difference_noise(y):
-    """The record's noise standard deviation, from its sample-to-sample differences
-    (robust: the ringing and the pulse occupy a minority of them; drift and hum are
-    too slow to reach them)."""
-    return signals.robust_noise(np.diff(y)) / math.sqrt(2.0)
 
 
 def _status(residual_rms, noise):
@@ -370,7 +362,7 @@ def identify_sensor(t, signal, window=None, *, max_pencil_samples=1000):
     """
     t, y, dt = uniform_signal(t, signal)
     max_pencil_samples = check_count("max_pencil_samples", max_pencil_samples, MIN_WINDOW_SAMPLES)
-    noise = _difference_noise(y)
+    noise = difference_noise(y)
     if window is not None:
         return _identify(t, y, dt, check_window("window", window), max_pencil_samples, noise)
     first = _identify(t, y, dt, _auto_window(t, y), max_pencil_samples, noise)
