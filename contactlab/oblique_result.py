@@ -15,6 +15,7 @@ from contactlab.audit import (
     worst_of,
 )
 from contactlab.quadrature import gauss_rule
+from contactlab.validation import check_flag
 
 __all__ = ["ObliqueResult"]
 
@@ -260,6 +261,7 @@ class ObliqueResult:
         -------
         contactlab.audit.Audit
         """
+        full = check_flag("full", full)
         checks = list(self._end_checks())
         if not full:
             inside = slice(0, int(np.searchsorted(self.t, self.contact_time, side="left")))

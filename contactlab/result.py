@@ -10,6 +10,7 @@ from contactlab import metrics
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
+from contactlab.validation import check_flag
 
 __all__ = ["HEADLINE", "SIGNALS", "SOLVER_READINGS", "ImpactResult", "ImpactSignals"]
 
@@ -444,7 +445,7 @@ class ImpactResult(ImpactSignals):
         """
         from contactlab.impact_audit import audit_impact
 
-        return audit_impact(self, full)
+        return audit_impact(self, check_flag("full", full))
 
     # -- output ----------------------------------------------------------------
     def summary(self):

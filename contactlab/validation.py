@@ -23,7 +23,10 @@ __all__ = [
     "KeywordChecked",
     "check_choice",
     "check_count",
+    "check_flag",
     "check_inertia_factor",
+    "check_interval",
+    "check_names",
     "check_non_negative",
     "check_number",
     "check_path",
@@ -32,6 +35,7 @@ __all__ = [
     "check_probability",
     "check_samples",
     "check_text",
+    "check_values",
     "keyword_checked",
     "numbers_checked",
     "unknown_keywords",
@@ -154,6 +158,29 @@ def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
     return array
 
 
+def check_values(name, value, *, low=0.0, low_open=True, unit="", min_size=1):
+    """Return ``value`` as a 1-D float array of at least ``min_size`` finite numbers, each
+    above ``low`` (a list of diameters, resonances, dampings...).
+
+    Parameters are those of :func:`check_samples` and :func:`check_number`; ``low=None``
+    leaves the values unbounded.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``: as :func:`check_samples`, or a value at or below ``low`` (below
+        it with ``low_open=False``).
+    """
+    values = check_samples(name, value, min_size=min_size, unit=unit)
+    if low is not None and values.size:
+        smallest = values.min()
+        if smallest < low or (low_open and smallest == low):
+            rng = _describe(low, None, low_open, False)
+            unit_text = f" [{unit}]" if unit else ""
+            raise ParameterError(f"{name} must be numbers {rng}{unit_text}; got {smallest!r}")
+    return values
+
+
 def check_path(name, value):
     """Return ``value`` after checking it is a file path (``str`` or ``os.PathLike``).
 
@@ -196,6 +223,17 @@ def check_inertia_factor(name, value):
     return check_number(name, value, low=low, high=high, low_open=False, unit="-")
 
 
+def check_interval(name, value):
+    """Check a sample interval [s]: a finite number > 0 whose rate ``1 / value`` is finite
+    too (a subnormal interval such as 5e-324 s has an infinite rate); return it as float."""
+    interval = check_number(name, value, low=0.0, unit="s")
+    if not math.isfinite(1.0 / interval):
+        raise ParameterError(
+            f"{name} must be a sample interval [s] whose rate 1/{name} is finite; got {interval!r}"
+        )
+    return interval
+
+
 def check_count(name, value, low=1):
     """Return ``value`` as an int after checking it is an integer >= ``low``.
 
@@ -223,6 +261,48 @@ def check_choice(name, value, choices):
     hint = f" Did you mean {close[0]!r}?" if close else ""
     valid = ", ".join(repr(c) for c in choices)
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
+
+
+def check_flag(name, value):
+    """Return ``value`` as a bool after checking it is ``True`` or ``False``.
+
+    Only ``bool`` and numpy's ``bool_`` pass: a number, a text or an array is no switch
+    (``bool("no")`` is True, and an array's truth is ambiguous).
+    """
+    if not isinstance(value, bool | np.bool_):
+        raise ParameterError(f"{name} must be True or False; got {value!r}")
+    return bool(value)
+
+
+def check_names(name, value, choices=None):
+    """Return one name or a sequence of names as a tuple of distinct ``str``.
+
+    Parameters
+    ----------
+    name : str
+        Parameter name used in the error message.
+    value : str or iterable of str
+        One name, or several (a repeated name is kept once, in its first place).
+    choices : sequence of str, optional
+        The valid names; each is checked with :func:`check_choice`.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``: not text nor an iterable of text, no name at all, or a name
+        outside ``choices``.
+    """
+    names = (value,) if isinstance(value, str) else value
+    try:
+        names = tuple(dict.fromkeys(names))
+    except TypeError:  # not iterable, or unhashable items
+        names = None
+    if not names or not all(isinstance(n, str) for n in names):
+        raise ParameterError(f"{name} must be a name or a sequence of names (str); got {value!r}")
+    if choices is not None:
+        for item in names:
+            check_choice(name, item, choices)
+    return names
 
 
 TEXT_MAX_LENGTH = 1000
