@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactlab.errors import ParameterError, PlausibilityWarning
-from contactlab.validation import check_choice, check_number, check_samples
+from contactlab.validation import check_choice, check_number, check_samples, check_text
 
 __all__ = [
     "RANGES",
@@ -280,7 +280,7 @@ def check_plausible(key, value, name=None):
         Outside the plausible range, with the likely unit slip when there is one.
     """
     spec = _spec(key)
-    name = name or key
+    name = key if name is None else check_text("name", name)
     check_number(f"value of {name}", value)
     if not _QUIET.get() and not spec.low <= value <= spec.high:
         warnings.warn(_message(key, name, value), PlausibilityWarning, stacklevel=_caller_level())
@@ -322,7 +322,7 @@ def implausible_rows(key, values, labels, name=None):
         count = None
     if count != values.size:
         raise ParameterError(f"labels must hold one label per value ({values.size}); got {labels!r}")
-    name = name or key
+    name = key if name is None else check_text("name", name)
     outside = np.isfinite(values) & ((values < spec.low) | (values > spec.high))
     rows = [labels[i] for i in np.flatnonzero(outside)]
     if rows and not _QUIET.get():

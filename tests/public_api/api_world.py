@@ -272,6 +272,8 @@ OVERRIDES = {
     "contactlab.inverse.plots.plot_identification": {
         "t": lambda: synthetic()[2].t, "signal": lambda: synthetic()[2].sensor_force},
     "contactlab.inverse.identify.matrix_pencil": {"y": lambda: synthetic()[2].sensor_force},
+    "contactlab.inverse.identify.SensorIdentification.ringing": {"t": lambda: np.linspace(
+        *instance("contactlab.inverse.identify.SensorIdentification").window, 64)},
     "contactlab.plausibility.check_plausible": {"key": lambda: "grain_diameter"},
     "contactlab.plausibility.implausible_rows": {"key": lambda: "grain_diameter",
                                                  "labels": lambda: ["row 0"]},
