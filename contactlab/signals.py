@@ -150,7 +150,7 @@ def baseline(t, y, window, *, name="window"):
         )
     if not np.isfinite(samples).all():
         raise ParameterError(
-            f"y holds overrange (non-finite) samples in the baseline window {window} s"
+            f"y holds overrange samples (inf or NaN) in the baseline window {window} s"
         )
     return Baseline(float(samples.mean()), float(samples.std(ddof=1)), int(samples.size))
 

@@ -318,13 +318,13 @@ class StudySetup:
     def at(self, overrides):
         """Deprecated: the 4-tuple ``(grain, sensor, law, velocity)`` of
         :meth:`config`, which returns the one set-up shape, an ImpactConfig."""
+        config = self.config(overrides)  # bad overrides are refused before the warning
         warnings.warn(
             "StudySetup.at is deprecated: StudySetup.config returns the set-up as an "
             "ImpactConfig (.grain, .sensor, .law, .velocity)",
             DeprecationWarning,
             stacklevel=2,
         )
-        config = self.config(overrides)
         return config.grain, config.sensor, config.law, config.velocity
 
     def config(self, overrides):

@@ -184,6 +184,9 @@ VALUES = {
     "what": lambda: "case", "preset": lambda: None, "samples": lambda: 101,
     "max_nfev": lambda: 20, "align": lambda: "onset", "friction_steel": lambda: 0.3,
     "full_scale": lambda: 10.0, "vary": lambda: "stiffness",
+    # solver states (Sensor.signal, Sensor.energy)
+    "states": lambda: np.zeros((64, 4)), "contact_force": lambda: np.zeros(64),
+    "x1": lambda: 1e-6, "v1": lambda: 0.1,
 }  # fmt: skip
 """A valid value of each parameter, by name."""
 
@@ -234,6 +237,13 @@ def _frame(law="linear"):
     return _one_row_frame(**{"k2 [N/m]": 1e5, "c2 [N*s/m]": 1.0})
 
 
+def _oblique_frame():
+    """One oblique Hertz-Mindlin row (contactlab.batch.oblique_impacts)."""
+    mindlin = {"k_mindlin [N/m**1.5]": 1e6, "friction [-]": 0.3}
+    frame = _frame("hertz").assign(**mindlin)
+    return frame.assign(**{"radius [m]": 2.5e-3, "angle [rad]": 0.5, "spin [rad/s]": 0.0})
+
+
 def _measured(name):
     """``t`` and ``signal`` of the synthetic sensor signal, for the inverse methods."""
     t, signal, _ = synthetic()
@@ -260,6 +270,10 @@ OVERRIDES = {
                                                              "tangential_velocity": lambda: 10.0},
     "contactlab.analytic.tangential.slides_throughout": {"normal_velocity": lambda: 2.0},
     "contactlab.batch.hertz.hertz_impacts": {"frame": lambda: _frame("hertz")},
+    "contactlab.batch.oblique.oblique_impacts": {"frame": _oblique_frame},
+    "contactlab.quantities.quantity": {"name": lambda: "contact_time"},
+    "contactlab.quantities.column": {"name": lambda: "contact_time"},
+    "contactlab.engines.load_engine": {"name": lambda: "bullet"},
     "contactlab.batch.dask.dask_hertz_impacts": {"frame": lambda: _frame("hertz"),
                                                  "client": lambda: "tcp://127.0.0.1:1"},
     "contactlab.batch.dask.dask_linear_impacts": {"client": lambda: "tcp://127.0.0.1:1"},
