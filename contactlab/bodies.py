@@ -7,8 +7,6 @@ by the element, ``S1 = k1 x1 + c1 v1`` [N].
 
 import math
 
-import numpy as np
-
 from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.plausibility import check_plausible, internal

@@ -321,7 +321,9 @@ def implausible_rows(key, values, labels, name=None):
     except TypeError:
         count = None
     if count != values.size:
-        raise ParameterError(f"labels must hold one label per value ({values.size}); got {labels!r}")
+        raise ParameterError(
+            f"labels must hold one label per value ({values.size}); got {labels!r}"
+        )
     name = key if name is None else check_text("name", name)
     outside = np.isfinite(values) & ((values < spec.low) | (values > spec.high))
     rows = [labels[i] for i in np.flatnonzero(outside)]

@@ -21,10 +21,12 @@ from contactlab.errors import ParameterError, UnknownParameterError
 
 __all__ = [
     "KeywordChecked",
+    "check_callable",
     "check_choice",
     "check_count",
     "check_flag",
     "check_inertia_factor",
+    "check_instance",
     "check_interval",
     "check_names",
     "check_non_negative",
@@ -261,6 +263,26 @@ def check_choice(name, value, choices):
     hint = f" Did you mean {close[0]!r}?" if close else ""
     valid = ", ".join(repr(c) for c in choices)
     raise ParameterError(f"{name} must be one of {valid}; got {value!r}.{hint}")
+
+
+def check_instance(name, value, cls, source="", optional=False):
+    """Return ``value`` after checking it is an instance of ``cls`` (or None when
+    ``optional``); ``source`` says where such an object comes from, for the message
+    (``"run_stream"``)."""
+    if (optional and value is None) or isinstance(value, cls):
+        return value
+    origin = f" (from {source})" if source else ""
+    none = " or None" if optional else ""
+    raise ParameterError(f"{name} must be a {cls.__name__}{origin}{none}; got {value!r}")
+
+
+def check_callable(name, value, signature="", optional=True):
+    """Return ``value`` after checking it can be called (or is None when ``optional``);
+    ``signature`` shows the expected call in the message (``"detector(trace, sensor)"``)."""
+    if (optional and value is None) or callable(value):
+        return value
+    expected = f" {signature}" if signature else ""
+    raise ParameterError(f"{name} must be a function{expected}; got {value!r}")
 
 
 def check_flag(name, value):

@@ -26,7 +26,7 @@ from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_count, check_names, check_path
+from contactlab.validation import check_count, check_instance, check_names, check_path
 
 __all__ = [
     "ERRORS",
@@ -65,10 +65,7 @@ def point_statistics(impacts, by):
         ``contact_time_mean [s]``, and for ``q`` in time, force: ``q_error [%]``
         (standard deviation, ``ddof = 0``), ``q_error_mean [%]``, ``q_error_rms [%]``.
     """
-    if not isinstance(impacts, pd.DataFrame):
-        raise ParameterError(
-            f"impacts must be a pandas.DataFrame (SweepResult.impacts); got {type(impacts).__name__}"
-        )
+    check_instance("impacts", impacts, pd.DataFrame, "SweepResult.impacts")
     by = list(check_names("by", by))
     needed = [*by, "contact_time [s]", *(f"{q}_error [%]" for q in ERRORS)]
     missing = [c for c in needed if c not in impacts.columns]

