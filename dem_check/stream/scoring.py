@@ -282,6 +282,10 @@ def discrimination(features):
     missing = [c for c in ("kind", *FEATURES) if c not in features.columns]
     if missing:
         raise ParameterError(f"features has no column(s) {missing} (see hit_features)")
+    if len(features) < 2:
+        raise ParameterError(
+            f"features needs at least 2 hits (one per cross-validation fold); got {len(features)}"
+        )
     kinds = sorted(features["kind"].unique())
     x = np.log(np.maximum(features[list(FEATURES)].to_numpy(dtype=float), 1e-300))
     y = features["kind"].to_numpy()
