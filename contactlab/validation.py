@@ -320,7 +320,9 @@ def check_names(name, value, choices=None):
     except TypeError:  # not iterable, or unhashable items
         names = None
     if not names or not all(isinstance(n, str) for n in names):
-        raise ParameterError(f"{name} must be a name or a sequence of names (str); got {value!r}")
+        raise ParameterError(
+            f"{name} must be a name or a sequence of at least one name (str); got {value!r}"
+        )
     if choices is not None:
         for item in names:
             check_choice(name, item, choices)
