@@ -343,13 +343,13 @@ class Sensor(KeywordChecked):
             Contact force S2 [N] at the n states; None for a moving sensor, whose signal
             does not depend on it.
         """
-        states = check_samples("states", states, ndim=2)
+        states = check_samples("states", states, ndim=2, copy=False)  # read, on every result
         if states.shape[1] < 2:
             raise ParameterError(
                 f"states must have columns x1 [m], v1 [m/s], ...; got shape {states.shape}"
             )
         if contact_force is not None or self.is_rigid:
-            contact_force = check_samples("contact_force", contact_force, unit="N")
+            contact_force = check_samples("contact_force", contact_force, unit="N", copy=False)
             if contact_force.shape != states.shape[:1]:
                 raise ParameterError(
                     f"contact_force must hold one value per state ({states.shape[0]}); got "

@@ -110,7 +110,7 @@ def check_number(
     return x
 
 
-def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
+def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True, copy=True):
     """Return ``value`` as a float array after checking it holds finite real numbers.
 
     Parameters
@@ -131,6 +131,9 @@ def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
     finite : bool, default True
         Refuse NaN and infinite values; False lets them through (a recorder's overrange
         samples, which the caller reports itself).
+    copy : bool, default True
+        False returns a float64 array given as such without copying it (for a caller
+        that only reads it, on a hot path); the default always returns a new array.
 
     Returns
     -------
@@ -150,7 +153,7 @@ def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
         raise ParameterError(f"{name} must be an array of numbers{unit_text}; {exc}") from None
     if array.dtype.kind not in "iuf":
         raise ParameterError(f"{name} must hold real numbers{unit_text}; got {array.dtype} values")
-    array = array.astype(float)
+    array = array.astype(float, copy=copy)
     if ndim is not None and array.ndim != ndim:
         raise ParameterError(f"{name} must be a {ndim}-D array; got shape {array.shape}")
     if array.size < min_size:
