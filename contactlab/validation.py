@@ -288,14 +288,19 @@ def check_callable(name, value, signature="", optional=True):
     raise ParameterError(f"{name} must be a function{expected}; got {value!r}")
 
 
-def check_flag(name, value):
-    """Return ``value`` as a bool after checking it is ``True`` or ``False``.
+def check_flag(name, value, optional=False):
+    """Return ``value`` as a bool after checking it is ``True`` or ``False`` (or None,
+    returned as such, when ``optional``: "decide for me", e.g. a progress bar only on a
+    terminal).
 
     Only ``bool`` and numpy's ``bool_`` pass: a number, a text or an array is no switch
     (``bool("no")`` is True, and an array's truth is ambiguous).
     """
+    if optional and value is None:
+        return None
     if not isinstance(value, bool | np.bool_):
-        raise ParameterError(f"{name} must be True or False; got {value!r}")
+        none = " (or None)" if optional else ""
+        raise ParameterError(f"{name} must be True or False{none}; got {value!r}")
     return bool(value)
 
 

@@ -43,7 +43,7 @@ from contactlab.solver.exact import exact_contact, free_flight
 from contactlab.solver.pieces import AffineForceStates
 from contactlab.solver.segment import Segment
 from contactlab.solver.system import System
-from contactlab.validation import check_choice, check_number, keyword_checked
+from contactlab.validation import check_choice, check_flag, check_number, keyword_checked
 
 __all__ = ["METHODS", "simulate_impact"]
 
@@ -269,6 +269,7 @@ def simulate_impact(
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
     time_step = check_number("time_step", time_step, low=0.0, unit="s")  # euler's only
     threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    verify, audit = check_flag("verify", verify), check_flag("audit", audit)
     if method == "auto":
         method = "exact" if law.piecewise_linear else "adaptive"
     if method == "exact" and not law.piecewise_linear:

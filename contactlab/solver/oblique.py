@@ -72,6 +72,7 @@ from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
 from contactlab.validation import (
     check_choice,
+    check_flag,
     check_inertia_factor,
     check_number,
     keyword_checked,
@@ -440,6 +441,7 @@ def simulate_oblique(
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
         sample_rate = check_number("sample_rate", sample_rate, low=0.0, unit="Hz")
+    audit = check_flag("audit", audit)
     system = System(grain, sensor)
     radius = grain.radius
     inertia = kappa * grain.mass * radius**2

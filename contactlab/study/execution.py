@@ -9,7 +9,10 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from contactlab.batch.dask import connected_client
-from contactlab.validation import check_count  # re-exported: a public name of this module
+from contactlab.validation import (
+    check_count,  # re-exported: a public name of this module
+    check_flag,
+)
 
 __all__ = ["check_count", "progress_bar", "run_tasks"]
 
@@ -20,6 +23,7 @@ the load still balances when points differ in cost."""
 
 def progress_bar(total, progress, desc, unit="task"):
     """A tqdm bar, or None. ``progress=None`` shows one only on an interactive terminal."""
+    progress = check_flag("progress", progress, optional=True)
     if progress is None:
         progress = sys.stderr.isatty()
     if not progress:

@@ -28,7 +28,7 @@ from contactlab.study import conclusions as concl
 from contactlab.study.plots import check_formats, plot_error_family, plot_errors, save_figure
 from contactlab.study.setup import Scatter, StudySetup
 from contactlab.study.sweep import run_grid
-from contactlab.validation import check_count, check_number, check_path, check_values
+from contactlab.validation import check_count, check_flag, check_number, check_path, check_values
 
 __all__ = ["PAPER_GRID", "QUICK_GRID", "PaperGrid", "PaperStudyResult", "paper_study"]
 
@@ -215,6 +215,8 @@ def paper_study(
     tolerance = check_number("tolerance", tolerance, low=0.0, unit="%")
     formats = check_formats(formats)
     seed = check_count("seed", seed, low=0)
+    quick = check_flag("quick", quick)
+    progress = check_flag("progress", progress, optional=True)
     out = Path(check_path("out", out))
     out.mkdir(parents=True, exist_ok=True)
     grid = QUICK_GRID if quick else PAPER_GRID

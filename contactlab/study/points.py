@@ -29,7 +29,7 @@ from contactlab.solver import simulate_impact
 from contactlab.solver.wall import wall_contact_time
 from contactlab.study.execution import progress_bar
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_values
+from contactlab.validation import check_flag, check_values
 
 __all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
 
@@ -235,6 +235,7 @@ def simulate_points(tasks, *, client=None, progress=None):
     """
     tasks = _checked_tasks(tasks)
     client = check_client(client)
+    progress = check_flag("progress", progress, optional=True)
     kind = _batch_kind(tasks) if tasks else None
     if kind is None:
         return [simulate_point(*task) for task in tasks]

@@ -26,7 +26,7 @@ from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_count, check_instance, check_names, check_path
+from contactlab.validation import check_count, check_flag, check_instance, check_names, check_path
 
 __all__ = [
     "ERRORS",
@@ -201,6 +201,7 @@ def run_grid(
     if not isinstance(setup, StudySetup):
         raise ParameterError(f"setup must be a StudySetup; got {type(setup).__name__}")
     seed = check_count("seed", seed, low=0)
+    progress = check_flag("progress", progress, optional=True)
     check_count("workers", workers)  # here too: a linear law's grid never reaches the pool
     if chunksize is not None:
         check_count("chunksize", chunksize)

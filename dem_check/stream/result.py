@@ -23,7 +23,7 @@ import pandas as pd
 
 from contactlab.errors import ParameterError
 from contactlab.traces.api import write_trace
-from contactlab.validation import check_count, check_instance, check_number, check_path
+from contactlab.validation import check_count, check_flag, check_instance, check_number, check_path
 from dem_check.campaign.records import add_effects
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
@@ -170,4 +170,5 @@ def run_stream(case, *, progress=False):
     from dem_check.stream.case import StreamCase
 
     check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    progress = check_flag("progress", progress)
     return StreamResult(simulate_stream(case, progress=progress))

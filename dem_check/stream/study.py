@@ -12,6 +12,7 @@ from pathlib import Path
 
 from contactlab.validation import (
     check_callable,
+    check_flag,
     check_instance,
     check_number,
     check_path,
@@ -49,6 +50,7 @@ def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None, 
         errors [%] (written to ``summary.json`` too).
     """
     check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    progress = check_flag("progress", progress)
     out = Path(check_path("out", out))
     check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
     if pileup_rates is not None:

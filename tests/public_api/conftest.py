@@ -419,7 +419,7 @@ MUST_REFUSE = {
     "opaque": [("number", 1.0), ("list", [1.0])],
     "values": [("nan", math.nan), ("inf", math.inf), ("text", "1e5"), ("complex", 1j),
                ("ragged", [[1.0], [2.0, 3.0]])],
-    "flag": [], "label": [],
+    "flag": [("text", "no"), ("number", 1.0), ("list", [True])], "label": [],
 }  # fmt: skip
 """Values that no parameter of the kind may accept, by kind; ``None`` is added where the
 parameter has no ``None`` default, ``inf`` is dropped where it is the default (a rigid
