@@ -36,6 +36,7 @@ __all__ = [
     "check_positive",
     "check_probability",
     "check_samples",
+    "check_shaped",
     "check_text",
     "check_values",
     "keyword_checked",
@@ -277,6 +278,16 @@ def check_instance(name, value, cls, source="", optional=False):
     origin = f" (from {source})" if source else ""
     none = " or None" if optional else ""
     raise ParameterError(f"{name} must be a {cls.__name__}{origin}{none}; got {value!r}")
+
+
+def check_shaped(name, value, attributes, what):
+    """Return ``value`` after checking it has every one of ``attributes`` (duck typing:
+    a real object or one shaped like it, e.g. a test's stand-in); ``what`` names the
+    expected object in the message (``"a StreamResult (from run_stream)"``)."""
+    missing = [a for a in attributes if not hasattr(value, a)]
+    if missing:
+        raise ParameterError(f"{name} must be {what}; got {value!r} (no {', '.join(missing)})")
+    return value
 
 
 def check_callable(name, value, signature="", optional=True):

@@ -15,15 +15,21 @@ import numpy as np
 import pandas as pd
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_callable, check_instance, check_number, check_values
-from dem_check.stream.result import StreamResult, run_stream
+from contactlab.validation import (
+    check_callable,
+    check_instance,
+    check_number,
+    check_shaped,
+    check_values,
+)
+from dem_check.stream.result import STREAM_RESULT, run_stream
 
 __all__ = ["Calibration", "calibration_curve", "plate_output"]
 
 
 def plate_output(result):
     """Mean sensor signal S1 [N] over the stream's steady part (after its lead time)."""
-    check_instance("result", result, StreamResult, "run_stream")
+    check_shaped("result", result, ("steps", "lead"), STREAM_RESULT)
     steps = result.steps
     steady = steps["t [s]"] >= result.lead
     return float(steps.loc[steady, "sensor_force [N]"].mean())

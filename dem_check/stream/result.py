@@ -32,6 +32,10 @@ from dem_check.traces import Trace
 __all__ = ["StreamResult", "run_stream"]
 
 
+STREAM_RESULT = "a StreamResult (from run_stream)"
+"""What the stream functions' ``result`` is, for their messages."""
+
+
 class StreamResult:
     """One simulated stream (see the module docstring).
 

@@ -31,9 +31,15 @@ import numpy as np
 import pandas as pd
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_callable, check_instance, check_number, check_values
+from contactlab.validation import (
+    check_callable,
+    check_instance,
+    check_number,
+    check_shaped,
+    check_values,
+)
 from dem_check.campaign.detection import find_impacts
-from dem_check.stream.result import StreamResult
+from dem_check.stream.result import STREAM_RESULT
 from dem_check.traces import Trace
 
 __all__ = [
@@ -127,9 +133,8 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
 
     ``tolerance`` and ``reach`` are in seconds; ``trace`` defaults to ``result.trace()``.
     """
-    check_instance("result", result, StreamResult, "run_stream")
+    check_shaped("result", result, ("case", "truth", "steps"), STREAM_RESULT)
     check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
-    check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
     if tolerance is not None:
         tolerance = check_number("tolerance", tolerance, low=0.0, unit="s")
     if reach is not None:
@@ -235,7 +240,7 @@ def _median_abs(values):
 def hit_features(result, scored, trace=None):
     """:data:`FEATURES` of each hit, read from the trace between its onset and the next
     detection (or four sensor periods, whichever is first); with the hit's true kind."""
-    check_instance("result", result, StreamResult, "run_stream")
+    check_shaped("result", result, ("case", "trace"), STREAM_RESULT)
     check_instance("scored", scored, Score, "score")
     check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
     trace = result.trace() if trace is None else trace
