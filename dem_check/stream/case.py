@@ -37,6 +37,7 @@ from contactlab.validation import (
     check_number,
     check_poisson_ratio,
     check_samples,
+    check_text,
 )
 
 __all__ = [
@@ -93,6 +94,7 @@ class ParticleKind:
     density_classes: int = 1
 
     def __post_init__(self):
+        check_text("particles name", self.name)
         where = f"particles {self.name!r}"
         object.__setattr__(self, "diameter", value_range(f"{where}: diameter", self.diameter, "m"))
         object.__setattr__(

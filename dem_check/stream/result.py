@@ -25,6 +25,7 @@ from contactlab.errors import ParameterError
 from contactlab.traces.api import write_trace
 from contactlab.validation import check_count, check_flag, check_instance, check_number, check_path
 from dem_check.campaign.records import add_effects
+from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
 from dem_check.traces import Trace
@@ -145,8 +146,9 @@ class StreamResult:
             comments={"source": "dem_check.stream", "time_step [s]": repr(self.time_step)},
         )
         self.steps.to_csv(out / "steps.csv.gz", index=False)
-        self.truth.to_csv(out / "truth.csv", index=False)
-        self.particles.to_csv(out / "particles.csv")
+        # particle kinds are named in the user's case: no cell may run as a formula
+        spreadsheet_safe(self.truth).to_csv(out / "truth.csv", index=False)
+        spreadsheet_safe(self.particles).to_csv(out / "particles.csv")
         (out / "deck.lammps").write_text(self.script, encoding="utf-8")
         return out
 

@@ -18,6 +18,7 @@ from contactlab.validation import (
     check_path,
     check_values,
 )
+from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.calibration import calibration_curve
 from dem_check.stream.case import StreamCase
 from dem_check.stream.report import write_report
@@ -65,7 +66,7 @@ def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None, 
     trace = result.trace()
     result.write(out, trace)
     scored = score(result, detector, trace)
-    scored.matches.to_csv(out / "matches.csv", index=False)
+    spreadsheet_safe(scored.matches).to_csv(out / "matches.csv", index=False)
     features = hit_features(result, scored, trace)
     confusion = discrimination(features) if features["kind"].nunique() > 1 else None
     if curve is not None:
