@@ -14,8 +14,8 @@ from contactlab.audit import (
     grid_checks,
     worst_of,
 )
+from contactlab.entry_checks import check_flag
 from contactlab.quadrature import gauss_rule
-from contactlab.validation import check_flag
 
 __all__ = ["ObliqueResult"]
 

@@ -7,10 +7,10 @@ from functools import cached_property
 import numpy as np
 
 from contactlab import metrics
+from contactlab.entry_checks import check_flag
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
-from contactlab.validation import check_flag
 
 __all__ = ["HEADLINE", "SIGNALS", "SOLVER_READINGS", "ImpactResult", "ImpactSignals"]
 

@@ -28,10 +28,10 @@ import math
 import warnings
 from dataclasses import dataclass
 
+from contactlab.entry_checks import check_names
 from contactlab.inverse.fit import IdentifiabilityWarning, fit_contact
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_quality import FitQualityWarning
-from contactlab.validation import check_names
 
 __all__ = ["DISFAVOURED_DELTA_BIC", "LawComparison", "RankedLaw", "compare_laws"]
 

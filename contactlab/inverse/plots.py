@@ -1,20 +1,11 @@
 """Figures of the inverse methods. matplotlib is imported only when plotting."""
 
+from contactlab.entry_checks import check_shaped
 from contactlab.errors import ParameterError
-from contactlab.inverse.fit_result import ContactFit
-from contactlab.inverse.identify import SensorIdentification
-from contactlab.inverse.reconstruct import ForceReconstruction
 from contactlab.plotting import axes_or_new, finish_force_axes
 from contactlab.validation import check_samples
 
 __all__ = ["plot_fit", "plot_identification", "plot_reconstruction"]
-
-
-def _check_type(name, value, cls, source):
-    if not isinstance(value, cls):
-        raise ParameterError(
-            f"{name} must be a {cls.__name__} (from {source}); got {type(value).__name__}"
-        )
 
 
 def _curve(t_name, t, y_name, y):
@@ -46,7 +37,12 @@ def plot_identification(t, signal, identification, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    _check_type("identification", identification, SensorIdentification, "identify_sensor")
+    check_shaped(
+        "identification",
+        identification,
+        ("window", "ringing", "resonance", "damping_ratio"),
+        "a SensorIdentification (from identify_sensor)",
+    )
     t, signal = _curve("t", t, "signal", signal)
     fig, ax = axes_or_new(ax)
     t0, t1 = identification.window
@@ -89,7 +85,12 @@ def plot_reconstruction(reconstruction, truth=None, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    _check_type("reconstruction", reconstruction, ForceReconstruction, "reconstruct_force")
+    check_shaped(
+        "reconstruction",
+        reconstruction,
+        ("t", "signal", "force", "method"),
+        "a ForceReconstruction (from reconstruct_force)",
+    )
     if truth is not None:
         if hasattr(truth, "contact_force"):
             truth = (truth.t, truth.contact_force)
@@ -130,7 +131,12 @@ def plot_fit(fit, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    _check_type("fit", fit, ContactFit, "fit_contact")
+    check_shaped(
+        "fit",
+        fit,
+        ("t", "signal", "model", "onset", "simulation", "quality", "law_name"),
+        "a ContactFit (from fit_contact)",
+    )
     fig, ax = axes_or_new(ax)
     sim = fit.simulation
     ax.plot(fit.t * 1e6, fit.signal, lw=0.8, color="tab:red", label="measured $S_1$")

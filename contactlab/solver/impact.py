@@ -31,6 +31,7 @@ import numpy as np
 
 from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
 from contactlab.laws import ContactLaw, PlasticTrapezoid
@@ -43,7 +44,7 @@ from contactlab.solver.exact import exact_contact, free_flight
 from contactlab.solver.pieces import AffineForceStates
 from contactlab.solver.segment import Segment
 from contactlab.solver.system import System
-from contactlab.validation import check_choice, check_flag, check_number, keyword_checked
+from contactlab.validation import check_choice, check_number, keyword_checked
 
 __all__ = ["METHODS", "simulate_impact"]
 

@@ -9,10 +9,8 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from contactlab.batch.dask import connected_client
-from contactlab.validation import (
-    check_count,  # re-exported: a public name of this module
-    check_flag,
-)
+from contactlab.entry_checks import check_flag
+from contactlab.validation import check_count  # re-exported: a public name of this module
 
 __all__ = ["check_count", "progress_bar", "run_tasks"]
 

@@ -24,11 +24,12 @@ from pathlib import Path
 import numpy as np
 
 from contactlab.config import list_presets, load_preset
+from contactlab.entry_checks import check_flag
 from contactlab.study import conclusions as concl
 from contactlab.study.plots import check_formats, plot_error_family, plot_errors, save_figure
 from contactlab.study.setup import Scatter, StudySetup
 from contactlab.study.sweep import run_grid
-from contactlab.validation import check_count, check_flag, check_number, check_path, check_values
+from contactlab.validation import check_count, check_number, check_path, check_values
 
 __all__ = ["PAPER_GRID", "QUICK_GRID", "PaperGrid", "PaperStudyResult", "paper_study"]
 

@@ -22,6 +22,7 @@ from contactlab.batch import (
     linear_impacts,
 )
 from contactlab.batch.dask import check_client
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
 from contactlab.quantities import columns
@@ -29,7 +30,7 @@ from contactlab.solver import simulate_impact
 from contactlab.solver.wall import wall_contact_time
 from contactlab.study.execution import progress_bar
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_flag, check_values
+from contactlab.validation import check_values
 
 __all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
 

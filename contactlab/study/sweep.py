@@ -22,11 +22,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_flag, check_instance, check_names
 from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_count, check_flag, check_instance, check_names, check_path
+from contactlab.validation import check_count, check_path
 
 __all__ = [
     "ERRORS",

@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 
 from contactlab.compare import QUANTITIES, compare
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, TraceFormatError
 from contactlab.testing.golden_trace import (
     DEFAULT_MAX_SAMPLES,
@@ -22,7 +23,7 @@ from contactlab.testing.golden_trace import (
     GoldenTrace,
     reference_paths,
 )
-from contactlab.validation import check_count, check_flag, check_path
+from contactlab.validation import check_count, check_path
 
 __all__ = ["GoldenStore", "compare_impacts", "regression_tolerances"]
 

@@ -14,14 +14,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_callable, check_instance, check_shaped
 from contactlab.errors import ParameterError
-from contactlab.validation import (
-    check_callable,
-    check_instance,
-    check_number,
-    check_shaped,
-    check_values,
-)
+from contactlab.validation import check_number, check_values
 from dem_check.stream.result import STREAM_RESULT, run_stream
 
 __all__ = ["Calibration", "calibration_curve", "plate_output"]

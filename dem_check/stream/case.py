@@ -28,12 +28,12 @@ import numpy as np
 from contactlab.advisor.species import value_range
 from contactlab.bodies import Grain, Sensor
 from contactlab.config import law_from_table, read_document, sensor_from_table
+from contactlab.entry_checks import check_instance
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
 from contactlab.validation import (
     check_choice,
     check_count,
-    check_instance,
     check_number,
     check_poisson_ratio,
     check_samples,

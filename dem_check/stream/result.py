@@ -21,9 +21,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_flag, check_instance
 from contactlab.errors import ParameterError
 from contactlab.traces.api import write_trace
-from contactlab.validation import check_count, check_flag, check_instance, check_number, check_path
+from contactlab.validation import check_count, check_number, check_path
 from dem_check.campaign.records import add_effects
 from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.engine import simulate_stream

@@ -30,14 +30,9 @@ confusion matrix.
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_callable, check_instance, check_shaped
 from contactlab.errors import ParameterError
-from contactlab.validation import (
-    check_callable,
-    check_instance,
-    check_number,
-    check_shaped,
-    check_values,
-)
+from contactlab.validation import check_number, check_values
 from dem_check.campaign.detection import find_impacts
 from dem_check.stream.result import STREAM_RESULT
 from dem_check.traces import Trace

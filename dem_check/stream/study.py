@@ -10,14 +10,8 @@ rank 0 writes.
 import json
 from pathlib import Path
 
-from contactlab.validation import (
-    check_callable,
-    check_flag,
-    check_instance,
-    check_number,
-    check_path,
-    check_values,
-)
+from contactlab.entry_checks import check_callable, check_flag, check_instance
+from contactlab.validation import check_number, check_path, check_values
 from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.calibration import calibration_curve
 from dem_check.stream.case import StreamCase

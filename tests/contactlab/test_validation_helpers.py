@@ -6,17 +6,15 @@ import math
 import numpy as np
 import pytest
 
-from contactlab.errors import ParameterError
-from contactlab.validation import (
+from contactlab.entry_checks import (
     check_callable,
     check_flag,
     check_instance,
-    check_interval,
     check_names,
-    check_samples,
     check_shaped,
-    check_values,
 )
+from contactlab.errors import ParameterError
+from contactlab.validation import check_interval, check_samples, check_values
 
 
 def test_a_flag_is_true_or_false_only():

@@ -40,6 +40,7 @@ PACKAGES = ("contactlab", "dem_check")
 NOT_PUBLIC = {
     "contactlab.errors": "the exception classes themselves",
     "contactlab.validation": "the entry checks themselves (tests/contactlab/test_validation*)",
+    "contactlab.entry_checks": "the entry checks of objects and switches (same tests)",
     "contactlab.compiled": "numba's njit for the compiled modules",
     "contactlab.roots": "root locator of the solvers' events (internal)",
     "contactlab.quadrature": "Gauss-Legendre rule of the audits (internal)",
