@@ -15,7 +15,8 @@ TOML layout (every table but ``[[particles]]`` optional; keys as the dataclasses
                   "ramp", "oscillating"), end_rate, amplitude, frequency
     [feed]        speed, speed_sd, incidence_deg, incidence_sd_deg, spot, release
     [[particles]] name, species or diameter/density/youngs_modulus/poisson_ratio,
-                  share, diameter_classes, density_classes,
+                  share, diameter_classes, density_classes, spheres, spacing, tilt_deg
+                  (spheres > 1: a straw, a rigid clump of spheres in a row),
                   [particles.contact] (contactlab's [contact] table),
                   [particles.tangential] law = "mindlin" or "spring" (optional)
 """
@@ -65,13 +66,24 @@ def _class_values(low, high, count):
 
 @dataclass(frozen=True)
 class ParticleKind:
-    """One kind of particle in the stream (grain or chaff), binned into classes.
+    """One kind of particle in the stream (grain, chaff or straw), binned into classes.
 
     Diameters [m] and densities [kg/m^3] are uniform over their ranges; the stream uses
     ``diameter_classes * density_classes`` classes (the midpoints of equal-probability
     bins), each a LAMMPS atom type with its own exactly mapped contact law, because
     LAMMPS' mapping depends on the contact's ``m*`` and ``R*``
     (:func:`contactlab.laws.lammps.granular_model`).
+
+    ``spheres > 1`` makes each particle a **straw**: a rigid clump (LAMMPS ``fix
+    rigid/small``) of that many spheres of the kind's diameter in a straight row, centres
+    ``spacing`` diameters apart (1: touching, < 1: overlapping), each of the kind's
+    density, so the clump's mass is ``spheres`` times a sphere's. Its axis lies at a
+    uniform azimuth, tilted from the plate's plane by a uniform angle in
+    ``[0, tilt_deg]``. LAMMPS gives a wall contact of a clump's sphere the clump's mass
+    as ``m*`` (``fix wall/gran``: "if part of a rigid body, use the body mass"), so each
+    sphere-plate contact is the kind's law mapped for ``m* =`` the clump's mass and
+    ``R* =`` the sphere's radius; the law's grain (``from_material``, a restitution)
+    is a sphere of the sphere's diameter with the clump's mass.
     """
 
     name: str
@@ -84,6 +96,9 @@ class ParticleKind:
     tangential: dict | None = None
     diameter_classes: int = 1
     density_classes: int = 1
+    spheres: int = 1
+    spacing: float = 1.0
+    tilt_deg: float = 0.0
 
     def __post_init__(self):
         where = f"particles {self.name!r}"
@@ -94,6 +109,11 @@ class ParticleKind:
         check_number(f"{where}: share", self.share, low=0.0)
         check_count(f"{where}: diameter_classes", self.diameter_classes, low=1)
         check_count(f"{where}: density_classes", self.density_classes, low=1)
+        check_count(f"{where}: spheres", self.spheres, low=1)
+        check_number(f"{where}: spacing", self.spacing, low=0.0, high=1.0, high_open=False)
+        check_number(
+            f"{where}: tilt_deg", self.tilt_deg, low=0.0, high=90.0, low_open=False, high_open=False
+        )
         if not isinstance(self.contact, dict):
             raise ParameterError(f"{where}: contact must be a table; got {self.contact!r}")
 
@@ -103,11 +123,14 @@ class ParticleKind:
         out = []
         for d in _class_values(*self.diameter, self.diameter_classes):
             for rho in _class_values(*self.density, self.density_classes):
+                heft = {"density": rho}
+                if self.spheres > 1:  # the clump's mass on one sphere (class docstring)
+                    heft = {"mass": self.spheres * rho * math.pi / 6.0 * d**3}
                 grain = Grain(
                     diameter=d,
-                    density=rho,
                     youngs_modulus=self.youngs_modulus,
                     poisson_ratio=self.poisson_ratio,
+                    **heft,
                 )
                 try:
                     law = law_from_table(self.contact, grain)
@@ -116,6 +139,11 @@ class ParticleKind:
                     raise ParameterError(f"particles {self.name!r}: {exc}") from None
                 out.append((grain, law, tangential))
         return out
+
+    def offsets(self, diameter):
+        """Sphere centres of a clump along its axis, from its centre of mass [m]."""
+        step = self.spacing * diameter
+        return [(k - 0.5 * (self.spheres - 1)) * step for k in range(self.spheres)]
 
     def _tangential(self, grain):
         if self.tangential is None:
