@@ -21,7 +21,7 @@ the ringing plate belongs to the signal it interrupts.
 * a **false alarm** is a detection holding none.
 
 :func:`pileup_curve` runs a case at several flow rates and tabulates these against the
-rate. :func:`discrimination` classifies hits as grain or chaff from signal features
+rate. :func:`discrimination` classifies hits by kind (grain, chaff, straw) from signal features
 (peak, rise time, impulse, duration) with a nearest-centroid rule on standardised
 log-features, trained and tested by two-fold cross-validation, and returns the
 confusion matrix.
@@ -49,7 +49,7 @@ REACH_PERIODS = 20.0
 the ringing of a sensor of damping ratio 0.02 has decayed to 8 % by then."""
 
 FEATURES = ("peak [N]", "rise_time [s]", "impulse [N*s]", "duration [s]")
-"""Signal features of a hit used to tell grain from chaff."""
+"""Signal features of a hit used to tell the kinds apart (grain, chaff, straw)."""
 
 
 def campaign_detector(trace, sensor):

@@ -17,8 +17,8 @@ re-contacts (a bounce back onto the plate, rolling on and off). Per impact:
   on the last free step. LAMMPS writes ``v(n) = v(n - 1/2) + dt f(n) / (2 m)`` at the
   first contact step, and ``v(n - 1/2)`` (the velocity Verlet half step) is the free
   flight's, so the dump's velocity is corrected by the half step of contact force;
-* ``rebound_normal_speed [m/s]``: the velocity at the last contact step plus the
-  half step of its force, the same way;
+* ``rebound_normal_speed`` and ``rebound_tangential_speed [m/s]``: the velocity at the
+  last contact step plus the half step of its force, the same way;
 * ``peak_force [N]`` and ``impulse [N*s]`` (the sum of force times step, velocity
   Verlet's own momentum change) of the normal contact force over the contact.
 
@@ -51,6 +51,7 @@ TRUTH_COLUMNS = (
     "normal_speed [m/s]",
     "tangential_speed [m/s]",
     "rebound_normal_speed [m/s]",
+    "rebound_tangential_speed [m/s]",
     "peak_force [N]",
     "impulse [N*s]",
     "recontacts",
@@ -86,6 +87,9 @@ def _segment(segment, pid, contact, dt, table, plate):
         "normal_speed [m/s]": -vz0,
         "tangential_speed [m/s]": float(np.hypot(vx0, vy0)),
         "rebound_normal_speed [m/s]": tail["vz"] + half * tail["fz"],
+        "rebound_tangential_speed [m/s]": float(
+            np.hypot(tail["vx"] + half * tail["fx"], tail["vy"] + half * tail["fy"])
+        ),
         "peak_force [N]": float(fz.max()),
         "impulse [N*s]": float(fz.sum() * dt),
     }
