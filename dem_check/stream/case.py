@@ -14,6 +14,9 @@ TOML layout (every table but ``[[particles]]`` optional; keys as the dataclasses
     [flow]        kind ("count" [1/s] or "mass" [kg/s]), rate, profile ("steady",
                   "ramp", "oscillating"), end_rate, amplitude, frequency
     [feed]        speed, speed_sd, incidence_deg, incidence_sd_deg, spot, release
+    [effects]     a laboratory's record effects on the written trace (keys of
+                  dem_check.campaign.Effects: pink, drift, hum, mains, harmonics,
+                  crosstalk, plate_modes, full_scale, bits, steps, step_size)
     [[particles]] name, species or diameter/density/youngs_modulus/poisson_ratio,
                   share, diameter_classes, density_classes, spheres, spacing, tilt_deg
                   (spheres > 1: a straw, a rigid clump of spheres in a row),
@@ -25,6 +28,7 @@ import math
 from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
+import pandas as pd
 
 from contactlab.advisor.species import value_range
 from contactlab.bodies import Grain, Sensor
@@ -32,6 +36,7 @@ from contactlab.config import law_from_table, read_document, sensor_from_table
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
 from contactlab.validation import check_choice, check_count, check_number
+from dem_check.campaign.records import Effects, add_effects
 
 __all__ = [
     "ARRIVALS",
@@ -255,7 +260,10 @@ class StreamCase:
 
     ``time_step`` [s] defaults to the shortest class's wall contact time over
     ``steps_per_contact``; ``sample_rate`` [Hz] is the oscilloscope's; ``noise`` [N]
-    is the white noise added to the written trace; ``slot`` [s] is how often new
+    is the white noise added to the written trace and ``effects`` a laboratory's record
+    effects on it (:class:`dem_check.campaign.Effects`: 1/f noise, drift, hum, plate
+    crosstalk, ADC, offset steps; not its ``bounce``: the stream's bounces are
+    simulated); ``slot`` [s] is how often new
     particles are inserted (each is placed on its own straight path, so the slot
     changes no trajectory, only the number of LAMMPS runs).
     """
@@ -275,6 +283,7 @@ class StreamCase:
     sample_rate: float = 1e6
     noise: float = 0.0
     slot: float = 5e-4
+    effects: Effects | None = None
 
     def __post_init__(self):
         if not self.particles:
@@ -293,10 +302,27 @@ class StreamCase:
         check_number("slot", self.slot, low=0.0, unit="s")
         if sum(kind.share for kind in self.particles) <= 0.0:
             raise ParameterError("particles: the shares sum to zero")
+        if self.effects is not None:
+            _check_effects(self.effects)
 
     def with_(self, **changes):
         """A copy with some fields changed (``flow``, ``duration``, ``seed`` ...)."""
         return replace(self, **changes)
+
+
+def _check_effects(effects):
+    """Refuse bad effects before a long run rather than when the trace is written."""
+    if not isinstance(effects, Effects):
+        raise ParameterError(f"effects must be a dem_check.campaign.Effects; got {effects!r}")
+    if effects.bounce != 0.0:
+        raise ParameterError(
+            f"effects.bounce = {effects.bounce!r}: a stream simulates its bounces "
+            "(re-contacts are in the truth); leave bounce at 0"
+        )
+    # add_effects checks every field: one second of sixteen samples and no impact
+    nothing = pd.DataFrame({"onset [s]": [], "peak_sensor_force [N]": []})
+    t = np.linspace(0.0, 1.0, 16)
+    add_effects(t, np.zeros(16), effects, nothing, 0.0, np.random.default_rng(0))
 
 
 def _particles(table, where):
@@ -331,11 +357,22 @@ def _table(cls, data, key, where):
     return cls(**table)
 
 
+def _effects(table, where):
+    """An :class:`Effects` from an ``[effects]`` table (TOML arrays become tuples)."""
+    table = {
+        key: tuple(tuple(v) if isinstance(v, list) else v for v in value)
+        if isinstance(value, list)
+        else value
+        for key, value in dict(table).items()
+    }
+    return _table(Effects, {"effects": table}, "effects", where)
+
+
 def read_case(path):
     """A :class:`StreamCase` from a TOML file (module docstring), errors naming the file."""
     data = read_document(path, "stream case")
     where = str(path)
-    known = {"stream", "sensor", "plate", "flow", "feed", "particles"}
+    known = {"stream", "sensor", "plate", "flow", "feed", "particles", "effects"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ParameterError(f"{where}: unknown table(s) {unknown}; valid are {sorted(known)}")
@@ -348,6 +385,7 @@ def read_case(path):
             "flow",
             "feed",
             "plate",
+            "effects",
         }
         bad = sorted(set(stream) - allowed)
         if bad:
@@ -355,6 +393,8 @@ def read_case(path):
         if "flow" not in data:
             raise ParameterError("missing table [flow] (rate, kind, profile)")
         extra = {"sensor": sensor_from_table(data["sensor"])} if "sensor" in data else {}
+        if "effects" in data:
+            extra["effects"] = _effects(data["effects"], where)
         return StreamCase(
             particles=tuple(particles),
             flow=_table(Flow, data, "flow", where),

@@ -16,6 +16,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.errors import ParameterError
+from dem_check.campaign import Effects
 from dem_check.stream import DEFAULT_CASE, Feed, Flow, Plate, calibration_curve, read_case, score
 from dem_check.stream.feed import gravity_vector, schedule
 
@@ -68,6 +69,33 @@ def test_read_case_builds_the_species_laws(tmp_path):
     assert case.sensor.resonance == pytest.approx(40e3, rel=1e-12)  # rounding of k1/m1
 
 
+WHEAT = "[[particles]]\nspecies = 'wheat'\ncontact = {law = 'linear', stiffness = 1e4}\n"
+
+
+def test_read_case_reads_straw_and_record_effects(tmp_path):
+    path = tmp_path / "case.toml"
+    path.write_text(
+        CASE_TOML + "[[particles]]\nname = 'straw'\ndiameter = 3e-3\ndensity = 150.0\nspheres = 6\n"
+        "spacing = 0.5\ntilt_deg = 20.0\ncontact = {law = 'linear', stiffness = 5e3}\n"
+        "[effects]\nhum = 0.02\nharmonics = [0.3]\nplate_modes = [[730.0, 0.01]]\n"
+        "full_scale = 20.0\n",
+        encoding="utf-8",
+    )
+    case = read_case(path)
+    straw = case.particles[1]
+    assert (straw.spheres, straw.spacing, straw.tilt_deg) == (6, 0.5, 20.0)
+    # centres 0.5 diameters apart about the centre of mass
+    assert straw.offsets(3e-3) == pytest.approx(
+        [-3.75e-3, -2.25e-3, -0.75e-3, 0.75e-3, 2.25e-3, 3.75e-3], abs=1e-18
+    )
+    grain = straw.classes()[0][0]
+    # the law's grain: a sphere's diameter carrying the clump's mass (six spheres)
+    assert grain.mass == pytest.approx(6 * 150.0 * math.pi / 6 * 3e-3**3, rel=1e-15)
+    assert case.effects == Effects(
+        hum=0.02, harmonics=(0.3,), plate_modes=((730.0, 0.01),), full_scale=20.0
+    )
+
+
 @pytest.mark.parametrize(
     ("text", "named"),
     [
@@ -78,6 +106,19 @@ def test_read_case_builds_the_species_laws(tmp_path):
             "[[particles]]\nspecies = 'wheat'\ncontact = {law = 'linear', stiffness = 1e4}\n",
             "[flow]",
         ),
+        (
+            "[flow]\nrate = 1.0\n[[particles]]\nspecies = 'wheat'\nspheres = 0\n"
+            "contact = {law = 'linear', stiffness = 1e4}\n",
+            "spheres",
+        ),
+        (
+            "[flow]\nrate = 1.0\n[[particles]]\nspecies = 'wheat'\nspacing = 1.5\n"
+            "contact = {law = 'linear', stiffness = 1e4}\n",
+            "spacing",
+        ),
+        (WHEAT + "[flow]\nrate = 1.0\n[effects]\nbounce = 0.4\n", "bounce"),
+        (WHEAT + "[flow]\nrate = 1.0\n[effects]\nhum = -1.0\n", "hum"),
+        (WHEAT + "[flow]\nrate = 1.0\n[effects]\nhumm = 1.0\n", "humm"),
     ],
 )
 def test_bad_cases_are_refused_naming_the_key(tmp_path, text, named):
