@@ -14,7 +14,7 @@ N processes simulate the same particles.
 A straw (a kind with ``spheres > 1``) also draws its axis (uniform azimuth, tilt from
 the plate's plane uniform in ``[0, tilt_deg]``); its centre of mass follows the path,
 aimed so that its lowest sphere touches at the aim point, and it is kept clear of the
-others by its bounding sphere (half its length plus a sphere's radius).
+others as the capsule round its spheres' centres (:mod:`dem_check.stream.clearance`).
 """
 
 import math
@@ -25,6 +25,7 @@ import pandas as pd
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.solver import simulate_impact
+from dem_check.stream.clearance import Placed
 
 __all__ = ["LEAD_SLOTS", "Schedule", "gravity_vector", "schedule"]
 
@@ -33,9 +34,6 @@ LEAD_SLOTS = 2
 
 _TRIES = 50
 """Aim points drawn for a particle before the feed is declared too dense."""
-
-_CLEARANCE = 1.05
-"""Smallest centre distance at insertion over the sum of radii [-]."""
 
 
 def gravity_vector(case):
@@ -165,7 +163,7 @@ def schedule(case):
     mean_mass = sum(shares[k] * masses[owner == k].mean() for k in range(shares.size))
     rng = np.random.default_rng(case.seed)
     times = _arrivals(case, rng, mean_mass, lead)
-    rows, placed = [], []
+    rows, placed = [], Placed(times.size, g)
     for t_aim in times:
         k = rng.choice(shares.size, p=shares)
         cls = int(rng.choice(np.flatnonzero(owner == k)))
@@ -185,7 +183,7 @@ def schedule(case):
             radius, angle = feed.spot * math.sqrt(rng.uniform()), rng.uniform(0.0, 2 * math.pi)
             touch = np.array([radius * math.cos(angle), radius * math.sin(angle), height])
             start = touch - v * back + 0.5 * g * back**2
-            if _clear(start, v - g * back, shape, slot_index * slot, placed, g):
+            if placed.clear(start, v - g * back, shape, slot_index * slot):
                 break
         else:
             raise ParameterError(
@@ -194,7 +192,7 @@ def schedule(case):
                 "the flow rate"
             )
         velocity = v - g * back
-        placed.append((slot_index * slot, start, velocity, shape, t_aim))
+        placed.add(slot_index * slot, start, velocity, shape, t_aim)
         spheres = 1 if clumps[cls] is None else len(clumps[cls])
         rows.append(
             {
@@ -236,34 +234,3 @@ def _axis(rng, kind, offsets, radius):
     tilt = math.radians(rng.uniform(0.0, kind.tilt_deg))
     axis = (math.cos(tilt) * math.cos(azimuth), math.cos(tilt) * math.sin(azimuth), math.sin(tilt))
     return axis, radius + (_extent(radius, offsets) - radius) * math.sin(tilt)
-
-
-def _clear(position, velocity, shape, at, placed, g):
-    """Whether a particle inserted at ``position`` at time ``at`` clears, at the later of
-    the two insertions, every placed particle not yet at the plate (free paths; a shape
-    is ``(radius, axis, half_length)``: a sphere, or a straw as the capsule round its
-    spheres' centres, which do not turn in free flight)."""
-    radius, axis, half = shape
-    for t0, x0, v0, (r0, axis0, half0), t_aim in placed:
-        when = max(at, t0)
-        if t_aim <= when:
-            continue
-        a, b = when - t0, when - at
-        other = x0 + v0 * a + 0.5 * g * a * a
-        mine = position + velocity * b + 0.5 * g * b * b
-        gap = _segments(mine - other, axis, half, axis0, half0)
-        if gap < _CLEARANCE * (radius + r0):
-            return False
-    return True
-
-
-def _segments(d, u, h, w, k):
-    """Distance between the segments ``c + s u``, ``s`` in [-h, h], and ``c0 + t w``,
-    ``t`` in [-k, k], with ``d = c - c0`` (unit ``u``, ``w``; Ericson 2005, Real-Time
-    Collision Detection, 5.1.9: clamp one parameter, solve the other, clamp again)."""
-    b, c, e = float(u @ w), float(u @ d), float(w @ d)
-    denominator = 1.0 - b * b
-    s = float(np.clip((b * e - c) / denominator, -h, h)) if denominator > 1e-12 else 0.0
-    t = float(np.clip(e + b * s, -k, k))
-    s = float(np.clip(b * t - c, -h, h))
-    return float(np.linalg.norm(d + s * u - t * w))

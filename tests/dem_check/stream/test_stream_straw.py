@@ -21,7 +21,7 @@ from hypothesis import strategies as st
 import contactlab as cl
 from contactlab.laws import LinearViscoelastic
 from dem_check.stream import Feed, Flow, ParticleKind, StreamCase, run_stream
-from dem_check.stream.feed import _segments
+from dem_check.stream.clearance import segment_distances
 
 SENSOR = cl.Sensor.from_resonance(40e3, mass=1.2e-3, damping_ratio=0.02)
 SPHERES = 4
@@ -125,7 +125,7 @@ def test_capsule_distance_against_a_search(d, u, w, h, k):
     s, t = np.meshgrid(np.linspace(-h, h, 401), np.linspace(-k, k, 401), indexing="ij")
     points = d + s[..., None] * u - t[..., None] * w
     brute = np.linalg.norm(points, axis=-1).min()
-    got = _segments(d, u, h, w, k)
+    got = float(segment_distances(d, u, h, w, np.array([k]))[0])
     assert got <= brute + 1e-12  # a search can only overestimate the minimum
     # the grid's step is 2/400: its minimum is off by at most half a step per segment
     assert got >= brute - 2.0 * (h + k) / 400.0 - 1e-12
