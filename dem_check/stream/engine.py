@@ -3,7 +3,9 @@
 :func:`simulate_stream` draws the particles (:func:`~dem_check.stream.feed.schedule`),
 builds the deck (:mod:`dem_check.stream.deck`) and runs it slot by slot: each slot
 inserts its particles (``run ... pre yes``: new atoms need LAMMPS' set-up), deletes
-rebounders above the insertion zone, and runs ``slot_steps`` steps. The sensor moves
+rebounders above the insertion zone, and runs ``slot_steps`` steps; with straw in the
+box it first releases the rigid bodies and defines them again after its insertions
+(:mod:`dem_check.stream.straw`). The sensor moves
 inside LAMMPS, so there is no Python in the step loop. Under ``mpiexec`` every rank runs
 the same Python (LAMMPS splits the box between them); the series are global and the
 contact dump is written once.
