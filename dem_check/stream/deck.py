@@ -28,6 +28,8 @@ Why the plate is built this way (the exact-physics argument):
   depends on the class's ``m*`` and ``R*``. Particle-particle contacts use, for classes
   ``i <= j``, class ``i``'s mapped law (LAMMPS needs one model per type pair; these
   contacts are not what the sensor measures and no toolkit law describes them).
+* Straw (rigid clumps of spheres) adds molecule IDs, a wider ghost cut-off, its own
+  integration and centre-of-mass velocities in the dump: :mod:`dem_check.stream.straw`.
 
 Sign: LAMMPS z is the plate's outward normal (up); ``x1 = z_rest - z_sensor`` (into the
 sensor) and ``S1 = k1 x1 + c1 v1``; the contact force is ``sum fz`` of the particles.

@@ -33,6 +33,8 @@ __all__ = [
     "FIX_RIGID",
     "UNFIX_RIGID",
     "VELOCITY_COLUMNS",
+    "free_types",
+    "group_lines",
     "has_straw",
     "setup_lines",
     "sphere_centres",
