@@ -427,9 +427,9 @@ def _default_case():
     return StreamCase(
         particles=(wheat, chaff, STRAW),
         flow=Flow(rate=400.0),
-        feed=Feed(spot=10e-3),
+        feed=Feed(spot=12e-3),
         plate=Plate(length=0.04, width=0.04),
-        duration=0.02,
+        duration=0.025,
         noise=0.01,
     )
 
@@ -437,18 +437,18 @@ def _default_case():
 STRAW = ParticleKind(
     name="straw",
     diameter=3e-3,
-    density=150.0,
+    density=250.0,
     contact={"law": "linear", "stiffness": 5e3, "damping": 0.05},
     share=0.5,
     spheres=6,
     tilt_deg=20.0,
 )
-"""Short straw pieces: rigid rows of six 3 mm spheres (18 mm long, 0.013 g), density
-150 kg/m^3 (a hollow stem's bulk), a soft lossy linear contact per sphere, tilted up to
+"""Short straw pieces: rigid rows of six 3 mm spheres (18 mm long, 0.021 g), density
+250 kg/m^3 (a hollow stem's bulk), a soft lossy linear contact per sphere, tilted up to
 20 deg from the plate; half as many as grains."""
 
 DEFAULT_CASE = _default_case()
 """A small stream: wheat (Hertz-Mindlin normal law, restitution 0.5), as many chaff
 particles (soft, lossy linear law) and half as many straw pieces (:data:`STRAW`),
-400 particles/s for 20 ms aimed at a 10 mm disc of a 40 mm plate, on a 40 kHz sensor;
+400 particles/s for 25 ms aimed at a 12 mm disc of a 40 mm plate, on a 40 kHz sensor;
 the trace has 0.01 N of white noise."""

@@ -257,3 +257,24 @@ def test_calibration_recovers_a_linear_plate():
     assert calibration.intercept == pytest.approx(-2.0 / 300.0, rel=1e-12)
     assert np.abs(calibration.table["error [%]"]).max() < 1e-9
     assert list(calibration.table["flow [kg/s]"]) == pytest.approx([0.025, 0.05, 0.075, 0.1])
+
+
+def test_discrimination_separates_three_kinds_and_counts_every_hit():
+    from dem_check.stream import FEATURES, discrimination
+
+    rng = np.random.default_rng(0)
+    centres = {"wheat": 6.0, "chaff": 0.4, "straw": 0.05}  # peak [N]
+    rows = []
+    for kind, peak in centres.items():
+        for _ in range(15):
+            values = np.exp(rng.normal(0.0, 0.05, len(FEATURES)))  # 5 % scatter
+            rows.append(
+                {
+                    "kind": kind,
+                    **dict(zip(FEATURES, values * [peak, 2e-5, 1e-4, 3e-5], strict=True)),
+                }
+            )
+    matrix = discrimination(pd.DataFrame(rows))
+    # log peaks 2 to 5 apart against a scatter of 0.05: no centroid is nearer than its own
+    assert list(matrix.index) == list(matrix.columns) == sorted(centres)
+    assert np.array_equal(matrix.to_numpy(), 15 * np.eye(3, dtype=int))
