@@ -85,6 +85,7 @@ class StreamResult:
             A laboratory's coloured noise, drift, hum, crosstalk, ADC and offset steps
             (:func:`dem_check.campaign.records.add_effects`); the crosstalk rings after
             each impact's touch with the impact's peak contact force as its scale.
+            Default the case's (``StreamCase.effects``; ``Effects()`` for none).
 
         Returns
         -------
@@ -113,6 +114,7 @@ class StreamResult:
         t = np.arange(0.0, t_steps[-1], 1.0 / rate)
         values = np.interp(t, t_steps, self.steps["sensor_force [N]"].to_numpy())
         rng = np.random.default_rng(seed + 1)
+        effects = self.case.effects if effects is None else effects
         if effects is not None:
             impacts = self.truth[self.truth["contact"] == 0]
             truth = pd.DataFrame(
