@@ -90,6 +90,9 @@ CONFIGURATIONS = {
     "2 MHz, no 1/f": (2e6, {"crosstalk": 0.0, "pink": 0.0}),
     "2 MHz, crosstalk 0.2 %": (2e6, {"crosstalk": 0.002}),
     "2 MHz, crosstalk 2 %": (2e6, {"crosstalk": 0.02}),
+    "2 MHz, 1/f 0.3, crosstalk 2 %": (2e6, {"crosstalk": 0.02, "pink": 0.3 * NOISE}),
+    "5 MHz, 1/f 0.3, crosstalk 2 %": (5e6, {"crosstalk": 0.02, "pink": 0.3 * NOISE}),
+    "1 MHz, 1/f 0.3, crosstalk 2 %": (1e6, {"crosstalk": 0.02, "pink": 0.3 * NOISE}),
 }
 """Configurations of ``--accuracy``: every effect of ``Effects.everything`` (1/f noise as
 large as the white noise, drift of 20 sigma, hum of 1.5 sigma, bounces at 40 % of the

@@ -11,7 +11,7 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse import FIT_MODELS
 from contactlab.quantities import columns
-from contactlab.validation import check_choice, check_count, check_number
+from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise
 from dem_check.campaign.analysis import analyse_impact, window_row
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
@@ -80,6 +80,15 @@ def _check_channel(name, value):
     if isinstance(value, bool) or not isinstance(value, str | int):
         raise ParameterError(f"{name} must be a channel name or 0-based index; got {value!r}")
     return value
+
+
+def _check_channel_found(channel, rows):
+    """Refuse one ``channel`` for all files that none of them holds (a misspelt name): a
+    per-file dict, or a channel some files lack, leaves rows with status ``"no channel"``."""
+    if channel is None or isinstance(channel, Mapping) or not rows:
+        return
+    if all(row["status"] == "no channel" for row in rows):
+        raise ParameterError(f"channel {channel!r} is in none of the records: {rows[0]['reason']}")
 
 
 def _check_sensitivity(name, value):
@@ -336,10 +345,12 @@ def run_campaign(
             )
         ),
     }
+    if metadata is not None and not isinstance(metadata, pd.DataFrame):
+        metadata = check_path("metadata", metadata)
     skip = () if metadata is None or isinstance(metadata, pd.DataFrame) else (metadata,)
     files, problems = expand_paths(paths, skip)
     if out is not None:
-        check_out_folder(out, files)
+        check_out_folder(check_path("out", out), files)
     timings = dict.fromkeys(("read", "detect", "analyse", "statistics", "report"), 0.0)
     file_rows = [_file_row(p.file, p.status, p.reason) for p in problems]
     impact_rows, gallery_traces, records = [], {}, {}
@@ -359,6 +370,7 @@ def run_campaign(
             bar.file_done()
     finally:
         bar.close()
+    _check_channel_found(channel, file_rows[len(problems) :])
     started = time.perf_counter()
     impacts = _impact_table(impact_rows)
     notes, lines = [], pd.DataFrame()

@@ -204,7 +204,8 @@ def read_record(path, channel=None, sensitivity=None):
     -------
     trace : Trace or None
     status : str
-        ``"ok"``, ``"unreadable"``, ``"no sensitivity"`` or ``"not a force"``.
+        ``"ok"``, ``"unreadable"``, ``"no channel"`` (the file has no such channel),
+        ``"no sensitivity"`` or ``"not a force"``.
     reason : str
         The reader's message, or what to do.
     """
@@ -212,8 +213,8 @@ def read_record(path, channel=None, sensitivity=None):
         trace = read_trace(path, channel=channel)
     except (TraceFormatError, OSError, ImportError) as exc:
         return None, "unreadable", str(exc)
-    except ParameterError as exc:  # e.g. a channel that does not exist
-        return None, "unreadable", f"{path}: {exc}"
+    except ParameterError as exc:  # a channel that does not exist
+        return None, "no channel" if channel is not None else "unreadable", f"{path}: {exc}"
     if trace.unit == "V":
         if sensitivity is None:
             return (

@@ -94,35 +94,6 @@ KNOWN_REFUSAL_DEFECTS = {
         "impacts number/text/list: AttributeError; by number: TypeError"
     ),
     "contactlab.testing.golden.GoldenStore": "log number/text/nan: accepted",
-    "dem_check.campaign.api.run_campaign": (
-        "channel text: accepted; out number: TypeError; metadata number/list: TypeError"
-    ),
-    "dem_check.campaign.records.Effects": (
-        "pink nan/inf/-inf/text/complex/list/None: accepted; drift "
-        "nan/inf/-inf/text/complex/list/None: accepted; hum "
-        "nan/inf/-inf/text/complex/list/None: accepted; mains "
-        "nan/inf/-inf/text/complex/list/None: accepted; harmonics number/text/nan/None: "
-        "accepted; crosstalk nan/inf/-inf/text/complex/list/None: accepted; plate_modes "
-        "number/text/nan/None: accepted; full_scale nan/inf/-inf/text/complex/list: accepted;"
-        " bits nan/fraction/text/negative/bool/None: accepted; steps "
-        "nan/fraction/text/negative/bool/None: accepted; step_size "
-        "nan/inf/-inf/text/complex/list/None: accepted; bounce "
-        "nan/inf/-inf/text/complex/list/None: accepted; bounce_delay "
-        "nan/inf/-inf/text/complex/list/None: accepted"
-    ),
-    "dem_check.campaign.records.Effects.everything": (
-        "noise nan/inf/-inf/complex: accepted; noise text/list: TypeError; peak "
-        "nan/inf/-inf/complex: accepted; peak text/list: TypeError"
-    ),
-    "dem_check.campaign.records.realistic_record": (
-        "velocities text: ValueError; onsets text: ValueError; trigger nan/inf/-inf: refused "
-        "without naming it; trigger text: accepted; trigger complex/list: TypeError; "
-        "sensitivity nan/inf/-inf: accepted; sensitivity text: UFuncTypeError; sensitivity "
-        "complex: refused without naming it; sensitivity list: ValueError"
-    ),
-    "dem_check.campaign.synthetic.synthetic_record": (
-        "velocities text: ValueError; onsets text: ValueError"
-    ),
     "contactlab.compare.impacts.compare": "b number/text/list: refused without naming it",
     "contactlab.compare.impacts.compare_trace": "tolerances number/text/list: TypeError",
     "contactlab.traces.trace.Trace.derive": "step number/text/list: accepted",
@@ -181,8 +152,6 @@ KNOWN_HOSTILE_DEFECTS = {
         "by", 0.0, "TypeError: 'float' object is not iterable"),
     "contactlab.testing.golden.compare_impacts": (
         "labels", 1.0, "TypeError: 'float' object is not iterable"),
-    "dem_check.campaign.records.Effects.everything": (
-        "peak", "5", "TypeError: can't multiply sequence by non-int of type 'float'"),
     "contactlab.compare.impacts.compare_trace": (
         "tolerances", [[1.0], [2.0, 3.0]], "TypeError: 'list' object is not a mapping"),
 }  # fmt: skip
