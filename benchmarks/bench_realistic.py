@@ -33,6 +33,7 @@ from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.structure import record_modes
 
 ROOT = Path(__file__).resolve().parents[1]
 NOISE = 0.03  # [N]
@@ -136,10 +137,11 @@ def _errors(row, true, rate, noise):
     }
 
 
-def _analyse(record, sensor, grain, rate, counts):
+def _analyse(record, sensor, grain, rate, counts, crosstalk=True):
     """Detection and analysis of one record in memory (what ``run_campaign`` does for
     each impact, without the files and the report); the errors of its impacts."""
     found = find_impacts(record.trace, sensor)
+    modes = record_modes(found, sensor) if crosstalk else []
     truth, rows = record.truth, []
     for window in found.impacts:
         gap = np.abs(truth["onset [s]"] - window.onset)
@@ -150,7 +152,7 @@ def _analyse(record, sensor, grain, rate, counts):
         if window.status not in ANALYSED:
             rows.append({"status": window.status})
             continue
-        row, _ = analyse_impact(found, window, sensor, grain)
+        row, _ = analyse_impact(found, window, sensor, grain, crosstalk=crosstalk, modes=modes)
         rows.append(_errors(row, true, rate, record.noise) if row["status"] == "ok" else row)
     onsets = np.array([w.onset for w in found.impacts])
     for onset in truth["onset [s]"]:
@@ -159,13 +161,14 @@ def _analyse(record, sensor, grain, rate, counts):
     return rows
 
 
-def accuracy(names=None):
+def accuracy(names=None, crosstalk=True):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
+    print(f"crosstalk removal {'on' if crosstalk else 'off'}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
         for record in _records(rate, range(RECORDS), changes):
-            for row in _analyse(record, sensor, grain, rate, counts):
+            for row in _analyse(record, sensor, grain, rate, counts, crosstalk):
                 rows.append({"configuration": name, **row})
     table = pd.DataFrame(rows)
     print(counts)
@@ -188,11 +191,14 @@ def main():
     parser.add_argument("--speed", action="store_true")
     parser.add_argument("--accuracy", action="store_true")
     parser.add_argument("--configuration", action="append", choices=list(CONFIGURATIONS))
+    parser.add_argument(
+        "--no-crosstalk", action="store_true", help="accuracy without the crosstalk removal"
+    )
     args = parser.parse_args()
     if args.speed or not args.accuracy:
         speed()
     if args.accuracy or not args.speed:
-        accuracy(args.configuration)
+        accuracy(args.configuration, crosstalk=not args.no_crosstalk)
 
 
 if __name__ == "__main__":

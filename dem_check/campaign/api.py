@@ -22,6 +22,7 @@ from dem_check.campaign.statistics import (
     population_statistics,
     regressions,
 )
+from dem_check.campaign.structure import record_modes
 
 __all__ = ["ENVELOPE_BINS", "IMPACT_COLUMNS", "run_campaign"]
 
@@ -202,10 +203,13 @@ def _analyse_file(path, options, timings, progress):
     timings["detect"] += time.perf_counter() - started
     rows, gallery = [], {}
     started = time.perf_counter()
+    modes = record_modes(found, sensor) if options["crosstalk"] else []
     for k, window in enumerate(found.impacts):
         progress.impact(path, k, len(found.impacts))
         if window.status in detection.ANALYSED:
-            row, traces = analyse_impact(found, window, sensor, grain, fit)
+            row, traces = analyse_impact(
+                found, window, sensor, grain, fit, options["crosstalk"], modes
+            )
             if traces is not None:
                 gallery[(path, k)] = traces
         else:
@@ -238,6 +242,7 @@ def _settings(paths, options, metadata):
         "sensitivity [V/N]": options["sens"],
         "channel": options["channel"],
         "fit": options["fit"],
+        "crosstalk": options["crosstalk"],
         "metadata": None if table else os.fspath(metadata),
         "gallery": options["gallery"],
         "reconstruction": "contactlab.inverse.reconstruct_force (tikhonov, gcv)",
@@ -271,6 +276,7 @@ def run_campaign(
     progress=False,
     min_force=None,
     min_separation=None,
+    crosstalk=True,
 ):
     """Analyse every impact in a set of long records, as a laboratory does after a
     measurement day.
@@ -317,6 +323,10 @@ def run_campaign(
     min_separation : float, optional
         Shortest time between impact onsets [s]; closer candidates are listed with
         status ``"too close"`` and not analysed.
+    crosstalk : bool, default True
+        Remove the structure's crosstalk (its modes ringing after each hit, found on the
+        record: :mod:`dem_check.campaign.structure`) before each impact is measured; the
+        columns ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed.
 
     Returns
     -------
@@ -330,7 +340,10 @@ def run_campaign(
         with a status and a reason (an unexpected error in one file too: ``"failed"``).
     """
     fit, gallery = _check_inputs(sensor, grain, fit, gallery)
+    if not isinstance(crosstalk, bool):
+        raise ParameterError(f"crosstalk must be True or False; got {crosstalk!r}")
     options = {
+        "crosstalk": crosstalk,
         "sensor": sensor,
         "grain": grain,
         "fit": fit,
