@@ -146,8 +146,13 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
     list of (float, float)
         ``(frequency [Hz], damping ratio [-])`` of each oscillating pole of the window
         between one period per window and :data:`BAND_FRACTION` of the sensor resonance,
-        damping ratio in ``(0, MAX_DAMPING)``; empty when the window is too short for the
-        pencil (fewer than three samples per pencil order after decimation).
+        damping ratio in ``(0, MAX_DAMPING)``.
+
+    Raises
+    ------
+    ParameterError
+        Bad arguments, or a window too short for the pencil (fewer than three samples
+        per pencil order after decimation).
     """
     t, y = check_samples("t", t), check_samples("y", y)
     max_modes = check_count("max_modes", max_modes)
@@ -161,7 +166,11 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
     step = max(1, int(1.0 / (DECIMATED_PER_CUTOFF * cutoff * dt)))
     order = 2 * max_modes + SLOW_POLES
     if rest.size // step < 3 * order:
-        return []
+        raise ParameterError(
+            f"the window of {np.ptp(t):.3g} s is too short to identify {max_modes} structure "
+            f"modes: it needs {3 * order * step * dt:.3g} s (three decimated samples per "
+            "pencil order)"
+        )
     if cutoff < 0.4 / dt and rest.size > 30:
         rest = lowpass(rest, dt, cutoff)
     poles = matrix_pencil(rest[::step], dt * step, order)

@@ -11,8 +11,11 @@ for one impact found by :func:`dem_check.campaign.detection.find_impacts`:
   record's end), at most :data:`SPAN`.
 """
 
+import math
+
 import numpy as np
 
+from contactlab.errors import ParameterError
 from contactlab.inverse.crosstalk import Crosstalk, fit_crosstalk, structure_modes
 
 __all__ = ["NEXT_MARGIN_PERIODS", "SPAN", "impact_crosstalk", "record_modes"]
@@ -30,8 +33,16 @@ NEXT_MARGIN_PERIODS = 2.0
 """Sensor periods left before the next impact's onset [-] (its first touch precedes its
 5-sigma onset by a few microseconds)."""
 
-FREQUENCY_TOLERANCE = 0.05
-"""Poles found after different impacts within this relative frequency are one mode [-]."""
+FREQUENCY_TOLERANCE = 0.03
+"""Poles found after different impacts within this relative frequency of the next lower
+one, and within twice it of the lowest, are one mode [-] (a plate mode is found within
++-2 % after each hit of a 2 MHz record)."""
+
+HALF = 0.5
+"""Fraction of the impacts after which a mode must be found [-] (at least two): on
+records without crosstalk and with 1/f noise as large as the white noise, the pencil's
+noise poles fall within :data:`FREQUENCY_TOLERANCE` of each other after two of four
+impacts, a plate mode's after three or four."""
 
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the sensor's ringing to be fitted [-]."""
@@ -45,9 +56,10 @@ def _following(detection, index, sensor):
 
 
 def record_modes(detection, sensor):
-    """The structure's modes of a record: those found after at least two of its impacts
+    """The structure's modes of a record: those found after half of its impacts (two at least)
     (each impact's ringing, from its decay to the next impact, at most
-    :data:`IDENTIFICATION_SPAN`), or all of them when only one impact could be read.
+    :data:`IDENTIFICATION_SPAN`; impacts followed by too short a window do not count),
+    or all of them when only one impact could be read.
 
     A structure's modes are the same after every hit; a pole that the pencil fits to
     noise, drift or hum after one impact is rarely found again within
@@ -71,26 +83,29 @@ def record_modes(detection, sensor):
     for index, window in enumerate(detection.impacts):
         stop = min(_following(detection, index, sensor), window.end + IDENTIFICATION_SPAN)
         first, last = np.searchsorted(t, [window.end, stop])
-        if last - first >= 16:
-            values = np.asarray(detection.record.values[first:last], dtype=float)
-            if np.isfinite(values).all():
+        values = np.asarray(detection.record.values[first:last], dtype=float)
+        if last - first >= 16 and np.isfinite(values).all():
+            try:
                 found.append(structure_modes(t[first:last], values, sensor))
+            except ParameterError:  # too short a window: this impact does not count
+                continue
     return _pooled(found)
 
 
 def _pooled(found):
     """Groups of poles within :data:`FREQUENCY_TOLERANCE` of each other, kept when
-    found after two impacts or more (any, when one impact was read)."""
+    found after :data:`HALF` of the impacts, at least two (any, when one was read)."""
     poles = sorted((f, z, k) for k, modes in enumerate(found) for f, z in modes)
     groups, current = [], []
     for pole in poles:
-        if current and pole[0] > current[0][0] * (1.0 + FREQUENCY_TOLERANCE):
+        near = current and pole[0] <= current[-1][0] * (1.0 + FREQUENCY_TOLERANCE)
+        if current and not (near and pole[0] <= current[0][0] * (1.0 + 2 * FREQUENCY_TOLERANCE)):
             groups.append(current)
             current = []
         current.append(pole)
     if current:
         groups.append(current)
-    needed = 1 if len(found) <= 1 else 2
+    needed = max(2, math.ceil(HALF * len(found))) if len(found) > 1 else 1
     return [
         (float(np.median([p[0] for p in g])), float(np.median([p[1] for p in g])))
         for g in groups
