@@ -117,6 +117,7 @@ def _campaign(args):
         progress=not args.no_progress,
         min_force=args.min_force,
         min_separation=args.min_separation,
+        crosstalk=args.crosstalk,
     )
     print(dump(result.summary()) if args.json else result)
     if args.out:
@@ -155,6 +156,11 @@ def _add_campaign_parser(sub):
     )
     p.add_argument(
         "--min-separation", type=float, metavar="S", help="shortest time between onsets [s]"
+    )
+    p.add_argument(
+        "--crosstalk",
+        action="store_true",
+        help="remove the structure's modes ringing after each hit before measuring it",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")
