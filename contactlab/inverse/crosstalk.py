@@ -173,16 +173,40 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
         )
     if cutoff < 0.4 / dt and rest.size > 30:
         rest = lowpass(rest, dt, cutoff)
-    poles = matrix_pencil(rest[::step], dt * step, order)
+    decimated, tau = rest[::step], t[::step] - t[0]
+    poles = matrix_pencil(decimated, dt * step, order)
     low = 1.0 / float(np.ptp(t))
-    modes = []
+    candidates = []
     for pole in poles[poles.imag > 0.0]:
         w = abs(pole)
         zeta = -pole.real / w if w > 0.0 else 1.0
         frequency = pole.imag / (2.0 * math.pi)
         if low <= frequency <= cutoff and 0.0 < zeta < MAX_DAMPING:
-            modes.append((float(frequency), float(zeta)))
-    return sorted(modes)
+            candidates.append((float(frequency), float(zeta), complex(pole)))
+    return sorted(_significant(tau, decimated, candidates))
+
+
+def _significant(tau, y, candidates):
+    """The candidates whose amplitude, fitted with the others and a constant on the
+    decimated window, is :data:`SIGNIFICANCE` standard errors above zero (the decimated
+    samples' residual holds the noise of the band, 1/f noise included)."""
+    if not candidates:
+        return []
+    columns = [np.ones((tau.size, 1))] + [_free(tau, 0.0, pole) for *_, pole in candidates]
+    design = np.concatenate(columns, axis=1)
+    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
+    residual = y - design @ coefficients
+    dof = max(design.shape[0] - design.shape[1], 1)
+    covariance = np.linalg.pinv(design.T @ design) * float(residual @ residual) / dof
+    kept = []
+    for k, (frequency, zeta, _) in enumerate(candidates):
+        pair = coefficients[1 + 2 * k : 3 + 2 * k]
+        cov = covariance[1 + 2 * k : 3 + 2 * k, 1 + 2 * k : 3 + 2 * k]
+        norm = float(np.hypot(*pair))
+        error = math.sqrt(max(float(pair @ cov @ pair), 0.0)) / max(norm, 1e-300)
+        if norm > SIGNIFICANCE * error:
+            kept.append((frequency, zeta))
+    return kept
 
 
 def _responses(t, force, onset, frequency, zeta):
