@@ -117,7 +117,7 @@ def _campaign(args):
         progress=not args.no_progress,
         min_force=args.min_force,
         min_separation=args.min_separation,
-        crosstalk=args.crosstalk,
+        crosstalk=not args.no_crosstalk,
     )
     print(dump(result.summary()) if args.json else result)
     if args.out:
@@ -158,9 +158,9 @@ def _add_campaign_parser(sub):
         "--min-separation", type=float, metavar="S", help="shortest time between onsets [s]"
     )
     p.add_argument(
-        "--crosstalk",
+        "--no-crosstalk",
         action="store_true",
-        help="remove the structure's modes ringing after each hit before measuring it",
+        help="keep the structure's modes ringing after each hit (removed by default)",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--json", action="store_true", help="print the summary as JSON")

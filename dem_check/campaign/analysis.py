@@ -204,7 +204,7 @@ def _fit(t, raw, base, grain, sensor, law):
     return _fit_columns(fit), notes
 
 
-def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=False, modes=None):
+def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=True, modes=None):
     """The table row and gallery traces of one ``"ok"`` impact.
 
     Parameters
@@ -218,7 +218,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Fa
         Gives ``velocity_change [m/s]``; needed by ``fit``.
     fit : str, optional
         A law name of :data:`contactlab.inverse.FIT_MODELS`.
-    crosstalk : bool, default False
+    crosstalk : bool, default True
         Find the structure's modes ringing after the contact and remove their response
         before the numbers are read (:mod:`dem_check.campaign.structure`); the columns
         ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed.

@@ -276,7 +276,7 @@ def run_campaign(
     progress=False,
     min_force=None,
     min_separation=None,
-    crosstalk=False,
+    crosstalk=True,
 ):
     """Analyse every impact in a set of long records, as a laboratory does after a
     measurement day.
@@ -323,13 +323,11 @@ def run_campaign(
     min_separation : float, optional
         Shortest time between impact onsets [s]; closer candidates are listed with
         status ``"too close"`` and not analysed.
-    crosstalk : bool, default False
+    crosstalk : bool, default True
         Remove the structure's crosstalk (its modes ringing after each hit, found on the
         record: :mod:`dem_check.campaign.structure`) before each impact is measured; the
-        columns ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed. Off by
-        default: on records without crosstalk and with 1/f noise as large as the white
-        noise, noise poles pass for modes and cost some impacts their contact time
-        (``docs/campaign.md``).
+        columns ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed. On
+        records without crosstalk it finds no mode (measured, ``docs/campaign.md``).
 
     Returns
     -------

@@ -33,7 +33,7 @@ NEXT_MARGIN_PERIODS = 2.0
 """Sensor periods left before the next impact's onset [-] (its first touch precedes its
 5-sigma onset by a few microseconds)."""
 
-FREQUENCY_TOLERANCE = 0.03
+FREQUENCY_TOLERANCE = 0.04
 """Poles found after different impacts within this relative frequency of the next lower
 one, and within twice it of the lowest, are one mode [-] (a plate mode is found within
 +-2 % after each hit of a 2 MHz record)."""
