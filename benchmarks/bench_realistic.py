@@ -9,7 +9,9 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   bounces, written as HDF5 (not timed); ``run_campaign`` on it, timed, against reading
   the file alone (same run).
 - ``--accuracy``: 4 records of 4 impacts (and their bounces) per configuration (1, 2 and
-  5 MHz without crosstalk, 2 MHz with crosstalk of 2 % of each peak), impacts of
+  5 MHz without crosstalk, 2 MHz with crosstalk of 2 % of each peak, 1, 2 and 5 MHz with
+  crosstalk and 1/f noise of 0.3 sigma), with the crosstalk removal of ``run_campaign``
+  (``--no-crosstalk``: without it), impacts of
   0.5-2.5 m/s, clipping off (a clipped impact is flagged, not measured) and offset steps
   off (docs/campaign.md);
   the largest and 95th-percentile errors of the analysed impacts against the model's
