@@ -327,17 +327,20 @@ def _edge_levels(y, span, medians):
     of their own (the block's median is the level after the step), and one in the last
     block those after it. The record's first ``span`` samples give their level, if they
     hold no pulse: their robust noise must be at most :data:`EDGE_QUIET` times the
-    record's white noise (read on first differences, which a step, drift or a pulse
-    barely moves), else a record that starts at an impact would offer the impact's own
-    level as a baseline."""
-    differences = np.diff(y)
-    white = MAD_TO_SIGMA * float(np.median(np.abs(differences - np.median(differences))))
-    white /= np.sqrt(2.0)
+    white noise of the outer block (read on its first differences, which a step, drift
+    or a pulse barely moves), else a record that starts at an impact would offer the
+    impact's own level as a baseline."""
     levels = []
-    for part, outer in ((y[:span], medians[0]), (y[-span:], medians[-1])):
+    block = span * LOCAL_MEAN_FRACTION
+    for part, outer, edge in (
+        (y[:span], medians[0], y[:block]),
+        (y[-span:], medians[-1], y[-block:]),
+    ):
+        differences = np.diff(edge)
+        white = MAD_TO_SIGMA * float(np.median(np.abs(differences - np.median(differences))))
         level = float(np.median(part))
-        quiet = MAD_TO_SIGMA * float(np.median(np.abs(part - level))) <= EDGE_QUIET * white
-        levels.append(level if quiet else outer)
+        spread = MAD_TO_SIGMA * float(np.median(np.abs(part - level)))
+        levels.append(level if spread <= EDGE_QUIET * white / np.sqrt(2.0) else outer)
     return levels
 
 

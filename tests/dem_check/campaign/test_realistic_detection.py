@@ -20,10 +20,10 @@ Offset steps are left out of the random sweep: a step a few tenths of a millisec
 before a weak impact can still displace its onset by more than :data:`MATCH`
 (``docs/campaign.md``); steps alone, and steps in the record's first and last block
 (which read as impacts before ``running_baseline`` gave those blocks the level of the
-record's first and last samples), are tested below. Bounces come 1.5-3 ms after their impact: a weak one
-(13 sigma) 1 ms after a 2.5 m/s impact was missed, merged into the run of the first
-impact's ringing without the envelope growing enough to flag an overlap (known limit,
-``docs/campaign.md``).
+record's first and last samples), are tested below. Bounces come 1.5-3 ms after their
+impact: a weak one (13 sigma) 1 ms after a 2.5 m/s impact was missed, merged into the
+run of the first impact's ringing without the envelope growing enough to flag an
+overlap (known limit, ``docs/campaign.md``).
 """
 
 import numpy as np
