@@ -193,20 +193,29 @@ def _significant(tau, y, candidates):
     if not candidates:
         return []
     columns = [np.ones((tau.size, 1))] + [_free(tau, 0.0, pole) for *_, pole in candidates]
-    design = np.concatenate(columns, axis=1)
+    coefficients, covariance = _least_squares(np.concatenate(columns, axis=1), y)
+    return [
+        (frequency, zeta)
+        for k, (frequency, zeta, _) in enumerate(candidates)
+        if _pair(coefficients, covariance, 1 + 2 * k)[1]
+    ]
+
+
+def _least_squares(design, y):
+    """Coefficients and their covariance (white residual) of ``design @ c = y``."""
     coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
     residual = y - design @ coefficients
     dof = max(design.shape[0] - design.shape[1], 1)
-    covariance = np.linalg.pinv(design.T @ design) * float(residual @ residual) / dof
-    kept = []
-    for k, (frequency, zeta, _) in enumerate(candidates):
-        pair = coefficients[1 + 2 * k : 3 + 2 * k]
-        cov = covariance[1 + 2 * k : 3 + 2 * k, 1 + 2 * k : 3 + 2 * k]
-        norm = float(np.hypot(*pair))
-        error = math.sqrt(max(float(pair @ cov @ pair), 0.0)) / max(norm, 1e-300)
-        if norm > SIGNIFICANCE * error:
-            kept.append((frequency, zeta))
-    return kept
+    return coefficients, np.linalg.pinv(design.T @ design) * float(residual @ residual) / dof
+
+
+def _pair(coefficients, covariance, index):
+    """Amplitude of the cosine-sine pair at ``index`` and whether it is
+    :data:`SIGNIFICANCE` standard errors (along itself) above zero."""
+    pair = coefficients[index : index + 2]
+    norm = float(np.hypot(*pair))
+    variance = float(pair @ covariance[index : index + 2, index : index + 2] @ pair)
+    return norm, norm > SIGNIFICANCE * math.sqrt(max(variance, 0.0)) / max(norm, 1e-300)
 
 
 def _responses(t, force, onset, frequency, zeta):
@@ -269,21 +278,14 @@ def fit_crosstalk(t, y, sensor, onset, pulse, fitted, post_start, modes):
             free = pre_span >= 0.5 / frequency  # earlier ringing can be told apart
             columns += [response, _free(t, onset, pole)] if free else [response]
             parts.append((frequency, zeta, gain, free))
-        design = np.concatenate(columns, axis=1)
-        rows = design[fitted]
-        coefficients, *_ = np.linalg.lstsq(rows, y[fitted], rcond=None)
         if not parts:
             return Crosstalk((), np.zeros(t.size))
-        residual = y[fitted] - rows @ coefficients
-        dof = max(rows.shape[0] - rows.shape[1], 1)
-        covariance = np.linalg.pinv(rows.T @ rows) * float(residual @ residual) / dof
+        design = np.concatenate(columns, axis=1)
+        coefficients, covariance = _least_squares(design[fitted], y[fitted])
         significant, found, index = [], [], base.shape[1]
         for frequency, zeta, gain, free in parts:
-            pair = coefficients[index : index + 2]
-            cov = covariance[index : index + 2, index : index + 2]
-            norm = float(np.hypot(*pair))
-            error = math.sqrt(max(float(pair @ cov @ pair), 0.0)) / max(norm, 1e-300)
-            significant.append(norm > SIGNIFICANCE * error)
+            norm, enough = _pair(coefficients, covariance, index)
+            significant.append(enough)
             found.append(StructureMode(frequency, zeta, gain * norm))
             index += 4 if free else 2
         if all(significant):

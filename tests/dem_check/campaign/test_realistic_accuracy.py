@@ -38,13 +38,12 @@ FORCE_TARGETS = 30.0
 samples there, docs/campaign.md)."""
 
 
-@pytest.fixture(scope="module")
-def analysed(hard_setup):
+def _record(hard_setup, crosstalk):
     grain, sensor, law = hard_setup
     effects = Effects.everything(
-        NOISE, 3.0, pink=0.3 * NOISE, crosstalk=0.0, full_scale=None, steps=0
+        NOISE, 3.0, pink=0.3 * NOISE, crosstalk=crosstalk, full_scale=None, steps=0
     )
-    record = realistic_record(
+    return realistic_record(
         grain,
         sensor,
         law,
@@ -56,6 +55,12 @@ def analysed(hard_setup):
         effects=effects,
         seed=11,
     )
+
+
+@pytest.fixture(scope="module")
+def analysed(hard_setup):
+    grain, sensor, _ = hard_setup
+    record = _record(hard_setup, 0.0)
     found = find_impacts(record.trace, sensor)
     rows = []
     for window in found.impacts:
@@ -112,22 +117,8 @@ def test_impulse_and_force_from_thirty_sigma(analysed):
 def with_crosstalk(hard_setup):
     """The same record with crosstalk of 2 % of each peak (the structure's three modes),
     analysed with and without its removal."""
-    grain, sensor, law = hard_setup
-    effects = Effects.everything(
-        NOISE, 3.0, pink=0.3 * NOISE, crosstalk=0.02, full_scale=None, steps=0
-    )
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.5, 1.0, 2.2, 1.6],
-        [1e-3, 6e-3, 11e-3, 16e-3],
-        length=22e-3,
-        sample_rate=RATE,
-        noise=NOISE,
-        effects=effects,
-        seed=11,
-    )
+    grain, sensor, _ = hard_setup
+    record = _record(hard_setup, 0.02)
     found = find_impacts(record.trace, sensor)
     modes = record_modes(found, sensor)
     rows = {True: [], False: []}
