@@ -341,8 +341,9 @@ def run_campaign(
         with a status and a reason (an unexpected error in one file too: ``"failed"``).
     """
     fit, gallery = _check_inputs(sensor, grain, fit, gallery)
-    if not isinstance(crosstalk, bool):
-        raise ParameterError(f"crosstalk must be True or False; got {crosstalk!r}")
+    for name, flag in (("crosstalk", crosstalk), ("progress", progress)):
+        if not isinstance(flag, bool):
+            raise ParameterError(f"{name} must be True or False; got {flag!r}")
     options = {
         "crosstalk": crosstalk,
         "sensor": sensor,
