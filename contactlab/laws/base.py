@@ -23,6 +23,7 @@ dissipated energy) is a simulation: :mod:`contactlab.solver.wall` (``wall_impact
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import ClassVar
 
 import numpy as np
@@ -30,7 +31,24 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.validation import KeywordChecked, check_samples
 
-__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw"]
+__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw", "read_only", "stated"]
+
+
+def read_only(**units):
+    """A law's table (parameter units, typical ranges), read-only:
+    ``units = read_only(k_hertz="N/m**1.5")``."""
+    return MappingProxyType(units)
+
+
+def stated(law, name):
+    """The method ``name`` of ``law`` if its own class states it, else None.
+
+    What a law says about itself beyond its force (closed forms, batch columns, DEM
+    mappings) is not inherited: a subclass may change the force, so it states them again
+    or is refused by name.
+    """
+    method = vars(type(law)).get(name)
+    return None if method is None else method.__get__(law)
 
 
 def one_sided(overlap, raw):
@@ -174,6 +192,20 @@ class ContactLaw(KeywordChecked, ABC):
     """Whether every branch is linear in overlap and rate (exact solver applies)."""
     prescribed: ClassVar[bool] = False
     """Whether the force is a prescribed function of time instead of overlap."""
+    units: ClassVar[MappingProxyType]
+    """Parameter name -> SI unit (the constructor's checks and the study's columns)."""
+    typical: ClassVar[MappingProxyType]
+    """Ranges real grains span: name -> ``(low, high, scale)``, ``scale`` "log" for a
+    range of decades, else "linear"; the test strategies draw laws from them
+    (:func:`contactlab.testing.strategies.laws`) through :meth:`from_typical`."""
+    stiffness_parameters: ClassVar[tuple[str, ...]] = ()
+    """Parameters that make up "the contact stiffness" a study's scatter multiplies (all
+    by the same factor, so that e.g. Walton-Braun keeps its restitution)."""
+
+    @classmethod
+    def from_typical(cls, **drawn):
+        """The law from values drawn over :attr:`typical` (by default its parameters)."""
+        return cls(**drawn)
 
     @abstractmethod
     def _force(self, overlap, rate, max_overlap):

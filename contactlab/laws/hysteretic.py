@@ -2,14 +2,17 @@
 
 import numpy as np
 
+from contactlab import analytic
 from contactlab.laws.base import (
     Branch,
     ContactLaw,
     one_sided,
     overlap_reaches,
     rate_turns,
+    read_only,
     with_history,
 )
+from contactlab.laws.closed_form import WALTON_BRAUN_1986, closed_form
 from contactlab.validation import check_number, check_positive, numbers_checked
 
 __all__ = ["WaltonBraun", "walton_braun_force"]
@@ -56,11 +59,27 @@ class WaltonBraun(ContactLaw):
     """
 
     name = "walton_braun"
+    lammps_refusal = (
+        "its unloading stiffness differs from its loading one (history); LAMMPS' normal "
+        "models (hooke, hertz, hertz/material, dmt, jkr) are elastic in the current overlap "
+        "and its plastic one (mdr) is a different law"
+    )
     has_history = True
     piecewise_linear = True
+    units = read_only(loading_stiffness="N/m", unloading_stiffness="N/m")
+    stiffness_parameters = ("loading_stiffness", "unloading_stiffness")
+    typical = read_only(loading_stiffness=(1e3, 1e7, "log"), stiffness_ratio=(0.05, 1.0, "linear"))
+    """``stiffness_ratio`` k1/k2: restitution sqrt(k1/k2) from 1 down to 0.22."""
+
+    @classmethod
+    def from_typical(cls, loading_stiffness, stiffness_ratio):
+        """The law from values drawn over :attr:`typical` (``k2 = k1 / stiffness_ratio``)."""
+        return cls(loading_stiffness, loading_stiffness / stiffness_ratio)
 
     def __init__(self, loading_stiffness, unloading_stiffness):
-        self.loading_stiffness = check_positive("loading_stiffness", loading_stiffness, "N/m")
+        self.loading_stiffness = check_positive(
+            "loading_stiffness", loading_stiffness, self.units["loading_stiffness"]
+        )
         self.unloading_stiffness = check_number(
             "unloading_stiffness",
             unloading_stiffness,
@@ -98,3 +117,18 @@ class WaltonBraun(ContactLaw):
         if max_overlap <= 0.0:
             return 0.0, "load"
         return self._plastic_overlap(max_overlap), "unload"
+
+    def closed_forms(self, mass, velocity):
+        """Restitution ``sqrt(k1/k2)`` and contact time on a wall (Walton & Braun 1986)."""
+        args = dict(
+            loading_stiffness=self.loading_stiffness,
+            unloading_stiffness=self.unloading_stiffness,
+        )
+        restitution, contact_time = (
+            analytic.walton_braun_restitution,
+            analytic.walton_braun_contact_time,
+        )
+        return (
+            closed_form("restitution", restitution, WALTON_BRAUN_1986, **args),
+            closed_form("contact_time", contact_time, WALTON_BRAUN_1986, mass=mass, **args),
+        )

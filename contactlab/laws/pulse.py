@@ -3,7 +3,8 @@
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import ContactLaw
+from contactlab.laws.base import ContactLaw, read_only
+from contactlab.laws.closed_form import KESKA_2021, ClosedForm, closed_form
 from contactlab.validation import KeywordChecked, check_number, check_positive, numbers_checked
 
 __all__ = ["PlasticTrapezoid", "plastic_trapezoid_force"]
@@ -55,12 +56,22 @@ class PlasticTrapezoid(KeywordChecked):
     """
 
     name = "plastic_trapezoid"
+    lammps_refusal = "it prescribes the force in time, not as a function of the overlap"
     prescribed = True
     has_history = False
     piecewise_linear = True
+    units = read_only(contact_time="s", ramp_time="s")
+    stiffness_parameters = ()
+    typical = read_only(contact_time=(10e-6, 500e-6, "log"), ramp_fraction=(0.0, 1.0, "linear"))
+    """``ramp_fraction``: the ramps' share of half the pulse."""
+
+    @classmethod
+    def from_typical(cls, contact_time, ramp_fraction):
+        """The pulse from values drawn over :attr:`typical`."""
+        return cls(contact_time, ramp_fraction * 0.5 * contact_time)
 
     def __init__(self, contact_time, ramp_time=0.0):
-        self.contact_time = check_positive("contact_time", contact_time, "s")
+        self.contact_time = check_positive("contact_time", contact_time, self.units["contact_time"])
         self.ramp_time = check_number(
             "ramp_time",
             ramp_time,
@@ -105,3 +116,28 @@ class PlasticTrapezoid(KeywordChecked):
         check_positive("mass", mass, "kg")
         check_positive("velocity", velocity, "m/s")
         return 0.0
+
+    def closed_forms(self, mass, velocity):
+        """Plateau force, the prescribed duration and restitution 0 (Keska et al. 2021)."""
+        return (
+            closed_form(
+                "peak_contact_force",
+                analytic.plastic_trapezoid_amplitude,
+                KESKA_2021,
+                mass=mass,
+                velocity=velocity,
+                contact_time=self.contact_time,
+                ramp_time=self.ramp_time,
+            ),
+            ClosedForm(
+                "contact_time", self.contact_time, "t_k (the prescribed duration)", KESKA_2021
+            ),
+            ClosedForm(
+                "restitution",
+                0.0,
+                "0 (the impulse equals the grain's momentum m v)",
+                KESKA_2021,
+                atol=1e-12,
+                atol_reason="an exact zero has no relative scale; 1e-12 is 1e4 times the roundoff",
+            ),
+        )
