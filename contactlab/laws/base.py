@@ -20,6 +20,7 @@ dissipated energy) is a simulation: :mod:`contactlab.solver.wall` (``wall_impact
 ``wall_restitution``, ``wall_contact_time``, ``wall_dissipated_energy``), above the laws.
 """
 
+import functools
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -29,7 +30,7 @@ from typing import ClassVar
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.validation import KeywordChecked, check_samples
+from contactlab.validation import KeywordChecked, check_samples, numbers_checked
 
 __all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw", "read_only", "stated"]
 
@@ -49,6 +50,30 @@ def stated(law, name):
     """
     method = vars(type(law)).get(name)
     return None if method is None else method.__get__(law)
+
+
+def force_function(*optional):
+    """Decorator of a public force function: its arguments are checked as
+    :func:`~contactlab.validation.numbers_checked` checks them (``optional`` may be
+    ``None``), and a force beyond the float range (an overlap or a parameter no contact
+    has) raises :class:`~contactlab.errors.ParameterError` instead of an overflow warning
+    and ``inf``."""
+
+    def decorate(function):
+        @functools.wraps(function)
+        def finite(*args, **kwargs):
+            with np.errstate(over="ignore", invalid="ignore"):
+                force = function(*args, **kwargs)
+            if not np.all(np.isfinite(force)):
+                raise ParameterError(
+                    f"{function.__name__}: the force overflows the float range for these "
+                    "arguments (an overlap or a parameter no contact has)"
+                )
+            return force
+
+        return numbers_checked(*optional)(finite)
+
+    return decorate
 
 
 def one_sided(overlap, raw):
@@ -214,6 +239,14 @@ class ContactLaw(KeywordChecked, ABC):
     @abstractmethod
     def branch(self, name, max_overlap=0.0):
         """The :class:`Branch` called ``name`` given the largest overlap so far [m]."""
+
+    def _keep(self, **checked):
+        """Check each parameter, ``name=(check, value)``, in its unit (:attr:`units`) with
+        ``check(name, value, unit=...)`` and keep it as an attribute and in
+        :meth:`parameters`."""
+        for name, (check, value) in checked.items():
+            setattr(self, name, check(name, value, unit=self.units[name]))
+        self._params = {name: getattr(self, name) for name in checked}
 
     def parameters(self):
         """Parameters as a dict (name -> value in SI units)."""

@@ -8,6 +8,8 @@ sub-models and their forces are in :mod:`contactlab.laws.lammps`'s docstring.
 
 from dataclasses import dataclass
 
+from contactlab.laws.engine_support import EngineContact
+
 __all__ = ["DAMPING_FORMS", "TANGENTIAL", "GranularModel"]
 
 TANGENTIAL = "tangential linear_nohistory 0 0"
@@ -20,14 +22,12 @@ DAMPING_FORMS = (
 """What LAMMPS' damping sub-models can hold, quoted in refusals."""
 
 
-@dataclass(frozen=True)
-class GranularModel:
+@dataclass(frozen=True, kw_only=True)
+class GranularModel(EngineContact):
     """A law as one LAMMPS granular model for a contact of given ``m*`` and ``R*``.
 
     Attributes
     ----------
-    law : ContactLaw
-        The contactlab law.
     normal : str
         LAMMPS normal sub-model (``"hooke"`` or ``"hertz"``).
     stiffness : float
@@ -38,19 +38,15 @@ class GranularModel:
     damping_coefficient : float
         The normal model's second coefficient as LAMMPS reads it for that damping: [N*s/m]
         (velocity), [1/(m*s)] (viscoelastic), a restitution [-] (coeff_restitution).
-    effective_mass : float
-        ``m*`` the mapping assumed [kg].
-    effective_radius : float
-        ``R*`` the mapping assumed [m].
+
+    and ``law``, ``effective_mass``, ``effective_radius`` of
+    :class:`~contactlab.laws.engine_support.EngineContact`.
     """
 
-    law: object
     normal: str
     stiffness: float
     damping: str
     damping_coefficient: float
-    effective_mass: float
-    effective_radius: float
 
     def words(self, tangential=TANGENTIAL, number=repr):
         """The model as ``pair_coeff`` / ``fix wall/gran granular`` words (one-sided).

@@ -1,12 +1,20 @@
 """The Hertz family: elastic Hertz, Tsuji's damped Hertz, Kuwabara-Kono, Hunt-Crossley."""
 
 import math
+from functools import partial
 
 import numpy as np
 
 from contactlab import analytic
 from contactlab.errors import ParameterError
-from contactlab.laws.base import PowerForm, SmoothLaw, one_sided, read_only, signed_power
+from contactlab.laws.base import (
+    PowerForm,
+    SmoothLaw,
+    force_function,
+    one_sided,
+    read_only,
+    signed_power,
+)
 from contactlab.laws.closed_form import (
     ANTYPOV_2011,
     HUNT_CROSSLEY_1975,
@@ -22,7 +30,6 @@ from contactlab.validation import (
     check_number,
     check_positive,
     check_probability,
-    numbers_checked,
 )
 
 __all__ = [
@@ -41,7 +48,7 @@ def _hertz_raw(overlap, k_hertz):
     return k_hertz * signed_power(overlap, 1.5)
 
 
-@numbers_checked()
+@force_function()
 def hertz_force(overlap, k_hertz):
     """Hertz elastic sphere-flat force ``kH d**1.5`` [N] (0 for ``d <= 0``).
 
@@ -66,7 +73,7 @@ def _hertz_damped_raw(overlap, rate, k_hertz, damping):
     return (k_hertz * overlap * root + damping * rate) * root
 
 
-@numbers_checked()
+@force_function()
 def hertz_damped_force(overlap, rate, k_hertz, damping):
     """Damped Hertz force of Tsuji et al. / EDEM / LIGGGHTS ``kH d**1.5 + eta d**0.25 d'`` [N].
 
@@ -94,18 +101,14 @@ def _kuwabara_kono_raw(overlap, rate, k_hertz, dissipation):
     return k_hertz * (signed_power(overlap, 1.5) + 1.5 * dissipation * abs(overlap) ** 0.5 * rate)
 
 
-@numbers_checked()
+@force_function()
 def kuwabara_kono_force(overlap, rate, k_hertz, dissipation):
     """Viscoelastic Hertz force ``kH (d**1.5 + 1.5 A d**0.5 d')`` [N].
 
     Parameters
     ----------
-    overlap : array_like
-        Overlap [m].
-    rate : array_like
-        Overlap rate [m/s].
-    k_hertz : float
-        Hertz stiffness [N/m**1.5].
+    overlap, rate, k_hertz
+        Overlap [m], its rate [m/s] and kH [N/m**1.5], as for :func:`hertz_damped_force`.
     dissipation : float
         Dissipation constant ``A`` [s].
 
@@ -122,16 +125,14 @@ def _hunt_crossley_raw(overlap, rate, stiffness, exponent, damping):
     return stiffness * signed_power(overlap, exponent) * (1.0 + 1.5 * damping * rate)
 
 
-@numbers_checked()
+@force_function()
 def hunt_crossley_force(overlap, rate, stiffness, exponent, damping):
     """Hunt-Crossley force ``k d**n (1 + 1.5 chi d')`` [N].
 
     Parameters
     ----------
-    overlap : array_like
-        Overlap [m].
-    rate : array_like
-        Overlap rate [m/s].
+    overlap, rate : array_like
+        Overlap [m] and its rate [m/s], as for :func:`hertz_damped_force`.
     stiffness : float
         Stiffness ``k`` [N/m**n].
     exponent : float
@@ -151,7 +152,13 @@ def _lammps_hertz(law, damping, coefficient, effective_mass, effective_radius):
     """A Hertz-family law as LAMMPS' ``hertz kH/sqrt(R*)`` with the given damping."""
     stiffness = law.k_hertz / math.sqrt(effective_radius)
     return GranularModel(
-        law, "hertz", stiffness, damping, coefficient, effective_mass, effective_radius
+        law=law,
+        normal="hertz",
+        stiffness=stiffness,
+        damping=damping,
+        damping_coefficient=coefficient,
+        effective_mass=effective_mass,
+        effective_radius=effective_radius,
     )
 
 
@@ -177,8 +184,7 @@ class Hertz(SmoothLaw):
     """kH = 4/3 E* sqrt(R*): the paper's 5 mm grain has 1.5e6; dry hard grains reach 1e9."""
 
     def __init__(self, k_hertz):
-        self.k_hertz = check_positive("k_hertz", k_hertz, self.units["k_hertz"])
-        self._params = {"k_hertz": self.k_hertz}
+        self._keep(k_hertz=(check_positive, k_hertz))
 
     @classmethod
     def from_material(
@@ -257,9 +263,7 @@ class HertzDamped(SmoothLaw):
     """Damping factor alpha up to about 0.3 for the paper's grain."""
 
     def __init__(self, k_hertz, damping):
-        self.k_hertz = check_positive("k_hertz", k_hertz, self.units["k_hertz"])
-        self.damping = check_non_negative("damping", damping, self.units["damping"])
-        self._params = {"k_hertz": self.k_hertz, "damping": self.damping}
+        self._keep(k_hertz=(check_positive, k_hertz), damping=(check_non_negative, damping))
 
     @classmethod
     def from_material(
@@ -355,10 +359,8 @@ class KuwabaraKono(SmoothLaw):
 
     Parameters
     ----------
-    k_hertz : float
-        Hertz stiffness [N/m**1.5].
-    dissipation : float
-        Dissipation constant ``A`` [s], >= 0.
+    k_hertz, dissipation : float
+        Hertz stiffness [N/m**1.5] and dissipation constant ``A`` >= 0 [s].
 
     See Also
     --------
@@ -372,9 +374,7 @@ class KuwabaraKono(SmoothLaw):
     """Dissipation constant A up to 10 us."""
 
     def __init__(self, k_hertz, dissipation):
-        self.k_hertz = check_positive("k_hertz", k_hertz, self.units["k_hertz"])
-        self.dissipation = check_non_negative("dissipation", dissipation, self.units["dissipation"])
-        self._params = {"k_hertz": self.k_hertz, "dissipation": self.dissipation}
+        self._keep(k_hertz=(check_positive, k_hertz), dissipation=(check_non_negative, dissipation))
 
     def _raw(self, overlap, rate):
         return _kuwabara_kono_raw(overlap, rate, self.k_hertz, self.dissipation)
@@ -438,14 +438,11 @@ class HuntCrossley(SmoothLaw):
     """Hertzian exponent; restitution 1 - chi v for small chi v."""
 
     def __init__(self, stiffness, exponent, damping):
-        self.stiffness = check_positive("stiffness", stiffness, self.units["stiffness"])
-        self.exponent = check_number("exponent", exponent, low=1.0, high=3.0, low_open=False)
-        self.damping = check_non_negative("damping", damping, self.units["damping"])
-        self._params = {
-            "stiffness": self.stiffness,
-            "exponent": self.exponent,
-            "damping": self.damping,
-        }
+        self._keep(
+            stiffness=(check_positive, stiffness),
+            exponent=(partial(check_number, low=1.0, high=3.0, low_open=False), exponent),
+            damping=(check_non_negative, damping),
+        )
 
     def _raw(self, overlap, rate):
         return _hunt_crossley_raw(overlap, rate, self.stiffness, self.exponent, self.damping)

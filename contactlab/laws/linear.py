@@ -5,12 +5,12 @@ import math
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import PowerForm, SmoothLaw, one_sided, read_only
+from contactlab.laws.base import PowerForm, SmoothLaw, force_function, one_sided, read_only
 from contactlab.laws.closed_form import SCHWAGER_2007, closed_form
 from contactlab.laws.granular import GranularModel
 from contactlab.laws.hertz import Hertz
 from contactlab.quantities import column
-from contactlab.validation import check_choice, check_non_negative, check_positive, numbers_checked
+from contactlab.validation import check_choice, check_non_negative, check_positive
 
 __all__ = ["LinearViscoelastic", "linear_viscoelastic_force"]
 
@@ -19,7 +19,7 @@ def _linear_raw(overlap, rate, stiffness, damping):
     return stiffness * overlap + damping * rate
 
 
-@numbers_checked()
+@force_function()
 def linear_viscoelastic_force(overlap, rate, stiffness, damping):
     """Linear spring-dashpot (Kelvin-Voigt) contact force, one-sided.
 
@@ -80,9 +80,7 @@ class LinearViscoelastic(SmoothLaw):
     """DEM practice (the paper's soft and hard grains: 1e4 and 1e5 N/m; damping 1 N*s/m)."""
 
     def __init__(self, stiffness, damping=0.0):
-        self.stiffness = check_positive("stiffness", stiffness, self.units["stiffness"])
-        self.damping = check_non_negative("damping", damping, self.units["damping"])
-        self._params = {"stiffness": self.stiffness, "damping": self.damping}
+        self._keep(stiffness=(check_positive, stiffness), damping=(check_non_negative, damping))
 
     @classmethod
     def from_restitution(cls, stiffness, restitution, mass, convention="overlap"):
@@ -135,13 +133,13 @@ class LinearViscoelastic(SmoothLaw):
     def lammps_model(self, effective_mass, effective_radius):
         """LAMMPS: ``hooke k c``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
         return GranularModel(
-            self,
-            "hooke",
-            self.stiffness,
-            "velocity",
-            self.damping,
-            effective_mass,
-            effective_radius,
+            law=self,
+            normal="hooke",
+            stiffness=self.stiffness,
+            damping="velocity",
+            damping_coefficient=self.damping,
+            effective_mass=effective_mass,
+            effective_radius=effective_radius,
         )
 
     def batch_contact(self):

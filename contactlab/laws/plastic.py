@@ -8,6 +8,7 @@ from contactlab import analytic
 from contactlab.laws.base import (
     Branch,
     ContactLaw,
+    force_function,
     one_sided,
     overlap_reaches,
     rate_turns,
@@ -16,12 +17,12 @@ from contactlab.laws.base import (
     with_history,
 )
 from contactlab.laws.closed_form import ENERGY_BALANCE, THORNTON_1997, ClosedForm, closed_form
-from contactlab.validation import check_positive, numbers_checked
+from contactlab.validation import check_positive
 
 __all__ = ["LinearPlastic", "Thornton", "linear_plastic_force", "thornton_force"]
 
 
-@numbers_checked("max_overlap")
+@force_function("max_overlap")
 def linear_plastic_force(overlap, max_overlap, stiffness, yield_force):
     """Linear spring with a force cap (elastic-perfectly-plastic, linear) [N].
 
@@ -40,11 +41,16 @@ def linear_plastic_force(overlap, max_overlap, stiffness, yield_force):
         Force cap ``Fy`` [N].
     """
     d, d_max = with_history(overlap, max_overlap)
+    return one_sided(d, _linear_plastic_raw(d, d_max, stiffness, yield_force))
+
+
+def _linear_plastic_raw(d, d_max, stiffness, yield_force):
+    """``min(k d, Fy)`` on loading, elastic unloading from the largest force reached."""
     f_max = np.minimum(stiffness * d_max, yield_force)
-    return one_sided(d, np.minimum(f_max + stiffness * (d - d_max), yield_force))
+    return np.minimum(f_max + stiffness * (d - d_max), yield_force)
 
 
-@numbers_checked("max_overlap")
+@force_function("max_overlap")
 def thornton_force(overlap, max_overlap, effective_modulus, effective_radius, yield_pressure):
     """Thornton (1997) elastic-perfectly-plastic Hertz force [N].
 
@@ -53,16 +59,10 @@ def thornton_force(overlap, max_overlap, effective_modulus, effective_radius, yi
 
     Parameters
     ----------
-    overlap : array_like
-        Overlap [m].
-    max_overlap : array_like or None
-        Largest overlap reached so far [m]; ``None`` means a virgin loading path.
-    effective_modulus : float
-        ``E*`` [Pa].
-    effective_radius : float
-        ``R*`` [m].
-    yield_pressure : float
-        Limiting contact pressure ``py`` [Pa].
+    overlap, max_overlap
+        As for :func:`linear_plastic_force` [m].
+    effective_modulus, effective_radius, yield_pressure : float
+        ``E*`` [Pa], ``R*`` [m] and the limiting contact pressure ``py`` [Pa].
 
     References
     ----------
@@ -130,14 +130,11 @@ class LinearPlastic(ContactLaw):
     """The paper's impacts peak at a few N."""
 
     def __init__(self, stiffness, yield_force):
-        self.stiffness = check_positive("stiffness", stiffness, self.units["stiffness"])
-        self.yield_force = check_positive("yield_force", yield_force, self.units["yield_force"])
-        self._params = {"stiffness": self.stiffness, "yield_force": self.yield_force}
+        self._keep(stiffness=(check_positive, stiffness), yield_force=(check_positive, yield_force))
 
     def _force(self, overlap, rate, max_overlap):
         d, d_max = with_history(overlap, max_overlap)
-        f_max = np.minimum(self.stiffness * d_max, self.yield_force)
-        return np.minimum(f_max + self.stiffness * (d - d_max), self.yield_force)
+        return _linear_plastic_raw(d, d_max, self.stiffness, self.yield_force)
 
     def branch(self, name, max_overlap=0.0):
         k, f_y = self.stiffness, self.yield_force
@@ -223,19 +220,11 @@ class Thornton(ContactLaw):
     )
 
     def __init__(self, effective_modulus, effective_radius, yield_pressure):
-        u = self.units
-        self.effective_modulus = check_positive(
-            "effective_modulus", effective_modulus, u["effective_modulus"]
+        self._keep(
+            effective_modulus=(check_positive, effective_modulus),
+            effective_radius=(check_positive, effective_radius),
+            yield_pressure=(check_positive, yield_pressure),
         )
-        self.effective_radius = check_positive(
-            "effective_radius", effective_radius, u["effective_radius"]
-        )
-        self.yield_pressure = check_positive("yield_pressure", yield_pressure, u["yield_pressure"])
-        self._params = {
-            "effective_modulus": self.effective_modulus,
-            "effective_radius": self.effective_radius,
-            "yield_pressure": self.yield_pressure,
-        }
 
     @classmethod
     def from_material(

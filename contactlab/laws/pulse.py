@@ -3,14 +3,14 @@
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import ContactLaw, read_only
+from contactlab.laws.base import ContactLaw, force_function, read_only
 from contactlab.laws.closed_form import KESKA_2021, ClosedForm, closed_form
-from contactlab.validation import KeywordChecked, check_number, check_positive, numbers_checked
+from contactlab.validation import KeywordChecked, check_number, check_positive
 
 __all__ = ["PlasticTrapezoid", "plastic_trapezoid_force"]
 
 
-@numbers_checked()
+@force_function()
 def plastic_trapezoid_force(time, amplitude, contact_time, ramp_time):
     """The paper's perfectly plastic pulse: a trapezoid in time [N].
 
@@ -29,6 +29,8 @@ def plastic_trapezoid_force(time, amplitude, contact_time, ramp_time):
     ----------
     Keska W. et al. (2021) Applied Sciences 11, 11 (Eqs. 7-8).
     """
+    check_number("contact_time", contact_time, unit="s")  # scalars: the pulse has one shape
+    ramp_time = check_number("ramp_time", ramp_time, low=0.0, low_open=False, unit="s")
     time = np.asarray(time, dtype=float)
     if ramp_time == 0.0:
         shape = ((time >= 0) & (time < contact_time)).astype(float)
