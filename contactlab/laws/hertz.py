@@ -223,6 +223,10 @@ class Hertz(SmoothLaw):
         """LAMMPS: ``hertz kH/sqrt(R*) 0``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
         return _lammps_hertz(self, "velocity", 0.0, effective_mass, effective_radius)
 
+    def damping_ratio(self, mass):
+        """Kratos' damping ratio [-]: 0 (:func:`contactlab.laws.damping_ratio`)."""
+        return 0.0
+
     def batch_contact(self):
         """The batch solver of this law and its contact columns:
         :func:`contactlab.batch.hertz_impacts` with zero damping."""
@@ -339,6 +343,11 @@ class HertzDamped(SmoothLaw):
         return _lammps_hertz(
             self, "coeff_restitution", restitution, effective_mass, effective_radius
         )
+
+    def damping_ratio(self, mass):
+        """Kratos' damping ratio ``eta / (2 sqrt(1.5 m* kH))`` [-] on a grain of ``mass``
+        [kg] (:func:`contactlab.laws.damping_ratio`; ``Kn = 1.5 kH sqrt(d)``)."""
+        return self.damping / (2.0 * math.sqrt(1.5 * mass * self.k_hertz))
 
     def batch_contact(self):
         """The batch solver of this law and its contact columns:

@@ -142,6 +142,11 @@ class LinearViscoelastic(SmoothLaw):
             effective_radius=effective_radius,
         )
 
+    def damping_ratio(self, mass):
+        """Kratos' damping ratio ``c / (2 sqrt(m* k))`` [-] on a grain of ``mass`` [kg]
+        (:func:`contactlab.laws.damping_ratio`; ``Kn = k``)."""
+        return self.damping / (2.0 * math.sqrt(mass * self.stiffness))
+
     def batch_contact(self):
         """The batch solver of this law and its contact columns:
         :func:`contactlab.batch.linear_impacts`, ``k2 [N/m]`` and ``c2 [N*s/m]``."""
