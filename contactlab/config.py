@@ -71,7 +71,7 @@ class ImpactConfig:
 
     def batch_row(self):
         """The set-up as one input row of a batch solver (columns named as in
-        :mod:`contactlab.quantities`; the law gives its own, ``law.batch_contact()``):
+        :mod:`contactlab.quantities`; the law gives its own, ``law._batch_contact()``):
         :func:`contactlab.batch.linear_impacts` for a LinearViscoelastic law,
         :func:`contactlab.batch.hertz_impacts` for Hertz and HertzDamped (elastic Hertz:
         zero damping).
@@ -82,9 +82,9 @@ class ImpactConfig:
             For a law no batch solver takes.
         """
         law, sensor = self.law, self.sensor
-        batch_contact = stated(law, "batch_contact")
+        batch_contact = stated(law, "_batch_contact")
         if batch_contact is None:
-            have = ", ".join(cls.__name__ for cls in LAWS.values() if "batch_contact" in vars(cls))
+            have = ", ".join(cls.__name__ for cls in LAWS.values() if "_batch_contact" in vars(cls))
             raise ParameterError(
                 f"law {type(law).__name__} has no batch solver ({have} have); use simulate()"
             )

@@ -32,7 +32,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.validation import KeywordChecked, check_samples, numbers_checked
 
-__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw", "read_only", "stated"]
+__all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw"]
 
 
 def read_only(**units):
@@ -228,7 +228,7 @@ class ContactLaw(KeywordChecked, ABC):
     by the same factor, so that e.g. Walton-Braun keeps its restitution)."""
 
     @classmethod
-    def from_typical(cls, **drawn):
+    def _from_typical(cls, **drawn):
         """The law from values drawn over :attr:`typical` (by default its parameters)."""
         return cls(**drawn)
 

@@ -1,6 +1,6 @@
 """What a law's impact on an immovable wall gives in closed form: :class:`ClosedForm`.
 
-A law states its own closed forms (``law.closed_forms(mass, velocity)``, each a value of
+A law states its own closed forms (``law._closed_forms(mass, velocity)``, each a value of
 :mod:`contactlab.analytic` with its formula and published source); the testing plug-in
 (:func:`contactlab.testing.closed_forms_for`), the audit matrix and the study read them
 there. All values assume the contact ends when the force returns to zero (the convention
@@ -14,7 +14,7 @@ from contactlab.laws.base import stated
 from contactlab.quantities import QUANTITIES
 from contactlab.validation import check_choice, check_number
 
-__all__ = ["CLOSED_FORM_QUANTITIES", "ClosedForm", "closed_form"]
+__all__ = ["CLOSED_FORM_QUANTITIES", "ClosedForm"]
 
 CLOSED_FORM_QUANTITIES = ("contact_time", "restitution", "peak_contact_force")
 """Quantities a closed form may give (attribute names of ImpactResult)."""
@@ -92,7 +92,7 @@ def closed_value(law, quantity, mass, velocity):
     Only the law's own class counts (a subclass may change the force); a series with a
     remainder (``atol > 0``) is not exact and gives None.
     """
-    own = stated(law, "closed_forms")
+    own = stated(law, "_closed_forms")
     forms = own(mass, velocity) if own is not None else ()
     exact = [f.value for f in forms if f.quantity == quantity and f.atol == 0.0]
     return exact[0] if exact else None

@@ -209,7 +209,7 @@ class Hertz(SmoothLaw):
         )
         return cls(k_hertz=analytic.hertz_stiffness(modulus, radius_eff))
 
-    def resized(self, mass, grain, velocity):
+    def _resized(self, mass, grain, velocity):
         """The law for ``grain`` (another size): from its material data."""
         return type(self).from_material(*grain.material())
 
@@ -219,20 +219,20 @@ class Hertz(SmoothLaw):
     def power_form(self):
         return PowerForm(self.k_hertz, 1.5)
 
-    def lammps_model(self, effective_mass, effective_radius):
+    def _lammps_model(self, effective_mass, effective_radius):
         """LAMMPS: ``hertz kH/sqrt(R*) 0``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
         return _lammps_hertz(self, "velocity", 0.0, effective_mass, effective_radius)
 
-    def damping_ratio(self, mass):
+    def _damping_ratio(self, mass):
         """Kratos' damping ratio [-]: 0 (:func:`contactlab.laws.damping_ratio`)."""
         return 0.0
 
-    def batch_contact(self):
+    def _batch_contact(self):
         """The batch solver of this law and its contact columns:
         :func:`contactlab.batch.hertz_impacts` with zero damping."""
         return "hertz", {column("k_hertz"): self.k_hertz, column("damping"): 0.0}
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Contact time, peak force (Hertz; Johnson 1985) and restitution 1 on a wall."""
         args = dict(k_hertz=self.k_hertz, mass=mass, velocity=velocity)
         return (
@@ -312,7 +312,7 @@ class HertzDamped(SmoothLaw):
         ).k_hertz
         return cls(k_hertz, analytic.tsuji_damping_coefficient(k_hertz, mass, restitution))
 
-    def resized(self, mass, grain, velocity):
+    def _resized(self, mass, grain, velocity):
         """The law for ``grain`` (another size): kH from its material data, and this law's
         damping factor ``eta / sqrt(m kH)`` for a grain of ``mass`` [kg] (so its
         restitution)."""
@@ -326,7 +326,7 @@ class HertzDamped(SmoothLaw):
     def power_form(self):
         return PowerForm(self.k_hertz, 1.5, self.damping, 0.25)
 
-    def lammps_model(self, effective_mass, effective_radius):
+    def _lammps_model(self, effective_mass, effective_radius):
         """LAMMPS: ``hertz kH/sqrt(R*) e_L``, ``damping coeff_restitution``, with ``e_L``
         the input whose damping force is ``eta d**0.25 d'`` exactly
         (:mod:`contactlab.laws.lammps`)."""
@@ -344,17 +344,17 @@ class HertzDamped(SmoothLaw):
             self, "coeff_restitution", restitution, effective_mass, effective_radius
         )
 
-    def damping_ratio(self, mass):
+    def _damping_ratio(self, mass):
         """Kratos' damping ratio ``eta / (2 sqrt(1.5 m* kH))`` [-] on a grain of ``mass``
         [kg] (:func:`contactlab.laws.damping_ratio`; ``Kn = 1.5 kH sqrt(d)``)."""
         return self.damping / (2.0 * math.sqrt(1.5 * mass * self.k_hertz))
 
-    def batch_contact(self):
+    def _batch_contact(self):
         """The batch solver of this law and its contact columns:
         :func:`contactlab.batch.hertz_impacts`, ``k_hertz`` and ``damping``."""
         return "hertz", {column("k_hertz"): self.k_hertz, column("damping"): self.damping}
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Restitution on a wall: a function of ``alpha`` only (Antypov & Elliott 2011)."""
         alpha = self.damping / math.sqrt(mass * self.k_hertz)
         restitution = analytic.tsuji_restitution
@@ -391,7 +391,7 @@ class KuwabaraKono(SmoothLaw):
     def power_form(self):
         return PowerForm(self.k_hertz, 1.5, 1.5 * self.k_hertz * self.dissipation, 0.5)
 
-    def lammps_model(self, effective_mass, effective_radius):
+    def _lammps_model(self, effective_mass, effective_radius):
         """LAMMPS: ``hertz kH/sqrt(R*) eta``, ``damping viscoelastic`` with
         ``eta = 1.5 A kH / (m* sqrt(R*))`` (:mod:`contactlab.laws.lammps`)."""
         coefficient = (
@@ -399,7 +399,7 @@ class KuwabaraKono(SmoothLaw):
         )
         return _lammps_hertz(self, "viscoelastic", coefficient, effective_mass, effective_radius)
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Restitution on a wall: the two-term series of Ramirez et al. (1999)."""
         args = dict(
             k_hertz=self.k_hertz, dissipation=self.dissipation, mass=mass, velocity=velocity
@@ -460,7 +460,7 @@ class HuntCrossley(SmoothLaw):
         k, n = self.stiffness, self.exponent
         return PowerForm(k, n, 1.5 * k * self.damping, n, signed_damping=True)
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Restitution on a wall, ``1 - chi v`` to first order (Hunt & Crossley 1975)."""
         restitution = analytic.hunt_crossley_restitution
         return (

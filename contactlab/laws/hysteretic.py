@@ -78,7 +78,7 @@ class WaltonBraun(ContactLaw):
     """``stiffness_ratio`` k1/k2: restitution sqrt(k1/k2) from 1 down to 0.22."""
 
     @classmethod
-    def from_typical(cls, loading_stiffness, stiffness_ratio):
+    def _from_typical(cls, loading_stiffness, stiffness_ratio):
         """The law from values drawn over :attr:`typical` (``k2 = k1 / stiffness_ratio``)."""
         return cls(loading_stiffness, loading_stiffness / stiffness_ratio)
 
@@ -123,7 +123,7 @@ class WaltonBraun(ContactLaw):
             return 0.0, "load"
         return self._plastic_overlap(max_overlap), "unload"
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Restitution ``sqrt(k1/k2)`` and contact time on a wall (Walton & Braun 1986)."""
         args = dict(
             loading_stiffness=self.loading_stiffness,

@@ -59,7 +59,7 @@ from contactlab.validation import check_positive
 
 __all__ = ["ENGINE_LAWS", "REFUSED", "TANGENTIAL", "GranularModel", "granular_model"]
 
-ENGINE_LAWS = tuple(cls for cls in LAWS.values() if "lammps_model" in vars(cls))
+ENGINE_LAWS = tuple(cls for cls in LAWS.values() if "_lammps_model" in vars(cls))
 """Laws LAMMPS' granular models hold exactly: those that state a ``lammps_model``."""
 
 REFUSED = {cls: cls.lammps_refusal for cls in LAWS.values() if "lammps_refusal" in vars(cls)}
@@ -93,4 +93,4 @@ def granular_model(law, effective_mass, effective_radius):
     mass = check_positive("effective_mass", effective_mass, "kg")
     radius = check_positive("effective_radius", effective_radius, "m")
     refuse_unsupported(law, ENGINE_LAWS, REFUSED, "LAMMPS", "LAMMPS' granular models")
-    return stated(law, "lammps_model")(mass, radius)
+    return stated(law, "_lammps_model")(mass, radius)

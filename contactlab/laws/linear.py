@@ -110,7 +110,7 @@ class LinearViscoelastic(SmoothLaw):
         )
         return cls(stiffness=stiffness, damping=damping)
 
-    def resized(self, mass, grain, velocity):
+    def _resized(self, mass, grain, velocity):
         """The law for ``grain`` (another size, from its material data) at ``velocity``:
         the stiffness ``m (pi / t_H)**2`` of the elastic Hertz contact with the same
         rigid-wall contact time ``t_H``, and this law's damping ratio for a grain of
@@ -130,7 +130,7 @@ class LinearViscoelastic(SmoothLaw):
     def _linear(self):
         return (self.stiffness, self.damping, 0.0)
 
-    def lammps_model(self, effective_mass, effective_radius):
+    def _lammps_model(self, effective_mass, effective_radius):
         """LAMMPS: ``hooke k c``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
         return GranularModel(
             law=self,
@@ -142,17 +142,17 @@ class LinearViscoelastic(SmoothLaw):
             effective_radius=effective_radius,
         )
 
-    def damping_ratio(self, mass):
+    def _damping_ratio(self, mass):
         """Kratos' damping ratio ``c / (2 sqrt(m* k))`` [-] on a grain of ``mass`` [kg]
         (:func:`contactlab.laws.damping_ratio`; ``Kn = k``)."""
         return self.damping / (2.0 * math.sqrt(mass * self.stiffness))
 
-    def batch_contact(self):
+    def _batch_contact(self):
         """The batch solver of this law and its contact columns:
         :func:`contactlab.batch.linear_impacts`, ``k2 [N/m]`` and ``c2 [N*s/m]``."""
         return "linear", {column("k2"): self.stiffness, column("c2"): self.damping}
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Contact time and restitution on a wall (Schwager & Poeschel 2007, force-zero end)."""
         args = dict(stiffness=self.stiffness, damping=self.damping, mass=mass, convention="force")
         return (

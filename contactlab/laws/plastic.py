@@ -168,7 +168,7 @@ class LinearPlastic(ContactLaw):
             "unload"
         )
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Restitution, contact time and peak force on a wall (energy balance)."""
         args = dict(
             stiffness=self.stiffness, yield_force=self.yield_force, mass=mass, velocity=velocity
@@ -286,7 +286,7 @@ class Thornton(ContactLaw):
             return 0.0, "load"
         return float(_thornton_unloading(max_overlap, *self._material)[1]), "unload"
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Restitution on a wall (Thornton 1997)."""
         modulus, radius, p_y = self._material
         return (

@@ -68,7 +68,7 @@ class PlasticTrapezoid(KeywordChecked):
     """``ramp_fraction``: the ramps' share of half the pulse."""
 
     @classmethod
-    def from_typical(cls, contact_time, ramp_fraction):
+    def _from_typical(cls, contact_time, ramp_fraction):
         """The pulse from values drawn over :attr:`typical`."""
         return cls(contact_time, ramp_fraction * 0.5 * contact_time)
 
@@ -119,7 +119,7 @@ class PlasticTrapezoid(KeywordChecked):
         check_positive("velocity", velocity, "m/s")
         return 0.0
 
-    def closed_forms(self, mass, velocity):
+    def _closed_forms(self, mass, velocity):
         """Plateau force, the prescribed duration and restitution 0 (Keska et al. 2021)."""
         return (
             closed_form(

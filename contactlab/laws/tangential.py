@@ -454,7 +454,7 @@ def damping_ratio(normal_law, mass):
     d'`` with ``Kn`` the normal tangent stiffness.
 
     Each law whose ratio is constant through the contact states it
-    (``normal_law.damping_ratio(mass)``: Hertz, HertzDamped, LinearViscoelastic), so the
+    (``normal_law._damping_ratio(mass)``: Hertz, HertzDamped, LinearViscoelastic), so the
     tied tangential damping ``2 gamma sqrt(m* kt)`` is exactly Kratos'.
 
     Raises
@@ -463,11 +463,11 @@ def damping_ratio(normal_law, mass):
         For another normal law (its damping is not a constant ratio).
     """
     mass = check_number("mass", mass, low=0.0, unit="kg")
-    ratio = stated(normal_law, "damping_ratio")
+    ratio = stated(normal_law, "_damping_ratio")
     if ratio is None:
         from contactlab.laws import LAWS  # the registry imports this module
 
-        have = ", ".join(cls.__name__ for cls in LAWS.values() if "damping_ratio" in vars(cls))
+        have = ", ".join(cls.__name__ for cls in LAWS.values() if "_damping_ratio" in vars(cls))
         raise ParameterError(
             f"normal_law: tangential_law damping='tied' needs a normal law with a constant "
             f"damping ratio ({have}); got {type(normal_law).__name__}"

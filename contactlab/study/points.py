@@ -124,7 +124,7 @@ the solver and its Dask twin (:meth:`ImpactConfig.batch_row` writes the rows).""
 
 def _batch_solver(law):
     """The name of the law's batch solver, or None."""
-    batch_contact = stated(law, "batch_contact")
+    batch_contact = stated(law, "_batch_contact")
     return None if batch_contact is None else batch_contact()[0]
 
 

@@ -216,8 +216,8 @@ class StudySetup:
         )
         check_choice("size_dependence", self.size_dependence, SIZE_DEPENDENCE)
         if self.size_dependence == "material":
-            if stated(self.law, "resized") is None:
-                resizable = ", ".join(name for name, cls in LAWS.items() if "resized" in vars(cls))
+            if stated(self.law, "_resized") is None:
+                resizable = ", ".join(name for name, cls in LAWS.items() if "_resized" in vars(cls))
                 raise ParameterError(
                     f"law {self.law.name!r} cannot follow the grain size "
                     f"(size_dependence='material'); the laws that can: {resizable}"
@@ -345,7 +345,7 @@ class StudySetup:
         grain = Grain(**grain_kw)
         sensor = Sensor.from_resonance(**sensor_kw)
         if self.size_dependence == "material":
-            law = self.law.resized(self.grain.mass, grain, velocity)
+            law = self.law._resized(self.grain.mass, grain, velocity)
         else:
             law = type(self.law)(**law_kw)
         return ImpactConfig(grain, sensor, law, {"velocity": velocity})

@@ -1,6 +1,6 @@
 """Closed forms of one impact on an immovable wall, per contact law: a registry.
 
-Each law states its own closed forms (``law.closed_forms(mass, velocity)``, in its module
+Each law states its own closed forms (``law._closed_forms(mass, velocity)``, in its module
 of :mod:`contactlab.laws`: contact time, restitution and peak contact force where they
 exist, each with the formula and its published source). :data:`CLOSED_FORMS` is the view
 the assertions look up: law class -> ``function(law, mass, velocity)``, filled from every
@@ -34,7 +34,7 @@ class NoClosedFormError(ParameterError):
 
 
 CLOSED_FORMS: dict[type, Callable] = {
-    cls: cls.closed_forms for cls in LAWS.values() if "closed_forms" in vars(cls)
+    cls: cls._closed_forms for cls in LAWS.values() if "_closed_forms" in vars(cls)
 }
 """Registry: law class -> ``function(law, mass [kg], velocity [m/s]) -> tuple of ClosedForm``
 (the law's own ``closed_forms`` for every registered law that states them)."""

@@ -160,7 +160,7 @@ def impact_velocities(low=0.1, high=10.0):
 
 def law_strategy(cls):
     """Laws of class ``cls`` drawn over the ranges it states (``cls.typical``: decades in
-    log scale) and built by ``cls.from_typical``.
+    log scale) and built by ``cls._from_typical``.
 
     Parameters
     ----------
@@ -176,7 +176,7 @@ def law_strategy(cls):
         name: _log_floats(low, high) if scale == "log" else st.floats(low, high)
         for name, (low, high, scale) in cls.typical.items()
     }
-    return st.builds(cls.from_typical, **drawn)
+    return st.builds(cls._from_typical, **drawn)
 
 
 def _named(cls):

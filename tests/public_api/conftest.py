@@ -77,7 +77,7 @@ EXEMPT = {
     "contactlab.compare.quantities.Quantity": "a row of the tolerance table, built there",
     "dem_check.engines.result.EngineResult": "result record built by the engines",
     "dem_check.campaign.result.CampaignResult": "result record built by run_campaign",
-    "contactlab.testing.closed_forms.ClosedForm": "record a closed-form function returns",
+    "contactlab.laws.closed_form.ClosedForm": "record a law's closed_forms returns",
     "contactlab.testing.golden_trace.GoldenTrace": "record built by GoldenTrace.of/read",
     "contactlab.config.ImpactConfig": "record built by load_config/load_preset",
     "contactlab.plausibility.Range": "a row of the RANGES table, built there",
