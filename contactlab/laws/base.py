@@ -205,6 +205,26 @@ class ContactLaw(KeywordChecked, ABC):
     :meth:`branch` (how the solvers see it); the work along a path follows here. Its
     impact on a wall is :mod:`contactlab.solver.wall`'s.
 
+    Everything else the toolkit needs to know about a law, the law states once, on its
+    class (its name in :data:`contactlab.laws.LAWS` is the only other line):
+
+    * ``name``, :attr:`units` (checked by the constructor through :meth:`_keep`, the
+      study's column units), :attr:`typical` and :meth:`_from_typical` (the test
+      strategies), :attr:`stiffness_parameters` (the study's scatter);
+    * ``power_form()`` (the compiled solver) or branches (the Python pieces);
+    * ``_closed_forms(mass, velocity)``: its wall impact in closed form, a tuple of
+      :class:`~contactlab.laws.closed_form.ClosedForm` (the testing plug-in, the audit
+      matrix, the study's contact time);
+    * optional: ``_batch_contact()`` (its batch solver and columns), ``_lammps_model(m*,
+      R*)`` or a ``lammps_refusal`` reason (:mod:`contactlab.laws.lammps`), ``dem_export``
+      (the DEM exporters' family), ``_damping_ratio(m*)`` (Kratos' tied tangential
+      damping), ``from_material`` and ``_resized(mass, grain, velocity)`` (a study whose
+      law follows the grain size).
+
+    What a law does not state is refused by name where it is asked for. These are read
+    from the law's own class only (:func:`stated`): a subclass may change the force, so it
+    states them again.
+
     Sign convention: overlap ``d > 0`` in compression, rate ``d' > 0`` approaching, force
     ``>= 0`` always (0 for ``d <= 0``).
     """
