@@ -37,7 +37,8 @@ def linear_plastic_yield_velocity(stiffness, yield_force, mass):
     k = check_positive("stiffness", stiffness, "N/m")
     fy = check_positive("yield_force", yield_force, "N")
     m = check_positive("mass", mass, "kg")
-    return fy / math.sqrt(k) / math.sqrt(m)  # sqrt(k m) would underflow to 0 for tiny k
+    km = k * m
+    return fy / (math.sqrt(km) if km > 0.0 else math.sqrt(k) * math.sqrt(m))  # km underflows
 
 
 def linear_plastic_restitution(stiffness, yield_force, mass, velocity):
