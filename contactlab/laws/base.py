@@ -242,7 +242,7 @@ class ContactLaw(KeywordChecked, ABC):
     typical: ClassVar[MappingProxyType]
     """Ranges real grains span: name -> ``(low, high, scale)``, ``scale`` "log" for a
     range of decades, else "linear"; the test strategies draw laws from them
-    (:func:`contactlab.testing.strategies.laws`) through :meth:`from_typical`."""
+    (:func:`contactlab.testing.strategies.laws`) through :meth:`_from_typical`."""
     stiffness_parameters: ClassVar[tuple[str, ...]] = ()
     """Parameters that make up "the contact stiffness" a study's scatter multiplies (all
     by the same factor, so that e.g. Walton-Braun keeps its restitution)."""
