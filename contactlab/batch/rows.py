@@ -31,6 +31,7 @@ __all__ = [
     "RESULT_COLUMNS",
     "check_threads",
     "fallback_row",
+    "result_row",
     "run_kernel",
     "single_impact",
     "solve_frame",
@@ -102,6 +103,12 @@ def single_impact(m1, k1, c1, m2, law, v0, **options):
     with internal():
         sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
         res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
+    return result_row(res)
+
+
+def result_row(res):
+    """The six headline numbers of an :class:`~contactlab.ImpactResult`, in the order of
+    :data:`RESULT_COLUMNS` (the number of contacts last)."""
     return (
         res.contact_time,
         res.sensor_response_time,
