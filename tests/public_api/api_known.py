@@ -5,8 +5,6 @@ the parameter, the values and what came out. Fixing one turns its test into a fa
 until the entry is removed.
 """
 
-import numpy as np
-
 KNOWN_REFUSAL_DEFECTS = {
     "dem_check.campaign.api.run_campaign": (
         "channel text: accepted; out number: TypeError; metadata number/list: TypeError"
