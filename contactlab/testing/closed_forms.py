@@ -14,19 +14,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from contactlab import analytic
+from contactlab import analytic, laws
 from contactlab.errors import ParameterError
-from contactlab.laws import (
-    Hertz,
-    HertzDamped,
-    HuntCrossley,
-    KuwabaraKono,
-    LinearPlastic,
-    LinearViscoelastic,
-    PlasticTrapezoid,
-    Thornton,
-    WaltonBraun,
-)
 from contactlab.quantities import QUANTITIES
 from contactlab.validation import check_choice, check_number
 
@@ -242,15 +231,15 @@ def _plastic_trapezoid(law, mass, velocity):
 
 
 CLOSED_FORMS: dict[type, Callable] = {
-    LinearViscoelastic: _linear_viscoelastic,
-    Hertz: _hertz,
-    HertzDamped: _hertz_damped,
-    KuwabaraKono: _kuwabara_kono,
-    HuntCrossley: _hunt_crossley,
-    WaltonBraun: _walton_braun,
-    LinearPlastic: _linear_plastic,
-    Thornton: _thornton,
-    PlasticTrapezoid: _plastic_trapezoid,
+    laws.LinearViscoelastic: _linear_viscoelastic,
+    laws.Hertz: _hertz,
+    laws.HertzDamped: _hertz_damped,
+    laws.KuwabaraKono: _kuwabara_kono,
+    laws.HuntCrossley: _hunt_crossley,
+    laws.WaltonBraun: _walton_braun,
+    laws.LinearPlastic: _linear_plastic,
+    laws.Thornton: _thornton,
+    laws.PlasticTrapezoid: _plastic_trapezoid,
 }
 """Registry: law class -> ``function(law, mass [kg], velocity [m/s]) -> tuple of ClosedForm``."""
 
