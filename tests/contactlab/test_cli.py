@@ -11,23 +11,6 @@ from contactlab.config import list_presets, load_config
 from contactlab.errors import ParameterError
 from dem_check.cli import main as dem_check_main
 
-GOOD = """
-[grain]
-diameter = 5.0e-3
-density = 765.0
-[contact]
-law = "linear"
-stiffness = 1.0e5
-damping = 1.0
-[sensor]
-resonance = 40.0e3
-mass = 1.233e-3
-damping_ratio = 0.02
-[simulation]
-velocity = 2.0
-duration = 500.0e-6
-"""
-
 
 @pytest.mark.parametrize("main", [contactlab_main, dem_check_main])
 def test_help(main, capsys):
@@ -37,9 +20,8 @@ def test_help(main, capsys):
     assert "usage:" in capsys.readouterr().out
 
 
-def test_simulate_config_json(tmp_path, capsys):
-    path = tmp_path / "case.toml"
-    path.write_text(GOOD)
+def test_simulate_config_json(paper_case, tmp_path, capsys):
+    path = paper_case()
     assert (
         contactlab_main(["simulate", str(path), "--json", "--plot", str(tmp_path / "f.png")]) == 0
     )
@@ -59,18 +41,17 @@ def test_presets_run(name, capsys):
 
 
 @pytest.mark.parametrize(
-    ("text", "message"),
+    ("old", "new", "message"),
     [
-        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "'dampin' (did you mean 'damping'?)"),
-        (GOOD.replace("[simulation]", "[simulaton]"), "'simulaton' (did you mean 'simulation'?)"),
-        (GOOD.replace('law = "linear"', 'law = "lineer"'), "Did you mean 'linear'"),
-        (GOOD.replace("velocity = 2.0", "velocity = -2.0"), "velocity"),
-        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "(did you mean 'duration'?)"),
+        ("damping = 1.0", "dampin = 1.0", "'dampin' (did you mean 'damping'?)"),
+        ("[simulation]", "[simulaton]", "'simulaton' (did you mean 'simulation'?)"),
+        ('law = "linear"', 'law = "lineer"', "Did you mean 'linear'"),
+        ("velocity = 2.0", "velocity = -2.0", "velocity"),
+        ("duration = 500.0e-6", "durration = 1.0", "(did you mean 'duration'?)"),
     ],
 )
-def test_config_errors_name_the_key(tmp_path, capsys, text, message):
-    path = tmp_path / "bad.toml"
-    path.write_text(text)
+def test_config_errors_name_the_key(paper_case, capsys, old, new, message):
+    path = paper_case({old: new}, name="bad.toml")
     assert contactlab_main(["simulate", str(path)]) == 2
     assert message in capsys.readouterr().err
 
@@ -101,11 +82,8 @@ MATERIAL = "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
         (f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n", "grain = 5\n", "grain must be a table"),
     ],
 )
-def test_config_errors_name_file_table_and_key(tmp_path, old, new, message):
-    path = tmp_path / "bad.toml"
-    text = GOOD.replace("density = 765.0", MATERIAL)
-    assert old in text
-    path.write_text(text.replace(old, new, 1))
+def test_config_errors_name_file_table_and_key(paper_case, old, new, message):
+    path = paper_case({"density = 765.0": MATERIAL, old: new}, name="bad.toml")
     with pytest.raises(ParameterError, match=re.escape(message)) as info:
         load_config(path)
     assert str(info.value).startswith(f"{path}: ")
@@ -121,15 +99,10 @@ def test_unreadable_config_file_is_a_parameter_error(tmp_path):
         load_config(tmp_path)  # a folder
 
 
-def test_config_from_material(tmp_path):
-    path = tmp_path / "hertz.toml"
-    path.write_text(
-        GOOD.replace(
-            "density = 765.0", "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
-        ).replace(
-            'law = "linear"\nstiffness = 1.0e5\ndamping = 1.0',
-            'law = "hertz"\nfrom_material = true',
-        )
+def test_config_from_material(paper_case):
+    path = paper_case(
+        {"density = 765.0": MATERIAL, LINEAR: 'law = "hertz"\nfrom_material = true'},
+        name="hertz.toml",
     )
     config = load_config(path)
     assert type(config.law).__name__ == "Hertz"
