@@ -31,6 +31,7 @@ __all__ = [
     "RESULT_COLUMNS",
     "check_threads",
     "fallback_row",
+    "headline_numbers",
     "run_kernel",
     "single_impact",
     "solve_frame",
@@ -102,13 +103,19 @@ def single_impact(m1, k1, c1, m2, law, v0, **options):
     with internal():
         sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
         res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
+    return headline_numbers(res)
+
+
+def headline_numbers(result):
+    """The six numbers of an :class:`~contactlab.ImpactResult` a batch row holds, in the
+    order of :data:`RESULT_COLUMNS` (``contacts``: the number of contact intervals)."""
     return (
-        res.contact_time,
-        res.sensor_response_time,
-        res.peak_contact_force,
-        res.peak_sensor_force,
-        res.restitution,
-        len(res.contact_intervals),
+        result.contact_time,
+        result.sensor_response_time,
+        result.peak_contact_force,
+        result.peak_sensor_force,
+        result.restitution,
+        len(result.contact_intervals),
     )
 
 

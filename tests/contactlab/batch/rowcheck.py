@@ -7,6 +7,7 @@ import pandas as pd
 import pytest
 
 import contactlab as cl
+from contactlab.batch.rows import headline_numbers
 from contactlab.errors import ParameterError
 
 BODY_COLUMNS = ("m1 [kg]", "k1 [N/m]", "c1 [N*s/m]", "m2 [kg]")
@@ -35,17 +36,8 @@ def paper_frame(columns, stiffness, damping, n):
 
 
 def headline(res):
-    """The six numbers of an ImpactResult, in the order of ``RESULT_COLUMNS``."""
-    return np.array(
-        [
-            res.contact_time,
-            res.sensor_response_time,
-            res.peak_contact_force,
-            res.peak_sensor_force,
-            res.restitution,
-            len(res.contact_intervals),
-        ]
-    )
+    """The six numbers of an ImpactResult, in the order of ``RESULT_COLUMNS``, as an array."""
+    return np.array(headline_numbers(res))
 
 
 def relative(a, b):
