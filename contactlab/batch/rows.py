@@ -31,7 +31,7 @@ __all__ = [
     "RESULT_COLUMNS",
     "check_threads",
     "fallback_row",
-    "headline_numbers",
+    "result_row",
     "run_kernel",
     "single_impact",
     "solve_frame",
@@ -103,19 +103,19 @@ def single_impact(m1, k1, c1, m2, law, v0, **options):
     with internal():
         sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
         res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
-    return headline_numbers(res)
+    return result_row(res)
 
 
-def headline_numbers(result):
-    """The six numbers of an :class:`~contactlab.ImpactResult` a batch row holds, in the
-    order of :data:`RESULT_COLUMNS` (``contacts``: the number of contact intervals)."""
+def result_row(res):
+    """The six headline numbers of an :class:`~contactlab.ImpactResult`, in the order of
+    :data:`RESULT_COLUMNS` (the number of contacts last)."""
     return (
-        result.contact_time,
-        result.sensor_response_time,
-        result.peak_contact_force,
-        result.peak_sensor_force,
-        result.restitution,
-        len(result.contact_intervals),
+        res.contact_time,
+        res.sensor_response_time,
+        res.peak_contact_force,
+        res.peak_sensor_force,
+        res.restitution,
+        len(res.contact_intervals),
     )
 
 

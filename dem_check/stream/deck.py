@@ -35,6 +35,7 @@ sensor) and ``S1 = k1 x1 + c1 v1``; the contact force is ``sum fz`` of the parti
 
 from contactlab.laws.lammps import TANGENTIAL, granular_model
 from dem_check.engines.lammps.oblique import tangential_words
+from dem_check.engines.lammps.scene import granular_setup
 
 __all__ = [
     "CONTACTS",
@@ -91,11 +92,7 @@ def deck_lines(case, schedule, dump_path):
     z_rest = box[4] + 2.0 * max(c[1].radius for c in classes)
     setup = "the stream's LAMMPS box"
     lines = [
-        ("units si", setup),
-        ("atom_style sphere", setup),
-        ("atom_modify map array", setup),
-        ("boundary f f f", setup),
-        ("comm_modify vel yes", setup),
+        *granular_setup("f f f", setup),
         ("region box block " + " ".join(repr(float(b)) for b in box), setup),
         (f"create_box {count + 1} box", setup),
         ("fix pid all property/atom i_pid ghost no", setup),

@@ -4,6 +4,7 @@ import json
 import re
 
 import pytest
+from documents import PAPER_CASE as GOOD
 
 import contactlab as cl
 from contactlab.cli import main as contactlab_main
@@ -20,8 +21,9 @@ def test_help(main, capsys):
     assert "usage:" in capsys.readouterr().out
 
 
-def test_simulate_config_json(paper_case, tmp_path, capsys):
-    path = paper_case()
+def test_simulate_config_json(tmp_path, capsys):
+    path = tmp_path / "case.toml"
+    path.write_text(GOOD)
     assert (
         contactlab_main(["simulate", str(path), "--json", "--plot", str(tmp_path / "f.png")]) == 0
     )
@@ -41,17 +43,18 @@ def test_presets_run(name, capsys):
 
 
 @pytest.mark.parametrize(
-    ("old", "new", "message"),
+    ("text", "message"),
     [
-        ("damping = 1.0", "dampin = 1.0", "'dampin' (did you mean 'damping'?)"),
-        ("[simulation]", "[simulaton]", "'simulaton' (did you mean 'simulation'?)"),
-        ('law = "linear"', 'law = "lineer"', "Did you mean 'linear'"),
-        ("velocity = 2.0", "velocity = -2.0", "velocity"),
-        ("duration = 500.0e-6", "durration = 1.0", "(did you mean 'duration'?)"),
+        (GOOD.replace("damping = 1.0", "dampin = 1.0"), "'dampin' (did you mean 'damping'?)"),
+        (GOOD.replace("[simulation]", "[simulaton]"), "'simulaton' (did you mean 'simulation'?)"),
+        (GOOD.replace('law = "linear"', 'law = "lineer"'), "Did you mean 'linear'"),
+        (GOOD.replace("velocity = 2.0", "velocity = -2.0"), "velocity"),
+        (GOOD.replace("duration = 500.0e-6", "durration = 1.0"), "(did you mean 'duration'?)"),
     ],
 )
-def test_config_errors_name_the_key(paper_case, capsys, old, new, message):
-    path = paper_case({old: new}, name="bad.toml")
+def test_config_errors_name_the_key(tmp_path, capsys, text, message):
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
     assert contactlab_main(["simulate", str(path)]) == 2
     assert message in capsys.readouterr().err
 
@@ -82,8 +85,11 @@ MATERIAL = "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
         (f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n", "grain = 5\n", "grain must be a table"),
     ],
 )
-def test_config_errors_name_file_table_and_key(paper_case, old, new, message):
-    path = paper_case({"density = 765.0": MATERIAL, old: new}, name="bad.toml")
+def test_config_errors_name_file_table_and_key(tmp_path, old, new, message):
+    path = tmp_path / "bad.toml"
+    text = GOOD.replace("density = 765.0", MATERIAL)
+    assert old in text
+    path.write_text(text.replace(old, new, 1))
     with pytest.raises(ParameterError, match=re.escape(message)) as info:
         load_config(path)
     assert str(info.value).startswith(f"{path}: ")
@@ -99,10 +105,15 @@ def test_unreadable_config_file_is_a_parameter_error(tmp_path):
         load_config(tmp_path)  # a folder
 
 
-def test_config_from_material(paper_case):
-    path = paper_case(
-        {"density = 765.0": MATERIAL, LINEAR: 'law = "hertz"\nfrom_material = true'},
-        name="hertz.toml",
+def test_config_from_material(tmp_path):
+    path = tmp_path / "hertz.toml"
+    path.write_text(
+        GOOD.replace(
+            "density = 765.0", "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
+        ).replace(
+            'law = "linear"\nstiffness = 1.0e5\ndamping = 1.0',
+            'law = "hertz"\nfrom_material = true',
+        )
     )
     config = load_config(path)
     assert type(config.law).__name__ == "Hertz"

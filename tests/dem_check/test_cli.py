@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from documents import PAPER_CASE
 
 from contactlab.config import load_config
 from dem_check import Trace, write_trace
@@ -13,10 +14,17 @@ from dem_check.cli import main
 SENSITIVITY = 0.0112  # [V/N]
 
 
+def _config(stiffness):
+    """The paper's base case with the contact's ``stiffness`` [N/m], as TOML."""
+    return PAPER_CASE.replace("stiffness = 1.0e5", f"stiffness = {stiffness!r}")
+
+
 @pytest.fixture
-def config(paper_case):
-    """The paper's base case on the 40 kHz sensor as a TOML file (tests/conftest.py)."""
-    return paper_case()
+def config(tmp_path):
+    """The paper's base case on the 40 kHz sensor as a TOML file."""
+    path = tmp_path / "case.toml"
+    path.write_text(_config(1.0e5))
+    return path
 
 
 @pytest.fixture
@@ -62,9 +70,13 @@ def test_bullet_fails_on_an_impossible_tolerance(config, capsys):
     assert "FAILED contact_time" in capsys.readouterr().out
 
 
-def test_bullet_bad_input_exits_2(paper_case, config, capsys):
-    linear = 'law = "linear"\nstiffness = 1.0e5\ndamping = 1.0'
-    hertz = paper_case({linear: 'law = "hertz"\nk_hertz = 1e8'}, name="hertz.toml")
+def test_bullet_bad_input_exits_2(tmp_path, config, capsys):
+    hertz = tmp_path / "hertz.toml"
+    hertz.write_text(
+        _config(1e5)
+        .replace('law = "linear"', 'law = "hertz"')
+        .replace("stiffness = 100000.0\ndamping = 1.0", "k_hertz = 1e8")
+    )
     cases = [
         (["bullet", str(hertz)], "law Hertz cannot be represented"),
         (["bullet", str(config), "--preset", "fig6"], "not both"),
@@ -96,9 +108,9 @@ def test_compare_trace_with_its_model_passes(trace_file, config, tmp_path, capsy
     assert png.stat().st_size > 0
 
 
-def test_compare_against_another_model_fails(trace_file, paper_case, capsys):
-    # a 30 % stiffer contact
-    stiffer = paper_case({"stiffness = 1.0e5": "stiffness = 1.3e5"}, name="stiffer.toml")
+def test_compare_against_another_model_fails(trace_file, tmp_path, capsys):
+    stiffer = tmp_path / "stiffer.toml"
+    stiffer.write_text(_config(1.3e5))  # 30 % stiffer contact
     argv = ["compare", str(trace_file), "--model", str(stiffer), "--sensitivity",
             str(SENSITIVITY)]  # fmt: skip
     assert main(argv) == 1

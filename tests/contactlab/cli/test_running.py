@@ -7,6 +7,7 @@ import subprocess
 import sys
 
 import pytest
+from documents import PAPER_CASE, PAPER_SENSOR
 
 from contactlab.cli import _build_parser
 from contactlab.cli import main as contactlab_main
@@ -15,9 +16,15 @@ from contactlab.cli.setup import COMPILE_NOTICE, TEMPLATE, announce_compile
 from contactlab.config import PRESET_DIR, load_config
 from dem_check.cli import main as dem_check_main
 
-SENSOR = "resonance = 40.0e3\nmass = 1.233e-3\ndamping_ratio = 0.02"
-FAST = {"velocity = 2.0": "velocity = 200.0"}
-"""The paper's case (tests/conftest.py) at 200 m/s: implausible, a warning."""
+
+def case(tmp_path, diameter=5e-3, velocity=2.0, rigid=False):
+    """The paper's base case as a TOML file, with another grain diameter [m], impact speed
+    [m/s] or a rigid sensor."""
+    path = tmp_path / "case.toml"
+    text = PAPER_CASE.replace("diameter = 5.0e-3", f"diameter = {diameter!r}")
+    text = text.replace("velocity = 2.0", f"velocity = {velocity!r}")
+    path.write_text(text.replace(PAPER_SENSOR, "rigid = true") if rigid else text)
+    return path
 
 
 def reject_constant(name):
@@ -29,8 +36,8 @@ def strict_loads(text):
     return json.loads(text, parse_constant=reject_constant)
 
 
-def test_a_warning_is_one_line_and_the_run_goes_on(paper_case, capsys):
-    assert contactlab_main(["simulate", str(paper_case(FAST))]) == 0
+def test_a_warning_is_one_line_and_the_run_goes_on(tmp_path, capsys):
+    assert contactlab_main(["simulate", str(case(tmp_path, velocity=200.0))]) == 0
     captured = capsys.readouterr()
     lines = captured.err.strip().splitlines()
     assert lines == [
@@ -42,8 +49,8 @@ def test_a_warning_is_one_line_and_the_run_goes_on(paper_case, capsys):
 
 
 @pytest.mark.parametrize("where", ["before", "after"])
-def test_strict_makes_the_warning_an_error(paper_case, capsys, where):
-    path = str(paper_case(FAST))
+def test_strict_makes_the_warning_an_error(tmp_path, capsys, where):
+    path = str(case(tmp_path, velocity=200.0))
     argv = ["--strict", "simulate", path] if where == "before" else ["simulate", path, "--strict"]
     assert contactlab_main(argv) == 2
     captured = capsys.readouterr()
@@ -54,10 +61,8 @@ def test_strict_makes_the_warning_an_error(paper_case, capsys, where):
 
 
 @pytest.mark.parametrize("main", [contactlab_main, dem_check_main])
-def test_the_fifty_tonne_grain_ends_in_one_error_line_not_a_traceback(
-    paper_case, tmp_path, capsys, main
-):
-    argv = ["simulate", str(paper_case({"diameter = 5.0e-3": "diameter = 5.0"}))]
+def test_the_fifty_tonne_grain_ends_in_one_error_line_not_a_traceback(tmp_path, capsys, main):
+    argv = ["simulate", str(case(tmp_path, diameter=5.0))]
     if main is dem_check_main:
         argv = ["compare", str(tmp_path / "none.csv"), "--model", argv[1]]
     code = main(argv)
@@ -86,8 +91,8 @@ def test_negative_numbers_are_values():
     assert args.baseline is None
 
 
-def test_simulate_json_is_strict_with_reasons_for_nulls(paper_case, capsys):
-    assert contactlab_main(["simulate", str(paper_case({SENSOR: "rigid = true"})), "--json"]) == 0
+def test_simulate_json_is_strict_with_reasons_for_nulls(tmp_path, capsys):
+    assert contactlab_main(["simulate", str(case(tmp_path, rigid=True)), "--json"]) == 0
     out = strict_loads(capsys.readouterr().out)
     nulls = out["null_reasons"]
     assert nulls, "a rigid sensor has an infinite resonance and mass: they must be null"

@@ -1,13 +1,12 @@
 """Pieces the row-by-row tests of the linear and the Hertz batch solver share: random
-sensors and grains, the paper's frame, the single solver's six numbers, relative
-differences and the bad rows every batch solver names."""
+sensors and grains, the paper's frame, relative differences and the bad rows every batch
+solver names (imported by name: ``tests/conftest.py`` puts this folder on the path)."""
 
 import numpy as np
 import pandas as pd
 import pytest
 
 import contactlab as cl
-from contactlab.batch.rows import headline_numbers
 from contactlab.errors import ParameterError
 
 BODY_COLUMNS = ("m1 [kg]", "k1 [N/m]", "c1 [N*s/m]", "m2 [kg]")
@@ -33,11 +32,6 @@ def paper_frame(columns, stiffness, damping, n):
     frame = pd.DataFrame(dict(zip(columns, values, strict=True)), index=range(n))
     frame[columns[4]] *= np.linspace(0.5, 1.5, n)
     return frame
-
-
-def headline(res):
-    """The six numbers of an ImpactResult, in the order of ``RESULT_COLUMNS``, as an array."""
-    return np.array(headline_numbers(res))
 
 
 def relative(a, b):
