@@ -162,8 +162,9 @@ class ParticleKind:
         return out
 
     def offsets(self, diameter):
-        """Sphere centres of a clump along its axis, from its centre of mass [m]."""
-        step = self.spacing * diameter
+        """Sphere centres of a clump along its axis, from its centre of mass [m], for
+        spheres of ``diameter`` [m]."""
+        step = self.spacing * check_number("diameter", diameter, low=0.0, unit="m")
         return [(k - 0.5 * (self.spheres - 1)) * step for k in range(self.spheres)]
 
     def _tangential(self, grain):
