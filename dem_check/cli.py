@@ -8,7 +8,7 @@ import json
 import sys
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import Parser, add_strict, run
+from contactlab.cli.running import Parser, add_outputs, add_strict, run
 from contactlab.config import load
 from contactlab.errors import ParameterError
 
@@ -163,8 +163,7 @@ def _add_campaign_parser(sub):
         help="keep the structure's modes ringing after each hit (removed by default)",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
-    p.set_defaults(func=_campaign)
+    add_outputs(p, _campaign, json="print the summary as JSON")
 
 
 def _common(parser):
@@ -224,8 +223,7 @@ def _build_parser():
         metavar="DT",
         help="LAMMPS step [s] (default: min(t_c/1000, T1/200))",
     )
-    p.add_argument("--json", action="store_true", help="print the comparison as JSON")
-    p.set_defaults(func=_lammps_check)
+    add_outputs(p, _lammps_check, json="print the comparison as JSON")
 
     p = sub.add_parser(
         "compare",
@@ -291,8 +289,7 @@ def _add_stream_parser(sub):
         help="calibrate an impact plate at 25-100 %% of this mass flow",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
-    p.set_defaults(func=_stream)
+    add_outputs(p, _stream, json="print the summary as JSON")
 
 
 def main(argv=None):

@@ -5,39 +5,11 @@ the parameter, the values and what came out. Fixing one turns its test into a fa
 until the entry is removed.
 """
 
-import numpy as np
-
 KNOWN_REFUSAL_DEFECTS = {
-    "contactlab.analytic.materials.contact_modulus_radius": "other number: TypeError",
-    "contactlab.analytic.pair.pair_rebound": (
-        "masses number: TypeError; radii number: TypeError; before number/text/list: "
-        "AttributeError"
-    ),
-    "contactlab.laws.tangential.damping_ratio": (
-        "normal_law number/text/list: refused without naming it"
-    ),
 }  # fmt: skip
 """Callables that still accept, or fail on, a value they must refuse: what was measured."""
 
 KNOWN_HOSTILE_DEFECTS = {
-    "contactlab.analytic.materials.contact_modulus_radius": (
-        "other", 0.0, "TypeError: 'float' object is not subscriptable"),
-    "contactlab.analytic.pair.pair_rebound": (
-        "before", 0.0, "AttributeError: 'float' object has no attribute 'normal1'"),
-    "contactlab.analytic.plastic.linear_plastic_contact_time": (
-        "stiffness", 5e-324, "ZeroDivisionError: float division by zero"),
-    "contactlab.analytic.plastic.linear_plastic_restitution": (
-        "stiffness", 5e-324, "ZeroDivisionError: float division by zero"),
-    "contactlab.analytic.plastic.linear_plastic_yield_velocity": (
-        "stiffness", 5e-324, "ZeroDivisionError: float division by zero"),
-    "contactlab.analytic.sensor.half_sine_residual_amplitude": (
-        "period", 5e-324, "RuntimeWarning: invalid value encountered in sin"),
-    "contactlab.laws.hertz.hertz_force": (
-        "overlap", 5.23892409540283e231, "RuntimeWarning: overflow encountered in multiply"),
-    "contactlab.laws.hysteretic.walton_braun_force": (
-        "unloading_stiffness", 0.0, "RuntimeWarning: divide by zero encountered in divide"),
-    "contactlab.laws.pulse.plastic_trapezoid_force": (
-        "ramp_time", np.ones((3, 3)), "ValueError: truth value of an array is ambiguous"),
 }  # fmt: skip
 """Callables whose sweep found a value answered with something else than ParameterError:
 ``(parameter, value, what came out)``. The test calls exactly that value (a strict
