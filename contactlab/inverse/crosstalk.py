@@ -55,6 +55,7 @@ __all__ = [
     "Crosstalk",
     "StructureMode",
     "fit_crosstalk",
+    "single_impact_crosstalk",
     "structure_modes",
 ]
 
@@ -82,6 +83,15 @@ SIGNIFICANCE = 5.0
 """A mode is removed only when its response amplitude is this many standard errors
 above zero [-] (the standard error assumes white noise: 1/f noise makes it optimistic,
 hence five rather than three)."""
+
+SINGLE_SPAN = 2e-3
+"""Longest window a single trace's crosstalk is fitted on, on each side of its pulse [s]
+(as the campaign's ``dem_check.campaign.structure.SPAN``): long against the modes'
+periods, short against drift and 1/f noise (a quadratic follows them)."""
+
+SINGLE_IDENTIFICATION_SPAN = 5e-3
+"""Longest window after a single trace's contact its modes are identified on [s] (as the
+campaign's): a mode is sought from one period in it."""
 
 
 @dataclass(frozen=True)
@@ -292,3 +302,52 @@ def fit_crosstalk(t, y, sensor, onset, pulse, fitted, post_start, modes):
             crosstalk = design[:, base.shape[1] :] @ coefficients[base.shape[1] :]
             return Crosstalk(tuple(found), crosstalk)
         kept = [mode for mode, keep in zip(kept, significant, strict=True) if keep]
+
+
+def single_impact_crosstalk(t, y, sensor, onset, pre_end, contact_end):
+    """The crosstalk of the one impact of a single trace, its modes found on its own ringing.
+
+    With one record there is one impact: the modes are those :func:`structure_modes`
+    finds on the ringing after its contact (from ``contact_end`` to the record's end, at
+    most :data:`SINGLE_IDENTIFICATION_SPAN`), kept by :func:`fit_crosstalk` when their
+    response to this pulse is significant. The campaign instead keeps the modes found
+    after half of a record's impacts, which a single trace cannot do: a pole the pencil
+    fits to 1/f noise survives here when :func:`fit_crosstalk` finds it significant.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        The record: uniform times [s] and the signal [N].
+    sensor : Sensor
+    onset : float
+        The pulse's onset [s].
+    pre_end : float or None
+        End of the baseline window before the pulse [s] (its samples before it, at most
+        :data:`SINGLE_SPAN`, are fitted), or None when the record starts at the pulse.
+    contact_end : float
+        A time after the contact has ended [s].
+
+    Returns
+    -------
+    Crosstalk or None
+        On every sample of the record (zero outside the fitted stretch); None when the
+        ringing after the contact is too short to identify modes on.
+    """
+    after = (t >= contact_end) & (t <= contact_end + SINGLE_IDENTIFICATION_SPAN)
+    try:
+        modes = structure_modes(t[after], y[after], sensor)
+    except ParameterError:  # too short a window after the contact
+        return None
+    values = np.zeros(t.size)
+    if not modes:
+        return Crosstalk((), values)
+    post_start = contact_end + sensor.period
+    start = onset if pre_end is None else pre_end
+    first = onset - SINGLE_SPAN if pre_end is not None else start
+    stretch = (t >= first) & (t <= post_start + SINGLE_SPAN)
+    tt, yy = t[stretch], y[stretch]
+    fitted = ((tt < start) & (pre_end is not None)) | (tt >= post_start)
+    pulse = (tt >= start) & (tt < contact_end)
+    found = fit_crosstalk(tt, yy, sensor, onset, pulse, fitted, post_start, modes)
+    values[stretch] = found.values
+    return Crosstalk(found.modes, values)

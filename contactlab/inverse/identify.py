@@ -21,8 +21,13 @@ from scipy.optimize import least_squares
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
-from contactlab.inverse._signal import check_window, lobe_around_peak, uniform_signal
-from contactlab.inverse.pulse import RINGING_EXCESS, difference_noise
+from contactlab.inverse._signal import (
+    RINGING_EXCESS,
+    check_window,
+    difference_noise,
+    lobe_around_peak,
+    uniform_signal,
+)
 from contactlab.validation import check_count, check_interval, check_samples
 
 __all__ = ["SensorIdentification", "identify_sensor", "matrix_pencil"]

@@ -16,14 +16,20 @@ should only be labelled. The status travels with the numbers (``summary()``,
 why it may be off.
 """
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from contactlab import signals
 from contactlab.errors import ParameterError
-from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, baseline, lobe_around_peak
+from contactlab.inverse._signal import (
+    BASELINE_MIN_SAMPLES,
+    RINGING_EXCESS,
+    baseline,
+    difference_noise,
+    lobe_around_peak,
+)
+from contactlab.inverse.crosstalk import single_impact_crosstalk
 from contactlab.inverse.local_baseline import PRE_PERIODS, local_baseline
 from contactlab.signals import SPREAD_MIN_SAMPLES
 
@@ -55,14 +61,6 @@ DRIFT_SIGMAS = 1.0
 pulse is reported as drifting [-]: a constant baseline would then be off by more than
 the noise, and the line removed holds only if the drift is smooth over the fit."""
 
-RINGING_EXCESS = 1.3
-"""The post-contact window is reported as not free ringing when the free ringing and
-the line leave more than this times the noise before the pulse [-]. On white noise the
-ratio of the two estimates scatters by about ``1/sqrt(n)`` (``n`` the baseline window's
-400 samples at 2 MHz: 5 %); on realistic records (``benchmarks/bench_single_trace.py``,
-four seeds) white noise, hum, drift and bounces gave 0.95-1.07, 1/f noise as large as
-the white noise 0.91-1.01, crosstalk of 2 % of the peak 1.57-2.05."""
-
 
 @dataclass(frozen=True, eq=False)
 class PulseBaseline:
@@ -91,9 +89,15 @@ class PulseBaseline:
     status: str
     """``"ok"``, or the flags that apply, comma-separated: ``short pre-trigger``,
     ``drifting baseline``, ``not free ringing`` (judged against the noise before the
-    pulse, or with a short pre-trigger against :func:`difference_noise`)."""
+    pulse, or with a short pre-trigger against :func:`difference_noise`, after the
+    crosstalk's removal), ``no structure mode`` (not free ringing, and no structure
+    mode was significant: nothing removed)."""
     notes: tuple
-    """One sentence per flag, with the numbers."""
+    """One sentence per flag, with the numbers, and one naming the structure modes
+    removed."""
+    crosstalk: object = None
+    """The :class:`~contactlab.inverse.crosstalk.Crosstalk` removed (included in
+    ``values``), or None when its removal was off or the ringing too short."""
 
 
 def _onset_back(t, distance, level, peak):
@@ -153,14 +157,6 @@ def _windows(t, y, sensor, window, k):
     return pre, onset, mean
 
 
-def difference_noise(y):
-    """The record's noise standard deviation from its sample-to-sample differences
-    (robust: a pulse and its ringing occupy a minority of them; drift and hum are too
-    slow to reach them; 1/f noise is under-read, by 10-20 % when it is as large as the
-    white noise)."""
-    return signals.robust_noise(np.diff(y)) / math.sqrt(2.0)
-
-
 def _describe(base, pre, contact, noise, sensor, reference):
     """Status and notes of a fitted baseline (module constants); ``reference`` is the
     noise the post-contact residual is judged against [N]."""
@@ -202,7 +198,24 @@ def _describe(base, pre, contact, noise, sensor, reference):
     return ", ".join(flags) or "ok", tuple(notes)
 
 
-def pulse_baseline(t, y, sensor, window=None, k=5.0):
+def _crosstalk_notes(removed, status):
+    """Status and notes of the crosstalk's removal (``removed`` None: not tried)."""
+    if removed is None:
+        return status, ()
+    if removed.modes:
+        return status, (
+            f"structural crosstalk removed (modes found on the ringing after the contact, "
+            f"response to this pulse): {removed.describe()}",
+        )
+    if "not free ringing" in status:
+        return status + ", no structure mode", (
+            "no structure mode below a quarter of the sensor resonance was significant in "
+            "the ringing after the contact: nothing removed",
+        )
+    return status, ()
+
+
+def pulse_baseline(t, y, sensor, window=None, k=5.0, crosstalk=True):
     """Find the pulse of a single trace and fit its local baseline.
 
     Parameters
@@ -222,6 +235,11 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0):
         constant fitted after the contact (status ``short pre-trigger``).
     k : float, default 5
         Onset threshold in noise standard deviations [-].
+    crosstalk : bool, default True
+        Remove the structure's crosstalk first
+        (:func:`~contactlab.inverse.crosstalk.single_impact_crosstalk`: modes found on
+        the ringing after the contact, their response to the pulse fitted before it and
+        after the contact); the modes removed are named in ``notes``.
 
     Returns
     -------
@@ -241,8 +259,13 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0):
             f"the record ends at {t[-1]:.6g} s, inside the pulse's window {contact[0]:.6g} to "
             f"{contact[1]:.6g} s: nothing of the ringing after the contact is left to fit"
         )
+    removed = None
+    if crosstalk:
+        end = pre[1] if pre else None
+        removed = single_impact_crosstalk(t, y, sensor, onset, end, contact[1])
+    clean = y if removed is None else y - removed.values
     after = (contact[1], contact[1])  # short pre-trigger: the post window alone
-    base = local_baseline(t, y, pre or after, contact[0], contact[1], float(t[-1]), sensor)
+    base = local_baseline(t, clean, pre or after, contact[0], contact[1], float(t[-1]), sensor)
     noise = base.noise if pre else base.post_noise
     if not noise > 0.0:
         raise ParameterError(
@@ -252,10 +275,11 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0):
     # with nothing before the pulse, the post-contact residual is judged against the
     # noise of the sample differences (crosstalk of 2 %: 1.5-1.8 times it; white noise,
     # hum, 1/f noise, drift of 20 sigma and bounces 0.9-1.2, measured)
-    reference = noise if pre else difference_noise(y)
+    reference = noise if pre else difference_noise(clean)
     status, notes = _describe(base, pre, contact, noise, sensor, reference)
+    status, more = _crosstalk_notes(removed, status)
     return PulseBaseline(
-        values=base.values,
+        values=base.values if removed is None else base.values + removed.values,
         noise=float(noise),
         onset=float(onset),
         window=base.window,
@@ -264,7 +288,8 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0):
         drift=base.drift,
         post_noise=base.post_noise,
         status=status,
-        notes=notes,
+        notes=notes + more,
+        crosstalk=removed,
     )
 
 
