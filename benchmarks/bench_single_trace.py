@@ -18,7 +18,11 @@ defaults:
 Several noise seeds per line: the largest error over them is printed (``docs/campaign.md``,
 "Single-trace paths").
 
-Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N]``
+``--no-crosstalk`` measures the paths without the crosstalk's removal (the default of
+``contactlab.inverse.pulse.pulse_baseline``'s ``crosstalk`` option switched off for the
+run, which the public functions do not expose).
+
+Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N] [--no-crosstalk]``
 """
 
 import argparse
@@ -32,6 +36,7 @@ from contactlab.compare import compare_trace
 from contactlab.config import load_config
 from contactlab.errors import ParameterError
 from contactlab.inverse import identify_sensor, reconstruct_force
+from contactlab.inverse.pulse import pulse_baseline
 from dem_check.campaign import Effects, realistic_record
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -132,7 +137,10 @@ def line(name, config, law, effects, onset, seeds):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=4, help="noise seeds per line")
+    parser.add_argument("--no-crosstalk", action="store_true", help="keep the crosstalk")
     args = parser.parse_args()
+    if args.no_crosstalk:
+        pulse_baseline.__kwdefaults__["crosstalk"] = False
     config, law = setup()
     print(
         "| effect, impact | identify-sensor: f1, zeta | reconstruct: peak, contact time "

@@ -131,13 +131,13 @@ class _Problem:
         return (self.predict(self.values(x))[0] - self.y) / self.noise
 
 
-def _pulse(t, y, sensor, baseline_window):
+def _pulse(t, y, sensor, baseline_window, crosstalk):
     """The pulse's local baseline (:func:`contactlab.inverse.pulse.pulse_baseline`) on
     the noise window (default: the clean one before the pulse, or in a record without
     a pre-trigger the samples before the pulse it finds)."""
     if baseline_window is None and np.count_nonzero(t < 0.0) >= BASELINE_MIN_SAMPLES:
         baseline_window = clean_noise_window(t, y)
-    pulse = pulse_baseline(t, y, sensor, baseline_window)
+    pulse = pulse_baseline(t, y, sensor, baseline_window, crosstalk=crosstalk)
     if pulse.status.startswith("short pre-trigger"):
         raise ParameterError(
             f"the pulse starts at {pulse.onset:.6g} s, with fewer than {BASELINE_MIN_SAMPLES} "
@@ -240,6 +240,7 @@ def fit_contact(
     baseline_window=None,
     window=None,
     max_nfev=200,
+    crosstalk=True,
 ):
     """Fit a contact law (plus onset, baseline offset and, unless measured, impact
     velocity) to a trace.
@@ -282,6 +283,10 @@ def fit_contact(
     max_nfev : int, default 200
         Largest number of residual evaluations (each one simulation; the
         finite-difference Jacobian costs one more per fitted quantity).
+    crosstalk : bool, default True
+        Remove the structure's crosstalk with the baseline
+        (:func:`contactlab.inverse.pulse.pulse_baseline`); off for a record already rid
+        of it (a campaign's).
 
     Returns
     -------
@@ -338,7 +343,7 @@ def fit_contact(
     if window is not None:
         window = check_window("window", window)
     t, y, dt = uniform_signal(t, signal)
-    pulse = _pulse(t, y, sensor, baseline_window)
+    pulse = _pulse(t, y, sensor, baseline_window, crosstalk)
     y = y - pulse.values
     noise, baseline_window = pulse.noise, pulse.window
     start = _starting_values(spec, grain, t, y, sensor, velocity, baseline_window)

@@ -215,7 +215,7 @@ def _crosstalk_notes(removed, status):
     return status, ()
 
 
-def pulse_baseline(t, y, sensor, window=None, k=5.0, crosstalk=True):
+def pulse_baseline(t, y, sensor, window=None, k=5.0, *, crosstalk=True):
     """Find the pulse of a single trace and fit its local baseline.
 
     Parameters

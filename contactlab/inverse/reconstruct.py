@@ -307,6 +307,7 @@ def reconstruct_force(
     cutoff=None,
     max_unknowns=None,
     threshold=None,
+    crosstalk=True,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -355,6 +356,10 @@ def reconstruct_force(
         Level [N] at which the metrics read the pulse. Default: 2 % of the
         reconstructed peak, or five standard deviations of the reconstruction over the
         baseline window if that is larger.
+    crosstalk : bool, default True
+        Remove the structure's crosstalk with the baseline (modes found on the ringing
+        after the contact; :func:`contactlab.inverse.pulse.pulse_baseline`), the modes
+        removed named in ``notes``; off for a record already rid of it (a campaign's).
 
     Returns
     -------
@@ -409,7 +414,7 @@ def reconstruct_force(
     }
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, unit="N")
-    pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS)
+    pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk)
     y = y - pulse.values
     noise, onset, base = pulse.noise, pulse.onset, pulse.window
     ta, tb = check_window("window", pulse.contact if window is None else window)

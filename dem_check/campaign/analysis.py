@@ -199,7 +199,7 @@ def _fit(t, raw, base, grain, sensor, law):
     """Fit columns and notes (warnings turned into text: nothing hidden)."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        fit = fit_contact(t, raw, grain, sensor, law, baseline_window=base)
+        fit = fit_contact(t, raw, grain, sensor, law, baseline_window=base, crosstalk=False)
     notes = [f"fit: {w.message}" for w in caught]
     return _fit_columns(fit), notes
 
@@ -270,6 +270,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
             sensor,
             baseline_window=base,
             max_unknowns=_unknowns(window.onset, contact_end, sensor),
+            crosstalk=False,  # removed above, with the record's modes (or kept on request)
         )
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))

@@ -120,31 +120,51 @@ def test_a_record_that_starts_at_its_impact_under_fast_drift_says_so(hard_setup)
     # the pulse (peak +12 %, contact time +86 % measured): the result says that the
     # baseline drifts after the contact (3.3 noise sigmas over the 0.4 ms fitted), that
     # a constant could not follow it, and that the constant and the ringing leave 2.9
-    # times the record's sample-to-sample noise there
-    assert rec.status == "short pre-trigger, drifting baseline, not free ringing"
+    # times the record's sample-to-sample noise there, which no structure mode explains
+    assert rec.status == (
+        "short pre-trigger, drifting baseline, not free ringing, no structure mode"
+    )
     assert "a drift under the pulse is not seen" in rec.notes[0]
     assert "record a pre-trigger" in rec.notes[1]
 
 
-def test_a_record_that_starts_at_its_impact_names_the_structure_s_ringing(hard_setup):
-    record = _record(hard_setup, Effects(crosstalk=0.02), onset=0.0)
+@pytest.mark.parametrize("onset", ONSETS.values(), ids=ONSETS.keys())
+def test_reconstruction_removes_the_structure_s_crosstalk(hard_setup, onset):
+    record = _record(hard_setup, Effects(crosstalk=0.02), onset)
+    truth = record.truth.iloc[0]
     rec = reconstruct_force(*_arrays(record), hard_setup[1])
-    # no noise before the pulse: the post-contact residual is judged against the noise
-    # of the sample differences (1.5-1.8 times it with crosstalk of 2 %, 0.9-1.2
-    # without, measured); contact time +15 % over four seeds
-    assert rec.status == "short pre-trigger, not free ringing"
-    assert "sample-to-sample noise" in rec.notes[1]
+    # the 5 % target, reached: the modes found on the impact's own ringing and
+    # their response to the pulse removed, measured over two seeds peak +0.8 to +2.2 %,
+    # contact time -0.9 to +0.5 % (without the removal +4.1 % and +25 % at 1 ms, +2.5 %
+    # and +15 % at the start, over four seeds)
+    assert rec.metrics.peak == pytest.approx(truth["peak_contact_force [N]"], rel=0.05)
+    assert rec.metrics.duration == pytest.approx(truth["contact_time [s]"], rel=0.05)
+    assert "not free ringing" not in rec.status
+    # the modes removed are named: the plate's 1890 Hz mode (2 % tolerance: the pencil's
+    # frequency on 2 ms of ringing, +-0.5 % measured)
+    removed = [note for note in rec.notes if note.startswith("structural crosstalk removed")]
+    assert len(removed) == 1 and " Hz (zeta " in removed[0]
+    found = [float(part.split(" Hz")[0]) for part in removed[0].split(": ", 1)[1].split("; ")]
+    assert any(abs(f / 1890.0 - 1.0) < 0.02 for f in found), found
+    # kept on request, the same record is flagged, with the numbers; 1 ms in its contact
+    # time is far off (+12 % to +25 % measured; above twice the 5 % target shows that
+    # the removal is what brought it within it; at the start this seed gave +2.2 %)
+    kept = reconstruct_force(*_arrays(record), hard_setup[1], crosstalk=False)
+    assert "not free ringing" in kept.status
+    assert any("crosstalk" in note and "times" in note for note in kept.notes)
+    if onset > 0.0:
+        assert kept.metrics.duration > 1.1 * truth["contact_time [s]"]
 
 
-def test_reconstruction_says_when_the_structure_rings(hard_setup):
-    record = _record(hard_setup, Effects(crosstalk=0.02))
-    rec = reconstruct_force(*_arrays(record), hard_setup[1])
-    # crosstalk of 2 % of the peak holds the reconstructed force above 2 % of its peak
-    # after the contact (contact time +12 % measured, +38 % before): not removed (the
-    # plate modes are the campaign's to separate), but said, with the numbers
-    assert "not free ringing" in rec.status
-    assert any("crosstalk" in note and "times the noise" in note for note in rec.notes)
-    assert rec.summary()["status"] == rec.status
+def test_reconstruction_says_when_no_structure_mode_explains_the_ringing(hard_setup):
+    record = _record(hard_setup, Effects())
+    t, y = _arrays(record)
+    # a 12 kHz ringing (above a quarter of the 40 kHz sensor resonance, where modes are
+    # not sought) after the contact: not free ringing, and nothing removed
+    y = y + np.where(t > 1.3e-3, 0.06 * np.sin(2 * np.pi * 12e3 * t), 0.0)
+    rec = reconstruct_force(t, y, hard_setup[1])
+    assert rec.status == "not free ringing, no structure mode"
+    assert "nothing removed" in rec.notes[-1]
 
 
 @pytest.mark.xfail(
