@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from contactlab import signals
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import (
     BASELINE_MIN_SAMPLES,
@@ -251,6 +252,7 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0, *, crosstalk=True):
         A window with too few samples or without noise, no sample above the threshold,
         a record too short to find its pulse.
     """
+    crosstalk = check_flag("crosstalk", crosstalk)
     pre, onset, reference = _windows(t, y, sensor, window, k)
     start, end = lobe_around_peak(t, y, reference)
     contact = (max(onset - ONSET_MARGIN * sensor.period, float(t[0])), end + (end - start))
