@@ -116,6 +116,12 @@ QUANTITIES = _vocabulary(
     ("k_hertz", "N/m**1.5", "Hertz stiffness kH of F = kH d**1.5"),
     ("damping", "N*s/m**1.25", "Hertz damping eta of F = kH d**1.5 + eta d**0.25 d'"),
     ("v0", "m/s", "grain speed towards the sensor at the touch (a batch row's velocity)"),
+    ("radius", "m", "grain radius (the tangential force's lever arm)"),
+    ("k_mindlin", "N/m**1.5", "Mindlin's tangential stiffness coefficient: kt = k_mindlin sqrt(d)"),
+    ("friction", "-", "Coulomb friction coefficient mu"),
+    # an oblique impact's other rebound numbers (the batch's oblique frame)
+    ("contact_rebound_angle", "rad", "angle of the contact point's rebound velocity"),
+    ("phases", "-", "number of stick and slide phases of the contact"),
 )
 """The vocabulary: name -> :class:`Quantity`."""
 

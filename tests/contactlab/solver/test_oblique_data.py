@@ -64,7 +64,7 @@ def test_the_elastic_cap_contact_samples_as_the_law_says(elastic_cap):
         else:
             expected = (1.0 if code == "slide+" else -1.0) * law.friction * normal
         scale = res.peak_tangential_force
-        # the same formula in numba and in numpy: rounding only (a few ulps of the peak)
+        # the same formula in numba and in numpy: rounding only (measured 0: equal bits)
         np.testing.assert_allclose(tangential, expected, rtol=0.0, atol=1e-12 * scale)
 
 
