@@ -154,8 +154,8 @@ def paper_frame(n):
     [
         ("m2 [kg]", -1e-5, "column 'm2 [kg]' (grain mass) must be a number > 0"),
         ("v0 [m/s]", np.nan, "'v0 [m/s]'"),
-        ("damping [N*s/m**1.25]", -1.0, "'damping [N*s/m**1.25]' (Tsuji damping coefficient)"),
-        ("k_hertz [N/m**1.5]", np.inf, "'k_hertz [N/m**1.5]' (Hertz stiffness)"),
+        ("damping [N*s/m**1.25]", -1.0, "'damping [N*s/m**1.25]' (Hertz damping eta of F"),
+        ("k_hertz [N/m**1.5]", np.inf, "'k_hertz [N/m**1.5]' (Hertz stiffness kH of F"),
         ("m1 [kg]", np.inf, "immovable wall (k1 = inf)"),
     ],
 )

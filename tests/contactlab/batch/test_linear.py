@@ -141,7 +141,12 @@ def paper_frame(n):
     [
         ("m2 [kg]", -1e-5, "column 'm2 [kg]' (grain mass) must be a number > 0"),
         ("v0 [m/s]", np.nan, "'v0 [m/s]'"),
-        ("c2 [N*s/m]", np.inf, "'c2 [N*s/m]' (contact damping) must be a number >= 0, finite"),
+        (
+            "c2 [N*s/m]",
+            np.inf,
+            "'c2 [N*s/m]' (linear contact damping (LinearViscoelastic.damping)) must be a "
+            "number >= 0, finite",
+        ),
         ("k2 [N/m]", 0.0, "'k2 [N/m]'"),
         ("m1 [kg]", np.inf, "immovable wall (k1 = inf)"),
     ],
