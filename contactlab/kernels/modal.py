@@ -199,7 +199,8 @@ def _refine_peak(slope_kind, peak, interval, piece, par, y, work, best):
     event: ``interval`` is ``(lo, slope at lo, hi, slope at hi, upto)`` [s] with the
     slope of ``slope_kind`` falling through zero on it; the maximum is its root (Brent),
     the value the sensor signal (``_SENSOR_SLOPE``) or the clipped contact force
-    (``_FORCE_SLOPE``) there."""
+    (``_FORCE_SLOPE``) there. Called only where the maximum may beat the best so far
+    (:func:`may_exceed`), so the scan's hot loop stays a few comparisons a point."""
     lo, s_lo, hi, s_hi, upto = interval
     t_max = _root(slope_kind, lo, s_lo, hi, s_hi, piece, par, y, work)
     if t_max > upto:
@@ -310,6 +311,13 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
             ):
                 interval = (t_prev, prev[2], tau, cur[2], upto)
                 _refine_peak(_SENSOR_SLOPE, SENSOR_PEAK, interval, piece, par, y, work, best)
+            if (
+                track[1]
+                and falls(prev[3], cur[3])
+                and may_exceed(prev[4], prev[3], best[CONTACT_PEAK], h)
+            ):
+                interval = (t_prev, prev[3], tau, cur[3], upto)
+                _refine_peak(_FORCE_SLOPE, CONTACT_PEAK, interval, piece, par, y, work, best)
             if track[0] and falls(prev[1], cur[1]):
                 t_end = _root(SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:
@@ -324,13 +332,6 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     t_end = _root(SENSOR, t_prev, prev[1], t_min, bottom, piece, par, y, work)
                     best[LOBE_END] = best[PIECE_START] + t_end
                     track[0] = False
-            if (
-                track[1]
-                and falls(prev[3], cur[3])
-                and may_exceed(prev[4], prev[3], best[CONTACT_PEAK], h)
-            ):
-                interval = (t_prev, prev[3], tau, cur[3], upto)
-                _refine_peak(_FORCE_SLOPE, CONTACT_PEAK, interval, piece, par, y, work, best)
             if hit >= 0.0:
                 return hit
             prev[:] = cur
