@@ -57,6 +57,17 @@ class Worst:
         self.failures = []
         self.count = 0
 
+    def solve(self, simulate, case):
+        """``simulate(**case, audit=False)`` with its warnings silenced, or None after
+        listing a solver that gives up, or a contact refused as no impact, as a failure."""
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            try:
+                return simulate(**case, audit=False)
+            except (RuntimeError, ParameterError) as error:
+                self.failures.append((case, [str(error)]))
+                return None
+
     def add(self, audit, key, case):
         self.count += 1
         for check in audit.checks:
@@ -85,14 +96,9 @@ def run_oblique(examples, seed_value):
     @settings(**SETTINGS, max_examples=examples)
     @given(case=oblique_impacts())
     def one(case):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            try:
-                res = cl.simulate_oblique(**case, audit=False)
-            # a solver that gives up, or a contact refused as no impact, is listed too
-            except (RuntimeError, ParameterError) as error:
-                worst.failures.append((case, [str(error)]))
-                return
+        res = worst.solve(cl.simulate_oblique, case)
+        if res is None:
+            return
         worst.add(res.audit(), (_name(case["normal_law"]), _name(case["tangential_law"])), case)
         mu = case["tangential_law"].friction
         slides = (
@@ -170,13 +176,9 @@ def run_impact(examples, seed_value):
     @settings(**SETTINGS, max_examples=examples)
     @given(case=normal_impacts())
     def one(case):
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            try:
-                res = cl.simulate_impact(**case, audit=False)
-            except (RuntimeError, ParameterError) as error:
-                worst.failures.append((case, [str(error)]))
-                return
+        res = worst.solve(cl.simulate_impact, case)
+        if res is None:
+            return
         worst.add(res.audit(), (type(case["law"]).__name__,), case)
         law = case["law"]
         # the exact method's laws through DOP853 too: the Python piece path with exits

@@ -33,6 +33,7 @@ from contactlab.batch import (
     hertz_impacts,
     linear_impacts,
 )
+from contactlab.batch.rows import result_row
 
 ROWS = 100_000
 HERTZ_ROWS = 20_000
@@ -78,16 +79,7 @@ def loop(frame, law):
     out = []
     for m1, k1, c1, m2, k2, c2, v0 in frame.to_numpy():
         res = cl.simulate_impact(cl.Grain.from_mass(m2), cl.Sensor(m1, k1, c1), law(k2, c2), v0)
-        out.append(
-            (
-                res.contact_time,
-                res.sensor_response_time,
-                res.peak_contact_force,
-                res.peak_sensor_force,
-                res.restitution,
-                len(res.contact_intervals),
-            )
-        )
+        out.append(result_row(res))
     return np.array(out)
 
 

@@ -29,7 +29,8 @@ import sys
 import time
 from pathlib import Path
 
-from bench_solver import median_time
+from bench_solver import REPEATS
+from timing import median_time
 
 HERE = Path(__file__).resolve().parent
 WINDOW, SAMPLES = 500e-6, 20001
@@ -70,7 +71,7 @@ def single_with_metrics():
     def grid():
         return _read(solve().grid_reading())
 
-    t_core, t_grid = median_time(core), median_time(grid)
+    t_core, t_grid = median_time(core, REPEATS), median_time(grid, REPEATS)
     print(f"1. One linear impact, {SAMPLES} samples, with its {len(HEADLINE)} headline numbers")
     print(f"   read by the compiled loop  {t_core * 1e3:7.3f} ms   (target <= 0.6 ms)")
     print(f"   read from the grid         {t_grid * 1e3:7.3f} ms   ratio {t_grid / t_core:5.2f}x")
@@ -97,8 +98,10 @@ def figures():
         def run(law=law, options=options):
             return cl.simulate_impact(grain, sensor, law, 2.0, WINDOW, **options)
 
-        out[f"single {name} [ms]"] = 1e3 * median_time(run)
-        out[f"single {name} + metrics [ms]"] = 1e3 * median_time(lambda run=run: _read(run()))
+        out[f"single {name} [ms]"] = 1e3 * median_time(run, REPEATS)
+        out[f"single {name} + metrics [ms]"] = 1e3 * median_time(
+            lambda run=run: _read(run()), REPEATS
+        )
     frames = {
         "linear": (
             linear_impacts,

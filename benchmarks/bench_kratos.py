@@ -14,11 +14,12 @@ and the attribution of Kratos' test-4 differences rule by rule (issue 27).
 """
 
 import math
-import statistics
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+from timing import median_time
 
 import contactlab as cl
 from contactlab import analytic
@@ -40,16 +41,6 @@ V0 = 2.0  # [m/s]
 QUANTITIES = ("restitution", "contact_time", "peak_contact_force", "peak_sensor_force")
 
 
-def _median_time(fn):
-    fn()  # warm-up (imports, first set-up)
-    times = []
-    for _ in range(REPEATS):
-        clock = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - clock)
-    return statistics.median(times)
-
-
 def drop_tests():
     body = cl.Grain(diameter=5e-3, density=765.0)
     k_hertz = analytic.hertz_stiffness(21.6e6, body.radius)
@@ -68,8 +59,8 @@ def drop_tests():
     for law_name, law in laws.items():
         for sensor_name, sensor in sensors.items():
             case = (body, sensor, law, V0)
-            t_kratos = _median_time(lambda case=case: kratos.drop_test(*case))
-            t_lammps = _median_time(lambda case=case: lammps.drop_test(*case))
+            t_kratos = median_time(lambda case=case: kratos.drop_test(*case), REPEATS)
+            t_lammps = median_time(lambda case=case: lammps.drop_test(*case), REPEATS)
             res = kratos.drop_test(body, sensor, law, V0)
             ref = cl.simulate_impact(body, sensor, law, V0)
             error = max(abs(getattr(res, q) / getattr(ref, q) - 1.0) for q in QUANTITIES)

@@ -13,12 +13,11 @@
 Target: < 0.5 s per impact at default settings.
 """
 
-import statistics
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
+from timing import median_time
 
 import contactlab as cl
 from contactlab import analytic
@@ -32,16 +31,6 @@ REPEATS = 5
 TARGET = 0.5  # [s] per impact
 V0 = 2.0  # [m/s]
 QUANTITIES = ("restitution", "contact_time", "peak_contact_force", "peak_sensor_force")
-
-
-def _median_time(fn):
-    fn()  # warm-up
-    times = []
-    for _ in range(REPEATS):
-        clock = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - clock)
-    return statistics.median(times)
 
 
 def _errors(res, ref):
@@ -71,11 +60,12 @@ def _impacts(grain, sensors, laws):
         for label, sensor in sensors.items():
             res = drop_test(grain, sensor, law, V0)
             ref = cl.simulate_impact(grain, sensor, law, V0)
-            t_lammps = _median_time(
-                lambda law=law, sensor=sensor: drop_test(grain, sensor, law, V0)
+            t_lammps = median_time(
+                lambda law=law, sensor=sensor: drop_test(grain, sensor, law, V0), REPEATS
             )
-            t_exact = _median_time(
-                lambda law=law, sensor=sensor: cl.simulate_impact(grain, sensor, law, V0)
+            t_exact = median_time(
+                lambda law=law, sensor=sensor: cl.simulate_impact(grain, sensor, law, V0),
+                REPEATS,
             )
             worst = max(worst, t_lammps)
             errors = "  ".join(f"{e:>+18.2e}" for e in _errors(res, ref))
@@ -111,7 +101,7 @@ def _bullet(grain, sensor, laws):
         ("LAMMPS", lambda: drop_test(grain, sensor, law, V0)),
     ):
         res = run()
-        seconds = _median_time(run)
+        seconds = median_time(run, REPEATS)
         errors = ", ".join(
             f"{q} {e:+.2e}" for q, e in zip(QUANTITIES, _errors(res, ref), strict=True)
         )

@@ -1,23 +1,12 @@
 """Time each law's impact on an immovable wall (median of several runs: the machine is
 shared, medians rather than minima). The two-mass targets are in ``bench_solver.py``."""
 
-import statistics
-import time
+from timing import median_time
 
 import contactlab as cl
 from contactlab import laws
 
 REPEATS = 15
-
-
-def median_time(fn, repeats=REPEATS):
-    fn()  # warm-up
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def main():
@@ -37,7 +26,9 @@ def main():
     }
     print("Rigid-wall impact per law (v0 = 2 m/s, 20 001 output samples), median of", REPEATS)
     for name, law in cases.items():
-        t = median_time(lambda law=law: cl.simulate_impact(grain, cl.Sensor.rigid(), law, 2.0))
+        t = median_time(
+            lambda law=law: cl.simulate_impact(grain, cl.Sensor.rigid(), law, 2.0), REPEATS
+        )
         print(f"  {name:18s} {t * 1e3:8.2f} ms")
 
 

@@ -19,7 +19,6 @@ best estimate of the cost on a quiet one); ratios are of medians and of minima.
 import math
 import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -31,6 +30,7 @@ from contactlab.solver.system import System
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests/contactlab/solver"))
 from oblique_reference import ObliqueReference
+from timing import wall_times
 
 REPEATS = 41
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
@@ -42,12 +42,7 @@ SWEEP = 50
 
 def median_time(fn, repeats=REPEATS):
     """(median, fastest) wall time [s] of ``fn()``."""
-    fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
+    times = wall_times(fn, repeats)
     return statistics.median(times), min(times)
 
 

@@ -20,12 +20,11 @@ Medians of repeated runs: this machine is shared, so minima would flatter and si
 would mislead. Headline numbers are timed too (``+ metrics``): a study reads them all.
 """
 
-import statistics
-import time
 import warnings
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from timing import median_time
 
 import contactlab as cl
 
@@ -33,17 +32,6 @@ REPEATS = 41
 WINDOW = 500e-6
 SAMPLES = 20001
 HEADLINE = ("contact_time", "peak_contact_force", "peak_sensor_force", "restitution", "impulse")
-
-
-def median_time(fn, repeats=REPEATS):
-    """Median wall time of ``fn()`` [s] after one warm-up call."""
-    fn()
-    times = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times)
 
 
 def with_metrics(res):
@@ -57,8 +45,8 @@ def linear_case(grain, sensor):
     def ours():
         return cl.simulate_impact(grain, sensor, law, 2.0, WINDOW)
 
-    t_ours = median_time(ours)
-    t_ours_metrics = median_time(lambda: with_metrics(ours()))
+    t_ours = median_time(ours, REPEATS)
+    t_ours_metrics = median_time(lambda: with_metrics(ours()), REPEATS)
     m1, k1, c1, m2 = sensor.mass, sensor.stiffness, sensor.damping, grain.mass
     t_eval = np.linspace(0.0, WINDOW, SAMPLES)
 
@@ -70,7 +58,7 @@ def linear_case(grain, sensor):
     def scipy_run():
         solve_ivp(rhs, (0, WINDOW), [0, 0, 0, 2.0], "DOP853", t_eval=t_eval, rtol=1e-10, atol=1e-16)
 
-    t_scipy = median_time(scipy_run, repeats=5)
+    t_scipy = median_time(scipy_run, 5)
     euler_window = 5e-6
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the 5 us window is shorter than the contact
@@ -78,7 +66,7 @@ def linear_case(grain, sensor):
             lambda: cl.simulate_impact(
                 grain, sensor, law, 2.0, euler_window, method="euler", time_step=1e-10
             ),
-            repeats=1,
+            1,
         )
     t_euler = t_euler_short * WINDOW / euler_window
     print("1. Two-mass linear impact, 40 kHz sensor, 500 us window, 20 001 samples")
@@ -122,8 +110,8 @@ def hertz_case(grain, sensor):
         print(f"   rtol {rtol:.0e}: {text}")
     times = {}
     for rtol, label in ((chosen, "1e-6 on contact time"), (1e-6, "1e-6 on every number")):
-        t_run = median_time(lambda rtol=rtol: run(rtol))
-        t_metrics = median_time(lambda rtol=rtol: with_metrics(run(rtol)))
+        t_run = median_time(lambda rtol=rtol: run(rtol), REPEATS)
+        t_metrics = median_time(lambda rtol=rtol: with_metrics(run(rtol)), REPEATS)
         times[rtol] = t_run, t_metrics
         print(
             f"   rtol {rtol:.0e} ({label}): {t_run * 1e3:.2f} ms, + metrics "
@@ -131,8 +119,8 @@ def hertz_case(grain, sensor):
         )
     t_run, t_metrics = times[1e-6]
     python_errors = relative_errors(run(1e-6, python_law), run(1e-6))
-    t_python = median_time(lambda: run(1e-6, python_law))
-    t_python_metrics = median_time(lambda: with_metrics(run(1e-6, python_law)))
+    t_python = median_time(lambda: run(1e-6, python_law), REPEATS)
+    t_python_metrics = median_time(lambda: with_metrics(run(1e-6, python_law)), REPEATS)
     print(
         f"   rtol 1e-06 on the Python stepper: {t_python * 1e3:.2f} ms, + metrics "
         f"{t_python_metrics * 1e3:.2f} ms   compiled / Python {t_run / t_python:.2f} "

@@ -7,12 +7,10 @@ by the element, ``S1 = k1 x1 + c1 v1`` [N].
 
 import math
 
-import numpy as np
-
 from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.plausibility import check_plausible, internal
-from contactlab.validation import KeywordChecked, check_number
+from contactlab.validation import KeywordChecked, check_number, check_samples
 
 __all__ = ["DRAWING_DIAMETER", "STEEL_DENSITY", "Grain", "Sensor"]
 
@@ -334,9 +332,31 @@ class Sensor(KeywordChecked):
 
     def signal(self, states, contact_force):
         """Sensor signal S1 [N] of states ``[x1, v1, ...]`` (n, >= 2) [m, m/s]:
-        ``k1 x1 + c1 v1``, or on an immovable wall the contact force S2 [N] itself."""
+        ``k1 x1 + c1 v1``, or on an immovable wall the contact force S2 [N] itself.
+
+        Parameters
+        ----------
+        states : array_like
+            Solver states, shape (n, >= 2): plate displacement [m] and velocity [m/s]
+            first.
+        contact_force : array_like or None
+            Contact force S2 [N] at the n states; None for a moving sensor, whose signal
+            does not depend on it.
+        """
+        states = check_samples("states", states, ndim=2, copy=False)  # read, on every result
+        if states.shape[1] < 2:
+            raise ParameterError(
+                f"states must have columns x1 [m], v1 [m/s], ...; got shape {states.shape}"
+            )
+        if contact_force is not None or self.is_rigid:
+            contact_force = check_samples("contact_force", contact_force, unit="N", copy=False)
+            if contact_force.shape != states.shape[:1]:
+                raise ParameterError(
+                    f"contact_force must hold one value per state ({states.shape[0]}); got "
+                    f"{contact_force.size}"
+                )
         if self.is_rigid:
-            return np.asarray(contact_force, dtype=float)
+            return contact_force
         signal = states[:, 0] * self.stiffness
         signal += self.damping * states[:, 1]
         return signal
@@ -344,6 +364,7 @@ class Sensor(KeywordChecked):
     def energy(self, x1, v1):
         """Kinetic and elastic energy [J] of the plate at displacement ``x1`` [m] and velocity
         ``v1`` [m/s] (0 on an immovable wall)."""
+        x1, v1 = check_number("x1", x1, unit="m"), check_number("v1", v1, unit="m/s")
         if self.is_rigid:
             return 0.0
         return 0.5 * self.mass * v1**2 + 0.5 * self.stiffness * x1**2

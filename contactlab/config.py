@@ -19,6 +19,7 @@ must be TOML booleans (``true``/``false``), not strings or numbers.
 
 import json
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -147,15 +148,24 @@ def _sensor(table):
     return _build("sensor", Sensor.from_resonance, **table)
 
 
+def _table(name, table):
+    """A TOML table given as an argument: a dict, or a ParameterError naming it."""
+    if not isinstance(table, Mapping):
+        raise ParameterError(f"{name} must be a dict (a TOML table); got {table!r}")
+    return table
+
+
 def law_from_table(table, grain):
     """A contact law from a ``[contact]`` table (``law = ...`` and its parameters, or
     ``from_material = true`` for the Hertz family, built from ``grain``'s material)."""
-    return _law(table, grain)
+    if not isinstance(grain, Grain):
+        raise ParameterError(f"grain must be a contactlab.Grain; got {type(grain).__name__}")
+    return _law(_table("table", table), grain)
 
 
 def sensor_from_table(table):
     """A sensor from a ``[sensor]`` table (``rigid``, ``resonance`` or ``m1, k1, c1``)."""
-    return _sensor(table)
+    return _sensor(_table("table", table))
 
 
 def _parse(data, where):

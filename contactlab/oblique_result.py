@@ -14,6 +14,7 @@ from contactlab.audit import (
     grid_checks,
     worst_of,
 )
+from contactlab.entry_checks import check_flag
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 
@@ -282,6 +283,7 @@ class ObliqueResult:
         -------
         contactlab.audit.Audit
         """
+        full = check_flag("full", full)
         checks = list(self._end_checks())
         if not full:
             inside = slice(0, int(np.searchsorted(self.t, self.contact_time, side="left")))

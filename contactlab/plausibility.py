@@ -25,8 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contactlab.errors import PlausibilityWarning
-from contactlab.validation import check_choice
+from contactlab.errors import ParameterError, PlausibilityWarning
+from contactlab.validation import check_choice, check_number, check_samples, check_text
 
 __all__ = [
     "RANGES",
@@ -224,6 +224,7 @@ def likely_slips(key, value):
         lies inside the plausible range.
     """
     spec = _spec(key)
+    value = check_number("value", value)
     return [
         (value * factor, unit)
         for factor, unit in spec.slips
@@ -259,7 +260,7 @@ def check_plausible(key, value, name=None):
     key : str
         A key of :data:`RANGES` (``"grain_diameter"``, ``"impact_velocity"``, ...).
     value : float
-        A value already checked to be a finite number, in SI units.
+        A finite number, in SI units.
     name : str, optional
         The parameter's name in the message (default: ``key``).
 
@@ -268,13 +269,19 @@ def check_plausible(key, value, name=None):
     float
         ``value``, unchanged: nothing is clipped.
 
+    Raises
+    ------
+    ParameterError
+        An unknown ``key``, or a ``value`` that is not a finite real number.
+
     Warns
     -----
     PlausibilityWarning
         Outside the plausible range, with the likely unit slip when there is one.
     """
     spec = _spec(key)
-    name = name or key
+    name = key if name is None else check_text("name", name)
+    check_number(f"value of {name}", value)
     if not _QUIET.get() and not spec.low <= value <= spec.high:
         warnings.warn(_message(key, name, value), PlausibilityWarning, stacklevel=_caller_level())
     return value
@@ -298,10 +305,26 @@ def implausible_rows(key, values, labels, name=None):
     -------
     list
         The labels of the rows outside the range (one warning names them all).
+
+    Raises
+    ------
+    ParameterError
+        An unknown ``key``; ``values`` not a 1-D array of numbers or holding NaN; or
+        ``labels`` not one per value.
     """
     spec = _spec(key)
-    values = np.asarray(values, dtype=float)
-    name = name or key
+    values = check_samples("values", values, finite=False)
+    if np.isnan(values).any():
+        raise ParameterError(f"values must be numbers or inf (a wall); got NaN in {key!r}")
+    try:
+        count = len(labels)
+    except TypeError:
+        count = None
+    if count != values.size:
+        raise ParameterError(
+            f"labels must hold one label per value ({values.size}); got {labels!r}"
+        )
+    name = key if name is None else check_text("name", name)
     outside = np.isfinite(values) & ((values < spec.low) | (values > spec.high))
     rows = [labels[i] for i in np.flatnonzero(outside)]
     if rows and not _QUIET.get():

@@ -145,6 +145,8 @@ def quantity(name):
 
 def _lookup(name, stacklevel=3):
     """:func:`quantity`; ``stacklevel`` points the warning at the public caller's caller."""
+    if not isinstance(name, str):
+        raise ParameterError(f"a quantity's name must be text (str); got {name!r}")
     if name in DEPRECATED:
         new = DEPRECATED[name]
         warnings.warn(

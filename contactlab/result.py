@@ -7,6 +7,7 @@ from functools import cached_property
 import numpy as np
 
 from contactlab import metrics
+from contactlab.entry_checks import check_flag
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
@@ -449,7 +450,7 @@ class ImpactResult(ImpactSignals):
         """
         from contactlab.impact_audit import audit_impact
 
-        return audit_impact(self, full)
+        return audit_impact(self, check_flag("full", full))
 
     # -- output ----------------------------------------------------------------
     def summary(self):

@@ -21,7 +21,7 @@ import numpy as np
 from scipy import signal
 
 from contactlab.errors import ParameterError
-from contactlab.validation import check_count, check_number, check_samples
+from contactlab.validation import check_count, check_interval, check_number, check_samples
 
 __all__ = [
     "MAD_TO_SIGMA",
@@ -86,6 +86,8 @@ def _window(window, name):
         raise ParameterError(f"{name} must be (start, end) [s]; got {window!r}") from None
     if not all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in (start, end)):
         raise ParameterError(f"{name} must be (start, end) [s]; got {window!r}")
+    if np.isnan([start, end]).any():
+        raise ParameterError(f"{name} must be (start, end) [s], not NaN; got {window!r}")
     return float(start), float(end)
 
 
@@ -102,8 +104,14 @@ def in_window(t, window):
     Returns
     -------
     numpy.ndarray of bool
+
+    Raises
+    ------
+    ParameterError
+        ``t`` not a 1-D array of finite times, or ``window`` not a pair of numbers.
     """
-    start, end = window
+    t = check_samples("t", t, min_size=1, unit="s")
+    start, end = _window(window, "window")
     return (t >= start) & (t < end)
 
 
@@ -141,7 +149,9 @@ def baseline(t, y, window, *, name="window"):
             f"(pass {name}=(start, end) [s])"
         )
     if not np.isfinite(samples).all():
-        raise ParameterError(f"the baseline window {window} s holds overrange samples")
+        raise ParameterError(
+            f"y holds overrange samples (inf or NaN) in the baseline window {window} s"
+        )
     return Baseline(float(samples.mean()), float(samples.std(ddof=1)), int(samples.size))
 
 
@@ -243,7 +253,7 @@ def lowpass(y, interval, cutoff, order=4):
         samples.
     """
     y = check_samples("y", y, finite=False)
-    interval = check_number("interval", interval, low=0.0, unit="s")
+    interval = check_interval("interval", interval)
     nyquist = 0.5 / interval
     cutoff = check_number("cutoff", cutoff, low=0.0, high=nyquist, high_open=True, unit="Hz")
     order = check_count("order", order)
@@ -302,11 +312,22 @@ def _side_means(y, span):
     return np.where(np.abs(y - before) <= np.abs(y - after), before, after)
 
 
+def _mask(name, value, size):
+    """``value`` as a 1-D bool array of ``size`` samples, or a ParameterError naming it."""
+    try:
+        mask = np.asarray(value)
+    except (TypeError, ValueError):  # ragged nesting
+        mask = None
+    if mask is None or mask.dtype != bool or mask.shape != (size,):
+        raise ParameterError(f"{name} must be {size} booleans, one per sample; got {value!r}")
+    return mask
+
+
 def _block_spread(distance, edges, exclude):
     """Median of ``distance`` per block over the samples not excluded; a block with
     fewer than :data:`SPREAD_MIN_SAMPLES` of them takes its neighbours' (interpolated
     over the block index, held at the ends)."""
-    keep = np.ones(distance.size, dtype=bool) if exclude is None else ~np.asarray(exclude)
+    keep = np.ones(distance.size, dtype=bool) if exclude is None else ~exclude
     spread = np.full(edges.size - 1, np.nan)
     for k, (a, b) in enumerate(itertools.pairwise(edges)):
         kept = distance[a:b][keep[a:b]]
@@ -370,6 +391,8 @@ def running_baseline(y, width, exclude=None):
     """
     width = check_count("width", width, low=8)
     y = check_samples("y", y)
+    if exclude is not None:
+        exclude = _mask("exclude", exclude, y.size)
     if y.size < 2 * width:
         raise ParameterError(
             f"running_baseline needs at least two blocks of {width} samples in y; got {y.size}"

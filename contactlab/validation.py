@@ -24,6 +24,7 @@ __all__ = [
     "check_choice",
     "check_count",
     "check_inertia_factor",
+    "check_interval",
     "check_non_negative",
     "check_number",
     "check_path",
@@ -32,6 +33,7 @@ __all__ = [
     "check_probability",
     "check_samples",
     "check_text",
+    "check_values",
     "keyword_checked",
     "numbers_checked",
     "unknown_keywords",
@@ -104,7 +106,7 @@ def check_number(
     return x
 
 
-def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
+def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True, copy=True):
     """Return ``value`` as a float array after checking it holds finite real numbers.
 
     Parameters
@@ -125,6 +127,9 @@ def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
     finite : bool, default True
         Refuse NaN and infinite values; False lets them through (a recorder's overrange
         samples, which the caller reports itself).
+    copy : bool, default True
+        False returns a float64 array given as such without copying it (for a caller
+        that only reads it, on a hot path); the default always returns a new array.
 
     Returns
     -------
@@ -144,7 +149,7 @@ def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
         raise ParameterError(f"{name} must be an array of numbers{unit_text}; {exc}") from None
     if array.dtype.kind not in "iuf":
         raise ParameterError(f"{name} must hold real numbers{unit_text}; got {array.dtype} values")
-    array = array.astype(float)
+    array = array.astype(float, copy=copy)
     if ndim is not None and array.ndim != ndim:
         raise ParameterError(f"{name} must be a {ndim}-D array; got shape {array.shape}")
     if array.size < min_size:
@@ -152,6 +157,29 @@ def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True):
     if finite and not np.isfinite(array).all():
         raise ParameterError(f"{name} must be finite{unit_text} (no NaN or inf values)")
     return array
+
+
+def check_values(name, value, *, low=0.0, low_open=True, unit="", min_size=1):
+    """Return ``value`` as a 1-D float array of at least ``min_size`` finite numbers, each
+    above ``low`` (a list of diameters, resonances, dampings...).
+
+    Parameters are those of :func:`check_samples` and :func:`check_number`; ``low=None``
+    leaves the values unbounded.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``name``: as :func:`check_samples`, or a value at or below ``low`` (below
+        it with ``low_open=False``).
+    """
+    values = check_samples(name, value, min_size=min_size, unit=unit)
+    if low is not None and values.size:
+        smallest = values.min()
+        if smallest < low or (low_open and smallest == low):
+            rng = _describe(low, None, low_open, False)
+            unit_text = f" [{unit}]" if unit else ""
+            raise ParameterError(f"{name} must be numbers {rng}{unit_text}; got {smallest!r}")
+    return values
 
 
 def check_path(name, value):
@@ -194,6 +222,17 @@ def check_inertia_factor(name, value):
     """Check a sphere's inertia factor ``I / (m r**2)`` in :data:`INERTIA_FACTOR_RANGE`."""
     low, high = INERTIA_FACTOR_RANGE
     return check_number(name, value, low=low, high=high, low_open=False, unit="-")
+
+
+def check_interval(name, value):
+    """Check a sample interval [s]: a finite number > 0 whose rate ``1 / value`` is finite
+    too (a subnormal interval such as 5e-324 s has an infinite rate); return it as float."""
+    interval = check_number(name, value, low=0.0, unit="s")
+    if not math.isfinite(1.0 / interval):
+        raise ParameterError(
+            f"{name} must be a sample interval [s] whose rate 1/{name} is finite; got {interval!r}"
+        )
+    return interval
 
 
 def check_count(name, value, low=1):

@@ -7,6 +7,7 @@ The paper's grains and sensors (``paper_grain``, ``paper_grain_small``, ``paper_
 
 import os
 import sys
+from pathlib import Path
 
 import matplotlib
 import pytest
@@ -21,6 +22,10 @@ matplotlib.use("Agg")
 settings.register_profile("derandomized", derandomize=True)
 settings.register_profile("random", derandomize=False)
 settings.load_profile("random" if os.environ.get("CONTACTLAB_RANDOM_SWEEPS") else "derandomized")
+
+# helper modules of the tests themselves (tests/support/) import by name: importlib mode puts
+# no test folder on the path (and tests/ itself would shadow the packages with its folders)
+sys.path.insert(0, str(Path(__file__).parent / "support"))
 
 pytest_plugins = ["pytester"]  # the plugin's own tests run pytest in temporary folders
 

@@ -23,6 +23,7 @@ LAYERS = (
         (
             "contactlab.errors",
             "contactlab.validation",
+            "contactlab.entry_checks",
             "contactlab.roots",
             "contactlab.plausibility",
             "contactlab.strict_json",

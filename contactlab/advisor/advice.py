@@ -174,6 +174,7 @@ def advise(
     f_min = check_number("f_min", f_min, low=0.0, unit="Hz")
     f_max = check_number("f_max", f_max, low=f_min, unit=f"Hz (> f_min = {f_min:g})")
     rtol = check_number("rtol", rtol, low=1e-6, high=1.0, low_open=False)
+    sensor_mass = check_number("sensor_mass", sensor_mass, low=0.0, unit="kg")
     if resonance is not None:
         resonance = check_number("resonance", resonance, low=0.0, unit="Hz")
         check_plausible("sensor_resonance", resonance, "resonance")

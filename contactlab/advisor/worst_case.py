@@ -83,6 +83,7 @@ def sensor_errors(
     """
     species = load_species(species)
     resonance = check_number("resonance", resonance, low=0.0, unit="Hz")
+    sensor_mass = check_number("sensor_mass", sensor_mass, low=0.0, unit="kg")
     setup = _setup(species, velocity, sensor_mass, damping_ratio)
     grains = species.grains(cases)
     overrides = [{f"grain.{k}": v for k, v in grain.items()} for grain in grains]

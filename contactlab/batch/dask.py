@@ -21,30 +21,50 @@ from contactlab.errors import ParameterError
 from contactlab.plausibility import internal
 from contactlab.validation import check_count, check_number
 
-__all__ = ["connected_client", "dask_hertz_impacts", "dask_linear_impacts"]
+__all__ = ["check_client", "connected_client", "dask_hertz_impacts", "dask_linear_impacts"]
 
 PARTITIONS_PER_THREAD = 2
 """Partitions per worker thread by default (a little balancing, little overhead)."""
 
 
-@contextlib.contextmanager
-def connected_client(client):
-    """A connected Client from a Client or a scheduler address (dask imported lazily)."""
+def _client_class():
     try:
         from dask.distributed import Client
     except ImportError as exc:
         raise ImportError(
             "running on a Dask cluster needs dask.distributed: pip install 'contactlab[dask]'"
         ) from exc
-    if isinstance(client, Client):
-        yield client
-    elif isinstance(client, str):
-        with Client(client) as owned:
-            yield owned
-    else:
+    return Client
+
+
+def check_client(client):
+    """Return ``client`` after checking it is None, a ``dask.distributed.Client`` or a
+    scheduler address (non-empty text); nothing is connected.
+
+    Raises
+    ------
+    ParameterError
+        Naming ``client``, for anything else.
+    """
+    if client is None or (isinstance(client, str) and client):
+        return client
+    if not isinstance(client, _client_class()):
         raise ParameterError(
             f"client must be a dask.distributed.Client or a scheduler address; got {client!r}"
         )
+    return client
+
+
+@contextlib.contextmanager
+def connected_client(client):
+    """A connected Client from a Client or a scheduler address (dask imported lazily)."""
+    if check_client(client) is None:
+        raise ParameterError("client must be a dask.distributed.Client or a scheduler address")
+    if isinstance(client, str):
+        with _client_class()(client) as owned:
+            yield owned
+    else:
+        yield client
 
 
 def _quietly(impacts, piece):

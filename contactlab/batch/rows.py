@@ -33,7 +33,7 @@ __all__ = [
     "RESULT_NAMES",
     "check_threads",
     "fallback_row",
-    "result_numbers",
+    "result_row",
     "row_config",
     "run_kernel",
     "single_impact",
@@ -115,10 +115,10 @@ def single_impact(config, **options):
         Keywords of :func:`contactlab.simulate_impact` (``method``, ``rtol``, ...).
     """
     with internal():
-        return result_numbers(config.simulate(**options))
+        return result_row(config.simulate(**options))
 
 
-def result_numbers(result):
+def result_row(result):
     """The numbers of :data:`RESULT_NAMES` of an :class:`~contactlab.ImpactResult`, in
     order (a tuple)."""
     return tuple(getattr(result, name) for name in RESULT_NAMES)

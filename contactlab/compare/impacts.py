@@ -6,7 +6,7 @@ import numpy as np
 from contactlab import metrics, signals
 from contactlab.compare.comparison import Comparison, quantity_row, waveform_row
 from contactlab.compare.physics import physics_problems
-from contactlab.compare.quantities import merged_tolerances, noise_tolerances
+from contactlab.compare.quantities import checked_tolerances, merged_tolerances, noise_tolerances
 from contactlab.compare.waveform import (
     ALIGNMENTS,
     alignment_shift,
@@ -18,7 +18,7 @@ from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
 from contactlab.traces.prepare import noise_level, remove_baseline
 from contactlab.traces.trace import Trace
-from contactlab.validation import check_choice, check_number
+from contactlab.validation import check_choice, check_number, check_text
 
 __all__ = ["compare", "compare_trace"]
 
@@ -95,10 +95,13 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
     hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False, unit="N")
-    labels = tuple(labels) if labels is not None else (_label(a), _label(b))
-    if len(labels) != 2:
+    if labels is None:
+        labels = (_label(a), _label(b))
+    elif isinstance(labels, str) or not isinstance(labels, tuple | list) or len(labels) != 2:
         raise ParameterError(f"labels must be two names; got {labels!r}")
-    sig_a, sig_b = sensor_signal(a, labels[0]), sensor_signal(b, labels[1])
+    labels = tuple(check_text("labels", label) for label in labels)
+    sig_a = sensor_signal(a, f"a ({labels[0]})")
+    sig_b = sensor_signal(b, f"b ({labels[1]})")
     rows = []
     for name in _SCALARS:
         va = _scalar(a, name, threshold, hysteresis)
@@ -155,7 +158,8 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
         from the trigger on over the grain's mass, its peak;
         :func:`contactlab.compare.physics.physics_problems`), which fails the comparison.
     """
-    sensor_signal(trace, "measured")
+    sensor_signal(trace, "trace")
+    given = checked_tolerances(tolerances)
     if not isinstance(config, ImpactConfig):
         raise ParameterError(
             "config must be a contactlab.config.ImpactConfig (from load_config or "
@@ -180,7 +184,7 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
     if threshold is None:
         threshold = k * noise
     model = config.simulate()
-    tolerances = {**noise_tolerances(noise, model.peak_sensor_force), **(tolerances or {})}
+    tolerances = {**noise_tolerances(noise, model.peak_sensor_force), **given}
     result = compare(
         trace, model, tolerances, align, threshold, ("measured", "model"), hysteresis=threshold
     )

@@ -25,7 +25,14 @@ from contactlab import quantities as vocabulary
 from contactlab.errors import ParameterError
 from contactlab.validation import check_number
 
-__all__ = ["DEFAULT_TOLERANCES", "QUANTITIES", "Quantity", "merged_tolerances", "noise_tolerances"]
+__all__ = [
+    "DEFAULT_TOLERANCES",
+    "QUANTITIES",
+    "Quantity",
+    "checked_tolerances",
+    "merged_tolerances",
+    "noise_tolerances",
+]
 
 
 @dataclass(frozen=True)
@@ -108,22 +115,29 @@ DEFAULT_TOLERANCES = {name: q.tolerance for name, q in QUANTITIES.items()}
 """Default tolerance of each quantity (see :data:`QUANTITIES` for the basis)."""
 
 
-def merged_tolerances(tolerances):
-    """Defaults updated with ``tolerances``; unknown names raise listing the valid ones."""
+def checked_tolerances(tolerances):
+    """``tolerances`` (None: none) as a dict after checking each name is a quantity of
+    :data:`QUANTITIES` (an unknown one raises listing the valid ones) and each value a
+    finite number >= 0 (on the quantity's basis)."""
     if tolerances is not None and not isinstance(tolerances, dict):
         raise ParameterError(
             f"tolerances must be a dict of quantity name -> tolerance; got {tolerances!r}"
         )
-    merged = dict(DEFAULT_TOLERANCES)
+    checked = {}
     for name, value in (tolerances or {}).items():
-        if name not in merged:
-            near = difflib.get_close_matches(str(name), merged, n=1)
+        if name not in DEFAULT_TOLERANCES:
+            near = difflib.get_close_matches(str(name), DEFAULT_TOLERANCES, n=1)
             hint = f" (did you mean {near[0]!r}?)" if near else ""
             raise ParameterError(
-                f"unknown tolerance {name!r}{hint}; valid names: {', '.join(merged)}"
+                f"unknown tolerance {name!r}{hint}; valid names: {', '.join(DEFAULT_TOLERANCES)}"
             )
-        merged[name] = check_number(f"tolerance {name}", value, low=0.0, low_open=False)
-    return merged
+        checked[name] = check_number(f"tolerance {name}", value, low=0.0, low_open=False)
+    return checked
+
+
+def merged_tolerances(tolerances):
+    """Defaults updated with ``tolerances``; unknown names raise listing the valid ones."""
+    return {**DEFAULT_TOLERANCES, **checked_tolerances(tolerances)}
 
 
 def noise_tolerances(noise, peak):

@@ -28,11 +28,10 @@ import math
 import warnings
 from dataclasses import dataclass
 
-from contactlab.errors import ParameterError
+from contactlab.entry_checks import check_names
 from contactlab.inverse.fit import IdentifiabilityWarning, fit_contact
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_quality import FitQualityWarning
-from contactlab.validation import check_choice
 
 __all__ = ["DISFAVOURED_DELTA_BIC", "LawComparison", "RankedLaw", "compare_laws"]
 
@@ -192,14 +191,7 @@ def compare_laws(
     ``notes`` instead of being issued; a :class:`FitQualityWarning` is not issued either
     (each entry's ``verdict`` and ``reasons`` hold it).
     """
-    if laws is None:
-        laws = tuple(FIT_MODELS)
-    else:  # one name, or several (each once)
-        laws = tuple(dict.fromkeys([laws] if isinstance(laws, str) else laws))
-    if not laws:
-        raise ParameterError(f"laws must name at least one of {list(FIT_MODELS)}; got none")
-    for law in laws:
-        check_choice("laws", law, tuple(FIT_MODELS))
+    laws = tuple(FIT_MODELS) if laws is None else check_names("laws", laws, tuple(FIT_MODELS))
     options = {"velocity": velocity, "max_nfev": max_nfev}
     first, notes = _fit_recording_warnings(
         t, signal, grain, sensor, laws[0], baseline_window=baseline_window, window=window, **options

@@ -21,7 +21,7 @@ from scipy.optimize import least_squares
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import check_window, lobe_around_peak, uniform_signal
-from contactlab.validation import check_count
+from contactlab.validation import check_count, check_interval, check_samples
 
 __all__ = ["SensorIdentification", "identify_sensor", "matrix_pencil"]
 
@@ -67,8 +67,21 @@ class SensorIdentification:
     """Samples in the window."""
 
     def ringing(self, t):
-        """The fitted free ringing (offset included) at times ``t`` [s] (signal unit)."""
-        tau = np.asarray(t, dtype=float) - self.window[0]
+        """The fitted free ringing (offset included) at times ``t`` [s] (signal unit).
+
+        Parameters
+        ----------
+        t : array_like
+            Times [s], 1-D, finite, not before the window's start (the free ringing is
+            fitted from there on; before it the contact still drives the sensor).
+        """
+        t = check_samples("t", t, min_size=1, unit="s")
+        if t.min() < self.window[0]:
+            raise ParameterError(
+                f"t must not be before the identification window's start "
+                f"{self.window[0]:.6g} s (the free ringing starts there); got {t.min():.6g} s"
+            )
+        tau = t - self.window[0]
         w = 2.0 * math.pi * self.resonance
         wd = w * math.sqrt(1.0 - self.damping_ratio**2)
         decay = np.exp(-self.damping_ratio * w * tau)
@@ -118,11 +131,12 @@ def matrix_pencil(y, dt, order):
     Parameters
     ----------
     y : array_like
-        Uniformly sampled signal ``y[n] = sum_k A_k z_k**n`` (+ noise).
+        Uniformly sampled signal ``y[n] = sum_k A_k z_k**n`` (+ noise), 1-D, finite, at
+        least ``3 order`` samples.
     dt : float
-        Sample interval [s].
+        Sample interval [s], > 0.
     order : int
-        Number of exponentials ``M`` (2 for a real damped sine, 3 with an offset).
+        Number of exponentials ``M`` (2 for a real damped sine, 3 with an offset), >= 1.
 
     Returns
     -------
@@ -143,7 +157,9 @@ def matrix_pencil(y, dt, order):
     exponentially damped/undamped sinusoids in noise. IEEE Trans. Acoust. Speech Signal
     Process. 38, 814-824. DOI 10.1109/29.56027
     """
-    y = np.asarray(y, dtype=float)
+    order = check_count("order", order)
+    y = check_samples("y", y, min_size=3 * order)
+    dt = check_interval("dt", dt)
     n = y.size
     pencil = n // 3
     hankel = np.lib.stride_tricks.sliding_window_view(y, pencil + 1)

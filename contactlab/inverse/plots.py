@@ -1,8 +1,22 @@
 """Figures of the inverse methods. matplotlib is imported only when plotting."""
 
+from contactlab.entry_checks import check_shaped
+from contactlab.errors import ParameterError
 from contactlab.plotting import axes_or_new, finish_force_axes
+from contactlab.validation import check_samples
 
 __all__ = ["plot_fit", "plot_identification", "plot_reconstruction"]
+
+
+def _curve(t_name, t, y_name, y):
+    """``t`` [s] and ``y`` as finite 1-D float arrays of one length (ParameterError naming
+    the culprit otherwise)."""
+    t, y = check_samples(t_name, t, unit="s"), check_samples(y_name, y)
+    if t.shape != y.shape:
+        raise ParameterError(
+            f"{t_name} and {y_name} must have one length; got {t.size} and {y.size} samples"
+        )
+    return t, y
 
 
 def plot_identification(t, signal, identification, ax=None, title=None):
@@ -23,10 +37,14 @@ def plot_identification(t, signal, identification, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    import numpy as np
-
+    check_shaped(
+        "identification",
+        identification,
+        ("window", "ringing", "resonance", "damping_ratio"),
+        "a SensorIdentification (from identify_sensor)",
+    )
+    t, signal = _curve("t", t, "signal", signal)
     fig, ax = axes_or_new(ax)
-    t = np.asarray(t, dtype=float)
     t0, t1 = identification.window
     inside = (t >= t0) & (t <= t1)
     ax.plot(t * 1e6, signal, lw=0.8, color="tab:red", label="signal")
@@ -67,11 +85,22 @@ def plot_reconstruction(reconstruction, truth=None, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
+    check_shaped(
+        "reconstruction",
+        reconstruction,
+        ("t", "signal", "force", "method"),
+        "a ForceReconstruction (from reconstruct_force)",
+    )
+    if truth is not None:
+        if hasattr(truth, "contact_force"):
+            truth = (truth.t, truth.contact_force)
+        elif isinstance(truth, str) or not isinstance(truth, tuple | list) or len(truth) != 2:
+            raise ParameterError(
+                f"truth must be an ImpactResult or (t [s], force [N]); got {truth!r}"
+            )
+        t_true, f_true = _curve("truth t", truth[0], "truth force", truth[1])
     fig, ax = axes_or_new(ax)
     if truth is not None:
-        t_true, f_true = (
-            (truth.t, truth.contact_force) if hasattr(truth, "contact_force") else truth
-        )
         ax.plot(t_true * 1e6, f_true, lw=2.6, color="black", label="true contact force $S_2$")
     t_us = reconstruction.t * 1e6
     ax.plot(t_us, reconstruction.signal, lw=0.8, color="tab:red", label="sensor signal $S_1$")
@@ -102,6 +131,12 @@ def plot_fit(fit, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
+    check_shaped(
+        "fit",
+        fit,
+        ("t", "signal", "model", "onset", "simulation", "quality", "law_name"),
+        "a ContactFit (from fit_contact)",
+    )
     fig, ax = axes_or_new(ax)
     sim = fit.simulation
     ax.plot(fit.t * 1e6, fit.signal, lw=0.8, color="tab:red", label="measured $S_1$")

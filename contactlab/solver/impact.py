@@ -31,6 +31,7 @@ import numpy as np
 
 from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
 from contactlab.laws import ContactLaw, PlasticTrapezoid
@@ -269,6 +270,7 @@ def simulate_impact(
     rtol = check_number("rtol", rtol, low=1e-14, high=1e-3, low_open=False)
     time_step = check_number("time_step", time_step, low=0.0, unit="s")  # euler's only
     threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
+    verify, audit = check_flag("verify", verify), check_flag("audit", audit)
     if method == "auto":
         method = "exact" if law.piecewise_linear else "adaptive"
     if method == "exact" and not law.piecewise_linear:

@@ -49,6 +49,7 @@ import numpy as np
 from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
 from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, WindowWarning
 from contactlab.kernels.oblique_kernel import tolerances
 from contactlab.kernels.oblique_rhs import pack
@@ -70,12 +71,7 @@ from contactlab.solver.impact import (
 from contactlab.solver.oblique_phases import compiled_contact, grid_signals, piece_phases
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
-from contactlab.validation import (
-    check_choice,
-    check_inertia_factor,
-    check_number,
-    keyword_checked,
-)
+from contactlab.validation import check_choice, check_inertia_factor, check_number, keyword_checked
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
@@ -440,6 +436,7 @@ def simulate_oblique(
         duration = check_number("duration", duration, low=0.0, unit="s")
     if sample_rate is not None:
         sample_rate = check_number("sample_rate", sample_rate, low=0.0, unit="Hz")
+    audit = check_flag("audit", audit)
     system = System(grain, sensor)
     radius = grain.radius
     inertia = kappa * grain.mass * radius**2

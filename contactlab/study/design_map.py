@@ -24,7 +24,7 @@ import pandas as pd
 from contactlab.errors import ParameterError
 from contactlab.study.points import simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_number
+from contactlab.validation import check_choice, check_number, check_values
 
 __all__ = [
     "DEFAULT_DIAMETERS",
@@ -60,11 +60,7 @@ _COLUMNS = (
 
 
 def _grid(name, values, unit):
-    values = np.asarray(values, dtype=float)
-    if values.ndim != 1 or values.size == 0:
-        raise ParameterError(f"{name} must be a non-empty list of values [{unit}]; got {values!r}")
-    for value in values:
-        check_number(name, float(value), low=0.0, unit=unit)
+    values = check_values(name, values, unit=unit)
     if np.any(np.diff(values) <= 0.0):
         raise ParameterError(f"{name} must be strictly increasing [{unit}]")
     return values
@@ -94,6 +90,7 @@ class DesignMap:
 
     def grid(self, column):
         """``column`` as an array of shape (diameters, resonances)."""
+        check_choice("column", column, tuple(self.table.columns))
         return self.table[column].to_numpy().reshape(self.diameters.size, self.resonances.size)
 
     def plot(self, tolerance=10.0):
@@ -101,6 +98,7 @@ class DesignMap:
         operating points (:data:`PAPER_OPERATING_POINTS`); returns (fig, axes)."""
         from contactlab.study.plots import plot_design_map
 
+        tolerance = check_number("tolerance", tolerance, low=0.0, unit="%")
         return plot_design_map(self, PAPER_OPERATING_POINTS, tolerance)
 
 
@@ -129,6 +127,8 @@ def design_map(setup=None, resonances=DEFAULT_RESONANCES, diameters=DEFAULT_DIAM
     >>> m.grid("force_error [%]").shape
     (2, 2)
     """
+    if setup is not None and not isinstance(setup, StudySetup):
+        raise ParameterError(f"setup must be a StudySetup; got {type(setup).__name__}")
     setup = StudySetup.paper() if setup is None else setup
     resonances = _grid("resonances", resonances, "Hz")
     diameters = _grid("diameters", diameters, "m")

@@ -9,6 +9,7 @@ import sys
 from concurrent.futures import ProcessPoolExecutor
 
 from contactlab.batch.dask import connected_client
+from contactlab.entry_checks import check_flag
 from contactlab.validation import check_count  # re-exported: a public name of this module
 
 __all__ = ["check_count", "progress_bar", "run_tasks"]
@@ -20,6 +21,7 @@ the load still balances when points differ in cost."""
 
 def progress_bar(total, progress, desc, unit="task"):
     """A tqdm bar, or None. ``progress=None`` shows one only on an interactive terminal."""
+    progress = check_flag("progress", progress, optional=True)
     if progress is None:
         progress = sys.stderr.isatty()
     if not progress:

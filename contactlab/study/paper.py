@@ -24,11 +24,12 @@ from pathlib import Path
 import numpy as np
 
 from contactlab.config import list_presets, load_preset
+from contactlab.entry_checks import check_flag
 from contactlab.study import conclusions as concl
 from contactlab.study.plots import check_formats, plot_error_family, plot_errors, save_figure
 from contactlab.study.setup import Scatter, StudySetup
 from contactlab.study.sweep import run_grid
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_count, check_number, check_path, check_values
 
 __all__ = ["PAPER_GRID", "QUICK_GRID", "PaperGrid", "PaperStudyResult", "paper_study"]
 
@@ -60,6 +61,16 @@ class PaperGrid:
     diameter_resonances: tuple = (40e3, 70e3, 200e3, 300e3)
     dampings: tuple = (1.0, 0.0)
     repetitions: int = 10
+
+    def __post_init__(self):
+        units = {"resonances": "Hz", "sweep_diameters": "m", "diameters": "m",
+                 "diameter_resonances": "Hz"}  # fmt: skip
+        for name, unit in units.items():
+            values = check_values(name, getattr(self, name), unit=unit)
+            object.__setattr__(self, name, tuple(values.tolist()))
+        dampings = check_values("dampings", self.dampings, low_open=False, unit="N*s/m")
+        object.__setattr__(self, "dampings", tuple(dampings.tolist()))
+        object.__setattr__(self, "repetitions", check_count("repetitions", self.repetitions))
 
     @property
     def impacts(self):
@@ -205,7 +216,9 @@ def paper_study(
     tolerance = check_number("tolerance", tolerance, low=0.0, unit="%")
     formats = check_formats(formats)
     seed = check_count("seed", seed, low=0)
-    out = Path(out)
+    quick = check_flag("quick", quick)
+    progress = check_flag("progress", progress, optional=True)
+    out = Path(check_path("out", out))
     out.mkdir(parents=True, exist_ok=True)
     grid = QUICK_GRID if quick else PAPER_GRID
     setup = replace(StudySetup.paper(), scatter=Scatter(repetitions=grid.repetitions))

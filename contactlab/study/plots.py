@@ -6,6 +6,8 @@ contact-time error, green for the peak-force error. Solid lines are the paper's 
 bias the standard deviation does not see.
 """
 
+from collections.abc import Iterable
+
 import numpy as np
 
 from contactlab.plotting import axes_or_new
@@ -195,11 +197,11 @@ def check_formats(formats):
     from contactlab.errors import ParameterError
     from contactlab.validation import check_choice
 
-    if isinstance(formats, str):
+    supported = tuple(FigureCanvasBase.get_supported_filetypes())
+    if isinstance(formats, str) or not isinstance(formats, Iterable):
         raise ParameterError(
             f"formats must be a sequence of names such as ('png',); got {formats!r}"
         )
-    supported = tuple(FigureCanvasBase.get_supported_filetypes())
     return tuple(check_choice("formats", fmt, supported) for fmt in formats)
 
 

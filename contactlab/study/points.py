@@ -8,6 +8,7 @@ law to the batch solvers (:mod:`contactlab.batch`) in one call.
 """
 
 import math
+from collections.abc import Iterable
 from dataclasses import replace
 
 import numpy as np
@@ -20,11 +21,16 @@ from contactlab.batch import (
     hertz_impacts,
     linear_impacts,
 )
+from contactlab.batch.dask import check_client
+from contactlab.entry_checks import check_flag
+from contactlab.errors import ParameterError
 from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
 from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
 from contactlab.solver.wall import wall_contact_time
 from contactlab.study.execution import progress_bar
+from contactlab.study.setup import StudySetup
+from contactlab.validation import check_values
 
 __all__ = ["batched", "error_percent", "simulate_point", "simulate_points"]
 
@@ -73,6 +79,32 @@ def error_percent(reading, truth):
     return 100.0 * (reading / truth - 1.0)
 
 
+def _checked_point(setup, factors, where=""):
+    """``factors`` as a float array after checking the set-up and the factors of a grid
+    point (the overrides are checked by :meth:`StudySetup.config`); ``where`` prefixes
+    the names in the messages (``"tasks[3] "``)."""
+    if not isinstance(setup, StudySetup):
+        raise ParameterError(f"{where}setup must be a StudySetup; got {type(setup).__name__}")
+    return check_values(f"{where}factors", factors, unit="-")
+
+
+def _checked_tasks(tasks):
+    """The tasks as a list of ``(setup, overrides, factors)``, each checked."""
+    if isinstance(tasks, str | bytes) or not isinstance(tasks, Iterable):
+        raise ParameterError(
+            f"tasks must be an iterable of (StudySetup, overrides, factors); got {tasks!r}"
+        )
+    checked = []
+    for i, task in enumerate(tasks):
+        if not isinstance(task, tuple | list) or len(task) != 3:
+            raise ParameterError(
+                f"tasks[{i}] must be (StudySetup, overrides dict, factors); got {task!r}"
+            )
+        setup, overrides, factors = task
+        checked.append((setup, overrides, _checked_point(setup, factors, f"tasks[{i}] ")))
+    return checked
+
+
 def simulate_point(setup, overrides, factors):
     """Simulate the repetitions of one grid point.
 
@@ -102,6 +134,7 @@ def simulate_point(setup, overrides, factors):
     monotone in a scattered stiffness, damping or pulse length, so one of them is the
     shortest of all draws).
     """
+    factors = _checked_point(setup, factors)
     config = setup.config(overrides)
     grain, sensor, law, velocity = config.grain, config.sensor, config.law, config.velocity
     extremes = {float(np.min(factors)), float(np.max(factors))}
@@ -201,7 +234,9 @@ def simulate_points(tasks, *, client=None, progress=None):
     list of dict
         One :func:`simulate_point` dict per task.
     """
-    tasks = list(tasks)
+    tasks = _checked_tasks(tasks)
+    client = check_client(client)
+    progress = check_flag("progress", progress, optional=True)
     kind = _batch_kind(tasks) if tasks else None
     if kind is None:
         return [simulate_point(*task) for task in tasks]

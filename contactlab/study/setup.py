@@ -15,6 +15,7 @@ follows the grain's size. A grid point changes any of its parameters by name:
 
 import math
 import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -147,6 +148,10 @@ class Scatter:
         seed_sequence : numpy.random.SeedSequence
             The grid point's own seed sequence.
         """
+        if not isinstance(seed_sequence, np.random.SeedSequence):
+            raise ParameterError(
+                f"seed_sequence must be a numpy.random.SeedSequence; got {seed_sequence!r}"
+            )
         u = np.random.default_rng(seed_sequence).random(self.repetitions)
         if self.distribution == "uniform":
             return 1.0 + self.spread * (2.0 * u - 1.0)
@@ -297,6 +302,7 @@ class StudySetup:
 
     def column(self, name):
         """Unit-bearing column name of a grid parameter, e.g. ``"resonance [Hz]"``."""
+        check_choice("name (a grid parameter)", name, self.parameter_names())
         if name.startswith("law."):
             param = name[4:]
             suffix = "_mean" if param in self.varied else ""
@@ -312,13 +318,13 @@ class StudySetup:
     def at(self, overrides):
         """Deprecated: the 4-tuple ``(grain, sensor, law, velocity)`` of
         :meth:`config`, which returns the one set-up shape, an ImpactConfig."""
+        config = self.config(overrides)  # bad overrides are refused before the warning
         warnings.warn(
             "StudySetup.at is deprecated: StudySetup.config returns the set-up as an "
             "ImpactConfig (.grain, .sensor, .law, .velocity)",
             DeprecationWarning,
             stacklevel=2,
         )
-        config = self.config(overrides)
         return config.grain, config.sensor, config.law, config.velocity
 
     def config(self, overrides):
@@ -345,6 +351,12 @@ class StudySetup:
             "mass": self.sensor.mass,
             "damping_ratio": self.sensor.damping_ratio,
         }
+        if not isinstance(overrides, Mapping):
+            raise ParameterError(
+                f"overrides must be a dict of grid parameter name -> value; got {overrides!r}"
+            )
+        for name in overrides:
+            self.check_parameter(name)
         law_kw = self.law.parameters()
         velocity = self.velocity
         for name, value in overrides.items():
@@ -366,7 +378,20 @@ class StudySetup:
         return ImpactConfig(grain, sensor, law, {"velocity": velocity})
 
     def scattered(self, law, factor):
-        """The law with its :attr:`vary` parameters multiplied by ``factor`` [-]."""
+        """The law with its :attr:`vary` parameters multiplied by ``factor`` [-].
+
+        Parameters
+        ----------
+        law : ContactLaw or PlasticTrapezoid
+            A law of the set-up's kind (:meth:`config` gives it at a grid point).
+        factor : float
+            Scatter factor [-], > 0.
+        """
+        if type(law) is not type(self.law):
+            raise ParameterError(
+                f"law must be a {type(self.law).__name__}, the set-up's law; got {law!r}"
+            )
+        factor = check_number("factor", factor, low=0.0, unit="-")
         if not self.varied:
             return law
         params = law.parameters()

@@ -22,6 +22,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_flag, check_instance, check_names
 from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
@@ -65,7 +66,8 @@ def point_statistics(impacts, by):
         ``contact_time_mean [s]``, and for ``q`` in time, force: ``q_error [%]``
         (standard deviation, ``ddof = 0``), ``q_error_mean [%]``, ``q_error_rms [%]``.
     """
-    by = [by] if isinstance(by, str) else list(by)
+    check_instance("impacts", impacts, pd.DataFrame, "SweepResult.impacts")
+    by = list(check_names("by", by))
     needed = [*by, "contact_time [s]", *(f"{q}_error [%]" for q in ERRORS)]
     missing = [c for c in needed if c not in impacts.columns]
     if missing:
@@ -200,6 +202,7 @@ def run_grid(
     if not isinstance(setup, StudySetup):
         raise ParameterError(f"setup must be a StudySetup; got {type(setup).__name__}")
     seed = check_count("seed", seed, low=0)
+    progress = check_flag("progress", progress, optional=True)
     check_count("workers", workers)  # here too: a linear law's grid never reaches the pool
     if chunksize is not None:
         check_count("chunksize", chunksize)

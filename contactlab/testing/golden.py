@@ -13,6 +13,7 @@ import math
 from pathlib import Path
 
 from contactlab.compare import QUANTITIES, compare
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, TraceFormatError
 from contactlab.testing.golden_trace import (
     DEFAULT_MAX_SAMPLES,
@@ -115,7 +116,7 @@ class GoldenStore:
         Write references that are missing, unreadable, fail the comparison or were made
         from another set-up (references that still match are left untouched, so an
         update run does not churn files). Otherwise a missing reference fails.
-    log : list, optional
+    log : list of str, optional
         List to which a line is appended for every file written (the pytest plugin
         prints it at the end of the session). Default: a new list, :attr:`log`.
     max_samples : int, default :data:`DEFAULT_MAX_SAMPLES`
@@ -125,7 +126,11 @@ class GoldenStore:
     def __init__(self, directory, update=False, log=None, max_samples=DEFAULT_MAX_SAMPLES):
         check_path("directory", directory)
         self.directory = Path(directory)
-        self.update = bool(update)
+        self.update = check_flag("update", update)
+        if log is not None and not (
+            isinstance(log, list) and all(isinstance(line, str) for line in log)
+        ):
+            raise ParameterError(f"log must be a list of text lines (or None); got {log!r}")
         self.log = [] if log is None else log
         self.max_samples = check_count("max_samples", max_samples, low=2)
 

@@ -129,7 +129,24 @@ class Trace:
         Returns
         -------
         Trace
+
+        Raises
+        ------
+        ParameterError
+            ``step`` not a dict with a ``"step"`` name, an unknown change, or metadata
+            that is not a dict.
         """
+        if not isinstance(step, Mapping) or not isinstance(step.get("step"), str):
+            raise ParameterError(
+                f"step must be a dict naming the processing step as 'step'; got {step!r}"
+            )
+        unknown = set(changes) - {"t", "values", "unit", "metadata"}
+        if unknown:
+            raise ParameterError(
+                f"derive changes t, values, unit and metadata only; got {sorted(unknown)}"
+            )
+        if not isinstance(changes.get("metadata", {}), Mapping):
+            raise ParameterError(f"metadata must be a dict; got {changes['metadata']!r}")
         metadata = {**self.metadata, **changes.pop("metadata", {})}
         metadata["history"] = [*self.metadata["history"], step]
         if "values" in changes:

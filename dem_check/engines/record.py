@@ -7,8 +7,7 @@ the grain from a gap of a few steps onto a plane or onto a plate sphere of
 after the contact and the sensor signal's first lobe (:func:`drop_plan`,
 :func:`impact_over`), record :data:`COLUMNS` per step (z up) and read them in the model's
 axis (:func:`model_coordinates`, :func:`engine_result`). A ``deck`` below is the engine's
-scene: it has ``grain``, ``sensor``, ``law``, ``velocity``, ``time_step`` and
-``plate_radius`` (the plate sphere's centre at ``z = -plate_radius`` at rest).
+scene, a :class:`DropCase` (the plate sphere's centre at ``z = -plate_radius`` at rest).
 """
 
 import math
@@ -28,6 +27,7 @@ __all__ = [
     "GAP_STEPS",
     "PLATE_RADIUS_FACTOR",
     "TAIL",
+    "DropCase",
     "DropGeometry",
     "DropPlan",
     "drop_geometry",
@@ -36,6 +36,8 @@ __all__ = [
     "impact_over",
     "model_coordinates",
     "sensor_signal",
+    "step_limit",
+    "warn_short_window",
 ]
 
 PLATE_RADIUS_FACTOR = 10.0
@@ -52,6 +54,36 @@ TAIL = 20e-6
 COLUMNS = ("step", "z2", "vz2", "fz2", "z1", "vz1")
 """Recorded per step: step number, grain z [m], z-velocity [m/s], z-force [N], plate z
 [m], z-velocity [m/s] (plate columns 0 on a rigid sensor)."""
+
+
+@dataclass(frozen=True)
+class DropCase:
+    """One drop test as every DEM engine's scene holds it; an engine's scene adds its input.
+
+    Attributes
+    ----------
+    grain, sensor, law, velocity
+        As for the engine's ``drop_test``.
+    time_step : float
+        [s].
+    gap : float
+        Grain-sensor distance at release [m].
+    plate_radius : float
+        Plate radius [m]; ``nan`` on a rigid sensor.
+    """
+
+    grain: object
+    sensor: object
+    law: object
+    velocity: float
+    time_step: float
+    gap: float
+    plate_radius: float
+
+    @property
+    def approach_time(self):
+        """Time from release to touch [s]."""
+        return self.gap / self.velocity
 
 
 @dataclass(frozen=True)
@@ -115,10 +147,11 @@ class DropPlan:
 def drop_plan(grain, sensor, law, velocity, time_step, duration, threshold, default, min_steps):
     """Check a drop test's inputs and plan its run.
 
-    ``default()`` gives the engine's default step; ``min_steps`` the fewest steps per
-    contact and per sensor period (:func:`dem_check.engines.steps.check_time_step`).
-    Without ``duration`` the run lasts until :data:`TAIL` after the impact, at most ten
-    wall contact times and twenty sensor periods.
+    ``default(grain, sensor, law, velocity)`` gives the engine's default step [s];
+    ``min_steps`` the fewest steps per contact and per sensor period
+    (:func:`dem_check.engines.steps.check_time_step`). Without ``duration`` the run lasts
+    until :data:`TAIL` after the impact, at most ten wall contact times and twenty sensor
+    periods.
 
     Returns
     -------
@@ -138,6 +171,54 @@ def drop_plan(grain, sensor, law, velocity, time_step, duration, threshold, defa
         return DropPlan(velocity, threshold, dt, after, math.ceil(TAIL / dt))
     after = check_number("duration", duration, low=0.0, unit="s")
     return DropPlan(velocity, threshold, dt, after, None)
+
+
+def step_limit(deck, after, most, engine, start_states=False):
+    """Steps from release to ``after`` past touch [s], refused beyond ``most``.
+
+    Parameters
+    ----------
+    deck
+        The engine's scene: ``approach_time`` and ``time_step`` [s].
+    after : float
+        Longest time simulated after touch [s] (:attr:`DropPlan.after`).
+    most : int
+        Most steps the engine's bench runs.
+    engine : str
+        The engine as named in the message (``"LAMMPS"``).
+    start_states : bool, default False
+        Whether the engine records each step's start state (one step more records the
+        end).
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ParameterError
+        For more than ``most`` steps, naming ``duration`` and ``time_step``.
+    """
+    dt = deck.time_step
+    steps = math.ceil((deck.approach_time + after) / dt) + int(start_states)
+    if steps > most:
+        raise ParameterError(
+            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {steps} {engine} "
+            f"steps; the bench runs at most {most}: shorten duration or lengthen time_step"
+        )
+    return steps
+
+
+def warn_short_window(engine, end, stacklevel):
+    """WindowWarning: the ``engine``'s run ended ``end`` [s] after touch, before the contact
+    and the sensor signal's first lobe were over (``stacklevel`` as for
+    :func:`warnings.warn`, counted from the caller)."""
+    warnings.warn(
+        f"the {engine} window ({end:.4g} s after touch) ended before the contact and the "
+        "sensor signal's first lobe were over; give a longer duration",
+        WindowWarning,
+        stacklevel=stacklevel + 1,
+    )
 
 
 def model_coordinates(deck, columns):
@@ -214,12 +295,7 @@ def engine_result(method, label, deck, columns, threshold, complete, metadata):
     t = times - touch
     intervals = [(a - touch, b - touch) for a, b in intervals]
     if not complete or math.isnan(intervals[-1][1]):
-        warnings.warn(
-            f"the {label} window ({t[-1]:.4g} s after touch) ended before the contact and "
-            "the sensor signal's first lobe were over; give a longer duration",
-            WindowWarning,
-            stacklevel=4,
-        )
+        warn_short_window(label, t[-1], stacklevel=4)
     return EngineResult(
         method=method,
         grain=deck.grain,

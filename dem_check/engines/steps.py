@@ -6,13 +6,14 @@ depends on it) and a sensor of period ``T1``. Its default step resolves both
 (:func:`default_time_step`), and a given step must leave at least ``min_steps`` steps
 per contact and per sensor period (:func:`check_time_step`). LAMMPS
 (:mod:`dem_check.engines.lammps.drop`) and Kratos (:mod:`dem_check.engines.kratos.drop`)
-use these with their own step counts.
+use these with their own step counts; pybullet (:mod:`dem_check.engines.bullet.limits`)
+checks its step with :func:`check_steps` against its own contact time.
 """
 
 from contactlab.solver import wall_impact
 from contactlab.validation import check_number
 
-__all__ = ["check_time_step", "default_time_step", "wall_contact_time"]
+__all__ = ["check_steps", "check_time_step", "default_time_step", "wall_contact_time"]
 
 
 def wall_contact_time(grain, law, velocity):
@@ -49,13 +50,13 @@ def check_time_step(time_step, grain, sensor, law, velocity, min_steps, default)
     Parameters
     ----------
     time_step : float or None
-        Engine step [s]; ``None`` returns ``default()``.
+        Engine step [s]; ``None`` returns ``default(grain, sensor, law, velocity)``.
     grain, sensor, law, velocity
         As for :func:`default_time_step`.
     min_steps : int
         Fewest steps per contact and per sensor period accepted.
     default : callable
-        Returns the engine's default step [s].
+        The engine's ``default_time_step(grain, sensor, law, velocity)`` [s].
 
     Returns
     -------
@@ -67,8 +68,14 @@ def check_time_step(time_step, grain, sensor, law, velocity, min_steps, default)
         For a step not > 0 or coarser than ``t_c / min_steps`` or ``T1 / min_steps``.
     """
     if time_step is None:
-        return default()
-    limit = wall_contact_time(grain, law, velocity) / min_steps
+        return default(grain, sensor, law, velocity)
+    return check_steps(time_step, wall_contact_time(grain, law, velocity), sensor, min_steps)
+
+
+def check_steps(time_step, contact_time, sensor, min_steps):
+    """``time_step`` [s] checked: at least ``min_steps`` steps per ``contact_time`` [s] and
+    per sensor period; a ParameterError naming ``time_step`` otherwise."""
+    limit = contact_time / min_steps
     if not sensor.is_rigid:
         limit = min(limit, sensor.period / min_steps)
     return check_number(

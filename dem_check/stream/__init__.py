@@ -10,6 +10,7 @@ See ``docs/streams.md``.
 from dem_check.stream.calibration import Calibration, calibration_curve, plate_output
 from dem_check.stream.case import (
     DEFAULT_CASE,
+    STRAW,
     Feed,
     Flow,
     ParticleKind,
@@ -32,6 +33,7 @@ from dem_check.stream.study import stream_study
 __all__ = [
     "DEFAULT_CASE",
     "FEATURES",
+    "STRAW",
     "Calibration",
     "Feed",
     "Flow",

@@ -14,11 +14,17 @@ from dataclasses import dataclass, replace
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_callable, check_instance, check_shaped
+from contactlab.errors import ParameterError
+from contactlab.validation import check_number, check_values
+from dem_check.stream.result import STREAM_RESULT, run_stream
+
 __all__ = ["Calibration", "calibration_curve", "plate_output"]
 
 
 def plate_output(result):
     """Mean sensor signal S1 [N] over the stream's steady part (after its lead time)."""
+    check_shaped("result", result, ("steps", "lead"), STREAM_RESULT)
     steps = result.steps
     steady = steps["t [s]"] >= result.lead
     return float(steps.loc[steady, "sensor_force [N]"].mean())
@@ -64,10 +70,20 @@ def calibration_curve(case, capacity, fractions=(0.25, 0.5, 0.75, 1.0), run=None
     -------
     Calibration
     """
-    from dem_check.stream.result import run_stream
+    from dem_check.stream.case import StreamCase
 
-    run = run or run_stream
-    flows = np.asarray(fractions, dtype=float) * capacity
+    check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    capacity = check_number("capacity", capacity, low=0.0, unit="kg/s")
+    fractions = check_values("fractions", fractions, unit="-")
+    run = check_callable("run", run, "run(case) -> StreamResult") or run_stream
+    if (
+        not isinstance(seeds, tuple | list)
+        or len(seeds) != 2
+        or seeds[0] == seeds[1]
+        or not all(isinstance(s, int) and not isinstance(s, bool) and s >= 0 for s in seeds)
+    ):
+        raise ParameterError(f"seeds must be two different integers >= 0; got {seeds!r}")
+    flows = fractions * capacity
     outputs = {}
     for seed in seeds:
         outputs[seed] = np.array(

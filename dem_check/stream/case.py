@@ -14,8 +14,12 @@ TOML layout (every table but ``[[particles]]`` optional; keys as the dataclasses
     [flow]        kind ("count" [1/s] or "mass" [kg/s]), rate, profile ("steady",
                   "ramp", "oscillating"), end_rate, amplitude, frequency
     [feed]        speed, speed_sd, incidence_deg, incidence_sd_deg, spot, release
+    [effects]     a laboratory's record effects on the written trace (keys of
+                  dem_check.campaign.Effects: pink, drift, hum, mains, harmonics,
+                  crosstalk, plate_modes, full_scale, bits, steps, step_size)
     [[particles]] name, species or diameter/density/youngs_modulus/poisson_ratio,
-                  share, diameter_classes, density_classes,
+                  share, diameter_classes, density_classes, spheres, spacing, tilt_deg
+                  (spheres > 1: a straw, a rigid clump of spheres in a row),
                   [particles.contact] (contactlab's [contact] table),
                   [particles.tangential] law = "mindlin" or "spring" (optional)
 """
@@ -24,19 +28,30 @@ import math
 from dataclasses import dataclass, field, fields, replace
 
 import numpy as np
+import pandas as pd
 
 from contactlab.advisor.species import value_range
 from contactlab.bodies import Grain, Sensor
 from contactlab.config import law_from_table, read_document, sensor_from_table
+from contactlab.entry_checks import check_instance
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
-from contactlab.validation import check_choice, check_count, check_number
+from contactlab.validation import (
+    check_choice,
+    check_count,
+    check_number,
+    check_poisson_ratio,
+    check_samples,
+    check_text,
+)
+from dem_check.campaign.records import Effects, add_effects
 
 __all__ = [
     "ARRIVALS",
     "DEFAULT_CASE",
     "FLOW_KINDS",
     "PROFILES",
+    "STRAW",
     "Feed",
     "Flow",
     "ParticleKind",
@@ -65,13 +80,24 @@ def _class_values(low, high, count):
 
 @dataclass(frozen=True)
 class ParticleKind:
-    """One kind of particle in the stream (grain or chaff), binned into classes.
+    """One kind of particle in the stream (grain, chaff or straw), binned into classes.
 
     Diameters [m] and densities [kg/m^3] are uniform over their ranges; the stream uses
     ``diameter_classes * density_classes`` classes (the midpoints of equal-probability
     bins), each a LAMMPS atom type with its own exactly mapped contact law, because
     LAMMPS' mapping depends on the contact's ``m*`` and ``R*``
     (:func:`contactlab.laws.lammps.granular_model`).
+
+    ``spheres > 1`` makes each particle a **straw**: a rigid clump (LAMMPS ``fix
+    rigid/small``) of that many spheres of the kind's diameter in a straight row, centres
+    ``spacing`` diameters apart (1: touching, < 1: overlapping), each of the kind's
+    density, so the clump's mass is ``spheres`` times a sphere's. Its axis lies at a
+    uniform azimuth, tilted from the plate's plane by a uniform angle in
+    ``[0, tilt_deg]``. LAMMPS gives a wall contact of a clump's sphere the clump's mass
+    as ``m*`` (``fix wall/gran``: "if part of a rigid body, use the body mass"), so each
+    sphere-plate contact is the kind's law mapped for ``m* =`` the clump's mass and
+    ``R* =`` the sphere's radius; the law's grain (``from_material``, a restitution)
+    is a sphere of the sphere's diameter with the clump's mass.
     """
 
     name: str
@@ -84,8 +110,12 @@ class ParticleKind:
     tangential: dict | None = None
     diameter_classes: int = 1
     density_classes: int = 1
+    spheres: int = 1
+    spacing: float = 1.0
+    tilt_deg: float = 0.0
 
     def __post_init__(self):
+        check_text("particles name", self.name)
         where = f"particles {self.name!r}"
         object.__setattr__(self, "diameter", value_range(f"{where}: diameter", self.diameter, "m"))
         object.__setattr__(
@@ -94,8 +124,19 @@ class ParticleKind:
         check_number(f"{where}: share", self.share, low=0.0)
         check_count(f"{where}: diameter_classes", self.diameter_classes, low=1)
         check_count(f"{where}: density_classes", self.density_classes, low=1)
+        check_count(f"{where}: spheres", self.spheres, low=1)
+        check_number(f"{where}: spacing", self.spacing, low=0.0, high=1.0, high_open=False)
+        check_number(
+            f"{where}: tilt_deg", self.tilt_deg, low=0.0, high=90.0, low_open=False, high_open=False
+        )
         if not isinstance(self.contact, dict):
             raise ParameterError(f"{where}: contact must be a table; got {self.contact!r}")
+        if self.youngs_modulus is not None:
+            check_number(f"{where}: youngs_modulus", self.youngs_modulus, low=0.0, unit="Pa")
+        if self.poisson_ratio is not None:
+            check_poisson_ratio(f"{where}: poisson_ratio", self.poisson_ratio)
+        if self.tangential is not None and not isinstance(self.tangential, dict):
+            raise ParameterError(f"{where}: tangential must be a table; got {self.tangential!r}")
 
     def classes(self):
         """``[(grain, law, tangential_law), ...]``: one per class (``tangential_law`` None
@@ -103,11 +144,14 @@ class ParticleKind:
         out = []
         for d in _class_values(*self.diameter, self.diameter_classes):
             for rho in _class_values(*self.density, self.density_classes):
+                heft = {"density": rho}
+                if self.spheres > 1:  # the clump's mass on one sphere (class docstring)
+                    heft = {"mass": self.spheres * rho * math.pi / 6.0 * d**3}
                 grain = Grain(
                     diameter=d,
-                    density=rho,
                     youngs_modulus=self.youngs_modulus,
                     poisson_ratio=self.poisson_ratio,
+                    **heft,
                 )
                 try:
                     law = law_from_table(self.contact, grain)
@@ -116,6 +160,12 @@ class ParticleKind:
                     raise ParameterError(f"particles {self.name!r}: {exc}") from None
                 out.append((grain, law, tangential))
         return out
+
+    def offsets(self, diameter):
+        """Sphere centres of a clump along its axis, from its centre of mass [m], for
+        spheres of ``diameter`` [m]."""
+        step = self.spacing * check_number("diameter", diameter, low=0.0, unit="m")
+        return [(k - 0.5 * (self.spheres - 1)) * step for k in range(self.spheres)]
 
     def _tangential(self, grain):
         if self.tangential is None:
@@ -154,7 +204,8 @@ class Flow:
 
     def at(self, t, duration):
         """Rate at times ``t`` [s] (numpy array) in a run of ``duration`` [s]."""
-        t = np.asarray(t, dtype=float)
+        t = check_samples("t", t, min_size=1, unit="s")
+        duration = check_number("duration", duration, low=0.0, unit="s")
         if self.profile == "ramp":
             return self.rate + (self.end_rate - self.rate) * t / duration
         if self.profile == "oscillating":
@@ -226,7 +277,10 @@ class StreamCase:
 
     ``time_step`` [s] defaults to the shortest class's wall contact time over
     ``steps_per_contact``; ``sample_rate`` [Hz] is the oscilloscope's; ``noise`` [N]
-    is the white noise added to the written trace; ``slot`` [s] is how often new
+    is the white noise added to the written trace and ``effects`` a laboratory's record
+    effects on it (:class:`dem_check.campaign.Effects`: 1/f noise, drift, hum, plate
+    crosstalk, ADC, offset steps; not its ``bounce``: the stream's bounces are
+    simulated); ``slot`` [s] is how often new
     particles are inserted (each is placed on its own straight path, so the slot
     changes no trajectory, only the number of LAMMPS runs).
     """
@@ -246,11 +300,22 @@ class StreamCase:
     sample_rate: float = 1e6
     noise: float = 0.0
     slot: float = 5e-4
+    effects: Effects | None = None
 
     def __post_init__(self):
+        if isinstance(self.particles, ParticleKind) or not isinstance(self.particles, tuple | list):
+            raise ParameterError(
+                f"particles must be a tuple of ParticleKind; got {self.particles!r}"
+            )
         if not self.particles:
             raise ParameterError("a stream case needs at least one [[particles]] kind")
         object.__setattr__(self, "particles", tuple(self.particles))
+        for kind in self.particles:
+            check_instance("particles", kind, ParticleKind)
+        check_instance("sensor", self.sensor, Sensor)
+        check_instance("flow", self.flow, Flow)
+        check_instance("feed", self.feed, Feed)
+        check_instance("plate", self.plate, Plate)
         if self.sensor.is_rigid:
             raise ParameterError("sensor must be a moving sensor (m1, k1, c1), not rigid")
         check_number("duration", self.duration, low=0.0, unit="s")
@@ -264,10 +329,27 @@ class StreamCase:
         check_number("slot", self.slot, low=0.0, unit="s")
         if sum(kind.share for kind in self.particles) <= 0.0:
             raise ParameterError("particles: the shares sum to zero")
+        if self.effects is not None:
+            _check_effects(self.effects)
 
     def with_(self, **changes):
         """A copy with some fields changed (``flow``, ``duration``, ``seed`` ...)."""
         return replace(self, **changes)
+
+
+def _check_effects(effects):
+    """Refuse bad effects before a long run rather than when the trace is written."""
+    if not isinstance(effects, Effects):
+        raise ParameterError(f"effects must be a dem_check.campaign.Effects; got {effects!r}")
+    if effects.bounce != 0.0:
+        raise ParameterError(
+            f"effects.bounce = {effects.bounce!r}: a stream simulates its bounces "
+            "(re-contacts are in the truth); leave bounce at 0"
+        )
+    # add_effects checks every field: one second of sixteen samples and no impact
+    nothing = pd.DataFrame({"onset [s]": [], "peak_sensor_force [N]": []})
+    t = np.linspace(0.0, 1.0, 16)
+    add_effects(t, np.zeros(16), effects, nothing, 0.0, np.random.default_rng(0))
 
 
 def _particles(table, where):
@@ -302,11 +384,22 @@ def _table(cls, data, key, where):
     return cls(**table)
 
 
+def _effects(table, where):
+    """An :class:`Effects` from an ``[effects]`` table (TOML arrays become tuples)."""
+    table = {
+        key: tuple(tuple(v) if isinstance(v, list) else v for v in value)
+        if isinstance(value, list)
+        else value
+        for key, value in dict(table).items()
+    }
+    return _table(Effects, {"effects": table}, "effects", where)
+
+
 def read_case(path):
     """A :class:`StreamCase` from a TOML file (module docstring), errors naming the file."""
     data = read_document(path, "stream case")
     where = str(path)
-    known = {"stream", "sensor", "plate", "flow", "feed", "particles"}
+    known = {"stream", "sensor", "plate", "flow", "feed", "particles", "effects"}
     unknown = sorted(set(data) - known)
     if unknown:
         raise ParameterError(f"{where}: unknown table(s) {unknown}; valid are {sorted(known)}")
@@ -319,6 +412,7 @@ def read_case(path):
             "flow",
             "feed",
             "plate",
+            "effects",
         }
         bad = sorted(set(stream) - allowed)
         if bad:
@@ -326,6 +420,8 @@ def read_case(path):
         if "flow" not in data:
             raise ParameterError("missing table [flow] (rate, kind, profile)")
         extra = {"sensor": sensor_from_table(data["sensor"])} if "sensor" in data else {}
+        if "effects" in data:
+            extra["effects"] = _effects(data["effects"], where)
         return StreamCase(
             particles=tuple(particles),
             flow=_table(Flow, data, "flow", where),
@@ -356,16 +452,30 @@ def _default_case():
         diameter_classes=2,
     )
     return StreamCase(
-        particles=(wheat, chaff),
+        particles=(wheat, chaff, STRAW),
         flow=Flow(rate=400.0),
-        feed=Feed(spot=10e-3),
+        feed=Feed(spot=12e-3),
         plate=Plate(length=0.04, width=0.04),
-        duration=0.02,
+        duration=0.025,
         noise=0.01,
     )
 
 
+STRAW = ParticleKind(
+    name="straw",
+    diameter=3e-3,
+    density=250.0,
+    contact={"law": "linear", "stiffness": 5e3, "damping": 0.05},
+    share=0.5,
+    spheres=6,
+    tilt_deg=20.0,
+)
+"""Short straw pieces: rigid rows of six 3 mm spheres (18 mm long, 0.021 g), density
+250 kg/m^3 (a hollow stem's bulk), a soft lossy linear contact per sphere, tilted up to
+20 deg from the plate; half as many as grains."""
+
 DEFAULT_CASE = _default_case()
-"""A small stream: wheat (Hertz-Mindlin normal law, restitution 0.5) and as many chaff
-particles (soft, lossy linear law), 400 particles/s for 20 ms aimed at a 10 mm disc of a
-40 mm plate, on a 40 kHz sensor; the trace has 0.01 N of white noise."""
+"""A small stream: wheat (Hertz-Mindlin normal law, restitution 0.5), as many chaff
+particles (soft, lossy linear law) and half as many straw pieces (:data:`STRAW`),
+400 particles/s for 25 ms aimed at a 12 mm disc of a 40 mm plate, on a 40 kHz sensor;
+the trace has 0.01 N of white noise."""

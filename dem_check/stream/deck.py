@@ -28,6 +28,8 @@ Why the plate is built this way (the exact-physics argument):
   depends on the class's ``m*`` and ``R*``. Particle-particle contacts use, for classes
   ``i <= j``, class ``i``'s mapped law (LAMMPS needs one model per type pair; these
   contacts are not what the sensor measures and no toolkit law describes them).
+* Straw (rigid clumps of spheres) adds molecule IDs, a wider ghost cut-off, its own
+  integration and centre-of-mass velocities in the dump: :mod:`dem_check.stream.straw`.
 
 Sign: LAMMPS z is the plate's outward normal (up); ``x1 = z_rest - z_sensor`` (into the
 sensor) and ``S1 = k1 x1 + c1 v1``; the contact force is ``sum fz`` of the particles.
@@ -35,6 +37,8 @@ sensor) and ``S1 = k1 x1 + c1 v1``; the contact force is ``sum fz`` of the parti
 
 from contactlab.laws.lammps import TANGENTIAL, granular_model
 from dem_check.engines.lammps.oblique import tangential_words
+from dem_check.engines.lammps.scene import granular_setup
+from dem_check.stream import straw
 
 __all__ = [
     "CONTACTS",
@@ -66,7 +70,7 @@ def _words(grain, law, tangential):
 
 def _box(schedule, case):
     table, plate = schedule.table, case.plate
-    rmax = max(c[1].radius for c in schedule.classes)
+    rmax = max(schedule.extent(k) for k in range(len(schedule.classes)))
     half_x, half_y = plate.length / 2.0, plate.width / 2.0
     xs = [*table.get("x [m]", []), -half_x, half_x]
     ys = [*table.get("y [m]", []), -half_y, half_y]
@@ -91,11 +95,7 @@ def deck_lines(case, schedule, dump_path):
     z_rest = box[4] + 2.0 * max(c[1].radius for c in classes)
     setup = "the stream's LAMMPS box"
     lines = [
-        ("units si", setup),
-        ("atom_style sphere", setup),
-        ("atom_modify map array", setup),
-        ("boundary f f f", setup),
-        ("comm_modify vel yes", setup),
+        *granular_setup("f f f", setup),
         ("region box block " + " ".join(repr(float(b)) for b in box), setup),
         (f"create_box {count + 1} box", setup),
         ("fix pid all property/atom i_pid ghost no", setup),
@@ -105,6 +105,10 @@ def deck_lines(case, schedule, dump_path):
         ("thermo_modify lost ignore", setup),
         ("pair_style granular", setup),
     ]
+    rmax = max(c[1].radius for c in classes)
+    clumps = straw.has_straw(schedule)
+    if clumps:
+        lines += straw.setup_lines(schedule, rmax)
     words = [_words(grain, law, tangential) for _, grain, law, tangential in classes]
     lines.append((f"pair_coeff * * {words[0]}", "the particles' laws"))
     for i in range(count):
@@ -112,7 +116,6 @@ def deck_lines(case, schedule, dump_path):
             lines.append((f"pair_coeff {i + 1} {j + 1} {words[i]}", f"class {i + 1}'s law"))
     for i in range(count + 1):
         lines.append((f"neigh_modify exclude type {i + 1} {count + 1}", setup))
-    rmax = max(c[1].radius for c in classes)
     lines += [
         (f"neighbor {rmax!r} bin", setup),
         ("neigh_modify delay 0 every 1 check yes", setup),
@@ -163,7 +166,7 @@ def deck_lines(case, schedule, dump_path):
             )
         )
     lines += [
-        ("fix integrate all nve/sphere", setup),
+        (f"fix integrate {'free' if clumps else 'all'} nve/sphere", setup),
         (f"timestep {schedule.time_step!r}", "time_step"),
         ("variable step equal step", setup),
         (f"variable x1 equal {z_rest!r}-c_sensor_z", setup),
@@ -176,9 +179,11 @@ def deck_lines(case, schedule, dump_path):
             for axis, col in (("x", 2), ("y", 3), ("z", 4))
         ],
         ("variable quiet equal v_ntouch<0.5", setup),
+        *(straw.velocity_lines() if clumps else []),
         (
-            f"dump contacts particles custom 1 {dump_path} i_pid v_astep type x y z vx vy vz "
-            "v_wx v_wy v_wz",
+            f"dump contacts particles custom 1 {dump_path} i_pid v_astep type x y z "
+            + " ".join(straw.VELOCITY_COLUMNS if clumps else ("vx", "vy", "vz"))
+            + " v_wx v_wy v_wz",
             setup,
         ),
         ("dump_modify contacts thresh v_touch > 0.5 skip v_quiet format float %.17g", setup),
@@ -186,42 +191,45 @@ def deck_lines(case, schedule, dump_path):
     return lines
 
 
-def insert_lines(row, pid, tag):
+def insert_lines(row, pid, tag, molecule=False):
     """Lines giving the atom of ``tag`` (just created) the schedule row's size, density,
-    velocity and ``i_pid = pid + 1``."""
+    velocity and ``i_pid = pid + 1`` (and ``mol = pid + 1``: a straw's sphere)."""
+    clump = f" mol {pid + 1}" if molecule else ""
     return [
         (
             f"set atom {tag} diameter {row['diameter [m]']!r} density "
             f"{row['density [kg/m^3]']!r} vx {row['vx [m/s]']!r} vy {row['vy [m/s]']!r} "
-            f"vz {row['vz [m/s]']!r} i_pid {pid + 1}",
+            f"vz {row['vz [m/s]']!r} i_pid {pid + 1}{clump}",
             f"particle {pid}",
         ),
     ]
 
 
-def create_line(row, pid):
-    """The line creating the atom of one schedule row (its type is its class plus one)."""
+def create_line(row, pid, at=None):
+    """The line creating the atom of one schedule row (its type is its class plus one) at
+    its position, or at ``at`` [m] (a straw's sphere)."""
     t = int(row["cls"]) + 1
-    return (
-        f"create_atoms {t} single {row['x [m]']!r} {row['y [m]']!r} {row['z [m]']!r} units box",
-        f"particle {pid}",
-    )
+    x, y, z = (row["x [m]"], row["y [m]"], row["z [m]"]) if at is None else map(float, at)
+    return (f"create_atoms {t} single {x!r} {y!r} {z!r} units box", f"particle {pid}")
 
 
-def group_lines(count):
-    """Lines adding the new atoms to their class groups and to ``particles`` (LAMMPS'
-    groups are static: atoms created later join only when asked)."""
-    return [(f"group c{t} type {t}", "groups") for t in range(1, count + 1)] + [
-        (f"group particles type 1:{count}", "groups")
-    ]
+def group_lines(schedule):
+    """Lines adding the new atoms to their class groups, to ``particles`` (and, with
+    straw, to ``straws`` and ``free``): LAMMPS' groups are static, atoms created later
+    join only when asked."""
+    count = len(schedule.classes)
+    lines = [(f"group c{t} type {t}", "groups") for t in range(1, count + 1)]
+    lines.append((f"group particles type 1:{count}", "groups"))
+    return lines + (straw.group_lines(schedule) if straw.has_straw(schedule) else [])
 
 
-def sweep_lines(ceiling):
+def sweep_lines(ceiling, molecules=False):
     """Lines deleting particles that rebounded above ``ceiling`` [m] (they would meet the
-    insertions; IDs are kept: ``compress no``)."""
+    insertions; IDs are kept: ``compress no``; ``molecules``: whole straws go)."""
+    whole = " mol yes" if molecules else ""
     return [
         (f'variable gone atom "vz > 0 && z > {ceiling!r} && i_pid > 0"', "sweep"),
         ("group gone variable gone", "sweep"),
-        ("delete_atoms group gone compress no", "sweep"),
+        (f"delete_atoms group gone compress no{whole}", "sweep"),
         ("group gone clear", "sweep"),
     ]

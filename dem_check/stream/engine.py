@@ -3,7 +3,9 @@
 :func:`simulate_stream` draws the particles (:func:`~dem_check.stream.feed.schedule`),
 builds the deck (:mod:`dem_check.stream.deck`) and runs it slot by slot: each slot
 inserts its particles (``run ... pre yes``: new atoms need LAMMPS' set-up), deletes
-rebounders above the insertion zone, and runs ``slot_steps`` steps. The sensor moves
+rebounders above the insertion zone, and runs ``slot_steps`` steps; with straw in the
+box it first releases the rigid bodies and defines them again after its insertions
+(:mod:`dem_check.stream.straw`). The sensor moves
 inside LAMMPS, so there is no Python in the step loop. Under ``mpiexec`` every rank runs
 the same Python (LAMMPS splits the box between them); the series are global and the
 contact dump is written once.
@@ -27,6 +29,7 @@ from dem_check.stream.deck import (
     sweep_lines,
 )
 from dem_check.stream.feed import schedule as draw_schedule
+from dem_check.stream.straw import FIX_RIGID, UNFIX_RIGID, has_straw, sphere_centres
 
 __all__ = ["RawStream", "simulate_stream", "world"]
 
@@ -79,15 +82,18 @@ def _read_contacts(path):
     return frame.sort_values(["pid", "step"], kind="stable").reset_index(drop=True)
 
 
-def _insert(session, rows, count):
-    """Create the slot's particles; each new atom has the largest ID (LAMMPS gives a
-    created atom the largest ID plus one, across all ranks)."""
+def _insert(session, rows, schedule):
+    """Create the slot's particles (a straw: each of its spheres); each new atom has the
+    largest ID (LAMMPS gives a created atom the largest ID plus one, across all ranks)."""
     for pid, row in rows.iterrows():
-        session.command(*create_line(row, pid))
-        tag = int(session.lmp.extract_global("map_tag_max"))
-        for line, what in insert_lines(row, pid, tag):
-            session.command(line, what)
-    for line, what in group_lines(count):
+        offsets = schedule.clumps[int(row["cls"])]
+        centres = [None] if offsets is None else sphere_centres(row, offsets)
+        for at in centres:
+            session.command(*create_line(row, pid, at))
+            tag = int(session.lmp.extract_global("map_tag_max"))
+            for line, what in insert_lines(row, pid, tag, molecule=offsets is not None):
+                session.command(line, what)
+    for line, what in group_lines(schedule):
         session.command(line, what)
 
 
@@ -111,8 +117,9 @@ def simulate_stream(case, *, progress=False, workdir=None):
     total = schedule.lead + case.duration + 2.0 * schedule.slot_steps * schedule.time_step
     slots = math.ceil(total / (schedule.slot_steps * schedule.time_step))
     by_slot = {s: rows for s, rows in table.groupby("slot")} if len(table) else {}
-    count = len(schedule.classes)
     ceiling = 0.5 * case.feed.release
+    clumps = has_straw(schedule)
+    rigid = False  # whether fix rigid is defined
     with tempfile.TemporaryDirectory() as tmp, LammpsSession(context="stream") as session:
         dump = Path(workdir or tmp) / "contacts.dump"
         for line, what in deck_lines(case, schedule, dump):
@@ -124,11 +131,16 @@ def simulate_stream(case, *, progress=False, workdir=None):
 
             bar = tqdm(total=slots, unit="slot", desc="stream")
         for s in range(slots):
-            for line, what in sweep_lines(ceiling):
-                session.command(line, what)
             rows = by_slot.get(s)
+            if rigid:  # LAMMPS crashes when atoms are added to or taken from live bodies
+                session.command(*UNFIX_RIGID)
+            for line, what in sweep_lines(ceiling, molecules=clumps):
+                session.command(line, what)
             if rows is not None:
-                _insert(session, rows, count)
+                _insert(session, rows, schedule)
+            if clumps and (rigid or (rows is not None and (rows["spheres"] > 1).any())):
+                session.command(*FIX_RIGID)
+                rigid = True
             session.command(f"run {schedule.slot_steps} pre yes post no")
             if bar is not None:
                 bar.update()

@@ -10,6 +10,11 @@ backwards from the touch: the particle is inserted at the last insertion slot at
 ``release`` of travel before its touch, on that very path, so slots change no
 trajectory. Everything is drawn from the case's seed on every MPI rank alike, so 1 or
 N processes simulate the same particles.
+
+A straw (a kind with ``spheres > 1``) also draws its axis (uniform azimuth, tilt from
+the plate's plane uniform in ``[0, tilt_deg]``); its centre of mass follows the path,
+aimed so that its lowest sphere touches at the aim point, and it is kept clear of the
+others as the capsule round its spheres' centres (:mod:`dem_check.stream.clearance`).
 """
 
 import math
@@ -17,9 +22,10 @@ import math
 import numpy as np
 import pandas as pd
 
-from contactlab.bodies import Sensor
+from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.solver import simulate_impact
+from dem_check.stream.clearance import Placed
 
 __all__ = ["LEAD_SLOTS", "Schedule", "gravity_vector", "schedule"]
 
@@ -28,9 +34,6 @@ LEAD_SLOTS = 2
 
 _TRIES = 50
 """Aim points drawn for a particle before the feed is declared too dense."""
-
-_CLEARANCE = 1.05
-"""Smallest centre distance at insertion over the sum of radii [-]."""
 
 
 def gravity_vector(case):
@@ -51,29 +54,53 @@ class Schedule:
         [kg]``, ``aim_time [s]`` (touch time of the free path), ``slot`` (insertion
         slot), ``x, y, z [m]`` and ``vx, vy, vz [m/s]`` at insertion, ``speed [m/s]``
         and ``incidence [deg]`` at the aim.
+        Straws add ``spheres`` (1 for a single sphere) and their axis ``axis_x, axis_y,
+        axis_z [-]`` (a unit vector; zeros for a sphere); their ``diameter`` is a
+        sphere's and ``mass`` the clump's.
     classes : list
         ``(kind name, grain, law, tangential law)`` per class; class ``k`` is LAMMPS
         atom type ``k + 1``.
+    clumps : list
+        Per class: None for single spheres, else the sphere centres along a straw's axis
+        from its centre of mass [m] (:meth:`~dem_check.stream.case.ParticleKind.offsets`).
     time_step, slot_steps, lead : float, int, float
         Step [s], steps per insertion slot, time before the first touch [s].
     gravity : numpy.ndarray
         Gravity in the plate's frame [m/s**2].
     """
 
-    def __init__(self, table, classes, time_step, slot_steps, lead, gravity):
+    def __init__(self, table, classes, time_step, slot_steps, lead, gravity, clumps):
         self.table, self.classes, self.gravity = table, classes, gravity
         self.time_step, self.slot_steps, self.lead = time_step, slot_steps, lead
+        self.clumps = clumps
+
+    def extent(self, cls):
+        """Bounding radius of class ``cls``'s particles about their centre of mass [m]."""
+        return _extent(self.classes[cls][1].radius, self.clumps[cls])
 
 
-def _time_step(case, classes):
+def _extent(radius, offsets):
+    return radius if offsets is None else radius + max(abs(o) for o in offsets)
+
+
+def _time_step(case, classes, clumps):
+    """The case's step, or the shortest wall contact over ``steps_per_contact``; a
+    straw's is that of one sphere carrying its share of the clump (a flat straw: all
+    its spheres press at once)."""
     if case.time_step is not None:
         return case.time_step
     fastest = case.feed.speed + 3.0 * case.feed.speed_sd
-    shortest = min(
-        simulate_impact(grain, Sensor.rigid(), law, fastest, audit=False).contact_time
-        for _, grain, law, _ in classes
-    )
-    return shortest / case.steps_per_contact
+    times = []
+    for (_, grain, law, _), offsets in zip(classes, clumps, strict=True):
+        if offsets is not None:
+            share = grain.mass / len(offsets)
+            grain = Grain(diameter=grain.diameter, mass=share, **_material(grain))
+        times.append(simulate_impact(grain, Sensor.rigid(), law, fastest, audit=False))
+    return min(r.contact_time for r in times) / case.steps_per_contact
+
+
+def _material(grain):
+    return {"youngs_modulus": grain.youngs_modulus, "poisson_ratio": grain.poisson_ratio}
 
 
 def _arrivals(case, rng, mean_mass, start):
@@ -117,13 +144,14 @@ def schedule(case):
         When no aim point keeps a particle clear of the others at insertion (the feed is
         too dense for its spot: widen ``feed.spot`` or lower the flow).
     """
-    classes, owner = [], []
+    classes, owner, clumps = [], [], []
     for k, kind in enumerate(case.particles):
         for grain, law, tangential in kind.classes():
             classes.append((kind.name, grain, law, tangential))
             owner.append(k)
+            clumps.append(None if kind.spheres == 1 else kind.offsets(grain.diameter))
     owner = np.array(owner)
-    dt = _time_step(case, classes)
+    dt = _time_step(case, classes, clumps)
     slot_steps = max(1, round(case.slot / dt))
     slot = slot_steps * dt
     feed, g = case.feed, gravity_vector(case)
@@ -135,7 +163,7 @@ def schedule(case):
     mean_mass = sum(shares[k] * masses[owner == k].mean() for k in range(shares.size))
     rng = np.random.default_rng(case.seed)
     times = _arrivals(case, rng, mean_mass, lead)
-    rows, placed = [], []
+    rows, placed = [], Placed(times.size, g)
     for t_aim in times:
         k = rng.choice(shares.size, p=shares)
         cls = int(rng.choice(np.flatnonzero(owner == k)))
@@ -149,11 +177,13 @@ def schedule(case):
         fly = feed.release / speed
         slot_index = math.floor((t_aim - fly) / slot)
         back = t_aim - slot_index * slot
+        axis, height = _axis(rng, case.particles[k], clumps[cls], grain.radius)
+        shape = (grain.radius, np.array(axis), _extent(grain.radius, clumps[cls]) - grain.radius)
         for _ in range(_TRIES):
             radius, angle = feed.spot * math.sqrt(rng.uniform()), rng.uniform(0.0, 2 * math.pi)
-            touch = np.array([radius * math.cos(angle), radius * math.sin(angle), grain.radius])
+            touch = np.array([radius * math.cos(angle), radius * math.sin(angle), height])
             start = touch - v * back + 0.5 * g * back**2
-            if _clear(start, v - g * back, grain.radius, slot_index * slot, placed, g):
+            if placed.clear(start, v - g * back, shape, slot_index * slot):
                 break
         else:
             raise ParameterError(
@@ -162,14 +192,19 @@ def schedule(case):
                 "the flow rate"
             )
         velocity = v - g * back
-        placed.append((slot_index * slot, start, velocity, grain.radius, t_aim))
+        placed.add(slot_index * slot, start, velocity, shape, t_aim)
+        spheres = 1 if clumps[cls] is None else len(clumps[cls])
         rows.append(
             {
                 "kind": case.particles[k].name,
                 "cls": cls,
                 "diameter [m]": grain.diameter,
-                "density [kg/m^3]": grain.mass / (math.pi / 6.0 * grain.diameter**3),
+                "density [kg/m^3]": grain.mass / (spheres * math.pi / 6.0 * grain.diameter**3),
                 "mass [kg]": grain.mass,
+                "spheres": spheres,
+                "axis_x [-]": axis[0],
+                "axis_y [-]": axis[1],
+                "axis_z [-]": axis[2],
                 "aim_time [s]": t_aim,
                 "slot": slot_index,
                 "x [m]": start[0],
@@ -185,19 +220,17 @@ def schedule(case):
     order = np.argsort([row["slot"] for row in rows], kind="stable")
     table = pd.DataFrame([rows[i] for i in order]).reset_index(drop=True)
     table.index.name = "pid"
-    return Schedule(table, classes, dt, slot_steps, lead, g)
+    return Schedule(table, classes, dt, slot_steps, lead, g, clumps)
 
 
-def _clear(position, velocity, radius, at, placed, g):
-    """Whether a particle inserted at ``position`` at time ``at`` clears, at the later of
-    the two insertions, every placed particle not yet at the plate (free paths)."""
-    for t0, x0, v0, r0, t_aim in placed:
-        when = max(at, t0)
-        if t_aim <= when:
-            continue
-        a, b = when - t0, when - at
-        other = x0 + v0 * a + 0.5 * g * a * a
-        mine = position + velocity * b + 0.5 * g * b * b
-        if np.linalg.norm(other - mine) < _CLEARANCE * (radius + r0):
-            return False
-    return True
+def _axis(rng, kind, offsets, radius):
+    """A straw's axis (a unit vector; uniform azimuth, tilt from the plate's plane uniform
+    in ``[0, kind.tilt_deg]``) and the height of its centre of mass over the plate when
+    its lowest sphere touches [m]; zeros and the radius for a sphere (no draws, so a
+    stream without straws draws what it drew before straws existed)."""
+    if offsets is None:
+        return (0.0, 0.0, 0.0), radius
+    azimuth = rng.uniform(0.0, 2.0 * math.pi)
+    tilt = math.radians(rng.uniform(0.0, kind.tilt_deg))
+    axis = (math.cos(tilt) * math.cos(azimuth), math.cos(tilt) * math.sin(azimuth), math.sin(tilt))
+    return axis, radius + (_extent(radius, offsets) - radius) * math.sin(tilt)

@@ -1,7 +1,7 @@
 """A stream's figures and its self-contained HTML report.
 
 Figures (PNG files, and inline SVG in the page): the sensor signal over the true contact
-force with each impact's touch marked (grain and chaff in their colours, the detector's
+force with each impact's touch marked (each kind in its colour, the detector's
 onsets as ticks); the pile-up curve (fractions hit, merged and missed against the flow
 rate); the calibration curve (flow against plate output, with the test points). The
 page has no script and no remote resource: it opens from disk and can be mailed.
@@ -123,7 +123,8 @@ def write_report(
         )
     if confusion is not None:
         parts.append(
-            "<h2>Grain / chaff from signal features (rows: true)</h2>" + confusion.to_html()
+            "<h2>Kinds (grain, chaff, straw) from signal features (rows: true)</h2>"
+            + confusion.to_html()
         )
     if curve is not None:
         parts.append("<h2>Pile-up table</h2>" + _table(curve))

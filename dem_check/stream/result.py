@@ -21,15 +21,21 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_flag, check_instance
 from contactlab.errors import ParameterError
 from contactlab.traces.api import write_trace
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_count, check_number, check_path
 from dem_check.campaign.records import add_effects
+from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
 from dem_check.traces import Trace
 
 __all__ = ["StreamResult", "run_stream"]
+
+
+STREAM_RESULT = "a StreamResult (from run_stream)"
+"""What the stream functions' ``result`` is, for their messages."""
 
 
 class StreamResult:
@@ -79,6 +85,7 @@ class StreamResult:
             A laboratory's coloured noise, drift, hum, crosstalk, ADC and offset steps
             (:func:`dem_check.campaign.records.add_effects`); the crosstalk rings after
             each impact's touch with the impact's peak contact force as its scale.
+            Default the case's (``StreamCase.effects``; ``Effects()`` for none).
 
         Returns
         -------
@@ -107,6 +114,7 @@ class StreamResult:
         t = np.arange(0.0, t_steps[-1], 1.0 / rate)
         values = np.interp(t, t_steps, self.steps["sensor_force [N]"].to_numpy())
         rng = np.random.default_rng(seed + 1)
+        effects = self.case.effects if effects is None else effects
         if effects is not None:
             impacts = self.truth[self.truth["contact"] == 0]
             truth = pd.DataFrame(
@@ -129,7 +137,8 @@ class StreamResult:
 
     def write(self, out, trace=None):
         """Write the files of the module docstring into folder ``out``; returns its path."""
-        out = Path(out)
+        out = Path(check_path("out", out))
+        check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
         out.mkdir(parents=True, exist_ok=True)
         trace = self.trace() if trace is None else trace
         write_trace(
@@ -140,8 +149,9 @@ class StreamResult:
             comments={"source": "dem_check.stream", "time_step [s]": repr(self.time_step)},
         )
         self.steps.to_csv(out / "steps.csv.gz", index=False)
-        self.truth.to_csv(out / "truth.csv", index=False)
-        self.particles.to_csv(out / "particles.csv")
+        # particle kinds are named in the user's case: no cell may run as a formula
+        spreadsheet_safe(self.truth).to_csv(out / "truth.csv", index=False)
+        spreadsheet_safe(self.particles).to_csv(out / "particles.csv")
         (out / "deck.lammps").write_text(self.script, encoding="utf-8")
         return out
 
@@ -166,4 +176,8 @@ def run_stream(case, *, progress=False):
     ImportError
         Without the ``lammps`` extra.
     """
+    from dem_check.stream.case import StreamCase
+
+    check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    progress = check_flag("progress", progress)
     return StreamResult(simulate_stream(case, progress=progress))

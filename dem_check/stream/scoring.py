@@ -21,16 +21,21 @@ the ringing plate belongs to the signal it interrupts.
 * a **false alarm** is a detection holding none.
 
 :func:`pileup_curve` runs a case at several flow rates and tabulates these against the
-rate. :func:`discrimination` classifies hits as grain or chaff from signal features
-(peak, rise time, impulse, duration) with a nearest-centroid rule on standardised
-log-features, trained and tested by two-fold cross-validation, and returns the
-confusion matrix.
+rate. :func:`discrimination` classifies hits by kind (grain, chaff, straw) from signal features
+(peak, rise time, impulse, duration) with a nearest-centroid rule on log-features
+scaled by their pooled within-kind spread (a diagonal linear discriminant), trained and
+tested by two-fold cross-validation, and returns the confusion matrix.
 """
 
 import numpy as np
 import pandas as pd
 
+from contactlab.entry_checks import check_callable, check_instance, check_shaped
+from contactlab.errors import ParameterError
+from contactlab.validation import check_number, check_values
 from dem_check.campaign.detection import find_impacts
+from dem_check.stream.result import STREAM_RESULT
+from dem_check.traces import Trace
 
 __all__ = [
     "FEATURES",
@@ -49,7 +54,7 @@ REACH_PERIODS = 20.0
 the ringing of a sensor of damping ratio 0.02 has decayed to 8 % by then."""
 
 FEATURES = ("peak [N]", "rise_time [s]", "impulse [N*s]", "duration [s]")
-"""Signal features of a hit used to tell grain from chaff."""
+"""Signal features of a hit used to tell the kinds apart (grain, chaff, straw)."""
 
 
 def campaign_detector(trace, sensor):
@@ -123,6 +128,12 @@ def score(result, detector=None, trace=None, tolerance=None, reach=None):
 
     ``tolerance`` and ``reach`` are in seconds; ``trace`` defaults to ``result.trace()``.
     """
+    check_shaped("result", result, ("case", "truth", "steps"), STREAM_RESULT)
+    check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
+    if tolerance is not None:
+        tolerance = check_number("tolerance", tolerance, low=0.0, unit="s")
+    if reach is not None:
+        reach = check_number("reach", reach, low=0.0, unit="s")
     sensor = result.case.sensor
     trace = result.trace() if trace is None else trace
     onsets, peaks = _detections((detector or campaign_detector)(trace, sensor))
@@ -186,9 +197,13 @@ def pileup_curve(case, rates, detector=None, run=None):
     """
     from dataclasses import replace
 
+    from dem_check.stream.case import StreamCase
     from dem_check.stream.result import run_stream
 
-    run = run or run_stream
+    check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    rates = check_values("rates", rates, unit="1/s")
+    check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
+    run = check_callable("run", run, "run(case) -> StreamResult") or run_stream
     rows = []
     for rate in rates:
         result = run(case.with_(flow=replace(case.flow, rate=float(rate), kind="count")))
@@ -220,6 +235,9 @@ def _median_abs(values):
 def hit_features(result, scored, trace=None):
     """:data:`FEATURES` of each hit, read from the trace between its onset and the next
     detection (or four sensor periods, whichever is first); with the hit's true kind."""
+    check_shaped("result", result, ("case", "trace"), STREAM_RESULT)
+    check_instance("scored", scored, Score, "score")
+    check_instance("trace", trace, Trace, "StreamResult.trace", optional=True)
     trace = result.trace() if trace is None else trace
     t, v = np.asarray(trace.t), np.asarray(trace.values)
     period = result.case.sensor.period
@@ -260,6 +278,14 @@ def discrimination(features):
     pandas.DataFrame
         Confusion matrix: rows the true kinds, columns the predicted ones (counts).
     """
+    check_instance("features", features, pd.DataFrame, "hit_features")
+    missing = [c for c in ("kind", *FEATURES) if c not in features.columns]
+    if missing:
+        raise ParameterError(f"features has no column(s) {missing} (see hit_features)")
+    if len(features) < 2:
+        raise ParameterError(
+            f"features needs at least 2 hits (one per cross-validation fold); got {len(features)}"
+        )
     kinds = sorted(features["kind"].unique())
     x = np.log(np.maximum(features[list(FEATURES)].to_numpy(dtype=float), 1e-300))
     y = features["kind"].to_numpy()
@@ -267,10 +293,13 @@ def discrimination(features):
     fold = np.arange(y.size) % 2
     for f in (0, 1):
         train, test = fold != f, fold == f
-        mean, sd = x[train].mean(axis=0), x[train].std(axis=0) + 1e-12
-        z = (x - mean) / sd
         present = [k for k in kinds if (y[train] == k).any()]
-        centroids = np.array([z[train & (y == k)].mean(axis=0) for k in present])
+        centroids = np.array([x[train & (y == k)].mean(axis=0) for k in present])
+        # scaled by the pooled within-kind spread (a diagonal linear discriminant): a
+        # feature that does not tell the kinds apart then weighs no more than its noise
+        spread = x[train] - centroids[np.searchsorted(present, y[train])]
+        sd = np.sqrt((spread**2).mean(axis=0)) + 1e-12
+        z, centroids = x / sd, centroids / sd
         distance = ((z[test][:, None, :] - centroids[None]) ** 2).sum(axis=2)
         predicted[test] = np.array(present, dtype=object)[distance.argmin(axis=1)]
     matrix = pd.crosstab(

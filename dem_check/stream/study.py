@@ -10,7 +10,11 @@ rank 0 writes.
 import json
 from pathlib import Path
 
+from contactlab.entry_checks import check_callable, check_flag, check_instance
+from contactlab.validation import check_number, check_path, check_values
+from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.calibration import calibration_curve
+from dem_check.stream.case import StreamCase
 from dem_check.stream.report import write_report
 from dem_check.stream.result import run_stream
 from dem_check.stream.scoring import discrimination, hit_features, pileup_curve, score
@@ -40,16 +44,23 @@ def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None, 
         Summary: impacts, the detector's counts, the confusion matrix, the calibration's
         errors [%] (written to ``summary.json`` too).
     """
+    check_instance("case", case, StreamCase, "read_case or DEFAULT_CASE.with_")
+    progress = check_flag("progress", progress)
+    out = Path(check_path("out", out))
+    check_callable("detector", detector, "detector(trace, sensor) -> onsets [s]")
+    if pileup_rates is not None:
+        pileup_rates = check_values("pileup_rates", pileup_rates, unit="1/s")
+    if capacity is not None:
+        capacity = check_number("capacity", capacity, low=0.0, unit="kg/s")
     result = run_stream(case, progress=progress)
-    curve = pileup_curve(case, pileup_rates, detector) if pileup_rates else None
-    calibration = calibration_curve(case, capacity) if capacity else None
+    curve = None if pileup_rates is None else pileup_curve(case, pileup_rates, detector)
+    calibration = None if capacity is None else calibration_curve(case, capacity)
     if result.rank != 0:  # under mpiexec, rank 0 writes
         return {}
-    out = Path(out)
     trace = result.trace()
     result.write(out, trace)
     scored = score(result, detector, trace)
-    scored.matches.to_csv(out / "matches.csv", index=False)
+    spreadsheet_safe(scored.matches).to_csv(out / "matches.csv", index=False)
     features = hit_features(result, scored, trace)
     confusion = discrimination(features) if features["kind"].nunique() > 1 else None
     if curve is not None:

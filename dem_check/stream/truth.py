@@ -17,10 +17,16 @@ re-contacts (a bounce back onto the plate, rolling on and off). Per impact:
   on the last free step. LAMMPS writes ``v(n) = v(n - 1/2) + dt f(n) / (2 m)`` at the
   first contact step, and ``v(n - 1/2)`` (the velocity Verlet half step) is the free
   flight's, so the dump's velocity is corrected by the half step of contact force;
-* ``rebound_normal_speed [m/s]``: the velocity at the last contact step plus the
-  half step of its force, the same way;
+* ``rebound_normal_speed`` and ``rebound_tangential_speed [m/s]``: the velocity at the
+  last contact step plus the half step of its force, the same way;
 * ``peak_force [N]`` and ``impulse [N*s]`` (the sum of force times step, velocity
   Verlet's own momentum change) of the normal contact force over the contact.
+
+A straw (a rigid clump of spheres, :mod:`dem_check.stream.straw`) is one particle: per
+step its spheres' plate forces are summed, its velocity is its centre of mass's (the
+dump's straw columns), its overlap that of its lowest sphere, and its mass the clump's;
+so its ``impulse`` is the clump's momentum change, and its touch is interpolated with
+the centre of mass's approach speed (exact for a clump that does not spin).
 
 Every contact is a row (``contact`` 0 the impact, 1, 2 ... re-contacts; ``recontacts``
 their number for the particle): a re-contact makes its own signal, which a detector
@@ -45,6 +51,7 @@ TRUTH_COLUMNS = (
     "normal_speed [m/s]",
     "tangential_speed [m/s]",
     "rebound_normal_speed [m/s]",
+    "rebound_tangential_speed [m/s]",
     "peak_force [N]",
     "impulse [N*s]",
     "recontacts",
@@ -80,6 +87,9 @@ def _segment(segment, pid, contact, dt, table, plate):
         "normal_speed [m/s]": -vz0,
         "tangential_speed [m/s]": float(np.hypot(vx0, vy0)),
         "rebound_normal_speed [m/s]": tail["vz"] + half * tail["fz"],
+        "rebound_tangential_speed [m/s]": float(
+            np.hypot(tail["vx"] + half * tail["fx"], tail["vy"] + half * tail["fy"])
+        ),
         "peak_force [N]": float(fz.max()),
         "impulse [N*s]": float(fz.sum() * dt),
     }
@@ -95,6 +105,7 @@ def impacts_truth(contacts, schedule, steps):
     dt, table = schedule.time_step, schedule.table
     plate = steps["x1 [m]"].to_numpy(), steps["v1 [m/s]"].to_numpy()
     rows = []
+    contacts = _clumps_as_one(contacts, table)
     pressing = contacts[contacts["fz"] > 0.0]
     for pid, group in pressing.groupby("pid", sort=True):
         numbers = group["step"].to_numpy()
@@ -105,3 +116,30 @@ def impacts_truth(contacts, schedule, steps):
             row["recontacts"] = int(edges.size - 2)
             rows.append(row)
     return pd.DataFrame(rows, columns=TRUTH_COLUMNS).sort_values("touch [s]").reset_index(drop=True)
+
+
+def _clumps_as_one(contacts, table):
+    """The dump with each straw's rows of a step made one: forces summed, the lowest
+    sphere's height, the centre of mass's velocity (every sphere's row carries it)."""
+    if "spheres" not in table or not (table["spheres"] > 1).any():
+        return contacts
+    clump = contacts["pid"].map(table["spheres"]).to_numpy() > 1
+    merged = (
+        contacts[clump]
+        .groupby(["pid", "step"], sort=True)
+        .agg(
+            type=("type", "first"),
+            x=("x", "first"),
+            y=("y", "first"),
+            z=("z", "min"),
+            vx=("vx", "first"),
+            vy=("vy", "first"),
+            vz=("vz", "first"),
+            fx=("fx", "sum"),
+            fy=("fy", "sum"),
+            fz=("fz", "sum"),
+        )
+        .reset_index()
+    )
+    frame = pd.concat([contacts[~clump], merged[list(contacts.columns)]], ignore_index=True)
+    return frame.sort_values(["pid", "step"], kind="stable").reset_index(drop=True)

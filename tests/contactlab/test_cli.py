@@ -4,29 +4,13 @@ import json
 import re
 
 import pytest
+from documents import PAPER_CASE as GOOD
 
 import contactlab as cl
 from contactlab.cli import main as contactlab_main
 from contactlab.config import list_presets, load_config
 from contactlab.errors import ParameterError
 from dem_check.cli import main as dem_check_main
-
-GOOD = """
-[grain]
-diameter = 5.0e-3
-density = 765.0
-[contact]
-law = "linear"
-stiffness = 1.0e5
-damping = 1.0
-[sensor]
-resonance = 40.0e3
-mass = 1.233e-3
-damping_ratio = 0.02
-[simulation]
-velocity = 2.0
-duration = 500.0e-6
-"""
 
 
 @pytest.mark.parametrize("main", [contactlab_main, dem_check_main])

@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from documents import PAPER_CASE
 
 from contactlab.config import load_config
 from dem_check import Trace, write_trace
@@ -12,29 +13,17 @@ from dem_check.cli import main
 
 SENSITIVITY = 0.0112  # [V/N]
 
-CONFIG = """
-[grain]
-diameter = 5.0e-3
-density = 765.0
-[contact]
-law = "linear"
-stiffness = {stiffness}
-damping = 1.0
-[sensor]
-resonance = 40.0e3
-mass = 1.233e-3
-damping_ratio = 0.02
-[simulation]
-velocity = 2.0
-duration = 500.0e-6
-"""
+
+def _config(stiffness):
+    """The paper's base case with the contact's ``stiffness`` [N/m], as TOML."""
+    return PAPER_CASE.replace("stiffness = 1.0e5", f"stiffness = {stiffness!r}")
 
 
 @pytest.fixture
 def config(tmp_path):
     """The paper's base case on the 40 kHz sensor as a TOML file."""
     path = tmp_path / "case.toml"
-    path.write_text(CONFIG.format(stiffness=1.0e5))
+    path.write_text(_config(1.0e5))
     return path
 
 
@@ -84,7 +73,7 @@ def test_bullet_fails_on_an_impossible_tolerance(config, capsys):
 def test_bullet_bad_input_exits_2(tmp_path, config, capsys):
     hertz = tmp_path / "hertz.toml"
     hertz.write_text(
-        CONFIG.format(stiffness=1e5)
+        _config(1e5)
         .replace('law = "linear"', 'law = "hertz"')
         .replace("stiffness = 100000.0\ndamping = 1.0", "k_hertz = 1e8")
     )
@@ -121,7 +110,7 @@ def test_compare_trace_with_its_model_passes(trace_file, config, tmp_path, capsy
 
 def test_compare_against_another_model_fails(trace_file, tmp_path, capsys):
     stiffer = tmp_path / "stiffer.toml"
-    stiffer.write_text(CONFIG.format(stiffness=1.3e5))  # 30 % stiffer contact
+    stiffer.write_text(_config(1.3e5))  # 30 % stiffer contact
     argv = ["compare", str(trace_file), "--model", str(stiffer), "--sensitivity",
             str(SENSITIVITY)]  # fmt: skip
     assert main(argv) == 1

@@ -173,6 +173,13 @@ VALUES = {
     "factor": lambda: 1.0, "tolerance": lambda: 10.0, "client": lambda: None,
     "progress": lambda: False, "chunksize": lambda: 1, "partitions": lambda: 1,
     "frame": lambda: _frame(),
+    # streams
+    "case": lambda: stream_case(), "result": lambda: stream_result(),
+    "scored": lambda: _stream_score(), "features": lambda: _stream_features(),
+    "detector": lambda: None, "run": lambda: _stream_run, "reach": lambda: 1e-4,
+    "pileup_rates": lambda: (500.0,), "capacity": lambda: 0.05,
+    "effects": lambda: _effects(), "end_rate": lambda: 800.0,
+    "tangential": lambda: {"law": "mindlin", "friction": 0.3},
     # campaigns, records
     "paths": lambda: [TRACE_FILE], "velocities": lambda: (2.0,), "onsets": lambda: (1e-4,),
     "length": lambda: 1e-3, "out": lambda: _temporary("out"), "metadata": lambda: None,
@@ -184,6 +191,9 @@ VALUES = {
     "what": lambda: "case", "preset": lambda: None, "samples": lambda: 101,
     "max_nfev": lambda: 20, "align": lambda: "onset", "friction_steel": lambda: 0.3,
     "full_scale": lambda: 10.0, "vary": lambda: "stiffness",
+    # solver states (Sensor.signal, Sensor.energy)
+    "states": lambda: np.zeros((64, 4)), "contact_force": lambda: np.zeros(64),
+    "x1": lambda: 1e-6, "v1": lambda: 0.1,
 }  # fmt: skip
 """A valid value of each parameter, by name."""
 
@@ -234,6 +244,86 @@ def _frame(law="linear"):
     return _one_row_frame(**{"k2 [N/m]": 1e5, "c2 [N*s/m]": 1.0})
 
 
+def _oblique_frame():
+    """One oblique Hertz-Mindlin row (contactlab.batch.oblique_impacts)."""
+    mindlin = {"k_mindlin [N/m**1.5]": 1e6, "friction [-]": 0.3}
+    frame = _frame("hertz").assign(**mindlin)
+    return frame.assign(**{"radius [m]": 2.5e-3, "angle [rad]": 0.5, "spin [rad/s]": 0.0})
+
+
+STREAM_TOML = """[stream]
+duration = 3e-3
+noise = 0.005
+[flow]
+rate = 500.0
+arrivals = 'regular'
+[[particles]]
+species = 'wheat'
+contact = {law = 'hertz_damped', from_material = true, restitution = 0.5}
+"""
+"""A stream case of one wheat particle in 3 ms (one LAMMPS run of about 4 s)."""
+
+
+@functools.cache
+def _stream_case_file():
+    path = _temporary("case.toml")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(STREAM_TOML, "utf-8")
+    return path
+
+
+@functools.cache
+def stream_case():
+    from dem_check.stream import read_case
+
+    return read_case(_stream_case_file())
+
+
+@functools.cache
+def stream_result():
+    """The stream of :data:`STREAM_TOML`, run once in LAMMPS."""
+    import warnings
+
+    from contactlab.errors import ContactlabWarning
+    from dem_check.stream import run_stream
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", ContactlabWarning)
+        return run_stream(stream_case())
+
+
+def _stream_run(case):
+    """A stream runner (``run(case) -> StreamResult``) that returns the one run: the
+    curves' own arithmetic is what their valid call exercises, not LAMMPS again."""
+    return stream_result()
+
+
+@functools.cache
+def _stream_score():
+    from dem_check.stream import score
+
+    return score(stream_result())
+
+
+@functools.cache
+def _stream_features():
+    """A :func:`~dem_check.stream.hit_features` table of four hits, two of each kind (the
+    one-particle stream has one hit; the classification needs two per fold)."""
+    from dem_check.stream import FEATURES, hit_features
+
+    one = hit_features(stream_result(), _stream_score())
+    rows = pd.concat([one] * 4, ignore_index=True)
+    rows["kind"] = ["wheat", "chaff", "wheat", "chaff"]
+    rows[list(FEATURES)] *= np.array([1.0, 0.5, 1.1, 0.6])[:, None]
+    return rows
+
+
+def _effects():
+    from dem_check.campaign.records import Effects
+
+    return Effects()
+
+
 def _measured(name):
     """``t`` and ``signal`` of the synthetic sensor signal, for the inverse methods."""
     t, signal, _ = synthetic()
@@ -260,6 +350,26 @@ OVERRIDES = {
                                                              "tangential_velocity": lambda: 10.0},
     "contactlab.analytic.tangential.slides_throughout": {"normal_velocity": lambda: 2.0},
     "contactlab.batch.hertz.hertz_impacts": {"frame": lambda: _frame("hertz")},
+    "contactlab.batch.oblique.oblique_impacts": {"frame": _oblique_frame},
+    "contactlab.quantities.quantity": {"name": lambda: "contact_time"},
+    "contactlab.quantities.column": {"name": lambda: "contact_time"},
+    "contactlab.engines.load_engine": {"name": lambda: "bullet"},
+    "dem_check.stream.case.read_case": {"path": _stream_case_file},
+    "dem_check.stream.case.Flow": {"rate": lambda: 500.0},
+    "dem_check.stream.case.Flow.at": {"t": lambda: np.linspace(0.0, 3e-3, 64),
+                                     "duration": lambda: 3e-3},
+    "dem_check.stream.case.ParticleKind": {
+        "name": lambda: "wheat", "diameter": lambda: (4e-3, 5e-3),
+        "density": lambda: (1200.0, 1400.0), "contact": lambda: {"law": "linear",
+                                                                 "stiffness": 1e5}},
+    "dem_check.stream.case.StreamCase": {"particles": lambda: stream_case().particles},
+    "dem_check.stream.calibration.calibration_curve": {
+        "capacity": lambda: 0.05, "**": lambda: {"run": _stream_run}},
+    "dem_check.stream.scoring.pileup_curve": {
+        "rates": lambda: (500.0,), "**": lambda: {"run": _stream_run}},
+    "dem_check.stream.scoring.campaign_detector": {"trace": lambda: stream_result().trace()},
+    "dem_check.stream.result.StreamResult.write": {"out": lambda: _temporary("stream")},
+    "dem_check.stream.study.stream_study": {"out": lambda: _temporary("stream")},
     "contactlab.batch.dask.dask_hertz_impacts": {"frame": lambda: _frame("hertz"),
                                                  "client": lambda: "tcp://127.0.0.1:1"},
     "contactlab.batch.dask.dask_linear_impacts": {"client": lambda: "tcp://127.0.0.1:1"},
@@ -272,6 +382,8 @@ OVERRIDES = {
     "contactlab.inverse.plots.plot_identification": {
         "t": lambda: synthetic()[2].t, "signal": lambda: synthetic()[2].sensor_force},
     "contactlab.inverse.identify.matrix_pencil": {"y": lambda: synthetic()[2].sensor_force},
+    "contactlab.inverse.identify.SensorIdentification.ringing": {"t": lambda: np.linspace(
+        *instance("contactlab.inverse.identify.SensorIdentification").window, 64)},
     "contactlab.plausibility.check_plausible": {"key": lambda: "grain_diameter"},
     "contactlab.plausibility.implausible_rows": {"key": lambda: "grain_diameter",
                                                  "labels": lambda: ["row 0"]},
@@ -324,6 +436,10 @@ INSTANCES = {
     "dem_check.campaign.result.CampaignResult": lambda: _campaign(),
     "contactlab.traces.trace.Trace": trace,
     "contactlab.testing.golden.GoldenStore": lambda: _store(),
+    "dem_check.stream.case.StreamCase": lambda: stream_case(),
+    "dem_check.stream.case.Flow": lambda: stream_case().flow,
+    "dem_check.stream.case.ParticleKind": lambda: stream_case().particles[0],
+    "dem_check.stream.result.StreamResult": lambda: stream_result(),
 }
 """Instances of public classes their constructor's baseline cannot build."""
 

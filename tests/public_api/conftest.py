@@ -40,6 +40,7 @@ PACKAGES = ("contactlab", "dem_check")
 NOT_PUBLIC = {
     "contactlab.errors": "the exception classes themselves",
     "contactlab.validation": "the entry checks themselves (tests/contactlab/test_validation*)",
+    "contactlab.entry_checks": "the entry checks of objects and switches (same tests)",
     "contactlab.compiled": "numba's njit for the compiled modules",
     "contactlab.roots": "root locator of the solvers' events (internal)",
     "contactlab.quadrature": "Gauss-Legendre rule of the audits (internal)",
@@ -84,6 +85,10 @@ EXEMPT = {
     "contactlab.quantities.Quantity": "a row of the QUANTITIES vocabulary, built there",
     "contactlab.result.ImpactResult": "result record built by simulate_impact",
     "contactlab.oblique_result.ObliqueResult": "result record built by simulate_oblique",
+    "dem_check.stream.calibration.Calibration": "result record built by calibration_curve",
+    "dem_check.stream.scoring.Score": "result record built by score",
+    "dem_check.stream.result.StreamResult": "result record built by run_stream (from "
+    "LAMMPS' raw output)",
 }
 """Constructors of records the library builds (their methods are covered), with the reason."""
 
@@ -280,6 +285,8 @@ COSTLY = {
     "dem_check.campaign.synthetic.synthetic_record", "dem_check.engines.drop_test",
     "dem_check.campaign.result.CampaignResult.write",
     "dem_check.campaign.result.CampaignResult.to_html",
+    "dem_check.stream.result.run_stream", "dem_check.stream.study.stream_study",
+    "dem_check.stream.calibration.calibration_curve", "dem_check.stream.scoring.pileup_curve",
 }  # fmt: skip
 """Callables whose valid calls take seconds (simulations, fits, studies, campaigns, a
 cluster): only values that must be refused before any work are tried on them."""
@@ -306,25 +313,7 @@ the oblique solver. The laws' user-facing methods (``force``, ``work``, ``impact
 ``restitution``, ...) are covered."""
 
 
-PENDING = {
-    "dem_check.stream": "arrived from main in the last merge of this change (issue 24); "
-    "its valid arguments (a stream case, a detector, a LAMMPS run) are not written yet",
-    "contactlab.quantities": "arrived from main in the final merge (18:45); valid names "
-    "not written yet",
-    "contactlab.engines": "arrived from main in the final merge; not written yet",
-    "contactlab.study.setup.StudySetup.config": "arrived from main in the final merge",
-    "contactlab.study.setup.StudySetup.at": "its valid call changed in the final merge",
-    "contactlab.config.law_from_table": "arrived from main in the last merge; the sweep "
-    "found failures not triaged yet",
-    "contactlab.batch.oblique": "arrived with the oblique core (issue 25, merged last): "
-    "its valid frame (oblique columns) is not written yet",
-    "contactlab.bodies.Sensor.signal": "arrived with the compiled core (issue 25, merged "
-    "last): reads solver state arrays; valid arguments not written yet",
-    "contactlab.bodies.Sensor.energy": "arrived with the compiled core (issue 25, merged "
-    "last); valid arguments not written yet",
-    "contactlab.config.sensor_from_table": "arrived from main in the last merge; the sweep "
-    "found failures not triaged yet",
-}
+PENDING = {}
 """Public modules whose callables are not in the property tests yet, with the reason."""
 
 
@@ -359,12 +348,15 @@ def _alarm(signum, frame):
 
 
 def call(function, arguments):
-    """Call with a hang alarm; ContactlabWarnings are answers too, other warnings errors."""
+    """Call with a hang alarm; ContactlabWarnings and a deprecated callable's own
+    DeprecationWarning are answers too, other warnings errors."""
     previous = signal.signal(signal.SIGALRM, _alarm)
     signal.setitimer(signal.ITIMER_REAL, HANG)
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ContactlabWarning)
+            # a deprecated callable's warning ("X is deprecated: use Y") is its answer
+            warnings.filterwarnings("ignore", r"[\w.]+ is deprecated", DeprecationWarning)
             return function(**arguments)
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0.0)
@@ -428,7 +420,7 @@ MUST_REFUSE = {
     "opaque": [("number", 1.0), ("list", [1.0])],
     "values": [("nan", math.nan), ("inf", math.inf), ("text", "1e5"), ("complex", 1j),
                ("ragged", [[1.0], [2.0, 3.0]])],
-    "flag": [], "label": [],
+    "flag": [("text", "no"), ("number", 1.0), ("list", [True])], "label": [],
 }  # fmt: skip
 """Values that no parameter of the kind may accept, by kind; ``None`` is added where the
 parameter has no ``None`` default, ``inf`` is dropped where it is the default (a rigid

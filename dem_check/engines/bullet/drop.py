@@ -3,20 +3,17 @@
 import math
 import time
 
-from contactlab.errors import ParameterError
 from contactlab.validation import check_number
 from dem_check.engines.bullet.limits import contact_time_estimate
 from dem_check.engines.bullet.run import read_steps, step_engine
 from dem_check.engines.bullet.scene import drop_scene
+from dem_check.engines.record import step_limit
 
 __all__ = ["MAX_STEPS", "TAIL", "drop_test"]
 
 MAX_STEPS = 2_000_000
 """Most engine steps one drop test records (0.2 s of engine time at 1e-7 s, about 16 s of
-stepping); more is refused, not allocated."""
-
-_BYTES_PER_STEP = 5 * 32
-"""Memory recorded per step: five Python floats (list slot and float object)."""
+stepping; five Python floats a step, about 320 MB); more is refused, not allocated."""
 
 TAIL = 20e-6
 """Time simulated after the last contact and the end of the sensor signal's first lobe
@@ -113,19 +110,12 @@ def drop_test(
     else:
         after = check_number("duration", duration, low=0.0, unit="s")
         stop = None
-    step_limit = math.ceil((scene.approach_time + after) / dt)
-    if step_limit > MAX_STEPS:
-        raise ParameterError(
-            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {step_limit} engine "
-            f"steps; the bench records at most {MAX_STEPS} (about "
-            f"{MAX_STEPS * _BYTES_PER_STEP / 1e6:.0f} MB of signals): shorten duration or "
-            "lengthen time_step"
-        )
+    limit = step_limit(scene, after, MAX_STEPS, "engine")
     client = pb.connect(pb.DIRECT)  # a fresh engine per run: nothing carries over
     try:
         plate, body = scene.build(client)
         clock = time.perf_counter()
-        columns, complete = step_engine(scene, client, plate, body, stop, step_limit)
+        columns, complete = step_engine(scene, client, plate, body, stop, limit)
         wall = time.perf_counter() - clock
     finally:
         pb.disconnect(client)

@@ -9,7 +9,7 @@ sensor period.
 from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.laws import LinearViscoelastic
-from contactlab.validation import check_number
+from dem_check.engines.steps import check_steps
 
 __all__ = [
     "ENGINE_LAWS",
@@ -82,15 +82,8 @@ def default_time_step(grain, sensor, law):
 
 
 def check_time_step(time_step, grain, sensor, law):
+    """``time_step`` [s] checked (:func:`dem_check.engines.steps.check_steps`), or the
+    default."""
     if time_step is None:
         return default_time_step(grain, sensor, law)
-    limit = contact_time_estimate(grain, law) / MIN_STEPS
-    if not sensor.is_rigid:
-        limit = min(limit, sensor.period / MIN_STEPS)
-    return check_number(
-        "time_step",
-        time_step,
-        low=0.0,
-        high=limit,
-        unit=f"s; {MIN_STEPS} steps per contact and per sensor period",
-    )
+    return check_steps(time_step, contact_time_estimate(grain, law), sensor, MIN_STEPS)

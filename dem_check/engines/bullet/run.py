@@ -6,11 +6,11 @@ step by step, applying the sensor element as a joint force and recording the sta
 """
 
 import math
-import warnings
 
 import numpy as np
 
-from contactlab.errors import ParameterError, WindowWarning
+from contactlab.errors import ParameterError
+from dem_check.engines.record import warn_short_window
 from dem_check.engines.result import EngineResult, contact_crossings
 
 __all__ = ["read_steps", "step_engine"]
@@ -93,12 +93,7 @@ def read_steps(scene, columns, threshold, complete, wall):
     t = steps - touch
     intervals = [(float(a - touch), float(b - touch)) for a, b in zip(starts, ends, strict=True)]
     if not complete or math.isnan(intervals[-1][1]):
-        warnings.warn(
-            f"the engine window ({t[-1]:.4g} s after touch) ended before the contact and the "
-            "sensor signal's first lobe were over; give a longer duration",
-            WindowWarning,
-            stacklevel=3,
-        )
+        warn_short_window("engine", t[-1], stacklevel=3)
     sensor_force = force.copy() if sensor.is_rigid else sensor.stiffness * x1 + sensor.damping * v1
     metadata = {
         "engine": f"pybullet (API {pb.getAPIVersion()})",

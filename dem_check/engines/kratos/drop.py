@@ -1,6 +1,5 @@
 """The Kratos DEM drop test: one impact of the reduced model run in Kratos' DEM application."""
 
-import math
 import tempfile
 import time
 from pathlib import Path
@@ -12,7 +11,7 @@ from dem_check.engines import steps as engine_steps
 from dem_check.engines.kratos.scene import drop_scene
 from dem_check.engines.kratos.session import kratos_version
 from dem_check.engines.kratos.stage import KratosRun
-from dem_check.engines.record import drop_plan, engine_result, impact_over
+from dem_check.engines.record import drop_plan, engine_result, impact_over, step_limit
 
 __all__ = [
     "CHUNK_STEPS",
@@ -116,10 +115,12 @@ def drop_test(
 ):
     """Drop the grain on the sensor in Kratos DEM and read the impact like the reduced model.
 
+    The drop is planned, recorded and read as LAMMPS' (:mod:`dem_check.engines.record`).
+
     Parameters
     ----------
-    grain : Grain
-        The grain (a sphere of its diameter and mass).
+    grain, velocity, gap, duration, threshold, plate_radius
+        As for :func:`dem_check.engines.lammps.drop.drop_test` (the plate a Kratos sphere).
     sensor : Sensor
         ``Sensor.rigid()`` is a rigid plane (a Kratos wall); a real sensor is a plate
         sphere of mass ``m1`` on a spring ``k1`` and damper ``c1``
@@ -127,21 +128,9 @@ def drop_test(
     law : LinearViscoelastic, Hertz or HertzDamped
         Grain-sensor contact, mapped exactly (:mod:`~dem_check.engines.kratos.laws`);
         other laws raise ParameterError.
-    velocity : float
-        Grain speed towards the sensor at release [m/s] (no gravity: the impact speed).
     time_step : float, optional
         Kratos step [s]; default :func:`default_time_step`. At most 1/20 of the contact
         (on an immovable wall) and of the sensor period.
-    gap : float, optional
-        Distance between grain and sensor at release [m]; default 3.5 steps of travel.
-    duration : float, optional
-        Time simulated after the first touch [s]. Default: until
-        :data:`~dem_check.engines.record.TAIL` (20 us) after both
-        the last contact and the end of the sensor signal's first lobe.
-    threshold : float, default 0
-        Level [N] at which the sensor signal's first lobe is read.
-    plate_radius : float, optional
-        Radius of the sensor plate sphere [m]; default ten grain radii.
     materials : str or pathlib.Path, optional
         A ``MaterialsDEM.json`` (e.g. ``contactlab export-dem --to kratos``) to run instead
         of the exact mapping of ``law``, as Kratos reads it (its restitution turned into
@@ -163,32 +152,18 @@ def drop_test(
         Without the ``kratos`` extra (``pip install 'contactlab[kratos]'``).
     """
     plan = drop_plan(
-        grain,
-        sensor,
-        law,
-        velocity,
-        time_step,
-        duration,
-        threshold,
-        lambda: default_time_step(grain, sensor, law, velocity),
-        MIN_STEPS,
+        grain, sensor, law, velocity, time_step, duration, threshold, default_time_step, MIN_STEPS
     )
     velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     scene = drop_scene(grain, sensor, law, velocity, dt, gap, plate_radius)
-    step_limit = math.ceil((scene.approach_time + after) / dt) + 1
-    if step_limit > MAX_STEPS:
-        raise ParameterError(
-            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {step_limit} Kratos "
-            f"steps; the bench runs at most {MAX_STEPS}: shorten duration or lengthen "
-            "time_step"
-        )
+    limit = step_limit(scene, after, MAX_STEPS, "Kratos", start_states=True)
     with tempfile.TemporaryDirectory(prefix="contactlab-kratos-") as folder:
         clock = time.perf_counter()
         stepper = _Stepper(scene, folder, materials)
         complete = False
         try:
-            while len(stepper.rows) < step_limit:
-                stepper.run(min(CHUNK_STEPS, step_limit - len(stepper.rows)))
+            while len(stepper.rows) < limit:
+                stepper.run(min(CHUNK_STEPS, limit - len(stepper.rows)))
                 if stop is not None and impact_over(scene, stepper.columns(), stop):
                     complete = True
                     break

@@ -26,8 +26,6 @@ from pathlib import Path
 
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin
-from contactlab.solver import wall_impact
-from contactlab.validation import check_number
 from dem_check.engines.kratos.laws import HERTZ_LAW, kratos_contact
 from dem_check.engines.kratos.scene import (
     GRAIN_PART,
@@ -40,8 +38,7 @@ from dem_check.engines.kratos.scene import (
     sphere_lines,
 )
 from dem_check.engines.kratos.stage import KratosRun
-from dem_check.engines.rebound import ObliqueRebound
-from dem_check.engines.record import GAP_STEPS
+from dem_check.engines.rebound import ObliqueRebound, oblique_start
 
 __all__ = ["STEPS_PER_CONTACT", "kratos_oblique", "mindlin_poisson_ratio"]
 
@@ -87,14 +84,9 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
     tangential_law : Mindlin
         Its stiffness and friction; Kratos applies its own history rules (module
         docstring).
-    velocity : float
-        Impact speed [m/s].
-    angle : float
-        Angle from the wall normal [rad], in [0, pi/2).
-    spin : float, default 0
-        Initial spin [rad/s], signed as in :func:`contactlab.simulate_oblique`.
-    time_step : float, optional
-        Kratos' step [s]; default the wall contact time over :data:`STEPS_PER_CONTACT`.
+    velocity, angle, spin, time_step
+        As for :func:`~dem_check.engines.lammps.lammps_oblique` (here Kratos' step [s];
+        default the wall contact time over :data:`STEPS_PER_CONTACT`).
 
     Returns
     -------
@@ -108,11 +100,7 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
     ImportError
         Without the ``kratos`` extra.
     """
-    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
-    angle = check_number(
-        "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
-    )
-    spin = check_number("spin", spin, unit="rad/s")
+    start = oblique_start(grain, normal_law, velocity, angle, spin, time_step, STEPS_PER_CONTACT)
     if type(tangential_law) is not Mindlin:
         raise ParameterError(
             f"tangential_law must be Mindlin (Kratos' DEM_D_Hertz_viscous_Coulomb); got "
@@ -123,12 +111,8 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
         raise ParameterError("normal_law must be Hertz or HertzDamped for an oblique impact")
     nu = mindlin_poisson_ratio(normal_law.k_hertz, tangential_law.k_mindlin)
     young = contact.young * (1.0 - nu * nu)  # E = 2 E* (1 - nu**2)
-    vn, vt = velocity * math.cos(angle), velocity * math.sin(angle)
-    contact_time = wall_impact(normal_law, grain.mass, vn).contact_time
-    if time_step is None:
-        time_step = contact_time / STEPS_PER_CONTACT
-    time_step = check_number("time_step", time_step, low=0.0, high=contact_time / 20, unit="s")
-    gap = GAP_STEPS * vn * time_step
+    vn, vt, spin = start.vn, start.vt, start.spin
+    contact_time, time_step, gap = start.contact_time, start.time_step, start.gap
     r = grain.radius
     with tempfile.TemporaryDirectory(prefix="contactlab-kratos-") as name:
         folder = Path(name)
@@ -163,8 +147,8 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
             else:
                 raise RuntimeError(f"the contact lasted more than {steps} steps")
             result = ObliqueRebound(
-                velocity=velocity,
-                angle=angle,
+                velocity=start.velocity,
+                angle=start.angle,
                 spin=spin,
                 radius=r,
                 rebound_normal_velocity=node.GetSolutionStepValue(km.VELOCITY_Z),

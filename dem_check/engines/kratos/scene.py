@@ -28,7 +28,7 @@ from pathlib import Path
 
 from contactlab.inverse.export.kratos import material_relation
 from dem_check.engines.kratos.laws import kratos_contact
-from dem_check.engines.record import drop_geometry
+from dem_check.engines.record import DropCase, drop_geometry
 
 __all__ = [
     "GRAIN_PART",
@@ -220,36 +220,18 @@ def project_parameters(time_step):
 
 
 @dataclass(frozen=True)
-class DropScene:
+class DropScene(DropCase):
     """One drop test as Kratos input (build it with :func:`drop_scene`).
 
     Attributes
     ----------
-    grain, sensor, law, velocity
-        As for :func:`~dem_check.engines.kratos.drop.drop_test`.
     contact : KratosContact
         The law as a Kratos contact law for this contact's ``m*`` and ``R*``.
-    time_step : float
-        [s].
-    gap : float
-        Grain-sensor distance at release [m].
-    plate_radius : float
-        Plate radius [m]; ``nan`` on a rigid sensor.
+    grain, sensor, law, velocity, time_step, gap, plate_radius
+        As for :class:`~dem_check.engines.record.DropCase`.
     """
 
-    grain: object
-    sensor: object
-    law: object
-    velocity: float
     contact: object
-    time_step: float
-    gap: float
-    plate_radius: float
-
-    @property
-    def approach_time(self):
-        """Time from release to touch [s]."""
-        return self.gap / self.velocity
 
     def write(self, folder):
         """Write the model parts and the materials into ``folder`` (an existing folder)."""
@@ -288,11 +270,8 @@ def drop_scene(grain, sensor, law, velocity, time_step, gap=None, plate_radius=N
     grain, sensor, law, velocity, time_step
         As for :func:`~dem_check.engines.kratos.drop.drop_test`; ``time_step`` already
         checked [s].
-    gap : float, optional
-        Release gap [m]; default the travel of 3.5 steps.
-    plate_radius : float, optional
-        Plate radius [m]; default :data:`PLATE_RADIUS_FACTOR` grain radii. Ignored on a
-        rigid sensor.
+    gap, plate_radius : float, optional
+        Release gap and plate radius [m] (:func:`~dem_check.engines.record.drop_geometry`).
 
     Returns
     -------
@@ -308,5 +287,5 @@ def drop_scene(grain, sensor, law, velocity, time_step, gap=None, plate_radius=N
         law, geometry.effective_mass, geometry.effective_radius, wall=sensor.is_rigid
     )
     return DropScene(
-        grain, sensor, law, velocity, contact, time_step, geometry.gap, geometry.plate_radius
+        grain, sensor, law, velocity, time_step, geometry.gap, geometry.plate_radius, contact
     )

@@ -1,14 +1,12 @@
 """The LAMMPS drop test: one impact of the reduced model run in LAMMPS' GRANULAR package."""
 
-import math
 import time
 
-from contactlab.errors import ParameterError
 from dem_check.engines import steps as engine_steps
 from dem_check.engines.lammps.read import read_steps, recorded_columns
 from dem_check.engines.lammps.scene import drop_deck
 from dem_check.engines.lammps.session import LammpsSession
-from dem_check.engines.record import drop_plan, impact_over
+from dem_check.engines.record import drop_plan, impact_over, step_limit
 
 __all__ = [
     "CHUNK_STEPS",
@@ -40,20 +38,8 @@ CHUNK_STEPS = 2000
 def default_time_step(grain, sensor, law, velocity):
     """Default LAMMPS step [s]: ``min(t_c / 1000, T1 / 200)``.
 
-    ``t_c`` is the contact time of the law on an immovable wall at ``velocity`` and ``T1``
-    the sensor period (:func:`dem_check.engines.steps.default_time_step`).
-
-    Parameters
-    ----------
-    grain : Grain
-    sensor : Sensor
-    law : ContactLaw
-    velocity : float
-        Impact speed [m/s].
-
-    Returns
-    -------
-    float
+    ``t_c`` is the contact time of the law on an immovable wall at ``velocity`` [m/s] and
+    ``T1`` the sensor period (:func:`dem_check.engines.steps.default_time_step`).
     """
     return engine_steps.default_time_step(
         grain, sensor, law, velocity, STEPS_PER_CONTACT, STEPS_PER_PERIOD
@@ -129,33 +115,19 @@ def drop_test(
     70.28
     """
     plan = drop_plan(
-        grain,
-        sensor,
-        law,
-        velocity,
-        time_step,
-        duration,
-        threshold,
-        lambda: default_time_step(grain, sensor, law, velocity),
-        MIN_STEPS,
+        grain, sensor, law, velocity, time_step, duration, threshold, default_time_step, MIN_STEPS
     )
     velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     deck = drop_deck(grain, sensor, law, velocity, dt, after, gap, plate_radius)
-    step_limit = math.ceil((deck.approach_time + after) / dt)
-    if step_limit > MAX_STEPS:
-        raise ParameterError(
-            f"duration = {after:.4g} s at time_step = {dt:.3g} s needs {step_limit} LAMMPS "
-            f"steps; the bench records at most {MAX_STEPS}: shorten duration or lengthen "
-            "time_step"
-        )
+    limit = step_limit(deck, after, MAX_STEPS, "LAMMPS")
     with LammpsSession(context=f"LAMMPS drop test of {type(law).__name__}") as session:
         for line, what in deck.lines():
             session.command(line, what)
         clock = time.perf_counter()
         steps = 0
         complete = False
-        while steps < step_limit:
-            chunk = min(CHUNK_STEPS, step_limit - steps)
+        while steps < limit:
+            chunk = min(CHUNK_STEPS, limit - steps)
             session.command(f"run {chunk} post no", "the run")
             steps += chunk
             columns = recorded_columns(session)

@@ -37,20 +37,17 @@ from dataclasses import dataclass
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
 from contactlab.laws.lammps import granular_model
-from contactlab.solver import wall_impact
 from contactlab.validation import check_number
 from dem_check.engines.audit import STEP_ENERGY, audit_oblique_rebound
+from dem_check.engines.lammps.scene import granular_setup
 from dem_check.engines.lammps.session import LammpsSession
-from dem_check.engines.rebound import ObliqueRebound
+from dem_check.engines.rebound import ObliqueRebound, oblique_start
 
 __all__ = ["STEPS_PER_CONTACT", "LammpsOblique", "lammps_oblique", "tangential_words"]
 
 STEPS_PER_CONTACT = 2000
 """Default steps per (wall) contact time: rebound within 1e-4 of the impact speed (worst
 measured 8.3e-5, ``mindlin/force`` at 5 deg; first order in the step)."""
-
-_GAP_STEPS = 3.5
-"""Release gap: the normal travel of 3.5 steps (the grain touches during step 4)."""
 
 _CHUNK = 1.6
 """Contact times run before the rebound is first read (more chunks if still touching)."""
@@ -158,11 +155,7 @@ def _deck(grain, normal_words, tangential, vn, vt, spin, time_step, gap):
     top = r + gap + 4.0 * r
     setup = "the LAMMPS box"
     return [
-        ("units si", setup),
-        ("atom_style sphere", setup),
-        ("atom_modify map array", setup),
-        ("boundary p p f", setup),
-        ("comm_modify vel yes", setup),
+        *granular_setup("p p f", setup),
         (f"region box block {-side!r} {side!r} {-side!r} {side!r} {-r!r} {top!r}", setup),
         ("create_box 1 box", setup),
         (f"create_atoms 1 single 0.0 0.0 {r + gap!r}", "the grain's release gap"),
@@ -211,21 +204,13 @@ def lammps_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
     ImportError
         Without the ``lammps`` extra.
     """
-    velocity = check_number("velocity", velocity, low=0.0, unit="m/s")
-    angle = check_number(
-        "angle", angle, low=0.0, high=math.pi / 2, low_open=False, high_open=True, unit="rad"
-    )
-    spin = check_number("spin", spin, unit="rad/s")
-    vn, vt = velocity * math.cos(angle), velocity * math.sin(angle)
-    contact_time = wall_impact(normal_law, grain.mass, vn).contact_time
-    if time_step is None:
-        time_step = contact_time / STEPS_PER_CONTACT
-    time_step = check_number("time_step", time_step, low=0.0, high=contact_time / 20, unit="s")
+    start = oblique_start(grain, normal_law, velocity, angle, spin, time_step, STEPS_PER_CONTACT)
+    time_step, contact_time = start.time_step, start.contact_time
     model = granular_model(normal_law, grain.mass, grain.radius)
     tangential = tangential_words(tangential_law, grain.radius)
-    gap = _GAP_STEPS * vn * time_step
-    deck = _deck(grain, model.words(tangential), tangential, vn, vt, spin, time_step, gap)
-    chunk = math.ceil((gap / vn + _CHUNK * contact_time) / time_step)
+    words = model.words(tangential)
+    deck = _deck(grain, words, tangential, start.vn, start.vt, start.spin, time_step, start.gap)
+    chunk = math.ceil((start.gap / start.vn + _CHUNK * contact_time) / time_step)
     with LammpsSession(context="oblique impact") as session:
         for line, what in deck:
             session.command(line, what)
@@ -241,9 +226,9 @@ def lammps_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
             raise RuntimeError(f"the contact lasted more than {steps} steps")
         omega = session.lmp.numpy.extract_atom("omega")[0]
         return LammpsOblique(
-            velocity=velocity,
-            angle=angle,
-            spin=spin,
+            velocity=start.velocity,
+            angle=start.angle,
+            spin=start.spin,
             radius=grain.radius,
             rebound_normal_velocity=float(v[2]),
             tangential_velocity=float(v[0]),

@@ -29,49 +29,51 @@ the grain's z force (the contact force: nothing else acts on the grain).
 from dataclasses import dataclass
 
 from contactlab.laws.lammps import granular_model
-from dem_check.engines.record import COLUMNS, PLATE_RADIUS_FACTOR, drop_geometry
+from dem_check.engines.record import COLUMNS, PLATE_RADIUS_FACTOR, DropCase, drop_geometry
 
-__all__ = ["COLUMNS", "PLATE_RADIUS_FACTOR", "RECORD", "DropDeck", "drop_deck"]
+__all__ = [
+    "COLUMNS",
+    "PLATE_RADIUS_FACTOR",
+    "RECORD",
+    "DropDeck",
+    "drop_deck",
+    "granular_setup",
+]
 
 
 RECORD = "record"
 """ID of the fix that records the steps."""
 
 
+def granular_setup(boundary, what):
+    """The first lines of a granular deck, ``[(line, what), ...]``: SI units, finite-size
+    spheres, atoms found by ID, the ``boundary`` (e.g. ``"f f f"``) and ghost atoms'
+    velocities (the granular pair styles read them)."""
+    return [
+        ("units si", what),
+        ("atom_style sphere", what),
+        ("atom_modify map array", what),
+        (f"boundary {boundary}", what),
+        ("comm_modify vel yes", what),
+    ]
+
+
 @dataclass(frozen=True)
-class DropDeck:
+class DropDeck(DropCase):
     """One drop test as LAMMPS input lines (build it with :func:`drop_deck`).
 
     Attributes
     ----------
-    grain, sensor, law, velocity
-        As for :func:`~dem_check.engines.lammps.drop.drop_test`.
     model : GranularModel
         The law as a LAMMPS granular model for this contact's ``m*`` and ``R*``.
-    time_step : float
-        [s].
-    gap : float
-        Grain-sensor distance at release [m].
-    plate_radius : float
-        Plate radius [m]; ``nan`` on a rigid sensor.
     height : float
         Box height above the sensor [m]: the grain's largest possible travel.
+    grain, sensor, law, velocity, time_step, gap, plate_radius
+        As for :class:`~dem_check.engines.record.DropCase`.
     """
 
-    grain: object
-    sensor: object
-    law: object
-    velocity: float
     model: object
-    time_step: float
-    gap: float
-    plate_radius: float
     height: float
-
-    @property
-    def approach_time(self):
-        """Time from release to touch [s]."""
-        return self.gap / self.velocity
 
     def lines(self):
         """``[(line, what), ...]``: the deck, each line with what it sets (for errors)."""
@@ -81,11 +83,7 @@ class DropDeck:
         side = 2.0 * (r2 if rigid else self.plate_radius)
         setup = "the LAMMPS box"
         lines = [
-            ("units si", setup),
-            ("atom_style sphere", setup),
-            ("atom_modify map array", setup),
-            ("boundary f f f", setup),
-            ("comm_modify vel yes", setup),
+            *granular_setup("f f f", setup),
             (
                 f"region box block {-side!r} {side!r} {-side!r} {side!r} {bottom!r} "
                 f"{self.height!r}",
@@ -148,11 +146,8 @@ def drop_deck(grain, sensor, law, velocity, time_step, duration, gap=None, plate
         checked [s].
     duration : float
         Longest time simulated after touch [s] (sizes the box).
-    gap : float, optional
-        Release gap [m]; default the travel of 3.5 steps.
-    plate_radius : float, optional
-        Plate radius [m]; default :data:`PLATE_RADIUS_FACTOR` grain radii. Ignored on a
-        rigid sensor.
+    gap, plate_radius : float, optional
+        Release gap and plate radius [m] (:func:`~dem_check.engines.record.drop_geometry`).
 
     Returns
     -------
@@ -169,5 +164,5 @@ def drop_deck(grain, sensor, law, velocity, time_step, duration, gap=None, plate
     # the grain never moves faster than at release (no gravity, dissipative contact)
     height = r2 + gap + velocity * (gap / velocity + duration) + 4.0 * r2
     return DropDeck(
-        grain, sensor, law, velocity, model, time_step, gap, geometry.plate_radius, height
+        grain, sensor, law, velocity, time_step, gap, geometry.plate_radius, model, height
     )

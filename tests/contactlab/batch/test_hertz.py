@@ -11,7 +11,7 @@ import pytest
 import contactlab as cl
 from contactlab import analytic
 from contactlab.batch import RESULT_COLUMNS, dask_hertz_impacts, hertz_impacts
-from contactlab.batch.rows import result_numbers
+from contactlab.batch.rows import result_row
 from contactlab.errors import ParameterError
 
 # The random frames reach over-damped sensors (damping ratio up to 3.2) on purpose, to cover
@@ -59,7 +59,7 @@ def single(row, rtol):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # coarse default grids: the numbers are dense
         res = cl.simulate_impact(cl.Grain.from_mass(m2), sensor, law, v0, rtol=rtol)
-    return np.array(result_numbers(res))
+    return np.array(result_row(res))
 
 
 def relative(a, b):

@@ -12,7 +12,7 @@ import pytest
 import contactlab as cl
 from contactlab import analytic
 from contactlab.batch import RESULT_COLUMNS, dask_linear_impacts, linear_impacts
-from contactlab.batch.rows import result_numbers
+from contactlab.batch.rows import result_row
 from contactlab.errors import ParameterError, ResolutionWarning
 
 AGREEMENT = 1e-9
@@ -55,7 +55,7 @@ def single(row, factor=1.0):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         res = cl.simulate_impact(cl.Grain.from_mass(m2), sensor, law, v0 * factor)
-        numbers = result_numbers(res)
+        numbers = result_row(res)
     coarse = any(issubclass(w.category, ResolutionWarning) for w in caught)
     return np.array(numbers), coarse, res
 

@@ -7,6 +7,7 @@ import subprocess
 import sys
 
 import pytest
+from documents import PAPER_CASE, PAPER_SENSOR
 
 from contactlab.cli import _build_parser
 from contactlab.cli import main as contactlab_main
@@ -15,31 +16,14 @@ from contactlab.cli.setup import COMPILE_NOTICE, TEMPLATE, announce_compile
 from contactlab.config import PRESET_DIR, load_config
 from dem_check.cli import main as dem_check_main
 
-CASE = """
-[grain]
-diameter = {diameter}
-density = 765.0
-[contact]
-law = "linear"
-stiffness = 1.0e5
-damping = 1.0
-[sensor]
-rigid = {rigid}
-{sensor}
-[simulation]
-velocity = {velocity}
-duration = 500.0e-6
-"""
-SENSOR = "resonance = 40.0e3\nmass = 1.233e-3\ndamping_ratio = 0.02"
-
 
 def case(tmp_path, diameter=5e-3, velocity=2.0, rigid=False):
+    """The paper's base case as a TOML file, with another grain diameter [m], impact speed
+    [m/s] or a rigid sensor."""
     path = tmp_path / "case.toml"
-    sensor = "" if rigid else SENSOR
-    text = CASE.format(
-        diameter=diameter, velocity=velocity, rigid=str(rigid).lower(), sensor=sensor
-    )
-    path.write_text(text)
+    text = PAPER_CASE.replace("diameter = 5.0e-3", f"diameter = {diameter!r}")
+    text = text.replace("velocity = 2.0", f"velocity = {velocity!r}")
+    path.write_text(text.replace(PAPER_SENSOR, "rigid = true") if rigid else text)
     return path
 
 

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from documents import E_STAR, GRAIN, VELOCITY, fit_document
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -16,9 +17,6 @@ from contactlab.inverse import export_dem
 from contactlab.inverse.export.kratos import kratos_hertz_restitution, thornton_gamma
 from contactlab.solver.wall import wall_impact
 
-GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-VELOCITY = 2.0  # [m/s]
-E_STAR = 2.25e7  # [Pa]
 FIXED_STRINGS = {
     "grain",
     "plate",
@@ -30,24 +28,13 @@ FIXED_STRINGS = {
 }
 
 
-def _fit(law_name, law, fitted):
-    entry = {"stderr": 0.0, "ci95": [None, None], "identifiable": True}
-    return {
-        "law": law_name,
-        "law_parameters": law.parameters(),
-        "parameters": {k: {"value": v, "unit": u, **entry} for k, (v, u) in fitted.items()},
-        "velocity [m/s]": VELOCITY,
-        "grain": GRAIN.to_dict(),
-    }
-
-
 def _hertz_fit(restitution):
     k_hertz = analytic.hertz_stiffness(E_STAR, GRAIN.radius)
     law = cl.laws.HertzDamped(
         k_hertz, analytic.tsuji_damping_coefficient(k_hertz, GRAIN.mass, restitution)
     )
     fitted = {"effective_modulus": (E_STAR, "Pa"), "restitution": (restitution, "-")}
-    return law, _fit("hertz_damped", law, fitted)
+    return law, fit_document("hertz_damped", law, fitted)
 
 
 @settings(max_examples=200, deadline=None)
@@ -84,7 +71,7 @@ def test_kratos_force_from_the_file_is_the_fitted_law(restitution):
 def test_linear_file_gives_the_fitted_stiffness_and_rebound():
     damping = analytic.linear_damping_from_restitution(1e5, 0.5, GRAIN.mass)
     law = cl.laws.LinearViscoelastic(1e5, damping)
-    fit = _fit("linear", law, {"stiffness": (1e5, "N/m"), "damping": (damping, "N*s/m")})
+    fit = fit_document("linear", law, {"stiffness": (1e5, "N/m"), "damping": (damping, "N*s/m")})
     document = json.loads(export_dem(fit, "kratos"))
     grain, plate = (m["Variables"] for m in document["materials"])
     e_star = 1.0 / (

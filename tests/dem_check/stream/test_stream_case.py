@@ -16,6 +16,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.errors import ParameterError
+from dem_check.campaign import Effects
 from dem_check.stream import DEFAULT_CASE, Feed, Flow, Plate, calibration_curve, read_case, score
 from dem_check.stream.feed import gravity_vector, schedule
 
@@ -68,6 +69,33 @@ def test_read_case_builds_the_species_laws(tmp_path):
     assert case.sensor.resonance == pytest.approx(40e3, rel=1e-12)  # rounding of k1/m1
 
 
+WHEAT = "[[particles]]\nspecies = 'wheat'\ncontact = {law = 'linear', stiffness = 1e4}\n"
+
+
+def test_read_case_reads_straw_and_record_effects(tmp_path):
+    path = tmp_path / "case.toml"
+    path.write_text(
+        CASE_TOML + "[[particles]]\nname = 'straw'\ndiameter = 3e-3\ndensity = 150.0\nspheres = 6\n"
+        "spacing = 0.5\ntilt_deg = 20.0\ncontact = {law = 'linear', stiffness = 5e3}\n"
+        "[effects]\nhum = 0.02\nharmonics = [0.3]\nplate_modes = [[730.0, 0.01]]\n"
+        "full_scale = 20.0\n",
+        encoding="utf-8",
+    )
+    case = read_case(path)
+    straw = case.particles[1]
+    assert (straw.spheres, straw.spacing, straw.tilt_deg) == (6, 0.5, 20.0)
+    # centres 0.5 diameters apart about the centre of mass
+    assert straw.offsets(3e-3) == pytest.approx(
+        [-3.75e-3, -2.25e-3, -0.75e-3, 0.75e-3, 2.25e-3, 3.75e-3], abs=1e-18
+    )
+    grain = straw.classes()[0][0]
+    # the law's grain: a sphere's diameter carrying the clump's mass (six spheres)
+    assert grain.mass == pytest.approx(6 * 150.0 * math.pi / 6 * 3e-3**3, rel=1e-15)
+    assert case.effects == Effects(
+        hum=0.02, harmonics=(0.3,), plate_modes=((730.0, 0.01),), full_scale=20.0
+    )
+
+
 @pytest.mark.parametrize(
     ("text", "named"),
     [
@@ -78,6 +106,19 @@ def test_read_case_builds_the_species_laws(tmp_path):
             "[[particles]]\nspecies = 'wheat'\ncontact = {law = 'linear', stiffness = 1e4}\n",
             "[flow]",
         ),
+        (
+            "[flow]\nrate = 1.0\n[[particles]]\nspecies = 'wheat'\nspheres = 0\n"
+            "contact = {law = 'linear', stiffness = 1e4}\n",
+            "spheres",
+        ),
+        (
+            "[flow]\nrate = 1.0\n[[particles]]\nspecies = 'wheat'\nspacing = 1.5\n"
+            "contact = {law = 'linear', stiffness = 1e4}\n",
+            "spacing",
+        ),
+        (WHEAT + "[flow]\nrate = 1.0\n[effects]\nbounce = 0.4\n", "bounce"),
+        (WHEAT + "[flow]\nrate = 1.0\n[effects]\nhum = -1.0\n", "hum"),
+        (WHEAT + "[flow]\nrate = 1.0\n[effects]\nhumm = 1.0\n", "humm"),
     ],
 )
 def test_bad_cases_are_refused_naming_the_key(tmp_path, text, named):
@@ -133,7 +174,10 @@ def test_every_particle_reaches_its_aim_with_its_velocity():
         v = row[["vx [m/s]", "vy [m/s]", "vz [m/s]"]].to_numpy(float)
         at_aim, v_aim = x + v * back + 0.5 * g * back**2, v + g * back
         # ballistic closed form: the centre is one radius above the plate at the aim time
-        assert at_aim[2] == pytest.approx(row["diameter [m]"] / 2, abs=1e-12)
+        # (a straw's centre of mass: its lowest sphere's, half its row of touching
+        # spheres higher along its tilted axis)
+        rise = 0.5 * (row["spheres"] - 1) * row["diameter [m]"] * row["axis_z [-]"]
+        assert at_aim[2] == pytest.approx(row["diameter [m]"] / 2 + rise, abs=1e-12)
         assert np.hypot(*at_aim[:2]) <= case.feed.spot + 1e-12
         assert np.linalg.norm(v_aim) == pytest.approx(row["speed [m/s]"], rel=1e-12)
         incidence = math.degrees(math.acos(-v_aim[2] / np.linalg.norm(v_aim)))
@@ -213,3 +257,24 @@ def test_calibration_recovers_a_linear_plate():
     assert calibration.intercept == pytest.approx(-2.0 / 300.0, rel=1e-12)
     assert np.abs(calibration.table["error [%]"]).max() < 1e-9
     assert list(calibration.table["flow [kg/s]"]) == pytest.approx([0.025, 0.05, 0.075, 0.1])
+
+
+def test_discrimination_separates_three_kinds_and_counts_every_hit():
+    from dem_check.stream import FEATURES, discrimination
+
+    rng = np.random.default_rng(0)
+    centres = {"wheat": 6.0, "chaff": 0.4, "straw": 0.05}  # peak [N]
+    rows = []
+    for kind, peak in centres.items():
+        for _ in range(15):
+            values = np.exp(rng.normal(0.0, 0.05, len(FEATURES)))  # 5 % scatter
+            rows.append(
+                {
+                    "kind": kind,
+                    **dict(zip(FEATURES, values * [peak, 2e-5, 1e-4, 3e-5], strict=True)),
+                }
+            )
+    matrix = discrimination(pd.DataFrame(rows))
+    # log peaks 2 to 5 apart against a scatter of 0.05: no centroid is nearer than its own
+    assert list(matrix.index) == list(matrix.columns) == sorted(centres)
+    assert np.array_equal(matrix.to_numpy(), 15 * np.eye(3, dtype=int))

@@ -21,9 +21,10 @@ pytestmark = pytest.mark.lammps
 
 CASE_CODE = (
     "DEFAULT_CASE.with_(duration=3e-3, feed=Feed(release=3e-3, spot=3e-3), slot=1e-3, "
-    "flow=Flow(rate=1000.0, arrivals='regular'))"
+    "flow=Flow(rate=1000.0, arrivals='regular'), seed=3)"
 )
-"""Three particles, a wheat grain and chaff among them (both laws, two wall fixes)."""
+"""Three particles: two wheat grains and a straw (a rigid clump of six spheres: two
+laws, two wall fixes, a rigid body split between the ranks' subdomains)."""
 
 SCRIPT = f"""
 import sys, warnings
@@ -60,7 +61,8 @@ def test_two_ranks_give_the_same_truth(tmp_path):
         warnings.simplefilter("ignore")
         single = run_stream(eval(CASE_CODE)).truth  # the script's case
     parallel = pd.read_csv(out)
-    assert len(single) >= 1 and list(parallel["pid"]) == list(single["pid"])
+    assert set(single["kind"]) == {"wheat", "straw"}
+    assert list(parallel["pid"]) == list(single["pid"])
     numeric = single.select_dtypes("number").columns
     # only the summation order of the plate force differs between 1 and 2 ranks
     pd.testing.assert_frame_equal(

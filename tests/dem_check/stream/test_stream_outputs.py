@@ -82,3 +82,22 @@ def test_laboratory_effects_reach_the_trace(result):
     # what was added is exactly a 50 Hz sine of amplitude 0.05 N (rounding only)
     assert np.hypot(a, b) == pytest.approx(0.05, rel=1e-9)
     assert np.abs(basis @ [a, b] - extra).max() < 1e-12
+
+
+def test_the_cases_effects_are_the_traces_default(result):
+    import copy
+
+    from dem_check.campaign import Effects
+
+    effects = Effects(pink=0.01, drift=0.05, hum=0.02, full_scale=30.0, bits=12)
+    realistic = copy.copy(result)
+    realistic.case = result.case.with_(effects=effects)
+    default, given = realistic.trace(), result.trace(effects=effects)
+    # the same effects from the same seed: the same samples
+    assert np.array_equal(default.values, given.values)
+    # a 12-bit ADC of +-30 N: every sample on its grid of 60 / 2**12 N (rounding only)
+    lsb = 60.0 / 2**12
+    assert (
+        np.abs(np.asarray(default.values) / lsb - np.round(np.asarray(default.values) / lsb)).max()
+        < 1e-6
+    )

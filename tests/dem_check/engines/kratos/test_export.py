@@ -11,6 +11,7 @@ the exported time step, and set against the fitted law's exact wall impact
 import json
 
 import pytest
+from documents import E_STAR, GRAIN, VELOCITY, fit_document
 
 import contactlab as cl
 from contactlab import analytic
@@ -21,22 +22,6 @@ from contactlab.solver import wall_impact
 from dem_check.engines.kratos import drop_test
 
 pytestmark = pytest.mark.kratos
-
-GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-VELOCITY = 2.0  # [m/s]
-E_STAR = 2.25e7  # [Pa]
-
-
-def _fit(law_name, law, fitted):
-    """The FIT.json layout of ContactFit.to_dict for a known law."""
-    entry = {"stderr": 0.0, "ci95": [None, None], "identifiable": True}
-    return {
-        "law": law_name,
-        "law_parameters": law.parameters(),
-        "parameters": {k: {"value": v, "unit": u, **entry} for k, (v, u) in fitted.items()},
-        "velocity [m/s]": VELOCITY,
-        "grain": GRAIN.to_dict(),
-    }
 
 
 def _fits(restitution):
@@ -49,11 +34,13 @@ def _fits(restitution):
     return {
         "linear": (
             linear,
-            _fit("linear", linear, {"stiffness": (1e5, "N/m"), "damping": (damping, "N*s/m")}),
+            fit_document(
+                "linear", linear, {"stiffness": (1e5, "N/m"), "damping": (damping, "N*s/m")}
+            ),
         ),
         "hertz_damped": (
             hertz_damped,
-            _fit(
+            fit_document(
                 "hertz_damped",
                 hertz_damped,
                 {"effective_modulus": (E_STAR, "Pa"), "restitution": (restitution, "-")},
@@ -61,7 +48,7 @@ def _fits(restitution):
         ),
         "hertz": (
             cl.laws.Hertz(k_hertz),
-            _fit("hertz", cl.laws.Hertz(k_hertz), {"effective_modulus": (E_STAR, "Pa")}),
+            fit_document("hertz", cl.laws.Hertz(k_hertz), {"effective_modulus": (E_STAR, "Pa")}),
         ),
     }
 

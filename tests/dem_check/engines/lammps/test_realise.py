@@ -8,6 +8,7 @@ inputs realise the other codes' zero-overlap rebound (the MercuryDPM row of the 
 """
 
 import pytest
+from documents import E_STAR, GRAIN, VELOCITY, fit_document
 
 import contactlab as cl
 from contactlab import analytic
@@ -19,22 +20,6 @@ from dem_check.engines.lammps.realise import realise_snippet
 
 pytestmark = pytest.mark.lammps
 
-GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-VELOCITY = 2.0  # [m/s]
-E_STAR = 2.25e7  # [Pa]
-
-
-def _fit(law_name, law, fitted):
-    """The FIT.json layout of ContactFit.to_dict for a known law."""
-    entry = {"stderr": 0.0, "ci95": [None, None], "identifiable": True}
-    return {
-        "law": law_name,
-        "law_parameters": law.parameters(),
-        "parameters": {k: {"value": v, "unit": u, **entry} for k, (v, u) in fitted.items()},
-        "velocity [m/s]": VELOCITY,
-        "grain": GRAIN.to_dict(),
-    }
-
 
 def _fits():
     k_hertz = analytic.hertz_stiffness(E_STAR, GRAIN.radius)
@@ -45,11 +30,11 @@ def _fits():
     return {
         "linear": (
             linear,
-            _fit("linear", linear, {"stiffness": (1e5, "N/m"), "damping": (1.0, "N*s/m")}),
+            fit_document("linear", linear, {"stiffness": (1e5, "N/m"), "damping": (1.0, "N*s/m")}),
         ),
         "hertz_damped": (
             hertz_damped,
-            _fit(
+            fit_document(
                 "hertz_damped",
                 hertz_damped,
                 {"effective_modulus": (E_STAR, "Pa"), "restitution": (0.5, "-")},
@@ -57,7 +42,7 @@ def _fits():
         ),
         "hertz": (
             cl.laws.Hertz(k_hertz),
-            _fit("hertz", cl.laws.Hertz(k_hertz), {"effective_modulus": (E_STAR, "Pa")}),
+            fit_document("hertz", cl.laws.Hertz(k_hertz), {"effective_modulus": (E_STAR, "Pa")}),
         ),
     }
 
