@@ -9,7 +9,9 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   bounces, written as HDF5 (not timed); ``run_campaign`` on it, timed, against reading
   the file alone (same run).
 - ``--accuracy``: 4 records of 4 impacts (and their bounces) per configuration (1, 2 and
-  5 MHz without crosstalk, 2 MHz with crosstalk of 2 % of each peak), impacts of
+  5 MHz without crosstalk, 2 MHz with crosstalk of 2 % of each peak, 1, 2 and 5 MHz with
+  crosstalk and 1/f noise of 0.3 sigma), with the crosstalk removal of ``run_campaign``
+  (``--no-crosstalk``: without it), impacts of
   0.5-2.5 m/s, clipping off (a clipped impact is flagged, not measured) and offset steps
   off (docs/campaign.md);
   the largest and 95th-percentile errors of the analysed impacts against the model's
@@ -33,6 +35,7 @@ from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.structure import record_modes
 
 ROOT = Path(__file__).resolve().parents[1]
 NOISE = 0.03  # [N]
@@ -90,6 +93,9 @@ CONFIGURATIONS = {
     "2 MHz, no 1/f": (2e6, {"crosstalk": 0.0, "pink": 0.0}),
     "2 MHz, crosstalk 0.2 %": (2e6, {"crosstalk": 0.002}),
     "2 MHz, crosstalk 2 %": (2e6, {"crosstalk": 0.02}),
+    "2 MHz, 1/f 0.3, crosstalk 2 %": (2e6, {"crosstalk": 0.02, "pink": 0.3 * NOISE}),
+    "5 MHz, 1/f 0.3, crosstalk 2 %": (5e6, {"crosstalk": 0.02, "pink": 0.3 * NOISE}),
+    "1 MHz, 1/f 0.3, crosstalk 2 %": (1e6, {"crosstalk": 0.02, "pink": 0.3 * NOISE}),
 }
 """Configurations of ``--accuracy``: every effect of ``Effects.everything`` (1/f noise as
 large as the white noise, drift of 20 sigma, hum of 1.5 sigma, bounces at 40 % of the
@@ -133,10 +139,11 @@ def _errors(row, true, rate, noise):
     }
 
 
-def _analyse(record, sensor, grain, rate, counts):
+def _analyse(record, sensor, grain, rate, counts, crosstalk=True):
     """Detection and analysis of one record in memory (what ``run_campaign`` does for
     each impact, without the files and the report); the errors of its impacts."""
     found = find_impacts(record.trace, sensor)
+    modes = record_modes(found, sensor) if crosstalk else []
     truth, rows = record.truth, []
     for window in found.impacts:
         gap = np.abs(truth["onset [s]"] - window.onset)
@@ -147,7 +154,7 @@ def _analyse(record, sensor, grain, rate, counts):
         if window.status not in ANALYSED:
             rows.append({"status": window.status})
             continue
-        row, _ = analyse_impact(found, window, sensor, grain)
+        row, _ = analyse_impact(found, window, sensor, grain, crosstalk=crosstalk, modes=modes)
         rows.append(_errors(row, true, rate, record.noise) if row["status"] == "ok" else row)
     onsets = np.array([w.onset for w in found.impacts])
     for onset in truth["onset [s]"]:
@@ -156,13 +163,14 @@ def _analyse(record, sensor, grain, rate, counts):
     return rows
 
 
-def accuracy(names=None):
+def accuracy(names=None, crosstalk=True):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
+    print(f"crosstalk removal {'on' if crosstalk else 'off'}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
         for record in _records(rate, range(RECORDS), changes):
-            for row in _analyse(record, sensor, grain, rate, counts):
+            for row in _analyse(record, sensor, grain, rate, counts, crosstalk):
                 rows.append({"configuration": name, **row})
     table = pd.DataFrame(rows)
     print(counts)
@@ -185,11 +193,14 @@ def main():
     parser.add_argument("--speed", action="store_true")
     parser.add_argument("--accuracy", action="store_true")
     parser.add_argument("--configuration", action="append", choices=list(CONFIGURATIONS))
+    parser.add_argument(
+        "--no-crosstalk", action="store_true", help="accuracy without the crosstalk removal"
+    )
     args = parser.parse_args()
     if args.speed or not args.accuracy:
         speed()
     if args.accuracy or not args.speed:
-        accuracy(args.configuration)
+        accuracy(args.configuration, crosstalk=not args.no_crosstalk)
 
 
 if __name__ == "__main__":

@@ -17,6 +17,7 @@ Unknown tables and keys are rejected by name; the flags ``rigid`` and ``from_mat
 must be TOML booleans (``true``/``false``), not strings or numbers.
 """
 
+import inspect
 import json
 import tomllib
 from collections.abc import Mapping
@@ -25,7 +26,8 @@ from pathlib import Path
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
-from contactlab.laws import LAWS, Hertz, HertzDamped, LinearViscoelastic
+from contactlab.laws import LAWS
+from contactlab.laws.base import stated
 from contactlab.quantities import column
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, check_path, unknown_keywords, with_suggestion
@@ -70,9 +72,10 @@ class ImpactConfig:
 
     def batch_row(self):
         """The set-up as one input row of a batch solver (columns named as in
-        :mod:`contactlab.quantities`): :func:`contactlab.batch.linear_impacts` for a
-        LinearViscoelastic law, :func:`contactlab.batch.hertz_impacts` for Hertz and
-        HertzDamped (elastic Hertz: zero damping).
+        :mod:`contactlab.quantities`; the law gives its own, ``law._batch_contact()``):
+        :func:`contactlab.batch.linear_impacts` for a LinearViscoelastic law,
+        :func:`contactlab.batch.hertz_impacts` for Hertz and HertzDamped (elastic Hertz:
+        zero damping).
 
         Raises
         ------
@@ -80,16 +83,13 @@ class ImpactConfig:
             For a law no batch solver takes.
         """
         law, sensor = self.law, self.sensor
-        if isinstance(law, LinearViscoelastic):
-            contact = {column("k2"): law.stiffness, column("c2"): law.damping}
-        elif type(law) in (Hertz, HertzDamped):
-            damping = law.damping if isinstance(law, HertzDamped) else 0.0
-            contact = {column("k_hertz"): law.k_hertz, column("damping"): damping}
-        else:
+        batch_contact = stated(law, "_batch_contact")
+        if batch_contact is None:
+            have = ", ".join(cls.__name__ for cls in LAWS.values() if "_batch_contact" in vars(cls))
             raise ParameterError(
-                f"law {type(law).__name__} has no batch solver (LinearViscoelastic, Hertz, "
-                "HertzDamped have); use simulate()"
+                f"law {type(law).__name__} has no batch solver ({have} have); use simulate()"
             )
+        _, contact = batch_contact()
         return {
             column("m1"): sensor.mass,
             column("k1"): sensor.stiffness,
@@ -127,11 +127,13 @@ def _law(table, grain):
         raise ParameterError(f"[contact] needs law = one of {', '.join(LAWS)}")
     name = check_choice("[contact] law", table.pop("law"), tuple(LAWS))
     if _flag(table, "from_material", "contact"):
-        if name not in ("hertz", "hertz_damped", "thornton"):
-            raise ParameterError(f"from_material is for Hertz-family laws, not {name!r}")
-        if name == "hertz_damped":
+        from_material = getattr(LAWS[name], "from_material", None)
+        if from_material is None:
+            have = ", ".join(key for key, cls in LAWS.items() if hasattr(cls, "from_material"))
+            raise ParameterError(f"from_material is for Hertz-family laws ({have}), not {name!r}")
+        if "mass" in inspect.signature(from_material).parameters:
             table.setdefault("mass", grain.mass)
-        return _build("contact", LAWS[name].from_material, *grain.material(), **table)
+        return _build("contact", from_material, *grain.material(), **table)
     return _build("contact", LAWS[name], **table)
 
 

@@ -47,6 +47,17 @@ def finish_force_axes(ax, title=None, t_us=None):
     ax.legend(loc="upper right", frameon=False)
 
 
+def _force_plot(t, curves, ax, title):
+    """Forces against time in microseconds, one line per ``(force [N], line width,
+    colour, label)`` of ``curves`` (``t`` [s]); returns ``(figure, axes)``."""
+    fig, ax = axes_or_new(ax)
+    t_us = t * 1e6
+    for force, width, color, label in curves:
+        ax.plot(t_us, force, lw=width, color=color, label=label)
+    finish_force_axes(ax, title, t_us)
+    return fig, ax
+
+
 def plot_impact(result, ax=None, title=None):
     """Contact force S2 (thick line) and sensor signal S1 (thin line) against time.
 
@@ -63,12 +74,11 @@ def plot_impact(result, ax=None, title=None):
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    fig, ax = axes_or_new(ax)
-    t_us = result.t * 1e6
-    ax.plot(t_us, result.contact_force, lw=2.6, color="black", label="contact force $S_2$")
-    ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
-    finish_force_axes(ax, title, t_us)
-    return fig, ax
+    curves = [
+        (result.contact_force, 2.6, "black", "contact force $S_2$"),
+        (result.sensor_force, 1.0, "tab:red", "sensor signal $S_1$"),
+    ]
+    return _force_plot(result.t, curves, ax, title)
 
 
 def plot_oblique(result, ax=None, title=None):
@@ -79,19 +89,17 @@ def plot_oblique(result, ax=None, title=None):
     result : ObliqueResult
         The impact to draw; time in microseconds, forces in newtons.
     ax : matplotlib.axes.Axes, optional
-        Axes to draw into; a new figure is made when None.
     title : str, optional
-        Axes title.
+        As for :func:`plot_impact`.
 
     Returns
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
     """
-    fig, ax = axes_or_new(ax)
-    t_us = result.t * 1e6
-    ax.plot(t_us, result.normal_force, lw=2.6, color="black", label="normal force $S_2$")
-    ax.plot(t_us, result.tangential_force, lw=1.6, color="tab:blue", label="tangential force")
+    curves = [
+        (result.normal_force, 2.6, "black", "normal force $S_2$"),
+        (result.tangential_force, 1.6, "tab:blue", "tangential force"),
+    ]
     if not result.sensor.is_rigid:
-        ax.plot(t_us, result.sensor_force, lw=1.0, color="tab:red", label="sensor signal $S_1$")
-    finish_force_axes(ax, title, t_us)
-    return fig, ax
+        curves.append((result.sensor_force, 1.0, "tab:red", "sensor signal $S_1$"))
+    return _force_plot(result.t, curves, ax, title)

@@ -339,6 +339,38 @@ def _block_spread(distance, edges, exclude):
     return np.interp(np.arange(spread.size), valid, spread[valid])
 
 
+def _edge_levels(y, span, medians):
+    """Levels the first block has before it and the last block after it: the median of
+    the record's first (last) ``span`` samples when they are quiet, else the outer
+    block's median.
+
+    A DC offset step in the first block leaves the samples before it with no block level
+    of their own (the block's median is the level after the step), and one in the last
+    block those after it. The record's first ``span`` samples give their level, if they
+    hold no pulse: their robust noise must be at most :data:`EDGE_QUIET` times the
+    white noise of the outer block (read on its first differences, which a step, drift
+    or a pulse barely moves), else a record that starts at an impact would offer the
+    impact's own level as a baseline."""
+    levels = []
+    block = span * LOCAL_MEAN_FRACTION
+    for part, outer, edge in (
+        (y[:span], medians[0], y[:block]),
+        (y[-span:], medians[-1], y[-block:]),
+    ):
+        differences = np.diff(edge)
+        white = MAD_TO_SIGMA * float(np.median(np.abs(differences - np.median(differences))))
+        level = float(np.median(part))
+        spread = MAD_TO_SIGMA * float(np.median(np.abs(part - level)))
+        levels.append(level if spread <= EDGE_QUIET * white / np.sqrt(2.0) else outer)
+    return levels
+
+
+EDGE_QUIET = 3.0
+"""Largest robust noise of a record's first or last eighth of a block, in white-noise
+sigmas, for it to give the level before a step in the first block (after one in the
+last) [-]: 1/f noise and hum add a little to the white noise over so short a stretch; a
+pulse of 6 sigmas or more with its ringing adds more."""
+
 LOCAL_MEAN_FRACTION = 8
 """The level of a sample is chosen by the mean of the samples on one side of it over
 this fraction of a block [-]: long enough to average the noise out (so the choice does
@@ -407,9 +439,10 @@ def running_baseline(y, width, exclude=None):
         level[head] = medians[0] + slope[0] * (index[head] - centres[0])
         level[tail] = medians[-1] + slope[-1] * (index[tail] - centres[-1])
     block = np.repeat(np.arange(medians.size), np.diff(edges))
-    before = medians[np.maximum(block - 1, 0)]
-    after = medians[np.minimum(block + 1, medians.size - 1)]
     span = max(2, width // LOCAL_MEAN_FRACTION)
+    head, tail = _edge_levels(y, span, medians)
+    before = np.r_[head, medians][block]
+    after = np.r_[medians, tail][block + 1]
     candidates = np.stack([level, medians[block], before, after])
     local_mean = _side_means(y, span)
     nearest = np.argmin(np.abs(local_mean - candidates), axis=0)

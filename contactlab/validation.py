@@ -14,6 +14,7 @@ import numbers
 import os
 import re
 from collections.abc import Hashable
+from pathlib import Path
 
 import numpy as np
 
@@ -35,6 +36,7 @@ __all__ = [
     "check_text",
     "check_values",
     "keyword_checked",
+    "make_folder",
     "numbers_checked",
     "unknown_keywords",
     "with_suggestion",
@@ -194,6 +196,14 @@ def check_path(name, value):
     if not isinstance(value, str | os.PathLike) or not os.fspath(value):
         raise ParameterError(f"{name} must be a file path (str or pathlib.Path); got {value!r}")
     return value
+
+
+def make_folder(name, value):
+    """Check ``value`` is a path (:func:`check_path`), create that folder and its parents
+    where missing, and return it as a :class:`pathlib.Path`."""
+    folder = Path(check_path(name, value))
+    folder.mkdir(parents=True, exist_ok=True)
+    return folder
 
 
 def check_positive(name, value, unit=""):

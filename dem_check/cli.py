@@ -8,7 +8,7 @@ import json
 import sys
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import Parser, add_strict, run
+from contactlab.cli.running import Parser, add_outputs, add_strict, run
 from contactlab.config import load
 from contactlab.errors import ParameterError
 
@@ -117,6 +117,7 @@ def _campaign(args):
         progress=not args.no_progress,
         min_force=args.min_force,
         min_separation=args.min_separation,
+        crosstalk=not args.no_crosstalk,
     )
     print(dump(result.summary()) if args.json else result)
     if args.out:
@@ -156,9 +157,13 @@ def _add_campaign_parser(sub):
     p.add_argument(
         "--min-separation", type=float, metavar="S", help="shortest time between onsets [s]"
     )
+    p.add_argument(
+        "--no-crosstalk",
+        action="store_true",
+        help="keep the structure's modes ringing after each hit (removed by default)",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
-    p.set_defaults(func=_campaign)
+    add_outputs(p, _campaign, json="print the summary as JSON")
 
 
 def _common(parser):
@@ -218,8 +223,7 @@ def _build_parser():
         metavar="DT",
         help="LAMMPS step [s] (default: min(t_c/1000, T1/200))",
     )
-    p.add_argument("--json", action="store_true", help="print the comparison as JSON")
-    p.set_defaults(func=_lammps_check)
+    add_outputs(p, _lammps_check, json="print the comparison as JSON")
 
     p = sub.add_parser(
         "compare",
@@ -285,8 +289,7 @@ def _add_stream_parser(sub):
         help="calibrate an impact plate at 25-100 %% of this mass flow",
     )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.add_argument("--json", action="store_true", help="print the summary as JSON")
-    p.set_defaults(func=_stream)
+    add_outputs(p, _stream, json="print the summary as JSON")
 
 
 def main(argv=None):

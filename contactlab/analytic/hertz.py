@@ -43,6 +43,15 @@ KUWABARA_KONO_C2 = 0.6 * KUWABARA_KONO_C1**2
 KUWABARA_KONO_MAX_PARAMETER = KUWABARA_KONO_C1 / (2.0 * KUWABARA_KONO_C2)
 
 
+def _hertz_impact(k_hertz, mass, velocity):
+    """``(kH [N/m^1.5], m* [kg], v [m/s])`` of a Hertz impact, each checked positive."""
+    return (
+        check_positive("k_hertz", k_hertz, "N/m^1.5"),
+        check_positive("mass", mass, "kg"),
+        check_positive("velocity", velocity, "m/s"),
+    )
+
+
 def hertz_max_overlap(k_hertz, mass, velocity):
     """Largest overlap of an elastic Hertz impact.
 
@@ -69,29 +78,13 @@ def hertz_max_overlap(k_hertz, mass, velocity):
     ----------
     .. [1] K. L. Johnson, *Contact Mechanics*, Cambridge University Press, 1985, Sec. 11.1.
     """
-    k = check_positive("k_hertz", k_hertz, "N/m^1.5")
-    m = check_positive("mass", mass, "kg")
-    v = check_positive("velocity", velocity, "m/s")
+    k, m, v = _hertz_impact(k_hertz, mass, velocity)
     return (1.25 * m * v**2 / k) ** 0.4
 
 
 def hertz_max_force(k_hertz, mass, velocity):
-    """Peak force of an elastic Hertz impact.
-
-    Parameters
-    ----------
-    k_hertz : float
-        Hertz stiffness kH [N/m^1.5].
-    mass : float
-        Effective mass m* [kg].
-    velocity : float
-        Impact speed v [m/s].
-
-    Returns
-    -------
-    float
-        F_max = kH d_max^(3/2) [N], with d_max from :func:`hertz_max_overlap`.
-    """
+    """Peak force F_max = kH d_max^(3/2) [N] of an elastic Hertz impact of kH [N/m^1.5],
+    m* [kg] and v [m/s], with d_max from :func:`hertz_max_overlap` (same arguments)."""
     return k_hertz * hertz_max_overlap(k_hertz, mass, velocity) ** 1.5
 
 
@@ -100,12 +93,8 @@ def hertz_contact_time(k_hertz, mass, velocity):
 
     Parameters
     ----------
-    k_hertz : float
-        Hertz stiffness kH [N/m^1.5].
-    mass : float
-        Effective mass m* [kg].
-    velocity : float
-        Impact speed v [m/s].
+    k_hertz, mass, velocity : float
+        kH [N/m^1.5], m* [kg], v [m/s], as for :func:`hertz_max_overlap`.
 
     Returns
     -------
@@ -260,10 +249,8 @@ def kuwabara_kono_parameter(k_hertz, dissipation, mass, velocity):
         Hertz stiffness kH [N/m^1.5].
     dissipation : float
         Dissipative constant A [s].
-    mass : float
-        Effective mass m* [kg].
-    velocity : float
-        Impact speed v [m/s].
+    mass, velocity : float
+        m* [kg] and v [m/s], as for :func:`hertz_max_overlap`.
 
     Returns
     -------
@@ -275,10 +262,8 @@ def kuwabara_kono_parameter(k_hertz, dissipation, mass, velocity):
     Scaling d = L u, t = (L/v) tau with L^(5/2) = m* v^2 / kH gives
     u'' = -(u^(3/2) + x u^(1/2) u'): the restitution depends on x alone.
     """
-    k = check_positive("k_hertz", k_hertz, "N/m^1.5")
     a = check_non_negative("dissipation", dissipation, "s")
-    m = check_positive("mass", mass, "kg")
-    v = check_positive("velocity", velocity, "m/s")
+    k, m, v = _hertz_impact(k_hertz, mass, velocity)
     return 1.5 * a * (k / m) ** 0.4 * v**0.2
 
 
@@ -287,14 +272,8 @@ def kuwabara_kono_restitution(k_hertz, dissipation, mass, velocity):
 
     Parameters
     ----------
-    k_hertz : float
-        Hertz stiffness kH [N/m^1.5].
-    dissipation : float
-        Dissipative constant A [s].
-    mass : float
-        Effective mass m* [kg].
-    velocity : float
-        Impact speed v [m/s].
+    k_hertz, dissipation, mass, velocity : float
+        kH [N/m^1.5], A [s], m* [kg], v [m/s], as for :func:`kuwabara_kono_parameter`.
 
     Returns
     -------
@@ -361,6 +340,13 @@ HUNT_CROSSLEY_SERIES = 1e-6
 ``e = 1 - 2/3 y + 4/9 y**2``, whose remainder (about ``y**3 / 3``) is below 1e-18."""
 
 
+def _hunt_crossley_impact(damping, velocity):
+    """``(chi [s/m], v [m/s])`` of a Hunt-Crossley impact, checked."""
+    return check_non_negative("damping", damping, "s/m"), check_positive(
+        "velocity", velocity, "m/s"
+    )
+
+
 def hunt_crossley_restitution(damping, velocity):
     """Exact restitution of the Hunt-Crossley law F = k d^n (1 + (3/2) chi d').
 
@@ -394,8 +380,7 @@ def hunt_crossley_restitution(damping, velocity):
     .. [1] K. H. Hunt, F. R. E. Crossley, "Coefficient of restitution interpreted as damping
        in vibroimpact", J. Appl. Mech. 42, 440-445 (1975). DOI: 10.1115/1.3423596
     """
-    chi = check_non_negative("damping", damping, "s/m")
-    v = check_positive("velocity", velocity, "m/s")
+    chi, v = _hunt_crossley_impact(damping, velocity)
     y = 1.5 * chi * v
     if y < HUNT_CROSSLEY_SERIES:
         # the root s ~ y lies far below Brent's [0, 1] bracket (y = 1e-151 did not converge
@@ -416,10 +401,8 @@ def hunt_crossley_restitution_linearised(damping, velocity):
 
     Parameters
     ----------
-    damping : float
-        Hunt-Crossley damping chi [s/m].
-    velocity : float
-        Impact speed v [m/s].
+    damping, velocity : float
+        chi [s/m], v [m/s], as for :func:`hunt_crossley_restitution`.
 
     Returns
     -------
@@ -442,8 +425,7 @@ def hunt_crossley_restitution_linearised(damping, velocity):
     .. [1] K. H. Hunt, F. R. E. Crossley, "Coefficient of restitution interpreted as damping
        in vibroimpact", J. Appl. Mech. 42, 440-445 (1975). DOI: 10.1115/1.3423596
     """
-    chi = check_non_negative("damping", damping, "s/m")
-    v = check_positive("velocity", velocity, "m/s")
+    chi, v = _hunt_crossley_impact(damping, velocity)
     if chi * v >= 1.0:
         raise ParameterError(
             f"damping * velocity must be < 1 for the linearised restitution; got {chi * v!r}"

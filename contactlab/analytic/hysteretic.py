@@ -53,10 +53,8 @@ def walton_braun_contact_time(loading_stiffness, unloading_stiffness, mass):
 
     Parameters
     ----------
-    loading_stiffness : float
-        Loading stiffness k1 [N/m].
-    unloading_stiffness : float
-        Unloading stiffness k2 >= k1 [N/m].
+    loading_stiffness, unloading_stiffness : float
+        k1 and k2 >= k1 [N/m], as for :func:`walton_braun_restitution`.
     mass : float
         Effective mass m* [kg].
 

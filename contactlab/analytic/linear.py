@@ -74,22 +74,8 @@ def _linear_zeta(stiffness, damping, mass):
 
 
 def damping_ratio(stiffness, damping, mass):
-    """Damping ratio of a linear spring-dashpot contact.
-
-    Parameters
-    ----------
-    stiffness : float
-        Spring stiffness k [N/m].
-    damping : float
-        Dashpot coefficient c [N*s/m].
-    mass : float
-        Effective mass m* [kg].
-
-    Returns
-    -------
-    float
-        zeta = c / (2 sqrt(k m*)) [-].
-    """
+    """Damping ratio zeta = c / (2 sqrt(k m*)) [-] of a linear spring-dashpot contact of
+    stiffness k [N/m], damping c [N*s/m] and effective mass m* [kg]."""
     return _linear_zeta(stiffness, damping, mass)
 
 
@@ -130,9 +116,14 @@ def linear_contact_time(stiffness, damping, mass, convention="overlap"):
     .. [1] T. Schwager, T. Poeschel, "Coefficient of restitution and linear-dashpot model
        revisited", Granular Matter 9, 465-469 (2007). DOI: 10.1007/s10035-007-0065-z
     """
-    zeta = _linear_zeta(stiffness, damping, mass)
-    scaled_time, _ = _LINEAR_SOLUTIONS[check_convention(convention)](zeta)
+    scaled_time, _ = _linear_solution(stiffness, damping, mass, convention)
     return scaled_time / math.sqrt(stiffness / mass)
+
+
+def _linear_solution(stiffness, damping, mass, convention):
+    """``(w0 t_c, ln e)`` of a linear spring-dashpot impact under ``convention``."""
+    zeta = _linear_zeta(stiffness, damping, mass)
+    return _LINEAR_SOLUTIONS[check_convention(convention)](zeta)
 
 
 def linear_restitution(stiffness, damping, mass, convention="overlap"):
@@ -140,12 +131,8 @@ def linear_restitution(stiffness, damping, mass, convention="overlap"):
 
     Parameters
     ----------
-    stiffness : float
-        Spring stiffness k [N/m].
-    damping : float
-        Dashpot coefficient c [N*s/m].
-    mass : float
-        Effective mass m* [kg].
+    stiffness, damping, mass : float
+        k [N/m], c [N*s/m] and m* [kg], as for :func:`linear_contact_time`.
     convention : {"overlap", "force"}, default "overlap"
         When contact ends (see the module docstring).
 
@@ -163,15 +150,9 @@ def linear_restitution(stiffness, damping, mass, convention="overlap"):
       e = exp(-2 zeta arccosh(zeta) / sqrt(zeta^2 - 1)) = q^(-(q + 1)/(q - 1)) with
       q = l2/l1. e falls strictly with zeta and tends to 0 only as zeta -> inf (like
       1/(4 zeta^2)), so every e in (0, 1] is reached; it is never below the ``"overlap"``
-      value.
-
-    References
-    ----------
-    .. [1] T. Schwager, T. Poeschel, "Coefficient of restitution and linear-dashpot model
-       revisited", Granular Matter 9, 465-469 (2007). DOI: 10.1007/s10035-007-0065-z
+      value. Reference: Schwager & Poeschel (2007), as for :func:`linear_contact_time`.
     """
-    zeta = _linear_zeta(stiffness, damping, mass)
-    _, log_e = _LINEAR_SOLUTIONS[check_convention(convention)](zeta)
+    _, log_e = _linear_solution(stiffness, damping, mass, convention)
     return math.exp(log_e)
 
 
@@ -180,12 +161,9 @@ def linear_damping_from_restitution(stiffness, restitution, mass, convention="ov
 
     Parameters
     ----------
-    stiffness : float
-        Spring stiffness k [N/m].
-    restitution : float
-        Target coefficient of restitution, in (0, 1] [-]; 1 gives c = 0.
-    mass : float
-        Effective mass m* [kg].
+    stiffness, restitution, mass : float
+        Spring stiffness k [N/m], the target restitution in (0, 1] [-] (1 gives c = 0) and
+        the effective mass m* [kg].
     convention : {"overlap", "force"}, default "overlap"
         When contact ends (see the module docstring).
 

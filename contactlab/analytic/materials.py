@@ -2,6 +2,7 @@
 
 import math
 
+from contactlab.errors import ParameterError
 from contactlab.validation import (
     check_number,
     check_poisson_ratio,
@@ -39,33 +40,27 @@ def effective_mass(mass, other_mass=math.inf):
     -----
     m* = 1 / (1/m1 + 1/m2); m* = m1 against an immovable wall.
     """
-    m1 = check_positive("mass", mass, "kg")
-    m2 = check_number("other_mass", other_mass, low=0.0, unit="kg", allow_inf=True)
-    return 1.0 / (1.0 / m1 + 1.0 / m2)
+    return _in_series("mass", mass, "other_mass", other_mass, "kg")
+
+
+def _in_series(name, value, other_name, other, unit):
+    """``1 / (1/value + 1/other)``: ``value`` > 0, ``other`` > 0 or ``inf`` (checked)."""
+    first = check_positive(name, value, unit)
+    second = check_number(other_name, other, low=0.0, unit=unit, allow_inf=True)
+    return 1.0 / (1.0 / first + 1.0 / second)
 
 
 def effective_radius(radius, other_radius=math.inf):
-    """Effective radius of curvature of a contact between two convex bodies.
+    """Effective radius of curvature R* = 1 / (1/R1 + 1/R2) [m] of two convex bodies in
+    contact (R* = R1 against a flat), the radii checked as :func:`effective_mass` checks
+    masses.
 
     Parameters
     ----------
-    radius : float
-        Radius of the first body [m].
-    other_radius : float, default inf
-        Radius of the second body [m]; ``inf`` for a flat.
-
-    Returns
-    -------
-    float
-        Effective radius R* [m].
-
-    Notes
-    -----
-    R* = 1 / (1/R1 + 1/R2); R* = R1 against a flat.
+    radius, other_radius : float
+        Radii of curvature of the two bodies [m]; ``other_radius = inf`` (default) is a flat.
     """
-    r1 = check_positive("radius", radius, "m")
-    r2 = check_number("other_radius", other_radius, low=0.0, unit="m", allow_inf=True)
-    return 1.0 / (1.0 / r1 + 1.0 / r2)
+    return _in_series("radius", radius, "other_radius", other_radius, "m")
 
 
 def effective_modulus(
@@ -185,14 +180,15 @@ def contact_modulus_radius(youngs_modulus, poisson_ratio, radius, other):
         ``(E*, R*)`` with ``1/E* = (1-nu1**2)/E1 + (1-nu2**2)/E2`` and
         ``1/R* = 1/R1 + 1/R2``.
     """
-    e1 = check_positive("youngs_modulus", youngs_modulus, "Pa")
-    nu1 = check_poisson_ratio("poisson_ratio", poisson_ratio)
-    r1 = check_positive("radius", radius, "m")
-    e2 = check_number("other_youngs_modulus", other[0], low=0.0, unit="Pa", allow_inf=True)
-    nu2 = check_poisson_ratio("other_poisson_ratio", other[1])
-    r2 = check_number("other_radius", other[2], low=0.0, unit="m", allow_inf=True)
-    modulus = effective_modulus(e1, nu1, e2, nu2)
-    return modulus, effective_radius(r1, r2)
+    if not isinstance(other, (tuple, list)) or len(other) != 3:
+        raise ParameterError(
+            "other must be the second body's (youngs_modulus [Pa], poisson_ratio [-], "
+            f"radius [m]); got {other!r}"
+        )
+    return (
+        effective_modulus(youngs_modulus, poisson_ratio, other[0], other[1]),
+        effective_radius(radius, other[2]),
+    )
 
 
 def rayleigh_time(radius, density, shear_modulus, poisson_ratio):

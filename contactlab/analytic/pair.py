@@ -43,13 +43,20 @@ Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656 (tests 1, 7, 8, 9 are pa
 from dataclasses import dataclass
 
 from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
+from contactlab.errors import ParameterError
 from contactlab.validation import check_number
 
 __all__ = ["PairRebound", "pair_rebound"]
 
 
-def _positive(name, value, unit):
-    return check_number(name, value, low=0.0, unit=unit, allow_inf=True)
+def _pair(name, values, unit):
+    """Two positive numbers (``inf`` allowed: an immovable body), checked."""
+    if not isinstance(values, (tuple, list)) or len(values) != 2:
+        raise ParameterError(f"{name} must be two numbers [{unit}]; got {values!r}")
+    return tuple(
+        check_number(f"{name}[{i}]", v, low=0.0, unit=unit, allow_inf=True)
+        for i, v in enumerate(values)
+    )
 
 
 @dataclass(frozen=True)
@@ -98,8 +105,12 @@ def pair_rebound(
     -------
     PairRebound
     """
-    m1, m2 = (_positive(f"masses[{i}]", m, "kg") for i, m in enumerate(masses))
-    r1, r2 = (_positive(f"radii[{i}]", r, "m") for i, r in enumerate(radii))
+    m1, m2 = _pair("masses", masses, "kg")
+    r1, r2 = _pair("radii", radii, "m")
+    if not isinstance(before, PairRebound):
+        raise ParameterError(
+            f"before must be a PairRebound (the velocities before the impact); got {before!r}"
+        )
     kappa = check_number("inertia_factor", inertia_factor, low=0.0)
     jn = check_number("normal_impulse", normal_impulse, unit="N*s")
     jt = check_number("tangential_impulse", tangential_impulse, unit="N*s")

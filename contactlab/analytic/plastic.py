@@ -37,7 +37,8 @@ def linear_plastic_yield_velocity(stiffness, yield_force, mass):
     k = check_positive("stiffness", stiffness, "N/m")
     fy = check_positive("yield_force", yield_force, "N")
     m = check_positive("mass", mass, "kg")
-    return fy / math.sqrt(k * m)
+    km = k * m
+    return fy / (math.sqrt(km) if km > 0.0 else math.sqrt(k) * math.sqrt(m))  # km underflows
 
 
 def linear_plastic_restitution(stiffness, yield_force, mass, velocity):
@@ -45,12 +46,9 @@ def linear_plastic_restitution(stiffness, yield_force, mass, velocity):
 
     Parameters
     ----------
-    stiffness : float
-        Elastic stiffness k [N/m] (loading and unloading).
-    yield_force : float
-        Force cap Fy [N].
-    mass : float
-        Effective mass m* [kg].
+    stiffness, yield_force, mass : float
+        k [N/m] (loading and unloading), Fy [N], m* [kg], as for
+        :func:`linear_plastic_yield_velocity`.
     velocity : float
         Impact speed v [m/s].
 
@@ -65,23 +63,12 @@ def linear_plastic_restitution(stiffness, yield_force, mass, velocity):
 
 
 def linear_plastic_contact_time(stiffness, yield_force, mass, velocity):
-    """Contact time of a linear elastic-perfectly-plastic contact.
+    """Contact time t_c [s] of a linear elastic-perfectly-plastic contact.
 
     Parameters
     ----------
-    stiffness : float
-        Elastic stiffness k [N/m].
-    yield_force : float
-        Force cap Fy [N].
-    mass : float
-        Effective mass m* [kg].
-    velocity : float
-        Impact speed v [m/s].
-
-    Returns
-    -------
-    float
-        t_c [s].
+    stiffness, yield_force, mass, velocity : float
+        k [N/m], Fy [N], m* [kg] and v [m/s], as for :func:`linear_plastic_restitution`.
 
     Notes
     -----
@@ -111,10 +98,8 @@ def thornton_yield_overlap(effective_modulus, effective_radius, yield_pressure):
 
     Parameters
     ----------
-    effective_modulus : float
-        Effective modulus E* [Pa].
-    effective_radius : float
-        Effective radius R* [m].
+    effective_modulus, effective_radius : float
+        E* [Pa] and R* [m] of the contact (:func:`~contactlab.analytic.hertz_stiffness`).
     yield_pressure : float
         Limiting contact pressure p_y [Pa].
 
@@ -134,21 +119,13 @@ def thornton_yield_overlap(effective_modulus, effective_radius, yield_pressure):
 
 
 def thornton_yield_force(effective_modulus, effective_radius, yield_pressure):
-    """Force at the yield overlap of Thornton's model.
+    """Force at the yield overlap of Thornton's model:
+    F_y = pi^3 R*^2 p_y^3 / (6 E*^2) = kH d_y^(3/2) [N].
 
     Parameters
     ----------
-    effective_modulus : float
-        Effective modulus E* [Pa].
-    effective_radius : float
-        Effective radius R* [m].
-    yield_pressure : float
-        Limiting contact pressure p_y [Pa].
-
-    Returns
-    -------
-    float
-        F_y = pi^3 R*^2 p_y^3 / (6 E*^2) = kH d_y^(3/2) [N].
+    effective_modulus, effective_radius, yield_pressure : float
+        E* [Pa], R* [m] and p_y [Pa], as for :func:`thornton_yield_overlap`.
 
     References
     ----------
@@ -163,12 +140,8 @@ def thornton_yield_velocity(effective_modulus, effective_radius, yield_pressure,
 
     Parameters
     ----------
-    effective_modulus : float
-        Effective modulus E* [Pa].
-    effective_radius : float
-        Effective radius R* [m].
-    yield_pressure : float
-        Limiting contact pressure p_y [Pa].
+    effective_modulus, effective_radius, yield_pressure : float
+        E* [Pa], R* [m] and p_y [Pa], as for :func:`thornton_yield_overlap`.
     mass : float
         Effective mass m* [kg].
 
@@ -191,14 +164,8 @@ def thornton_restitution(effective_modulus, effective_radius, yield_pressure, ma
 
     Parameters
     ----------
-    effective_modulus : float
-        Effective modulus E* [Pa].
-    effective_radius : float
-        Effective radius R* [m].
-    yield_pressure : float
-        Limiting contact pressure p_y [Pa].
-    mass : float
-        Effective mass m* [kg].
+    effective_modulus, effective_radius, yield_pressure, mass : float
+        E* [Pa], R* [m], p_y [Pa] and m* [kg], as for :func:`thornton_yield_velocity`.
     velocity : float
         Impact speed v [m/s].
 

@@ -4,6 +4,7 @@ import math
 
 import numpy as np
 
+from contactlab.errors import ParameterError
 from contactlab.validation import (
     check_positive,
 )
@@ -45,4 +46,9 @@ def half_sine_residual_amplitude(pulse_duration, period):
     tau = check_positive("pulse_duration", pulse_duration, "s")
     t = check_positive("period", period, "s")
     r = tau / t
+    if not math.isfinite(r):
+        raise ParameterError(
+            f"period = {t!r} s is too short for pulse_duration = {tau!r} s: their ratio "
+            "overflows the float range"
+        )
     return 2.0 * math.pi * r / (1.0 + 2.0 * r) * abs(float(np.sinc(0.5 - r)))

@@ -41,14 +41,9 @@ def effective_shear_modulus(
 
     Parameters
     ----------
-    youngs_modulus : float
-        Young's modulus of the first body [Pa].
-    poisson_ratio : float
-        Poisson's ratio of the first body, in (-1, 0.5] [-].
-    other_youngs_modulus : float, default inf
-        Young's modulus of the second body [Pa]; ``inf`` for a rigid flat.
-    other_poisson_ratio : float, default 0.0
-        Poisson's ratio of the second body [-].
+    youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio : float
+        The two bodies' Young's moduli [Pa] and Poisson ratios [-], as for
+        :func:`~contactlab.analytic.effective_modulus` (default: a rigid flat).
 
     Returns
     -------

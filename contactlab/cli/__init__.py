@@ -8,7 +8,7 @@ from pathlib import Path
 from contactlab.cli.batch import add_batch_parser
 from contactlab.cli.inverse import add_inverse_parsers
 from contactlab.cli.output import dump
-from contactlab.cli.running import Parser, add_strict, run
+from contactlab.cli.running import Parser, add_outputs, add_strict, run
 from contactlab.cli.setup import add_setup_parsers
 from contactlab.engines import load_engine
 from contactlab.errors import ParameterError
@@ -149,9 +149,7 @@ def _build_parser():
         "config", nargs="?", help="TOML file with [grain] [contact] [sensor] [simulation] tables"
     )
     p.add_argument("--preset", help="a named preset instead (see 'contactlab presets')")
-    p.add_argument("--plot", metavar="PNG", help="write the force plot to this file")
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_simulate)
+    add_outputs(p, _simulate, plot="write the force plot to this file")
 
     p = sub.add_parser("demo", help="run the built-in demonstration into a results folder")
     p.add_argument("--out", default="results", help="output folder (default: results)")
@@ -187,8 +185,7 @@ def _build_parser():
         default=None,
         help="progress bar (default: on a terminal only)",
     )
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_study)
+    add_outputs(p, _study)
 
     p = sub.add_parser(
         "map",
@@ -204,8 +201,7 @@ def _build_parser():
     p.add_argument(
         "--tolerance", type=float, default=10.0, help="error contour drawn [%%] (default 10)"
     )
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_map)
+    add_outputs(p, _map)
 
     p = sub.add_parser(
         "advise", help="lowest sensor resonance for an error target, for a grain species"
@@ -241,8 +237,7 @@ def _build_parser():
         type=float,
         help=f"Poisson ratio [-] with --diameter ... (default {DEFAULT_POISSON_RATIO:g})",
     )
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_advise)
+    add_outputs(p, _advise)
 
     p = sub.add_parser("benchmark", help="published DEM benchmarks against theory")
     p.add_argument("name", choices=["chung-ooi"], help="the benchmark (Chung & Ooi 2011)")

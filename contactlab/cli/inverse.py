@@ -4,6 +4,7 @@ import sys
 from pathlib import Path
 
 from contactlab.cli.output import dump
+from contactlab.cli.running import add_outputs
 from contactlab.errors import ParameterError
 
 __all__ = ["add_inverse_parsers"]
@@ -138,9 +139,7 @@ def add_inverse_parsers(sub):
     )
     _add_trace_arguments(p)
     p.add_argument("--window", **window, help="ringing window [s] (default: automatic)")
-    p.add_argument("--plot", metavar="PNG", help="write the trace and fitted ringing")
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_identify_sensor)
+    add_outputs(p, _identify_sensor, plot="write the trace and fitted ringing")
 
     p = sub.add_parser("reconstruct", help="the true contact force from a sensor trace")
     _add_trace_arguments(p)
@@ -154,9 +153,7 @@ def add_inverse_parsers(sub):
     p.add_argument("--regularization", choices=tuple(CRITERIA), help="tikhonov (default gcv)")
     p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
-    p.add_argument("--plot", metavar="PNG", help="write signal and reconstructed force")
-    p.add_argument("--json", action="store_true", help="print a JSON summary")
-    p.set_defaults(func=_reconstruct)
+    add_outputs(p, _reconstruct, plot="write signal and reconstructed force")
 
     p = sub.add_parser("fit", help="fit a contact law to a trace through the two-mass model")
     _add_trace_arguments(p)
@@ -171,9 +168,7 @@ def add_inverse_parsers(sub):
     p.add_argument("--velocity", type=float, help="measured impact velocity [m/s] (fixed)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
     p.add_argument("--out", metavar="FIT.json", help="write the fit as JSON")
-    p.add_argument("--plot", metavar="PNG", help="write trace, fitted signal and force")
-    p.add_argument("--json", action="store_true", help="print the fit as JSON")
-    p.set_defaults(func=_fit)
+    add_outputs(p, _fit, plot="write trace, fitted signal and force", json="print the fit as JSON")
 
     p = sub.add_parser(
         "export-dem", help="a fitted law as LAMMPS/LIGGGHTS/MercuryDPM/YADE/EDEM input"

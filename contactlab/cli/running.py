@@ -24,7 +24,7 @@ import warnings
 from contactlab.cli.setup import announce_compile
 from contactlab.errors import ContactlabWarning, ParameterError, TraceFormatError
 
-__all__ = ["INPUT_ERRORS", "Parser", "add_strict", "run"]
+__all__ = ["INPUT_ERRORS", "Parser", "add_outputs", "add_strict", "run"]
 
 INPUT_ERRORS = (ParameterError, TraceFormatError, OSError, ImportError)
 """What bad input raises: a parameter, a file's content, a missing file, an extra not
@@ -46,6 +46,15 @@ class Parser(argparse.ArgumentParser):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self._negative_number_matcher = re.compile(r"^-(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$")
+
+
+def add_outputs(parser, func, plot=None, json="print a JSON summary"):
+    """A command's last options and its function: ``--plot PNG`` where ``plot`` says what
+    the figure shows, then ``--json`` with its help ``json``."""
+    if plot is not None:
+        parser.add_argument("--plot", metavar="PNG", help=plot)
+    parser.add_argument("--json", action="store_true", help=json)
+    parser.set_defaults(func=func)
 
 
 def add_strict(parser):

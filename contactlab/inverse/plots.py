@@ -77,9 +77,8 @@ def plot_reconstruction(reconstruction, truth=None, ax=None, title=None):
     truth : ImpactResult or (array_like, array_like), optional
         The true contact force: a simulation, or ``(t [s], force [N])``.
     ax : matplotlib.axes.Axes, optional
-        Axes to draw into; a new figure is made when None.
     title : str, optional
-        Axes title.
+        As for :func:`contactlab.plot_impact`.
 
     Returns
     -------

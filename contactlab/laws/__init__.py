@@ -26,6 +26,7 @@ from contactlab.laws.hertz import (
     hunt_crossley_force,
     kuwabara_kono_force,
 )
+from contactlab.laws.hertz_viscous import HertzViscous
 from contactlab.laws.hysteretic import WaltonBraun, walton_braun_force
 from contactlab.laws.linear import LinearViscoelastic, linear_viscoelastic_force
 from contactlab.laws.plastic import LinearPlastic, Thornton, linear_plastic_force, thornton_force
@@ -54,6 +55,7 @@ __all__ = [
     "Exit",
     "Hertz",
     "HertzDamped",
+    "HertzViscous",
     "HuntCrossley",
     "KuwabaraKono",
     "LinearPlastic",
@@ -85,6 +87,7 @@ LAWS = {
         LinearViscoelastic,
         Hertz,
         HertzDamped,
+        HertzViscous,
         KuwabaraKono,
         HuntCrossley,
         WaltonBraun,

@@ -20,17 +20,60 @@ dissipated energy) is a simulation: :mod:`contactlab.solver.wall` (``wall_impact
 ``wall_restitution``, ``wall_contact_time``, ``wall_dissipated_energy``), above the laws.
 """
 
+import functools
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import ClassVar
 
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.validation import KeywordChecked, check_samples
+from contactlab.validation import KeywordChecked, check_samples, numbers_checked
 
 __all__ = ["Branch", "ContactLaw", "Exit", "PowerForm", "SmoothLaw"]
+
+
+def read_only(**units):
+    """A law's table (parameter units, typical ranges), read-only:
+    ``units = read_only(k_hertz="N/m**1.5")``."""
+    return MappingProxyType(units)
+
+
+def stated(law, name):
+    """The method ``name`` of ``law`` if its own class states it, else None.
+
+    What a law says about itself beyond its force (closed forms, batch columns, DEM
+    mappings) is not inherited: a subclass may change the force, so it states them again
+    or is refused by name.
+    """
+    method = vars(type(law)).get(name)
+    return None if method is None else method.__get__(law)
+
+
+def force_function(*optional):
+    """Decorator of a public force function: its arguments are checked as
+    :func:`~contactlab.validation.numbers_checked` checks them (``optional`` may be
+    ``None``), and a force beyond the float range (an overlap or a parameter no contact
+    has) raises :class:`~contactlab.errors.ParameterError` instead of an overflow warning
+    and ``inf``."""
+
+    def decorate(function):
+        @functools.wraps(function)
+        def finite(*args, **kwargs):
+            with np.errstate(over="ignore", invalid="ignore"):
+                force = function(*args, **kwargs)
+            if not np.all(np.isfinite(force)):
+                raise ParameterError(
+                    f"{function.__name__}: the force overflows the float range for these "
+                    "arguments (an overlap or a parameter no contact has)"
+                )
+            return force
+
+        return numbers_checked(*optional)(finite)
+
+    return decorate
 
 
 def one_sided(overlap, raw):
@@ -162,6 +205,26 @@ class ContactLaw(KeywordChecked, ABC):
     :meth:`branch` (how the solvers see it); the work along a path follows here. Its
     impact on a wall is :mod:`contactlab.solver.wall`'s.
 
+    Everything else the toolkit needs to know about a law, the law states once, on its
+    class (its name in :data:`contactlab.laws.LAWS` is the only other line):
+
+    * ``name``, :attr:`units` (checked by the constructor through :meth:`_keep`, the
+      study's column units), :attr:`typical` and :meth:`_from_typical` (the test
+      strategies), :attr:`stiffness_parameters` (the study's scatter);
+    * ``power_form()`` (the compiled solver) or branches (the Python pieces);
+    * ``_closed_forms(mass, velocity)``: its wall impact in closed form, a tuple of
+      :class:`~contactlab.laws.closed_form.ClosedForm` (the testing plug-in, the audit
+      matrix, the study's contact time);
+    * optional: ``_batch_contact()`` (its batch solver and columns), ``_lammps_model(m*,
+      R*)`` or a ``lammps_refusal`` reason (:mod:`contactlab.laws.lammps`), ``dem_export``
+      (the DEM exporters' family), ``_damping_ratio(m*)`` (Kratos' tied tangential
+      damping), ``from_material`` and ``_resized(mass, grain, velocity)`` (a study whose
+      law follows the grain size).
+
+    What a law does not state is refused by name where it is asked for. These are read
+    from the law's own class only (:func:`stated`): a subclass may change the force, so it
+    states them again.
+
     Sign convention: overlap ``d > 0`` in compression, rate ``d' > 0`` approaching, force
     ``>= 0`` always (0 for ``d <= 0``).
     """
@@ -174,6 +237,20 @@ class ContactLaw(KeywordChecked, ABC):
     """Whether every branch is linear in overlap and rate (exact solver applies)."""
     prescribed: ClassVar[bool] = False
     """Whether the force is a prescribed function of time instead of overlap."""
+    units: ClassVar[MappingProxyType]
+    """Parameter name -> SI unit (the constructor's checks and the study's columns)."""
+    typical: ClassVar[MappingProxyType]
+    """Ranges real grains span: name -> ``(low, high, scale)``, ``scale`` "log" for a
+    range of decades, else "linear"; the test strategies draw laws from them
+    (:func:`contactlab.testing.strategies.laws`) through :meth:`_from_typical`."""
+    stiffness_parameters: ClassVar[tuple[str, ...]] = ()
+    """Parameters that make up "the contact stiffness" a study's scatter multiplies (all
+    by the same factor, so that e.g. Walton-Braun keeps its restitution)."""
+
+    @classmethod
+    def _from_typical(cls, **drawn):
+        """The law from values drawn over :attr:`typical` (by default its parameters)."""
+        return cls(**drawn)
 
     @abstractmethod
     def _force(self, overlap, rate, max_overlap):
@@ -182,6 +259,14 @@ class ContactLaw(KeywordChecked, ABC):
     @abstractmethod
     def branch(self, name, max_overlap=0.0):
         """The :class:`Branch` called ``name`` given the largest overlap so far [m]."""
+
+    def _keep(self, **checked):
+        """Check each parameter, ``name=(check, value)``, in its unit (:attr:`units`) with
+        ``check(name, value, unit=...)`` and keep it as an attribute and in
+        :meth:`parameters`."""
+        for name, (check, value) in checked.items():
+            setattr(self, name, check(name, value, unit=self.units[name]))
+        self._params = {name: getattr(self, name) for name in checked}
 
     def parameters(self):
         """Parameters as a dict (name -> value in SI units)."""

@@ -1,8 +1,31 @@
-"""Which contact laws a DEM engine holds exactly: one refusal rule for every engine."""
+"""Which contact laws a DEM engine holds exactly: one refusal rule for every engine, and
+the fields every engine's mapping of a law shares."""
+
+from dataclasses import dataclass
 
 from contactlab.errors import ParameterError
 
-__all__ = ["refuse_unsupported"]
+__all__ = ["EngineContact", "refuse_unsupported"]
+
+
+@dataclass(frozen=True, kw_only=True)
+class EngineContact:
+    """A law mapped exactly onto a DEM engine's contact model for a contact of given
+    ``m*`` and ``R*`` (each engine's mapping adds its model's own fields).
+
+    Attributes
+    ----------
+    law : ContactLaw
+        The contactlab law.
+    effective_mass : float
+        ``m*`` the mapping assumed [kg].
+    effective_radius : float
+        ``R*`` the mapping assumed [m].
+    """
+
+    law: object
+    effective_mass: float
+    effective_radius: float
 
 
 def refuse_unsupported(law, supported, refused, engine, models):

@@ -1,17 +1,35 @@
 """The Hertz family: elastic Hertz, Tsuji's damped Hertz, Kuwabara-Kono, Hunt-Crossley."""
 
 import math
+from functools import partial
 
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import PowerForm, SmoothLaw, one_sided, signed_power
+from contactlab.errors import ParameterError
+from contactlab.laws.base import (
+    PowerForm,
+    SmoothLaw,
+    force_function,
+    one_sided,
+    read_only,
+    signed_power,
+)
+from contactlab.laws.closed_form import (
+    ANTYPOV_2011,
+    HUNT_CROSSLEY_1975,
+    JOHNSON_1985,
+    RAMIREZ_1999,
+    ClosedForm,
+    closed_form,
+)
+from contactlab.laws.granular import DAMPING_FORMS, GranularModel
+from contactlab.quantities import column
 from contactlab.validation import (
     check_non_negative,
     check_number,
     check_positive,
     check_probability,
-    numbers_checked,
 )
 
 __all__ = [
@@ -30,7 +48,7 @@ def _hertz_raw(overlap, k_hertz):
     return k_hertz * signed_power(overlap, 1.5)
 
 
-@numbers_checked()
+@force_function()
 def hertz_force(overlap, k_hertz):
     """Hertz elastic sphere-flat force ``kH d**1.5`` [N] (0 for ``d <= 0``).
 
@@ -55,7 +73,7 @@ def _hertz_damped_raw(overlap, rate, k_hertz, damping):
     return (k_hertz * overlap * root + damping * rate) * root
 
 
-@numbers_checked()
+@force_function()
 def hertz_damped_force(overlap, rate, k_hertz, damping):
     """Damped Hertz force of Tsuji et al. / EDEM / LIGGGHTS ``kH d**1.5 + eta d**0.25 d'`` [N].
 
@@ -83,18 +101,14 @@ def _kuwabara_kono_raw(overlap, rate, k_hertz, dissipation):
     return k_hertz * (signed_power(overlap, 1.5) + 1.5 * dissipation * abs(overlap) ** 0.5 * rate)
 
 
-@numbers_checked()
+@force_function()
 def kuwabara_kono_force(overlap, rate, k_hertz, dissipation):
     """Viscoelastic Hertz force ``kH (d**1.5 + 1.5 A d**0.5 d')`` [N].
 
     Parameters
     ----------
-    overlap : array_like
-        Overlap [m].
-    rate : array_like
-        Overlap rate [m/s].
-    k_hertz : float
-        Hertz stiffness [N/m**1.5].
+    overlap, rate, k_hertz
+        Overlap [m], its rate [m/s] and kH [N/m**1.5], as for :func:`hertz_damped_force`.
     dissipation : float
         Dissipation constant ``A`` [s].
 
@@ -111,16 +125,14 @@ def _hunt_crossley_raw(overlap, rate, stiffness, exponent, damping):
     return stiffness * signed_power(overlap, exponent) * (1.0 + 1.5 * damping * rate)
 
 
-@numbers_checked()
+@force_function()
 def hunt_crossley_force(overlap, rate, stiffness, exponent, damping):
     """Hunt-Crossley force ``k d**n (1 + 1.5 chi d')`` [N].
 
     Parameters
     ----------
-    overlap : array_like
-        Overlap [m].
-    rate : array_like
-        Overlap rate [m/s].
+    overlap, rate : array_like
+        Overlap [m] and its rate [m/s], as for :func:`hertz_damped_force`.
     stiffness : float
         Stiffness ``k`` [N/m**n].
     exponent : float
@@ -134,6 +146,20 @@ def hunt_crossley_force(overlap, rate, stiffness, exponent, damping):
     """
     overlap, rate = np.asarray(overlap, dtype=float), np.asarray(rate, dtype=float)
     return one_sided(overlap, _hunt_crossley_raw(overlap, rate, stiffness, exponent, damping))
+
+
+def _lammps_hertz(law, damping, coefficient, effective_mass, effective_radius):
+    """A Hertz-family law as LAMMPS' ``hertz kH/sqrt(R*)`` with the given damping."""
+    stiffness = law.k_hertz / math.sqrt(effective_radius)
+    return GranularModel(
+        law=law,
+        normal="hertz",
+        stiffness=stiffness,
+        damping=damping,
+        damping_coefficient=coefficient,
+        effective_mass=effective_mass,
+        effective_radius=effective_radius,
+    )
 
 
 class Hertz(SmoothLaw):
@@ -150,10 +176,15 @@ class Hertz(SmoothLaw):
     """
 
     name = "hertz"
+    dem_export = "hertz"
+    """DEM exporters write it as E* and restitution 1 (:mod:`contactlab.inverse.export`)."""
+    units = read_only(k_hertz="N/m**1.5")
+    stiffness_parameters = ("k_hertz",)
+    typical = read_only(k_hertz=(1e6, 1e9, "log"))
+    """kH = 4/3 E* sqrt(R*): the paper's 5 mm grain has 1.5e6; dry hard grains reach 1e9."""
 
     def __init__(self, k_hertz):
-        self.k_hertz = check_positive("k_hertz", k_hertz, "N/m**1.5")
-        self._params = {"k_hertz": self.k_hertz}
+        self._keep(k_hertz=(check_positive, k_hertz))
 
     @classmethod
     def from_material(
@@ -178,11 +209,37 @@ class Hertz(SmoothLaw):
         )
         return cls(k_hertz=analytic.hertz_stiffness(modulus, radius_eff))
 
+    def _resized(self, mass, grain, velocity):
+        """The law for ``grain`` (another size): from its material data."""
+        return type(self).from_material(*grain.material())
+
     def _raw(self, overlap, rate):
         return _hertz_raw(overlap, self.k_hertz)
 
     def power_form(self):
         return PowerForm(self.k_hertz, 1.5)
+
+    def _lammps_model(self, effective_mass, effective_radius):
+        """LAMMPS: ``hertz kH/sqrt(R*) 0``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
+        return _lammps_hertz(self, "velocity", 0.0, effective_mass, effective_radius)
+
+    def _damping_ratio(self, mass):
+        """Kratos' damping ratio [-]: 0 (:func:`contactlab.laws.damping_ratio`)."""
+        return 0.0
+
+    def _batch_contact(self):
+        """The batch solver of this law and its contact columns:
+        :func:`contactlab.batch.hertz_impacts` with zero damping."""
+        return "hertz", {column("k_hertz"): self.k_hertz, column("damping"): 0.0}
+
+    def _closed_forms(self, mass, velocity):
+        """Contact time, peak force (Hertz; Johnson 1985) and restitution 1 on a wall."""
+        args = dict(k_hertz=self.k_hertz, mass=mass, velocity=velocity)
+        return (
+            closed_form("contact_time", analytic.hertz_contact_time, JOHNSON_1985, **args),
+            closed_form("peak_contact_force", analytic.hertz_max_force, JOHNSON_1985, **args),
+            ClosedForm("restitution", 1.0, "1 (elastic: no dissipation)", JOHNSON_1985),
+        )
 
 
 class HertzDamped(SmoothLaw):
@@ -202,11 +259,15 @@ class HertzDamped(SmoothLaw):
     """
 
     name = "hertz_damped"
+    dem_export = "hertz"
+    """DEM exporters write it as E* and the Tsuji restitution (:mod:`contactlab.inverse.export`)."""
+    units = read_only(k_hertz="N/m**1.5", damping="N*s/m**1.25")
+    stiffness_parameters = ("k_hertz",)
+    typical = read_only(k_hertz=(1e6, 1e9, "log"), damping=(0.0, 2.0, "linear"))
+    """Damping factor alpha up to about 0.3 for the paper's grain."""
 
     def __init__(self, k_hertz, damping):
-        self.k_hertz = check_positive("k_hertz", k_hertz, "N/m**1.5")
-        self.damping = check_non_negative("damping", damping, "N*s/m**1.25")
-        self._params = {"k_hertz": self.k_hertz, "damping": self.damping}
+        self._keep(k_hertz=(check_positive, k_hertz), damping=(check_non_negative, damping))
 
     @classmethod
     def from_material(
@@ -251,11 +312,55 @@ class HertzDamped(SmoothLaw):
         ).k_hertz
         return cls(k_hertz, analytic.tsuji_damping_coefficient(k_hertz, mass, restitution))
 
+    def _resized(self, mass, grain, velocity):
+        """The law for ``grain`` (another size): kH from its material data, and this law's
+        damping factor ``eta / sqrt(m kH)`` for a grain of ``mass`` [kg] (so its
+        restitution)."""
+        factor = self.damping / math.sqrt(mass * self.k_hertz)
+        k_hertz = Hertz.from_material(*grain.material()).k_hertz
+        return type(self)(k_hertz, factor * math.sqrt(grain.mass * k_hertz))
+
     def _raw(self, overlap, rate):
         return _hertz_damped_raw(overlap, rate, self.k_hertz, self.damping)
 
     def power_form(self):
         return PowerForm(self.k_hertz, 1.5, self.damping, 0.25)
+
+    def _lammps_model(self, effective_mass, effective_radius):
+        """LAMMPS: ``hertz kH/sqrt(R*) e_L``, ``damping coeff_restitution``, with ``e_L``
+        the input whose damping force is ``eta d**0.25 d'`` exactly
+        (:mod:`contactlab.laws.lammps`)."""
+        alpha = self.damping / math.sqrt(effective_mass * self.k_hertz)
+        s = alpha / math.sqrt(5.0)
+        if s >= 1.0:
+            raise ParameterError(
+                f"law HertzDamped: damping = {self.damping:.6g} N*s/m**1.25 is alpha = "
+                f"eta/sqrt(m* kH) = {alpha:.6g} >= sqrt(5) for m* = {effective_mass:.6g} kg; "
+                "LAMMPS' coeff_restitution damping reaches alpha < sqrt(5) only (its tsuji "
+                "damping alpha < 1.80): no LAMMPS input holds this law"
+            )
+        restitution = math.exp(-math.pi * s / math.sqrt(1.0 - s * s))
+        return _lammps_hertz(
+            self, "coeff_restitution", restitution, effective_mass, effective_radius
+        )
+
+    def _damping_ratio(self, mass):
+        """Kratos' damping ratio ``eta / (2 sqrt(1.5 m* kH))`` [-] on a grain of ``mass``
+        [kg] (:func:`contactlab.laws.damping_ratio`; ``Kn = 1.5 kH sqrt(d)``)."""
+        return self.damping / (2.0 * math.sqrt(1.5 * mass * self.k_hertz))
+
+    def _batch_contact(self):
+        """The batch solver of this law and its contact columns:
+        :func:`contactlab.batch.hertz_impacts`, ``k_hertz`` and ``damping``."""
+        return "hertz", {column("k_hertz"): self.k_hertz, column("damping"): self.damping}
+
+    def _closed_forms(self, mass, velocity):
+        """Restitution on a wall: a function of ``alpha`` only (Antypov & Elliott 2011)."""
+        alpha = self.damping / math.sqrt(mass * self.k_hertz)
+        restitution = analytic.tsuji_restitution
+        return (
+            closed_form("restitution", restitution, ANTYPOV_2011, alpha=alpha, convention="force"),
+        )
 
 
 class KuwabaraKono(SmoothLaw):
@@ -263,10 +368,8 @@ class KuwabaraKono(SmoothLaw):
 
     Parameters
     ----------
-    k_hertz : float
-        Hertz stiffness [N/m**1.5].
-    dissipation : float
-        Dissipation constant ``A`` [s], >= 0.
+    k_hertz, dissipation : float
+        Hertz stiffness [N/m**1.5] and dissipation constant ``A`` >= 0 [s].
 
     See Also
     --------
@@ -274,17 +377,47 @@ class KuwabaraKono(SmoothLaw):
     """
 
     name = "kuwabara_kono"
+    units = read_only(k_hertz="N/m**1.5", dissipation="s")
+    stiffness_parameters = ("k_hertz",)
+    typical = read_only(k_hertz=(1e6, 1e9, "log"), dissipation=(0.0, 1e-5, "linear"))
+    """Dissipation constant A up to 10 us."""
 
     def __init__(self, k_hertz, dissipation):
-        self.k_hertz = check_positive("k_hertz", k_hertz, "N/m**1.5")
-        self.dissipation = check_non_negative("dissipation", dissipation, "s")
-        self._params = {"k_hertz": self.k_hertz, "dissipation": self.dissipation}
+        self._keep(k_hertz=(check_positive, k_hertz), dissipation=(check_non_negative, dissipation))
 
     def _raw(self, overlap, rate):
         return _kuwabara_kono_raw(overlap, rate, self.k_hertz, self.dissipation)
 
     def power_form(self):
         return PowerForm(self.k_hertz, 1.5, 1.5 * self.k_hertz * self.dissipation, 0.5)
+
+    def _lammps_model(self, effective_mass, effective_radius):
+        """LAMMPS: ``hertz kH/sqrt(R*) eta``, ``damping viscoelastic`` with
+        ``eta = 1.5 A kH / (m* sqrt(R*))`` (:mod:`contactlab.laws.lammps`)."""
+        coefficient = (
+            1.5 * self.dissipation * self.k_hertz / (effective_mass * math.sqrt(effective_radius))
+        )
+        return _lammps_hertz(self, "viscoelastic", coefficient, effective_mass, effective_radius)
+
+    def _closed_forms(self, mass, velocity):
+        """Restitution on a wall: the two-term series of Ramirez et al. (1999)."""
+        args = dict(
+            k_hertz=self.k_hertz, dissipation=self.dissipation, mass=mass, velocity=velocity
+        )
+        x = analytic.kuwabara_kono_parameter(**args)
+        return (
+            closed_form(
+                "restitution",
+                analytic.kuwabara_kono_restitution,
+                RAMIREZ_1999,
+                atol=0.5 * x**2.5,
+                atol_reason=(
+                    f"0.5 x**2.5 (x = {x:.4g}): the two-term series leaves an O(x**2.5) "
+                    "remainder at the force-zero end (measured 0.24 x**2.5)"
+                ),
+                **args,
+            ),
+        )
 
 
 class HuntCrossley(SmoothLaw):
@@ -305,16 +438,20 @@ class HuntCrossley(SmoothLaw):
     """
 
     name = "hunt_crossley"
+    lammps_refusal = f"its damping k chi d**n d' scales as d**n; {DAMPING_FORMS}"
+    units = read_only(stiffness="N/m**n", exponent="-", damping="s/m")
+    stiffness_parameters = ("stiffness",)
+    typical = read_only(
+        stiffness=(1e6, 1e9, "log"), exponent=(1.5, 1.5, "linear"), damping=(0.0, 0.5, "linear")
+    )
+    """Hertzian exponent; restitution 1 - chi v for small chi v."""
 
     def __init__(self, stiffness, exponent, damping):
-        self.stiffness = check_positive("stiffness", stiffness, "N/m**n")
-        self.exponent = check_number("exponent", exponent, low=1.0, high=3.0, low_open=False)
-        self.damping = check_non_negative("damping", damping, "s/m")
-        self._params = {
-            "stiffness": self.stiffness,
-            "exponent": self.exponent,
-            "damping": self.damping,
-        }
+        self._keep(
+            stiffness=(check_positive, stiffness),
+            exponent=(partial(check_number, low=1.0, high=3.0, low_open=False), exponent),
+            damping=(check_non_negative, damping),
+        )
 
     def _raw(self, overlap, rate):
         return _hunt_crossley_raw(overlap, rate, self.stiffness, self.exponent, self.damping)
@@ -322,3 +459,16 @@ class HuntCrossley(SmoothLaw):
     def power_form(self):
         k, n = self.stiffness, self.exponent
         return PowerForm(k, n, 1.5 * k * self.damping, n, signed_damping=True)
+
+    def _closed_forms(self, mass, velocity):
+        """Restitution on a wall, ``1 - chi v`` to first order (Hunt & Crossley 1975)."""
+        restitution = analytic.hunt_crossley_restitution
+        return (
+            closed_form(
+                "restitution",
+                restitution,
+                HUNT_CROSSLEY_1975,
+                damping=self.damping,
+                velocity=velocity,
+            ),
+        )

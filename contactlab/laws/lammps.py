@@ -45,115 +45,26 @@ tangential force, as in contactlab's normal impact.
 
 Every other law raises :class:`~contactlab.errors.ParameterError` naming it and saying
 why (:data:`REFUSED`); nothing is approximated.
+
+Each law states its own mapping beside its force (``lammps_model(m*, R*)`` returning a
+:class:`~contactlab.laws.granular.GranularModel`) or its reason (``lammps_refusal``);
+this module reads them, so a new law adds neither a branch nor an entry here.
 """
 
-import math
-from dataclasses import dataclass
-
-from contactlab.errors import ParameterError
+from contactlab.laws import LAWS
+from contactlab.laws.base import stated
 from contactlab.laws.engine_support import refuse_unsupported
-from contactlab.laws.hertz import Hertz, HertzDamped, HuntCrossley, KuwabaraKono
-from contactlab.laws.hysteretic import WaltonBraun
-from contactlab.laws.linear import LinearViscoelastic
-from contactlab.laws.plastic import LinearPlastic, Thornton
-from contactlab.laws.pulse import PlasticTrapezoid
+from contactlab.laws.granular import TANGENTIAL, GranularModel
 from contactlab.validation import check_positive
 
 __all__ = ["ENGINE_LAWS", "REFUSED", "TANGENTIAL", "GranularModel", "granular_model"]
 
-ENGINE_LAWS = (LinearViscoelastic, Hertz, HertzDamped, KuwabaraKono)
-"""Laws LAMMPS' granular models hold exactly (see the module docstring)."""
+ENGINE_LAWS = tuple(cls for cls in LAWS.values() if "_lammps_model" in vars(cls))
+"""Laws LAMMPS' granular models hold exactly: those that state a ``lammps_model``."""
 
-TANGENTIAL = "tangential linear_nohistory 0 0"
-"""LAMMPS requires a tangential model: this one exerts no force."""
-
-_DAMPING_FORMS = (
-    "LAMMPS' damping forces scale as d**0 (velocity, mass_velocity), d**0.25 "
-    "(tsuji, coeff_restitution on hertz) or d**0.5 (viscoelastic)"
-)
-
-REFUSED = {
-    HuntCrossley: f"its damping k chi d**n d' scales as d**n; {_DAMPING_FORMS}",
-    WaltonBraun: (
-        "its unloading stiffness differs from its loading one (history); LAMMPS' normal "
-        "models (hooke, hertz, hertz/material, dmt, jkr) are elastic in the current overlap "
-        "and its plastic one (mdr) is a different law"
-    ),
-    LinearPlastic: (
-        "its force is capped at a yield force with a history of the largest overlap; no "
-        "LAMMPS normal model has a force cap"
-    ),
-    Thornton: (
-        "its Hertz loading turns to a limiting contact pressure and unloads along a "
-        "history-dependent Hertz curve; LAMMPS' mdr model is a different plastic law"
-    ),
-    PlasticTrapezoid: "it prescribes the force in time, not as a function of the overlap",
-}
-"""Laws LAMMPS cannot hold exactly: law class -> the reason (quoted in the ParameterError)."""
-
-
-@dataclass(frozen=True)
-class GranularModel:
-    """A law as one LAMMPS granular model for a contact of given ``m*`` and ``R*``.
-
-    Attributes
-    ----------
-    law : ContactLaw
-        The contactlab law.
-    normal : str
-        LAMMPS normal sub-model (``"hooke"`` or ``"hertz"``).
-    stiffness : float
-        Its first coefficient: ``k`` [N/m] (hooke) or [N/m**2 = Pa] (hertz, ``F = k a d``).
-    damping : str
-        LAMMPS damping sub-model (``"velocity"``, ``"viscoelastic"``,
-        ``"coeff_restitution"``).
-    damping_coefficient : float
-        The normal model's second coefficient as LAMMPS reads it for that damping: [N*s/m]
-        (velocity), [1/(m*s)] (viscoelastic), a restitution [-] (coeff_restitution).
-    effective_mass : float
-        ``m*`` the mapping assumed [kg].
-    effective_radius : float
-        ``R*`` the mapping assumed [m].
-    """
-
-    law: object
-    normal: str
-    stiffness: float
-    damping: str
-    damping_coefficient: float
-    effective_mass: float
-    effective_radius: float
-
-    def words(self, tangential=TANGENTIAL, number=repr):
-        """The model as ``pair_coeff`` / ``fix wall/gran granular`` words (one-sided).
-
-        ``tangential`` is the tangential sub-model's words (default: no tangential force);
-        ``number`` writes a coefficient (default all 17 digits, so LAMMPS reads the very
-        double; the DEM exporter writes 7).
-        """
-        return (
-            f"{self.normal} {number(self.stiffness)} {number(self.damping_coefficient)} "
-            f"damping {self.damping} {tangential} limit_damping"
-        )
-
-    @property
-    def what(self):
-        """The law and its parameters, for error messages."""
-        return f"law {self.law!r} as {self.normal}/{self.damping}"
-
-
-def _hertz_damped_restitution(law, mass):
-    """LAMMPS' ``coeff_restitution`` input that gives the damping ``eta`` exactly."""
-    alpha = law.damping / math.sqrt(mass * law.k_hertz)
-    s = alpha / math.sqrt(5.0)
-    if s >= 1.0:
-        raise ParameterError(
-            f"law HertzDamped: damping = {law.damping:.6g} N*s/m**1.25 is alpha = "
-            f"eta/sqrt(m* kH) = {alpha:.6g} >= sqrt(5) for m* = {mass:.6g} kg; LAMMPS' "
-            "coeff_restitution damping reaches alpha < sqrt(5) only (its tsuji damping "
-            "alpha < 1.80): no LAMMPS input holds this law"
-        )
-    return math.exp(-math.pi * s / math.sqrt(1.0 - s * s))
+REFUSED = {cls: cls.lammps_refusal for cls in LAWS.values() if "lammps_refusal" in vars(cls)}
+"""Laws LAMMPS cannot hold exactly: law class -> the reason each states (quoted in the
+ParameterError)."""
 
 
 def granular_model(law, effective_mass, effective_radius):
@@ -162,7 +73,8 @@ def granular_model(law, effective_mass, effective_radius):
     Parameters
     ----------
     law : ContactLaw
-        One of :data:`ENGINE_LAWS` (exact type; a subclass may change the force).
+        A law whose own class states a ``lammps_model`` (:data:`ENGINE_LAWS`; a subclass
+        may change the force, so it does not inherit its parent's mapping).
     effective_mass : float
         ``m*`` LAMMPS will use for the contact [kg] (the grain's mass on a wall).
     effective_radius : float
@@ -181,24 +93,4 @@ def granular_model(law, effective_mass, effective_radius):
     mass = check_positive("effective_mass", effective_mass, "kg")
     radius = check_positive("effective_radius", effective_radius, "m")
     refuse_unsupported(law, ENGINE_LAWS, REFUSED, "LAMMPS", "LAMMPS' granular models")
-    kind = type(law)
-    common = {"law": law, "effective_mass": mass, "effective_radius": radius}
-    if kind is LinearViscoelastic:
-        return GranularModel(
-            normal="hooke",
-            stiffness=law.stiffness,
-            damping="velocity",
-            damping_coefficient=law.damping,
-            **common,
-        )
-    hertz = {"normal": "hertz", "stiffness": law.k_hertz / math.sqrt(radius), **common}
-    if kind is Hertz:
-        return GranularModel(damping="velocity", damping_coefficient=0.0, **hertz)
-    if kind is HertzDamped:
-        return GranularModel(
-            damping="coeff_restitution",
-            damping_coefficient=_hertz_damped_restitution(law, mass),
-            **hertz,
-        )
-    coefficient = 1.5 * law.dissipation * law.k_hertz / (mass * math.sqrt(radius))
-    return GranularModel(damping="viscoelastic", damping_coefficient=coefficient, **hertz)
+    return stated(law, "_lammps_model")(mass, radius)

@@ -1,10 +1,16 @@
 """Linear spring-dashpot (Kelvin-Voigt) contact: the paper's Eq. (6)."""
 
+import math
+
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import PowerForm, SmoothLaw, one_sided
-from contactlab.validation import check_choice, check_non_negative, check_positive, numbers_checked
+from contactlab.laws.base import PowerForm, SmoothLaw, force_function, one_sided, read_only
+from contactlab.laws.closed_form import SCHWAGER_2007, closed_form
+from contactlab.laws.granular import GranularModel
+from contactlab.laws.hertz import Hertz
+from contactlab.quantities import column
+from contactlab.validation import check_choice, check_non_negative, check_positive
 
 __all__ = ["LinearViscoelastic", "linear_viscoelastic_force"]
 
@@ -13,7 +19,7 @@ def _linear_raw(overlap, rate, stiffness, damping):
     return stiffness * overlap + damping * rate
 
 
-@numbers_checked()
+@force_function()
 def linear_viscoelastic_force(overlap, rate, stiffness, damping):
     """Linear spring-dashpot (Kelvin-Voigt) contact force, one-sided.
 
@@ -65,12 +71,16 @@ class LinearViscoelastic(SmoothLaw):
     """
 
     name = "linear"
+    dem_export = "linear"
+    """DEM exporters write it as stiffness and damping (:mod:`contactlab.inverse.export`)."""
     piecewise_linear = True
+    units = read_only(stiffness="N/m", damping="N*s/m")
+    stiffness_parameters = ("stiffness",)
+    typical = read_only(stiffness=(1e3, 1e7, "log"), damping=(0.0, 5.0, "linear"))
+    """DEM practice (the paper's soft and hard grains: 1e4 and 1e5 N/m; damping 1 N*s/m)."""
 
     def __init__(self, stiffness, damping=0.0):
-        self.stiffness = check_positive("stiffness", stiffness, "N/m")
-        self.damping = check_non_negative("damping", damping, "N*s/m")
-        self._params = {"stiffness": self.stiffness, "damping": self.damping}
+        self._keep(stiffness=(check_positive, stiffness), damping=(check_non_negative, damping))
 
     @classmethod
     def from_restitution(cls, stiffness, restitution, mass, convention="overlap"):
@@ -100,6 +110,17 @@ class LinearViscoelastic(SmoothLaw):
         )
         return cls(stiffness=stiffness, damping=damping)
 
+    def _resized(self, mass, grain, velocity):
+        """The law for ``grain`` (another size, from its material data) at ``velocity``:
+        the stiffness ``m (pi / t_H)**2`` of the elastic Hertz contact with the same
+        rigid-wall contact time ``t_H``, and this law's damping ratio for a grain of
+        ``mass`` [kg]."""
+        k_hertz = Hertz.from_material(*grain.material()).k_hertz
+        t_hertz = analytic.hertz_contact_time(k_hertz, grain.mass, velocity)
+        stiffness = grain.mass * (math.pi / t_hertz) ** 2
+        ratio = self.damping / (2.0 * math.sqrt(self.stiffness * mass))
+        return type(self)(stiffness, 2.0 * ratio * math.sqrt(stiffness * grain.mass))
+
     def _raw(self, overlap, rate):
         return _linear_raw(overlap, rate, self.stiffness, self.damping)
 
@@ -108,3 +129,33 @@ class LinearViscoelastic(SmoothLaw):
 
     def _linear(self):
         return (self.stiffness, self.damping, 0.0)
+
+    def _lammps_model(self, effective_mass, effective_radius):
+        """LAMMPS: ``hooke k c``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
+        return GranularModel(
+            law=self,
+            normal="hooke",
+            stiffness=self.stiffness,
+            damping="velocity",
+            damping_coefficient=self.damping,
+            effective_mass=effective_mass,
+            effective_radius=effective_radius,
+        )
+
+    def _damping_ratio(self, mass):
+        """Kratos' damping ratio ``c / (2 sqrt(m* k))`` [-] on a grain of ``mass`` [kg]
+        (:func:`contactlab.laws.damping_ratio`; ``Kn = k``)."""
+        return self.damping / (2.0 * math.sqrt(mass * self.stiffness))
+
+    def _batch_contact(self):
+        """The batch solver of this law and its contact columns:
+        :func:`contactlab.batch.linear_impacts`, ``k2 [N/m]`` and ``c2 [N*s/m]``."""
+        return "linear", {column("k2"): self.stiffness, column("c2"): self.damping}
+
+    def _closed_forms(self, mass, velocity):
+        """Contact time and restitution on a wall (Schwager & Poeschel 2007, force-zero end)."""
+        args = dict(stiffness=self.stiffness, damping=self.damping, mass=mass, convention="force")
+        return (
+            closed_form("contact_time", analytic.linear_contact_time, SCHWAGER_2007, **args),
+            closed_form("restitution", analytic.linear_restitution, SCHWAGER_2007, **args),
+        )

@@ -8,18 +8,21 @@ from contactlab import analytic
 from contactlab.laws.base import (
     Branch,
     ContactLaw,
+    force_function,
     one_sided,
     overlap_reaches,
     rate_turns,
+    read_only,
     signed_power,
     with_history,
 )
-from contactlab.validation import check_positive, numbers_checked
+from contactlab.laws.closed_form import ENERGY_BALANCE, THORNTON_1997, ClosedForm, closed_form
+from contactlab.validation import check_positive
 
 __all__ = ["LinearPlastic", "Thornton", "linear_plastic_force", "thornton_force"]
 
 
-@numbers_checked("max_overlap")
+@force_function("max_overlap")
 def linear_plastic_force(overlap, max_overlap, stiffness, yield_force):
     """Linear spring with a force cap (elastic-perfectly-plastic, linear) [N].
 
@@ -38,11 +41,16 @@ def linear_plastic_force(overlap, max_overlap, stiffness, yield_force):
         Force cap ``Fy`` [N].
     """
     d, d_max = with_history(overlap, max_overlap)
+    return one_sided(d, _linear_plastic_raw(d, d_max, stiffness, yield_force))
+
+
+def _linear_plastic_raw(d, d_max, stiffness, yield_force):
+    """``min(k d, Fy)`` on loading, elastic unloading from the largest force reached."""
     f_max = np.minimum(stiffness * d_max, yield_force)
-    return one_sided(d, np.minimum(f_max + stiffness * (d - d_max), yield_force))
+    return np.minimum(f_max + stiffness * (d - d_max), yield_force)
 
 
-@numbers_checked("max_overlap")
+@force_function("max_overlap")
 def thornton_force(overlap, max_overlap, effective_modulus, effective_radius, yield_pressure):
     """Thornton (1997) elastic-perfectly-plastic Hertz force [N].
 
@@ -51,16 +59,10 @@ def thornton_force(overlap, max_overlap, effective_modulus, effective_radius, yi
 
     Parameters
     ----------
-    overlap : array_like
-        Overlap [m].
-    max_overlap : array_like or None
-        Largest overlap reached so far [m]; ``None`` means a virgin loading path.
-    effective_modulus : float
-        ``E*`` [Pa].
-    effective_radius : float
-        ``R*`` [m].
-    yield_pressure : float
-        Limiting contact pressure ``py`` [Pa].
+    overlap, max_overlap
+        As for :func:`linear_plastic_force` [m].
+    effective_modulus, effective_radius, yield_pressure : float
+        ``E*`` [Pa], ``R*`` [m] and the limiting contact pressure ``py`` [Pa].
 
     References
     ----------
@@ -116,18 +118,23 @@ class LinearPlastic(ContactLaw):
     """
 
     name = "linear_plastic"
+    lammps_refusal = (
+        "its force is capped at a yield force with a history of the largest overlap; no "
+        "LAMMPS normal model has a force cap"
+    )
     has_history = True
     piecewise_linear = True
+    units = read_only(stiffness="N/m", yield_force="N")
+    stiffness_parameters = ("stiffness",)
+    typical = read_only(stiffness=(1e3, 1e7, "log"), yield_force=(0.05, 20.0, "linear"))
+    """The paper's impacts peak at a few N."""
 
     def __init__(self, stiffness, yield_force):
-        self.stiffness = check_positive("stiffness", stiffness, "N/m")
-        self.yield_force = check_positive("yield_force", yield_force, "N")
-        self._params = {"stiffness": self.stiffness, "yield_force": self.yield_force}
+        self._keep(stiffness=(check_positive, stiffness), yield_force=(check_positive, yield_force))
 
     def _force(self, overlap, rate, max_overlap):
         d, d_max = with_history(overlap, max_overlap)
-        f_max = np.minimum(self.stiffness * d_max, self.yield_force)
-        return np.minimum(f_max + self.stiffness * (d - d_max), self.yield_force)
+        return _linear_plastic_raw(d, d_max, self.stiffness, self.yield_force)
 
     def branch(self, name, max_overlap=0.0):
         k, f_y = self.stiffness, self.yield_force
@@ -161,6 +168,25 @@ class LinearPlastic(ContactLaw):
             "unload"
         )
 
+    def _closed_forms(self, mass, velocity):
+        """Restitution, contact time and peak force on a wall (energy balance)."""
+        args = dict(
+            stiffness=self.stiffness, yield_force=self.yield_force, mass=mass, velocity=velocity
+        )
+        elastic_peak = velocity * math.sqrt(self.stiffness * mass)
+        restitution = analytic.linear_plastic_restitution
+        contact_time = analytic.linear_plastic_contact_time
+        return (
+            closed_form("restitution", restitution, ENERGY_BALANCE, **args),
+            closed_form("contact_time", contact_time, ENERGY_BALANCE, **args),
+            ClosedForm(
+                "peak_contact_force",
+                min(self.yield_force, elastic_peak),
+                f"min(Fy, v sqrt(k m*)) = min({self.yield_force:.6g}, {elastic_peak:.6g})",
+                ENERGY_BALANCE,
+            ),
+        )
+
 
 class Thornton(ContactLaw):
     """Thornton (1997) elastic-perfectly-plastic Hertz contact.
@@ -180,17 +206,25 @@ class Thornton(ContactLaw):
     """
 
     name = "thornton"
+    lammps_refusal = (
+        "its Hertz loading turns to a limiting contact pressure and unloads along a "
+        "history-dependent Hertz curve; LAMMPS' mdr model is a different plastic law"
+    )
     has_history = True
+    units = read_only(effective_modulus="Pa", effective_radius="m", yield_pressure="Pa")
+    stiffness_parameters = ("effective_modulus",)
+    typical = read_only(
+        effective_modulus=(1e6, 1e8, "log"),
+        effective_radius=(5e-4, 5e-3, "log"),
+        yield_pressure=(1e5, 1e7, "log"),
+    )
 
     def __init__(self, effective_modulus, effective_radius, yield_pressure):
-        self.effective_modulus = check_positive("effective_modulus", effective_modulus, "Pa")
-        self.effective_radius = check_positive("effective_radius", effective_radius, "m")
-        self.yield_pressure = check_positive("yield_pressure", yield_pressure, "Pa")
-        self._params = {
-            "effective_modulus": self.effective_modulus,
-            "effective_radius": self.effective_radius,
-            "yield_pressure": self.yield_pressure,
-        }
+        self._keep(
+            effective_modulus=(check_positive, effective_modulus),
+            effective_radius=(check_positive, effective_radius),
+            yield_pressure=(check_positive, yield_pressure),
+        )
 
     @classmethod
     def from_material(
@@ -251,3 +285,19 @@ class Thornton(ContactLaw):
         if max_overlap <= 0.0:
             return 0.0, "load"
         return float(_thornton_unloading(max_overlap, *self._material)[1]), "unload"
+
+    def _closed_forms(self, mass, velocity):
+        """Restitution on a wall (Thornton 1997)."""
+        modulus, radius, p_y = self._material
+        return (
+            closed_form(
+                "restitution",
+                analytic.thornton_restitution,
+                THORNTON_1997,
+                effective_modulus=modulus,
+                effective_radius=radius,
+                yield_pressure=p_y,
+                mass=mass,
+                velocity=velocity,
+            ),
+        )

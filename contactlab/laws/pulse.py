@@ -3,13 +3,14 @@
 import numpy as np
 
 from contactlab import analytic
-from contactlab.laws.base import ContactLaw
-from contactlab.validation import KeywordChecked, check_number, check_positive, numbers_checked
+from contactlab.laws.base import ContactLaw, force_function, read_only
+from contactlab.laws.closed_form import KESKA_2021, ClosedForm, closed_form
+from contactlab.validation import KeywordChecked, check_number, check_positive
 
 __all__ = ["PlasticTrapezoid", "plastic_trapezoid_force"]
 
 
-@numbers_checked()
+@force_function()
 def plastic_trapezoid_force(time, amplitude, contact_time, ramp_time):
     """The paper's perfectly plastic pulse: a trapezoid in time [N].
 
@@ -28,6 +29,8 @@ def plastic_trapezoid_force(time, amplitude, contact_time, ramp_time):
     ----------
     Keska W. et al. (2021) Applied Sciences 11, 11 (Eqs. 7-8).
     """
+    check_number("contact_time", contact_time, unit="s")  # scalars: the pulse has one shape
+    ramp_time = check_number("ramp_time", ramp_time, low=0.0, low_open=False, unit="s")
     time = np.asarray(time, dtype=float)
     if ramp_time == 0.0:
         shape = ((time >= 0) & (time < contact_time)).astype(float)
@@ -55,12 +58,22 @@ class PlasticTrapezoid(KeywordChecked):
     """
 
     name = "plastic_trapezoid"
+    lammps_refusal = "it prescribes the force in time, not as a function of the overlap"
     prescribed = True
     has_history = False
     piecewise_linear = True
+    units = read_only(contact_time="s", ramp_time="s")
+    stiffness_parameters = ()
+    typical = read_only(contact_time=(10e-6, 500e-6, "log"), ramp_fraction=(0.0, 1.0, "linear"))
+    """``ramp_fraction``: the ramps' share of half the pulse."""
+
+    @classmethod
+    def _from_typical(cls, contact_time, ramp_fraction):
+        """The pulse from values drawn over :attr:`typical`."""
+        return cls(contact_time, ramp_fraction * 0.5 * contact_time)
 
     def __init__(self, contact_time, ramp_time=0.0):
-        self.contact_time = check_positive("contact_time", contact_time, "s")
+        self.contact_time = check_positive("contact_time", contact_time, self.units["contact_time"])
         self.ramp_time = check_number(
             "ramp_time",
             ramp_time,
@@ -105,3 +118,28 @@ class PlasticTrapezoid(KeywordChecked):
         check_positive("mass", mass, "kg")
         check_positive("velocity", velocity, "m/s")
         return 0.0
+
+    def _closed_forms(self, mass, velocity):
+        """Plateau force, the prescribed duration and restitution 0 (Keska et al. 2021)."""
+        return (
+            closed_form(
+                "peak_contact_force",
+                analytic.plastic_trapezoid_amplitude,
+                KESKA_2021,
+                mass=mass,
+                velocity=velocity,
+                contact_time=self.contact_time,
+                ramp_time=self.ramp_time,
+            ),
+            ClosedForm(
+                "contact_time", self.contact_time, "t_k (the prescribed duration)", KESKA_2021
+            ),
+            ClosedForm(
+                "restitution",
+                0.0,
+                "0 (the impulse equals the grain's momentum m v)",
+                KESKA_2021,
+                atol=1e-12,
+                atol_reason="an exact zero has no relative scale; 1e-12 is 1e4 times the roundoff",
+            ),
+        )

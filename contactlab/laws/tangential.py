@@ -49,9 +49,7 @@ from contactlab.analytic.tangential import (
     mindlin_stiffness_coefficient,
 )
 from contactlab.errors import ParameterError
-from contactlab.laws.base import ContactLaw
-from contactlab.laws.hertz import Hertz, HertzDamped
-from contactlab.laws.linear import LinearViscoelastic
+from contactlab.laws.base import ContactLaw, stated
 from contactlab.laws.tangential_form import TangentialForm
 from contactlab.validation import KeywordChecked, check_choice, check_number, numbers_checked
 
@@ -455,10 +453,9 @@ def damping_ratio(normal_law, mass):
     rigid wall), as Kratos defines it: the normal damping force is ``2 gamma sqrt(m* Kn)
     d'`` with ``Kn`` the normal tangent stiffness.
 
-    ``Hertz``: 0. ``HertzDamped`` (``eta d**0.25 d'``, ``Kn = 1.5 kH sqrt(d)``): ``eta /
-    (2 sqrt(1.5 m* kH))``. ``LinearViscoelastic`` (``c d'``, ``Kn = k``): ``c / (2 sqrt(m*
-    k))``. Constant through the contact for these three, so the tied tangential damping
-    ``2 gamma sqrt(m* kt)`` is exactly Kratos'.
+    Each law whose ratio is constant through the contact states it
+    (``normal_law._damping_ratio(mass)``: Hertz, HertzDamped, LinearViscoelastic), so the
+    tied tangential damping ``2 gamma sqrt(m* kt)`` is exactly Kratos'.
 
     Raises
     ------
@@ -466,17 +463,16 @@ def damping_ratio(normal_law, mass):
         For another normal law (its damping is not a constant ratio).
     """
     mass = check_number("mass", mass, low=0.0, unit="kg")
-    kind = type(normal_law)
-    if kind is Hertz:
-        return 0.0
-    if kind is HertzDamped:
-        return normal_law.damping / (2.0 * math.sqrt(1.5 * mass * normal_law.k_hertz))
-    if kind is LinearViscoelastic:
-        return normal_law.damping / (2.0 * math.sqrt(mass * normal_law.stiffness))
-    raise ParameterError(
-        f"tangential_law damping='tied' needs a normal law with a constant damping ratio "
-        f"(Hertz, HertzDamped, LinearViscoelastic); got {kind.__name__}"
-    )
+    ratio = stated(normal_law, "_damping_ratio")
+    if ratio is None:
+        from contactlab.laws import LAWS  # the registry imports this module
+
+        have = ", ".join(cls.__name__ for cls in LAWS.values() if "_damping_ratio" in vars(cls))
+        raise ParameterError(
+            f"normal_law: tangential_law damping='tied' needs a normal law with a constant "
+            f"damping ratio ({have}); got {type(normal_law).__name__}"
+        )
+    return ratio(mass)
 
 
 TANGENTIAL_LAWS = {cls.name: cls for cls in (TangentialSpring, Mindlin)}

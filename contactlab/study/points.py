@@ -14,7 +14,6 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from contactlab import analytic
 from contactlab.batch import (
     dask_hertz_impacts,
     dask_linear_impacts,
@@ -24,7 +23,8 @@ from contactlab.batch import (
 from contactlab.batch.dask import check_client
 from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
-from contactlab.laws import Hertz, HertzDamped, LinearViscoelastic
+from contactlab.laws.base import stated
+from contactlab.laws.closed_form import closed_value
 from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
 from contactlab.solver.wall import wall_contact_time
@@ -55,20 +55,11 @@ def _with_errors(readings):
     }
 
 
-_CLOSED_FORMS = {
-    "linear": lambda law, m, v: analytic.linear_contact_time(
-        law.stiffness, law.damping, m, convention="force"
-    ),
-    "hertz": lambda law, m, v: analytic.hertz_contact_time(law.k_hertz, m, v),
-    "plastic_trapezoid": lambda law, m, v: law.contact_time,
-}
-"""Rigid-wall contact times in closed form [s]; other laws simulate the wall impact."""
-
-
 def _rigid_contact_time(law, mass, velocity):
-    """Contact time of the law on an immovable wall [s]."""
-    closed = _CLOSED_FORMS.get(law.name)
-    return wall_contact_time(law, mass, velocity) if closed is None else closed(law, mass, velocity)
+    """Contact time of the law on an immovable wall [s]: its closed form where the law
+    states an exact one, else the simulated wall impact."""
+    closed = closed_value(law, "contact_time", mass, velocity)
+    return wall_contact_time(law, mass, velocity) if closed is None else closed
 
 
 def error_percent(reading, truth):
@@ -157,13 +148,17 @@ def simulate_point(setup, overrides, factors):
 
 
 _BATCHED = {
-    LinearViscoelastic: (linear_impacts, dask_linear_impacts),
-    HertzDamped: (hertz_impacts, dask_hertz_impacts),
-    Hertz: (hertz_impacts, dask_hertz_impacts),
+    "linear": (linear_impacts, dask_linear_impacts),
+    "hertz": (hertz_impacts, dask_hertz_impacts),
 }
-"""Laws a sweep hands to a batch solver: the solver and its Dask twin (elastic Hertz is
-the damped-Hertz batch with zero damping; :meth:`ImpactConfig.batch_row` writes the
-rows)."""
+"""Batch solvers a sweep hands impacts to, by the name a law's ``batch_contact()`` gives:
+the solver and its Dask twin (:meth:`ImpactConfig.batch_row` writes the rows)."""
+
+
+def _batch_solver(law):
+    """The name of the law's batch solver, or None."""
+    batch_contact = stated(law, "_batch_contact")
+    return None if batch_contact is None else batch_contact()[0]
 
 
 def _batch_frame(tasks):
@@ -200,13 +195,15 @@ def _solve_batch(frame, impacts, on_dask, client, progress):
 
 def batched(law):
     """Whether a sweep hands impacts with this law to a batch solver."""
-    return type(law) in _BATCHED
+    return _batch_solver(law) in _BATCHED
 
 
 def _batch_kind(tasks):
     """The :data:`_BATCHED` entry every task's law shares, or None."""
     kinds = {type(task[0].law) for task in tasks}
-    return _BATCHED.get(kinds.pop()) if len(kinds) == 1 else None
+    if len(kinds) != 1:
+        return None
+    return _BATCHED.get(_batch_solver(tasks[0][0].law))
 
 
 def simulate_points(tasks, *, client=None, progress=None):

@@ -13,7 +13,6 @@ follows the grain's size. A grid point changes any of its parameters by name:
 * ``velocity`` [m/s].
 """
 
-import math
 import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
@@ -21,11 +20,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.special import ndtr, ndtri
 
-from contactlab import analytic
 from contactlab.bodies import Grain, Sensor
 from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
-from contactlab.laws import ContactLaw, Hertz, HertzDamped, LinearViscoelastic, PlasticTrapezoid
+from contactlab.laws import LAWS, ContactLaw, LinearViscoelastic, PlasticTrapezoid
+from contactlab.laws.base import stated
 from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = [
@@ -43,31 +42,12 @@ SIZE_DEPENDENCE = ("fixed", "material")
 """How the contact law follows the grain diameter (see :class:`StudySetup`)."""
 
 STIFFNESS_PARAMETERS = {
-    "linear": ("stiffness",),
-    "hertz": ("k_hertz",),
-    "hertz_damped": ("k_hertz",),
-    "kuwabara_kono": ("k_hertz",),
-    "hunt_crossley": ("stiffness",),
-    "walton_braun": ("loading_stiffness", "unloading_stiffness"),
-    "linear_plastic": ("stiffness",),
-    "thornton": ("effective_modulus",),
+    name: cls.stiffness_parameters for name, cls in LAWS.items() if cls.stiffness_parameters
 }
-"""Law parameters that make up "the contact stiffness" the scatter multiplies (all by the
-same factor, so that e.g. Walton-Braun keeps its restitution). The prescribed plastic pulse
-has none: name what to scatter with ``StudySetup(vary=...)``."""
-
-_LAW_UNITS = {
-    "linear": {"stiffness": "N/m", "damping": "N*s/m"},
-    "hertz": {"k_hertz": "N/m^1.5"},
-    "hertz_damped": {"k_hertz": "N/m^1.5", "damping": "N*s/m^1.25"},
-    "kuwabara_kono": {"k_hertz": "N/m^1.5", "dissipation": "s"},
-    "hunt_crossley": {"stiffness": "N/m^n", "exponent": "-", "damping": "s/m"},
-    "walton_braun": {"loading_stiffness": "N/m", "unloading_stiffness": "N/m"},
-    "linear_plastic": {"stiffness": "N/m", "yield_force": "N"},
-    "thornton": {"effective_modulus": "Pa", "effective_radius": "m", "yield_pressure": "Pa"},
-    "plastic_trapezoid": {"contact_time": "s", "ramp_time": "s"},
-}
-"""Units of the law parameters, for unit-bearing column names."""
+"""Law parameters that make up "the contact stiffness" the scatter multiplies, as each law
+states them (``stiffness_parameters``; all by the same factor, so that e.g. Walton-Braun
+keeps its restitution). The prescribed plastic pulse has none: name what to scatter with
+``StudySetup(vary=...)``."""
 
 _RESULT_NAMES = ("contact_time",)
 """Law parameters named like a result column; their columns get a ``law_`` prefix."""
@@ -174,8 +154,8 @@ def _names(name, value):
 
 
 def law_units(law):
-    """Units of a law's parameters, name -> unit string."""
-    return _LAW_UNITS[law.name]
+    """Units of a law's parameters, name -> unit string (the law's own ``units``)."""
+    return dict(law.units)
 
 
 @dataclass(frozen=True)
@@ -241,7 +221,12 @@ class StudySetup:
         )
         check_choice("size_dependence", self.size_dependence, SIZE_DEPENDENCE)
         if self.size_dependence == "material":
-            check_choice("law (for size_dependence='material')", self.law.name, tuple(_MATERIAL))
+            if stated(self.law, "_resized") is None:
+                resizable = ", ".join(name for name, cls in LAWS.items() if "_resized" in vars(cls))
+                raise ParameterError(
+                    f"law {self.law.name!r} cannot follow the grain size "
+                    f"(size_dependence='material'); the laws that can: {resizable}"
+                )
             self.grain.material()  # raises when the grain has no material data
         object.__setattr__(
             self,
@@ -264,7 +249,7 @@ class StudySetup:
     def varied(self):
         """Law parameters the scatter multiplies: ``vary``, or the law's stiffness."""
         if self.vary is None:
-            return STIFFNESS_PARAMETERS.get(self.law.name, ())
+            return self.law.stiffness_parameters
         return tuple(self.vary)
 
     @classmethod
@@ -372,7 +357,7 @@ class StudySetup:
         grain = Grain(**grain_kw)
         sensor = Sensor.from_resonance(**sensor_kw)
         if self.size_dependence == "material":
-            law = _MATERIAL[self.law.name](self, grain, velocity)
+            law = self.law._resized(self.grain.mass, grain, velocity)
         else:
             law = type(self.law)(**law_kw)
         return ImpactConfig(grain, sensor, law, {"velocity": velocity})
@@ -397,35 +382,3 @@ class StudySetup:
         params = law.parameters()
         params.update({p: params[p] * factor for p in self.varied})
         return type(law)(**params)
-
-
-# ---------------------------------------------------------------------------
-# Laws built from the grain's material data (size_dependence="material")
-# ---------------------------------------------------------------------------
-def _material_hertz(setup, grain, velocity):
-    return Hertz.from_material(*grain.material())
-
-
-def _material_hertz_damped(setup, grain, velocity):
-    base = setup.law
-    factor = base.damping / math.sqrt(setup.grain.mass * base.k_hertz)
-    k_hertz = Hertz.from_material(*grain.material()).k_hertz
-    return HertzDamped(k_hertz=k_hertz, damping=factor * math.sqrt(grain.mass * k_hertz))
-
-
-def _material_linear(setup, grain, velocity):
-    k_hertz = Hertz.from_material(*grain.material()).k_hertz
-    t_hertz = analytic.hertz_contact_time(k_hertz, grain.mass, velocity)
-    stiffness = grain.mass * (math.pi / t_hertz) ** 2
-    base = setup.law
-    ratio = base.damping / (2.0 * math.sqrt(base.stiffness * setup.grain.mass))
-    return LinearViscoelastic(
-        stiffness=stiffness, damping=2.0 * ratio * math.sqrt(stiffness * grain.mass)
-    )
-
-
-_MATERIAL = {
-    "linear": _material_linear,
-    "hertz": _material_hertz,
-    "hertz_damped": _material_hertz_damped,
-}

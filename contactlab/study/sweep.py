@@ -17,7 +17,6 @@ The standard deviation is the population one (``ddof = 0``) for that identity to
 import itertools
 import math
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -27,7 +26,7 @@ from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.validation import check_count, check_path
+from contactlab.validation import check_count, make_folder
 
 __all__ = [
     "ERRORS",
@@ -126,9 +125,7 @@ class SweepResult:
         list of pathlib.Path
             The two files.
         """
-        check_path("directory", directory)
-        directory = Path(directory)
-        directory.mkdir(parents=True, exist_ok=True)
+        directory = make_folder("directory", directory)
         paths = [directory / f"{name}.csv", directory / f"{name}_impacts.csv"]
         self.points.to_csv(paths[0], index=False)
         self.impacts.to_csv(paths[1], index=False)

@@ -12,12 +12,14 @@ spanning decades are drawn evenly in log scale. Needs ``hypothesis`` (the ``test
 """
 
 import math
+from collections.abc import Mapping
 
 from hypothesis import strategies as st
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import (
+    LAWS,
     Hertz,
     HertzDamped,
     HuntCrossley,
@@ -40,6 +42,7 @@ __all__ = [
     "hunt_crossley_laws",
     "impact_velocities",
     "kuwabara_kono_laws",
+    "law_strategy",
     "laws",
     "linear_laws",
     "linear_plastic_laws",
@@ -155,91 +158,65 @@ def impact_velocities(low=0.1, high=10.0):
     return st.floats(*_bounds("impact speed", (low, high), "m/s"))
 
 
-_STIFFNESS = (1e3, 1e7)
-"""Linear contact stiffness [N/m]: DEM practice; the paper's soft and hard grains have
-1e4 and 1e5."""
+def law_strategy(cls):
+    """Laws of class ``cls`` drawn over the ranges it states (``cls.typical``: decades in
+    log scale) and built by ``cls._from_typical``.
 
-_HERTZ_STIFFNESS = (1e6, 1e9)
-"""Hertz stiffness kH = 4/3 E* sqrt(R*) [N/m**1.5]: the paper's 5 mm grain has 1.5e6;
-dry hard grains reach 1e9."""
+    Parameters
+    ----------
+    cls : type
+        A law class of :mod:`contactlab.laws`.
 
-
-def linear_laws():
-    """:class:`~contactlab.laws.LinearViscoelastic`: stiffness 1e3-1e7 N/m (log scale),
-    damping 0-5 N*s/m (the paper's grain: 1)."""
-    return st.builds(LinearViscoelastic, _log_floats(*_STIFFNESS), st.floats(0.0, 5.0))
-
-
-def hertz_laws():
-    """:class:`~contactlab.laws.Hertz`: kH 1e6-1e9 N/m**1.5 (log scale)."""
-    return st.builds(Hertz, _log_floats(*_HERTZ_STIFFNESS))
-
-
-def hertz_damped_laws():
-    """:class:`~contactlab.laws.HertzDamped`: kH 1e6-1e9 N/m**1.5, damping eta 0-2
-    N*s/m**1.25 (damping factor alpha up to about 0.3 for the paper's grain)."""
-    return st.builds(HertzDamped, _log_floats(*_HERTZ_STIFFNESS), st.floats(0.0, 2.0))
+    Returns
+    -------
+    hypothesis.strategies.SearchStrategy
+        Of ``cls`` laws.
+    """
+    drawn = {
+        name: _log_floats(low, high) if scale == "log" else st.floats(low, high)
+        for name, (low, high, scale) in cls.typical.items()
+    }
+    return st.builds(cls._from_typical, **drawn)
 
 
-def kuwabara_kono_laws():
-    """:class:`~contactlab.laws.KuwabaraKono`: kH 1e6-1e9 N/m**1.5, dissipation
-    constant A 0-10 us."""
-    return st.builds(KuwabaraKono, _log_floats(*_HERTZ_STIFFNESS), st.floats(0.0, 1e-5))
+def _named(cls):
+    def strategy():
+        return law_strategy(cls)
 
-
-def hunt_crossley_laws():
-    """:class:`~contactlab.laws.HuntCrossley`: Hertzian exponent 1.5, k 1e6-1e9 N/m**1.5,
-    damping chi 0-0.5 s/m (restitution 1 - chi v for small chi v)."""
-    return st.builds(
-        HuntCrossley, _log_floats(*_HERTZ_STIFFNESS), st.just(1.5), st.floats(0.0, 0.5)
+    strategy.__name__ = strategy.__qualname__ = f"{cls.name}_laws"
+    strategy.__doc__ = (
+        f":class:`~contactlab.laws.{cls.__name__}` over its typical ranges "
+        f"(``{cls.__name__}.typical``)."
     )
+    return strategy
 
 
-def walton_braun_laws():
-    """:class:`~contactlab.laws.WaltonBraun`: loading stiffness 1e3-1e7 N/m, unloading
-    stiffness larger by 1-20 (restitution sqrt(k1/k2) from 1 down to 0.22)."""
-    return st.builds(
-        lambda k1, ratio: WaltonBraun(k1, k1 / ratio),
-        _log_floats(*_STIFFNESS),
-        st.floats(0.05, 1.0),
-    )
+linear_laws = _named(LinearViscoelastic)
+hertz_laws = _named(Hertz)
+hertz_damped_laws = _named(HertzDamped)
+kuwabara_kono_laws = _named(KuwabaraKono)
+hunt_crossley_laws = _named(HuntCrossley)
+walton_braun_laws = _named(WaltonBraun)
+linear_plastic_laws = _named(LinearPlastic)
+thornton_laws = _named(Thornton)
+plastic_trapezoid_laws = _named(PlasticTrapezoid)
 
 
-def linear_plastic_laws():
-    """:class:`~contactlab.laws.LinearPlastic`: stiffness 1e3-1e7 N/m, force cap
-    0.05-20 N (the paper's impacts peak at a few N)."""
-    return st.builds(LinearPlastic, _log_floats(*_STIFFNESS), st.floats(0.05, 20.0))
+class _LawStrategies(Mapping):
+    """Law name -> strategy function, for every law of :data:`contactlab.laws.LAWS`
+    (a live view: a law registered there has its strategy here)."""
+
+    def __getitem__(self, name):
+        return _named(LAWS[name])
+
+    def __iter__(self):
+        return iter(LAWS)
+
+    def __len__(self):
+        return len(LAWS)
 
 
-def thornton_laws():
-    """:class:`~contactlab.laws.Thornton`: E* 1-100 MPa, R* 0.5-5 mm, yield pressure
-    0.1-10 MPa (log scales)."""
-    return st.builds(
-        Thornton, _log_floats(1e6, 1e8), _log_floats(5e-4, 5e-3), _log_floats(1e5, 1e7)
-    )
-
-
-def plastic_trapezoid_laws():
-    """:class:`~contactlab.laws.PlasticTrapezoid`: pulse 10-500 us (log scale), ramps
-    0-50 % of it."""
-    return st.builds(
-        lambda duration, fraction: PlasticTrapezoid(duration, fraction * 0.5 * duration),
-        _log_floats(10e-6, 500e-6),
-        st.floats(0.0, 1.0),
-    )
-
-
-LAW_STRATEGIES = {
-    "linear": linear_laws,
-    "hertz": hertz_laws,
-    "hertz_damped": hertz_damped_laws,
-    "kuwabara_kono": kuwabara_kono_laws,
-    "hunt_crossley": hunt_crossley_laws,
-    "walton_braun": walton_braun_laws,
-    "linear_plastic": linear_plastic_laws,
-    "thornton": thornton_laws,
-    "plastic_trapezoid": plastic_trapezoid_laws,
-}
+LAW_STRATEGIES = _LawStrategies()
 """Registry: law name (as in :data:`contactlab.laws.LAWS`) -> strategy function."""
 
 
@@ -260,9 +237,7 @@ def laws(name=None):
     """
     if name is not None:
         return LAW_STRATEGIES[check_choice("law", name, tuple(LAW_STRATEGIES))]()
-    return st.one_of(
-        *(strategy() for key, strategy in LAW_STRATEGIES.items() if key != "plastic_trapezoid")
-    )
+    return st.one_of(*(law_strategy(cls) for cls in LAWS.values() if not cls.prescribed))
 
 
 OBLIQUE_NORMAL_LAWS = ("linear", "hertz", "hertz_damped", "kuwabara_kono", "hunt_crossley")
@@ -302,7 +277,7 @@ def restitution_laws(grain, velocity, name=None, restitution=(0.05, 1.0)):
     options = {
         "linear": st.builds(
             LinearViscoelastic.from_restitution,
-            _log_floats(*_STIFFNESS),
+            _log_floats(*LinearViscoelastic.typical["stiffness"][:2]),
             e,
             st.just(mass),
             st.just("force"),
@@ -342,7 +317,7 @@ def tangential_laws(grain, friction=(0.0, 1.0)):
     mu = st.floats(*_bounds("friction", friction, "-", low_open=False))
     spring = st.builds(
         lambda k, mu, zeta: TangentialSpring(k, mu, zeta * 2.0 * math.sqrt(grain.mass * k)),
-        _log_floats(*_STIFFNESS),
+        _log_floats(*LinearViscoelastic.typical["stiffness"][:2]),
         mu,
         st.one_of(st.just(0.0), st.floats(0.0, 0.5)),
     )

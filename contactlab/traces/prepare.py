@@ -77,7 +77,7 @@ def remove_baseline(trace, pre_trigger=None):
     ----------
     trace : Trace
     pre_trigger : (float, float), optional
-        Baseline window ``[start, end)`` [s]; default: before the trigger (see module).
+        As for :func:`noise_level`.
 
     Returns
     -------

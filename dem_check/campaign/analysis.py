@@ -39,6 +39,7 @@ from contactlab.metrics import first_lobe
 from dem_check.campaign.detection import ONSET_SIGMAS
 from dem_check.campaign.local import local_baseline
 from dem_check.campaign.plausibility import physics_status
+from dem_check.campaign.structure import impact_crosstalk, record_modes
 
 __all__ = [
     "GALLERY_PERIODS",
@@ -203,7 +204,7 @@ def _fit(t, raw, base, grain, sensor, law):
     return _fit_columns(fit), notes
 
 
-def analyse_impact(detection, window, sensor, grain=None, fit=None):
+def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=True, modes=None):
     """The table row and gallery traces of one ``"ok"`` impact.
 
     Parameters
@@ -217,6 +218,13 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
         Gives ``velocity_change [m/s]``; needed by ``fit``.
     fit : str, optional
         A law name of :data:`contactlab.inverse.FIT_MODELS`.
+    crosstalk : bool, default True
+        Find the structure's modes ringing after the contact and remove their response
+        before the numbers are read (:mod:`dem_check.campaign.structure`); the columns
+        ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed.
+    modes : list of (float, float), optional
+        The record's structure modes (:func:`dem_check.campaign.structure.record_modes`,
+        found once per record); found here when not given.
 
     Returns
     -------
@@ -235,6 +243,17 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None):
     base = window.baseline_window
     row = {**window_row(window), "significance [-]": window.significance}
     numbers, detrended, contact_end = _signal_numbers(t, record, raw, smooth, flat, window, sensor)
+    if crosstalk:
+        if modes is None:
+            modes = record_modes(detection, sensor)
+        found = impact_crosstalk(detection, window, sensor, contact_end, part, modes)
+        row["crosstalk [N]"] = sum(m.amplitude for m in found.modes)
+        row["crosstalk_modes"] = found.describe()
+        if found.modes:
+            record, raw, smooth, flat = (v - found.values for v in (record, raw, smooth, flat))
+            numbers, detrended, contact_end = _signal_numbers(
+                t, record, raw, smooth, flat, window, sensor
+            )
     row.update(numbers)
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass

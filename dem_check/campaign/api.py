@@ -11,7 +11,7 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse import FIT_MODELS
 from contactlab.quantities import columns
-from contactlab.validation import check_choice, check_count, check_number
+from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise
 from dem_check.campaign.analysis import analyse_impact, window_row
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
@@ -22,6 +22,7 @@ from dem_check.campaign.statistics import (
     population_statistics,
     regressions,
 )
+from dem_check.campaign.structure import record_modes
 
 __all__ = ["ENVELOPE_BINS", "IMPACT_COLUMNS", "run_campaign"]
 
@@ -80,6 +81,15 @@ def _check_channel(name, value):
     if isinstance(value, bool) or not isinstance(value, str | int):
         raise ParameterError(f"{name} must be a channel name or 0-based index; got {value!r}")
     return value
+
+
+def _check_channel_found(channel, rows):
+    """Refuse one ``channel`` for all files that none of them holds (a misspelt name): a
+    per-file dict, or a channel some files lack, leaves rows with status ``"no channel"``."""
+    if channel is None or isinstance(channel, Mapping) or not rows:
+        return
+    if all(row["status"] == "no channel" for row in rows):
+        raise ParameterError(f"channel {channel!r} is in none of the records: {rows[0]['reason']}")
 
 
 def _check_sensitivity(name, value):
@@ -193,10 +203,13 @@ def _analyse_file(path, options, timings, progress):
     timings["detect"] += time.perf_counter() - started
     rows, gallery = [], {}
     started = time.perf_counter()
+    modes = record_modes(found, sensor) if options["crosstalk"] else []
     for k, window in enumerate(found.impacts):
         progress.impact(path, k, len(found.impacts))
         if window.status in detection.ANALYSED:
-            row, traces = analyse_impact(found, window, sensor, grain, fit)
+            row, traces = analyse_impact(
+                found, window, sensor, grain, fit, options["crosstalk"], modes
+            )
             if traces is not None:
                 gallery[(path, k)] = traces
         else:
@@ -229,6 +242,7 @@ def _settings(paths, options, metadata):
         "sensitivity [V/N]": options["sens"],
         "channel": options["channel"],
         "fit": options["fit"],
+        "crosstalk": options["crosstalk"],
         "metadata": None if table else os.fspath(metadata),
         "gallery": options["gallery"],
         "reconstruction": "contactlab.inverse.reconstruct_force (tikhonov, gcv)",
@@ -262,6 +276,7 @@ def run_campaign(
     progress=False,
     min_force=None,
     min_separation=None,
+    crosstalk=True,
 ):
     """Analyse every impact in a set of long records, as a laboratory does after a
     measurement day.
@@ -308,6 +323,11 @@ def run_campaign(
     min_separation : float, optional
         Shortest time between impact onsets [s]; closer candidates are listed with
         status ``"too close"`` and not analysed.
+    crosstalk : bool, default True
+        Remove the structure's crosstalk (its modes ringing after each hit, found on the
+        record: :mod:`dem_check.campaign.structure`) before each impact is measured; the
+        columns ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed. On
+        records without crosstalk it finds no mode (measured, ``docs/campaign.md``).
 
     Returns
     -------
@@ -321,7 +341,11 @@ def run_campaign(
         with a status and a reason (an unexpected error in one file too: ``"failed"``).
     """
     fit, gallery = _check_inputs(sensor, grain, fit, gallery)
+    for name, flag in (("crosstalk", crosstalk), ("progress", progress)):
+        if not isinstance(flag, bool):
+            raise ParameterError(f"{name} must be True or False; got {flag!r}")
     options = {
+        "crosstalk": crosstalk,
         "sensor": sensor,
         "grain": grain,
         "fit": fit,
@@ -336,10 +360,12 @@ def run_campaign(
             )
         ),
     }
+    if metadata is not None and not isinstance(metadata, pd.DataFrame):
+        metadata = check_path("metadata", metadata)
     skip = () if metadata is None or isinstance(metadata, pd.DataFrame) else (metadata,)
     files, problems = expand_paths(paths, skip)
     if out is not None:
-        check_out_folder(out, files)
+        check_out_folder(check_path("out", out), files)
     timings = dict.fromkeys(("read", "detect", "analyse", "statistics", "report"), 0.0)
     file_rows = [_file_row(p.file, p.status, p.reason) for p in problems]
     impact_rows, gallery_traces, records = [], {}, {}
@@ -359,6 +385,7 @@ def run_campaign(
             bar.file_done()
     finally:
         bar.close()
+    _check_channel_found(channel, file_rows[len(problems) :])
     started = time.perf_counter()
     impacts = _impact_table(impact_rows)
     notes, lines = [], pd.DataFrame()

@@ -188,6 +188,18 @@ def for_file(name, option, path):
     return None
 
 
+def _read_failure(path, channel):
+    """``"no channel"`` when the file reads without the channel asked for (the channel
+    is what failed), else ``"unreadable"``."""
+    if channel is None:
+        return "unreadable"
+    try:
+        read_trace(path)
+    except (TraceFormatError, OSError, ImportError, ParameterError):
+        return "unreadable"
+    return "no channel"
+
+
 def read_record(path, channel=None, sensitivity=None):
     """One record in newtons, or why it cannot be had.
 
@@ -204,16 +216,16 @@ def read_record(path, channel=None, sensitivity=None):
     -------
     trace : Trace or None
     status : str
-        ``"ok"``, ``"unreadable"``, ``"no sensitivity"`` or ``"not a force"``.
+        ``"ok"``, ``"unreadable"``, ``"no channel"`` (the file has no such channel),
+        ``"no sensitivity"`` or ``"not a force"``.
     reason : str
         The reader's message, or what to do.
     """
     try:
         trace = read_trace(path, channel=channel)
-    except (TraceFormatError, OSError, ImportError) as exc:
-        return None, "unreadable", str(exc)
-    except ParameterError as exc:  # e.g. a channel that does not exist
-        return None, "unreadable", f"{path}: {exc}"
+    except (TraceFormatError, OSError, ImportError, ParameterError) as exc:
+        message = str(exc) if isinstance(exc, TraceFormatError) else f"{path}: {exc}"
+        return None, _read_failure(path, channel), message
     if trace.unit == "V":
         if sensitivity is None:
             return (

@@ -29,7 +29,7 @@ the bounces too, with a ``clipped`` column.
 """
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
@@ -37,7 +37,7 @@ import pandas as pd
 
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_count, check_number, check_samples
 from dem_check.campaign.synthetic import synthetic_record
 
 __all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record"]
@@ -82,6 +82,9 @@ class Effects:
     bounce_delay: float = 2e-3
     """Time from an impact to its bounce [s]."""
 
+    def __post_init__(self):
+        _check_fields(self)
+
     @classmethod
     def everything(cls, noise, peak, **changes):
         """Every effect on, at levels usual in a laboratory, for impacts of peak signal
@@ -89,6 +92,8 @@ class Effects:
         large as the white noise, a drift of 20 noise sigmas, hum of 1.5 sigma, crosstalk
         of 2 % of each peak, a 16-bit ADC clipping at 1.2 times ``peak``, two offset steps
         of 8 sigma and bounces at 40 % of the velocity 2 ms later."""
+        noise = check_number("noise", noise, low=0.0, low_open=False, unit="N")
+        peak = check_number("peak", peak, low=0.0, unit="N")
         levels = {
             "pink": noise,
             "drift": 20.0 * noise,
@@ -230,16 +235,47 @@ def add_effects(t, clean, effects, truth, noise, rng):
 def _check_effects(effects):
     if not isinstance(effects, Effects):
         raise ParameterError(f"effects must be a dem_check.campaign.Effects; got {effects!r}")
-    for field in fields(Effects):
-        value = getattr(effects, field.name)
-        if field.name in ("pink", "drift", "hum", "crosstalk", "step_size", "bounce"):
-            check_number(f"effects.{field.name}", value, low=0.0, low_open=False)
-    check_number("effects.mains", effects.mains, low=0.0, unit="Hz")
-    check_number("effects.bounce_delay", effects.bounce_delay, low=0.0, unit="s")
-    check_count("effects.bits", effects.bits, low=2)
-    check_count("effects.steps", effects.steps, low=0)
+
+
+def _check_fields(effects):
+    """Every field of an :class:`Effects`, each refused by its name; the sequences as
+    tuples of floats."""
+    for name in ("pink", "drift", "hum", "crosstalk", "step_size", "bounce"):
+        check_number(name, getattr(effects, name), low=0.0, low_open=False)
+    check_number("mains", effects.mains, low=0.0, unit="Hz")
+    check_number("bounce_delay", effects.bounce_delay, low=0.0, unit="s")
+    check_count("bits", effects.bits, low=2)
+    check_count("steps", effects.steps, low=0)
     if effects.full_scale is not None:
-        check_number("effects.full_scale", effects.full_scale, low=0.0, unit="N")
+        check_number("full_scale", effects.full_scale, low=0.0, unit="N")
+    harmonics = tuple(
+        check_number("harmonics", h, low=0.0, low_open=False)
+        for h in _sequence("harmonics", effects.harmonics)
+    )
+    modes = []
+    for mode in _sequence("plate_modes", effects.plate_modes):
+        pair = _sequence("plate_modes", mode)
+        if len(pair) != 2:
+            raise ParameterError(
+                f"plate_modes must hold (frequency [Hz], damping ratio) pairs; got {mode!r}"
+            )
+        modes.append(
+            (
+                check_number("plate_modes frequency", pair[0], low=0.0, unit="Hz"),
+                check_number(
+                    "plate_modes damping ratio", pair[1], low=0.0, high=1.0, high_open=True
+                ),
+            )
+        )
+    object.__setattr__(effects, "harmonics", harmonics)
+    object.__setattr__(effects, "plate_modes", tuple(modes))
+
+
+def _sequence(name, value):
+    """``value`` as a tuple, refused by ``name`` when it is not a sequence."""
+    if isinstance(value, str | bytes) or not isinstance(value, tuple | list | np.ndarray):
+        raise ParameterError(f"{name} must be a sequence; got {value!r}")
+    return tuple(value)
 
 
 def realistic_record(
@@ -279,8 +315,12 @@ def realistic_record(
     RealisticRecord
     """
     _check_effects(effects)
-    velocities = np.atleast_1d(np.asarray(velocities, dtype=float))
-    onsets = np.atleast_1d(np.asarray(onsets, dtype=float))
+    velocities = np.atleast_1d(check_samples("velocities", velocities, ndim=None))
+    onsets = np.atleast_1d(check_samples("onsets", onsets, ndim=None))
+    if trigger is not None:
+        trigger = check_number("trigger", trigger, unit="s")
+    if sensitivity is not None:
+        sensitivity = check_number("sensitivity", sensitivity, low=0.0, unit="V/N")
     if effects.bounce > 0.0 and velocities.size:
         later = onsets + effects.bounce_delay
         inside = later < length

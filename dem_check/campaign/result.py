@@ -3,11 +3,10 @@
 import json
 import math
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import pandas as pd
 
-from contactlab.validation import check_path
+from contactlab.validation import make_folder
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import SKIPPED_STATUSES
 
@@ -128,9 +127,7 @@ class CampaignResult:
         list of pathlib.Path
             The files written.
         """
-        check_path("out", out)
-        out = Path(out)
-        out.mkdir(parents=True, exist_ok=True)
+        out = make_folder("out", out)
         tables = {
             "impacts.csv": self.impacts,
             "files.csv": self.files,

@@ -17,7 +17,7 @@ from contactlab.errors import ParameterError
 from contactlab.quantities import columns
 from contactlab.solver import simulate_impact
 from contactlab.traces import Trace
-from contactlab.validation import check_count, check_number
+from contactlab.validation import check_count, check_number, check_samples
 
 __all__ = ["OVERSAMPLING", "RINGING_LEFT", "synthetic_record"]
 
@@ -114,8 +114,8 @@ def synthetic_record(
     seed = check_count("seed", seed, low=0)
     if sensitivity is not None:
         sensitivity = check_number("sensitivity", sensitivity, low=0.0, unit="V/N")
-    velocities = np.atleast_1d(np.asarray(velocities, dtype=float))
-    onsets = np.atleast_1d(np.asarray(onsets, dtype=float))
+    velocities = np.atleast_1d(check_samples("velocities", velocities, ndim=None))
+    onsets = np.atleast_1d(check_samples("onsets", onsets, ndim=None))
     if velocities.shape != onsets.shape or velocities.ndim != 1:
         raise ParameterError(
             f"velocities and onsets must be 1-D of equal length; got {velocities.shape} "

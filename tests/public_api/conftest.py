@@ -78,7 +78,7 @@ EXEMPT = {
     "contactlab.compare.quantities.Quantity": "a row of the tolerance table, built there",
     "dem_check.engines.result.EngineResult": "result record built by the engines",
     "dem_check.campaign.result.CampaignResult": "result record built by run_campaign",
-    "contactlab.testing.closed_forms.ClosedForm": "record a closed-form function returns",
+    "contactlab.laws.closed_form.ClosedForm": "record a law's closed_forms returns",
     "contactlab.testing.golden_trace.GoldenTrace": "record built by GoldenTrace.of/read",
     "contactlab.config.ImpactConfig": "record built by load_config/load_preset",
     "contactlab.plausibility.Range": "a row of the RANGES table, built there",
@@ -177,25 +177,22 @@ def _value(name, parameter):
     raise LookupError(parameter)
 
 
+KIND_OF_TYPE = (
+    (bool, "flag"),
+    (numbers.Integral, "count"),
+    (numbers.Real, "number"),
+    (str, "text"),
+    (os.PathLike, "path"),
+    (np.ndarray, "array"),
+    (dict, "mapping"),
+    (tuple | list, "sequence"),
+)
+"""``(type, kind)``, the first match wins (a bool is also an Integral, an int a Real)."""
+
+
 def kind(value):
     """What sort of argument a valid value is: it selects the hostile values tried."""
-    if isinstance(value, bool):
-        return "flag"
-    if isinstance(value, numbers.Integral):
-        return "count"
-    if isinstance(value, numbers.Real):
-        return "number"
-    if isinstance(value, str):
-        return "text"
-    if isinstance(value, os.PathLike):
-        return "path"
-    if isinstance(value, np.ndarray):
-        return "array"
-    if isinstance(value, dict):
-        return "mapping"
-    if isinstance(value, tuple | list):
-        return "sequence"
-    return "object"
+    return next((name for cls, name in KIND_OF_TYPE if isinstance(value, cls)), "object")
 
 
 VECTORISED = {

@@ -26,6 +26,7 @@ __all__ = [
     "oblique_test",
     "spin_test",
     "tangential_speed_test",
+    "worst_momentum_row",
 ]
 
 ANGLES = tuple(range(5, 90, 5))
@@ -48,6 +49,16 @@ def impact(body, normal, law, velocity, angle, spin, lammps):
     if lammps is not None:
         theirs = rebound(lammps(body, normal, law, velocity, angle, spin=spin))
     return rebound(ours), theirs
+
+
+def _drop(case, material):
+    """Test 5's or 6's sphere, its normal law and inputs: ``(body, normal, (radius [m],
+    normal speed [m/s], friction [-], restitution [-]))``."""
+    radius, vn, mu, e = (
+        case.inputs[k] for k in ("radius [m]", "normal speed [m/s]", "friction [-]", "restitution")
+    )
+    body = grain(material, radius)
+    return body, _elastic_or_damped(body, e), (radius, vn, mu, e)
 
 
 def _elastic_or_damped(body, restitution):
@@ -79,6 +90,13 @@ def contact_momentum(body, result):
     """
     radius = body.radius
     return 0.4 * body.mass * radius**2 * result[2] + body.mass * radius * result[1]
+
+
+def worst_momentum_row(case, material, label, momenta):
+    """The graded row of the angular momentum about the contact point at the angle where
+    it moved most: ``momenta`` holds ``(after, before)`` [kg*m**2/s] per angle."""
+    after, before = max(momenta, key=lambda m: abs(m[0] - m[1]) / abs(m[1]))
+    return row(case, material, label, after, before)
 
 
 def _value(result, index):
@@ -178,11 +196,7 @@ def tangential_speed_test(case, material, lammps=None):
     and recoil angles of the contact point) and ``Omega = R w' / (mu vn)`` (Chung & Ooi
     plot ``-Omega``: their spin axis is the opposite one).
     """
-    radius, vn, mu, e = (
-        case.inputs[k] for k in ("radius [m]", "normal speed [m/s]", "friction [-]", "restitution")
-    )
-    body = grain(material, radius)
-    normal = _elastic_or_damped(body, e)
+    body, normal, (radius, vn, mu, _) = _drop(case, material)
     rows, curves = [], {}
     for history in HISTORIES:
         law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
@@ -229,11 +243,7 @@ def spin_test(case, material, lammps=None):
     (exact for any contact force; worst of the angles); beta against gross sliding where
     that holds (:func:`closed_form_holds`), else against LAMMPS when it ran.
     """
-    radius, vn, mu, e = (
-        case.inputs[k] for k in ("radius [m]", "normal speed [m/s]", "friction [-]", "restitution")
-    )
-    body = grain(material, radius)
-    normal = _elastic_or_damped(body, e)
+    body, normal, (radius, vn, mu, e) = _drop(case, material)
     rows, curves = [], {}
     for history in HISTORIES:
         law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
@@ -259,16 +269,8 @@ def spin_test(case, material, lammps=None):
                 rows.append(row(case, material, label, beta(ours), theory, lammps=lam))
             elif theirs is not None:
                 rows.append(engine_row(case, material, label, beta(ours), beta(theirs), 1.0))
-        after, before = max(momenta, key=lambda m: abs(m[0] - m[1]) / abs(m[1]))
-        rows.append(
-            row(
-                case,
-                material,
-                f"I w + m R vt after, worst angle, {history} [kg*m**2/s]",
-                after,
-                before,
-            )
-        )
+        label = f"I w + m R vt after, worst angle, {history} [kg*m**2/s]"
+        rows.append(worst_momentum_row(case, material, label, momenta))
         curves[history] = np.array(out)
     rows.append(row(case, material, f"restitution for e = {e:g} [-]", realised, e))
     return rows, curves

@@ -22,6 +22,7 @@ from contactlab.benchmarks.chung_ooi.oblique import (
     HISTORIES,
     closed_form_holds,
     contact_momentum,
+    worst_momentum_row,
 )
 from contactlab.plausibility import internal
 
@@ -171,16 +172,8 @@ def unequal_pair_test(case, material):
                 theory = 3.5 * mu * (1 + realised) * vn / slip - 1.0
                 label = f"beta at tan = {slip / vn:.3g}, {history} [-]"
                 rows.append(row(case, material, label, beta, theory))
-        after, before = max(momenta, key=lambda m: abs(m[0] - m[1]) / abs(m[1]))
-        rows.append(
-            row(
-                case,
-                material,
-                f"equivalent I w + m R vt after, worst angle, {history} [kg*m**2/s]",
-                after,
-                before,
-            )
-        )
+        label = f"equivalent I w + m R vt after, worst angle, {history} [kg*m**2/s]"
+        rows.append(worst_momentum_row(case, material, label, momenta))
         curves[history] = np.array(out)
     rows.append(row(case, material, f"restitution for e = {e:g} [-]", realised, e))
     return rows, curves

@@ -16,7 +16,7 @@ from contactlab.inverse.export.rebound import rebound_line
 from contactlab.inverse.export.schema import check_fit
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_result import ContactFit
-from contactlab.laws import get_law
+from contactlab.laws import LAWS, get_law
 from contactlab.solver import wall_impact
 from contactlab.validation import (
     check_non_negative,
@@ -52,7 +52,7 @@ PLACEHOLDER_FRICTION = 0.5
 class ExportContact:
     """What every writer needs, derived once from a fit (SI units)."""
 
-    family: str  # "linear" or "hertz"
+    family: str  # the law's dem_export: "linear" or "hertz"
     law: str
     fitted: dict
     fixed: dict
@@ -223,12 +223,14 @@ def contact_from_fit(
     if friction is not None:
         common["friction"] = check_number("friction", friction, low=0.0, low_open=False)
         common["friction_fitted"] = True
-    if law_name == "linear":
+    family = LAWS[law_name].dem_export
+    if family == "linear":
         k, c = law.stiffness, law.damping
         e = analytic.linear_restitution(k, c, mass, convention="overlap")
         return ExportContact("linear", stiffness=k, damping=c, restitution=e, **common)
     modulus = _law_value(common, "effective_modulus", where)
-    e = _law_value(common, "restitution", where) if law_name == "hertz_damped" else 1.0
+    elastic = "restitution" not in FIT_MODELS[law_name].parameters
+    e = 1.0 if elastic else _law_value(common, "restitution", where)
     nu = poisson_ratio if poisson_ratio is not None else grain.get("poisson_ratio [-]")
     if nu is None:
         raise ParameterError(
@@ -245,7 +247,7 @@ def contact_from_fit(
             f"(plate_youngs_modulus = {e_p:.4g} Pa): give the plate's real modulus"
         )
     return ExportContact(
-        "hertz",
+        family,
         effective_modulus=modulus,
         restitution=e,
         youngs_modulus=(1.0 - nu**2) / compliance,

@@ -13,12 +13,13 @@ import numbers
 from contactlab.errors import ParameterError
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_result import FORMAT
+from contactlab.laws import LAWS
 from contactlab.validation import check_choice, check_number, check_text
 
 __all__ = ["FIT_KEYS", "check_fit"]
 
-EXPORTED_LAWS = ("linear", "hertz", "hertz_damped")
-"""Fitted laws the DEM codes take as they are."""
+EXPORTED_LAWS = tuple(name for name, cls in LAWS.items() if "dem_export" in vars(cls))
+"""Fitted laws the DEM codes take as they are: those stating a ``dem_export`` family."""
 
 NUISANCE_UNITS = {"velocity": "m/s", "onset": "s"}
 """Fitted quantities beside the law's parameters, with their units."""

@@ -15,6 +15,23 @@ YADE_VISCEL_FRACTION = 0.05
 """YADE ViscElMat: ``O.dt = 0.05 * tc``, as YADE's viscoelastic example scripts set it."""
 
 
+def _engines(physics, law):
+    """``O.engines``: sphere and facet geometry, then the contact's ``Ip2_*`` physics and
+    ``Law2_*`` law functors, under gravity."""
+    return [
+        "O.engines = [",
+        "    ForceResetter(),",
+        "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()]),",
+        "    InteractionLoop(",
+        "        [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()],",
+        f"        [{physics}],",
+        f"        [{law}],",
+        "    ),",
+        "    NewtonIntegrator(gravity=(0, 0, -9.81)),",
+        "]",
+    ]
+
+
 def write(c):
     """YADE lines for an :class:`~contactlab.inverse.export.contact.ExportContact`."""
     friction = f"atan({number(c.friction)})"
@@ -31,16 +48,7 @@ def write(c):
             f"              density={number(c.density)}, frictionAngle={friction}, "
             'label="grain_and_plate")',
             ")",
-            "O.engines = [",
-            "    ForceResetter(),",
-            "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()]),",
-            "    InteractionLoop(",
-            "        [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()],",
-            "        [Ip2_ViscElMat_ViscElMat_ViscElPhys()],",
-            "        [Law2_ScGeom_ViscElPhys_Basic()],",
-            "    ),",
-            "    NewtonIntegrator(gravity=(0, 0, -9.81)),",
-            "]",
+            *_engines("Ip2_ViscElMat_ViscElMat_ViscElPhys()", "Law2_ScGeom_ViscElPhys_Basic()"),
         ]
     else:
         pwave = c.radius * math.sqrt(c.density / c.youngs_modulus)
@@ -60,17 +68,11 @@ def write(c):
             f"poisson={number(c.plate_poisson_ratio)}, density={number(STEEL_DENSITY)},",
             f'             frictionAngle={friction}, label="sensor_plate")',
             ")",
-            "O.engines = [",
-            "    ForceResetter(),",
-            "    InsertionSortCollider([Bo1_Sphere_Aabb(), Bo1_Facet_Aabb()]),",
-            "    InteractionLoop(",
-            "        [Ig2_Sphere_Sphere_ScGeom(), Ig2_Facet_Sphere_ScGeom()],",
-            f"        [Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(algo='val', "
-            f"val={number(c.restitution)}))],",
-            "        [Law2_ScGeom_MindlinPhys_Mindlin()],",
-            "    ),",
-            "    NewtonIntegrator(gravity=(0, 0, -9.81)),",
-            "]",
+            *_engines(
+                "Ip2_FrictMat_FrictMat_MindlinPhys(en=MatchMaker(algo='val', "
+                f"val={number(c.restitution)}))",
+                "Law2_ScGeom_MindlinPhys_Mindlin()",
+            ),
         ]
     return [
         *c.header("YADE", "#", why, step),

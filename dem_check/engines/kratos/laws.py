@@ -62,7 +62,7 @@ from contactlab.laws import (
     WaltonBraun,
     damping_ratio,
 )
-from contactlab.laws.engine_support import refuse_unsupported
+from contactlab.laws.engine_support import EngineContact, refuse_unsupported
 from contactlab.validation import check_positive
 
 __all__ = [
@@ -130,32 +130,26 @@ def hertz_gamma(law, effective_mass):
     return damping_ratio(law, effective_mass)
 
 
-@dataclass(frozen=True)
-class KratosContact:
+@dataclass(frozen=True, kw_only=True)
+class KratosContact(EngineContact):
     """A law as a Kratos DEM contact law for a contact of given ``m*`` and ``R*``.
 
     Attributes
     ----------
-    law : ContactLaw
-        The contactlab law.
     name : str
         Kratos' law name (:data:`HERTZ_LAW` or :data:`LINEAR_LAW`).
     young : float
         Young's modulus of both bodies [Pa] (``2 E*``, Poisson ratio 0).
     gamma : float
         ``DAMPING_GAMMA`` [-].
-    effective_mass : float
-        ``m*`` the mapping assumed [kg].
-    effective_radius : float
-        ``R*`` the mapping assumed [m].
+
+    and ``law``, ``effective_mass``, ``effective_radius`` of
+    :class:`~contactlab.laws.engine_support.EngineContact`.
     """
 
-    law: object
     name: str
     young: float
     gamma: float
-    effective_mass: float
-    effective_radius: float
 
     @property
     def what(self):

@@ -1,12 +1,15 @@
 """hertz_impacts against simulate_impact row by row, closed forms on a wall, accuracy
 against a converged solution, re-contacts, handed-back rows, bad rows, threads, Dask."""
 
+import functools
 import math
 import warnings
 
 import numpy as np
 import pandas as pd
 import pytest
+import rowcheck
+from rowcheck import relative
 
 import contactlab as cl
 from contactlab import analytic
@@ -18,15 +21,7 @@ from contactlab.errors import ParameterError
 # the kernels' real-mode branches: beyond real sensors, so the PlausibilityWarning is expected.
 pytestmark = pytest.mark.filterwarnings("ignore::contactlab.errors.PlausibilityWarning")
 
-COLUMNS = (
-    "m1 [kg]",
-    "k1 [N/m]",
-    "c1 [N*s/m]",
-    "m2 [kg]",
-    "k_hertz [N/m**1.5]",
-    "damping [N*s/m**1.25]",
-    "v0 [m/s]",
-)
+COLUMNS = (*rowcheck.BODY_COLUMNS, "k_hertz [N/m**1.5]", "damping [N*s/m**1.25]", "v0 [m/s]")
 EVENTS = [0, 1, 4, 5]
 """contact time, response time, restitution, contacts: event times and states."""
 PEAKS = [2, 3]
@@ -37,10 +32,7 @@ def random_frame(rng, n):
     """Sensors 3 kHz - 300 kHz with damping ratios 1e-3 - 3 (under- and overdamped),
     grains 0.01 - 30 times the sensor mass, Hertz stiffness 1e5 - 1e9 N/m**1.5 with
     restitution 0.05 - 1 (15 % elastic), speeds 0.1 - 10 m/s, 15 % immovable walls."""
-    m1 = 10 ** rng.uniform(-4, -2, n)
-    k1 = m1 * (2 * np.pi * 10 ** rng.uniform(3.5, 5.5, n)) ** 2
-    c1 = 2 * 10 ** rng.uniform(-3, 0.5, n) * np.sqrt(k1 * m1)
-    m2 = m1 * 10 ** rng.uniform(-2, 1.5, n)
+    m1, k1, c1, m2 = rowcheck.random_bodies(rng, n)
     k_hertz = 10 ** rng.uniform(5, 9, n)
     e = rng.uniform(0.05, 1.0, n)
     cases = zip(k_hertz, m2, e, strict=True)
@@ -60,12 +52,6 @@ def single(row, rtol):
         warnings.simplefilter("ignore")  # coarse default grids: the numbers are dense
         res = cl.simulate_impact(cl.Grain.from_mass(m2), sensor, law, v0, rtol=rtol)
     return np.array(result_row(res))
-
-
-def relative(a, b):
-    with np.errstate(invalid="ignore", divide="ignore"):
-        rel = np.abs(a - b) / np.abs(b)
-    return np.where(np.isnan(a) & np.isnan(b), 0.0, np.where(a == b, 0.0, rel))
 
 
 def test_random_rows_give_the_single_solvers_numbers_at_the_same_tolerance():
@@ -141,30 +127,19 @@ def test_a_critically_damped_plate_is_handed_to_the_single_solver():
     np.testing.assert_array_equal(got[list(RESULT_COLUMNS)].to_numpy()[0], single(row, 1e-9))
 
 
-def paper_frame(n):
-    sensor = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
-    values = (sensor.mass, sensor.stiffness, sensor.damping, 5.007e-5, 5.6e6, 0.05, 2.0)
-    frame = pd.DataFrame(dict(zip(COLUMNS, values, strict=True)), index=range(n))
-    frame["k_hertz [N/m**1.5]"] *= np.linspace(0.5, 1.5, n)
-    return frame
+paper_frame = functools.partial(rowcheck.paper_frame, COLUMNS, 5.6e6, 0.05)
 
 
 @pytest.mark.parametrize(
     ("column", "value", "message"),
     [
-        ("m2 [kg]", -1e-5, "column 'm2 [kg]' (grain mass) must be a number > 0"),
-        ("v0 [m/s]", np.nan, "'v0 [m/s]'"),
+        *rowcheck.BAD_BODY_ROWS,
         ("damping [N*s/m**1.25]", -1.0, "'damping [N*s/m**1.25]' (Hertz damping eta of F"),
         ("k_hertz [N/m**1.5]", np.inf, "'k_hertz [N/m**1.5]' (Hertz stiffness kH of F"),
-        ("m1 [kg]", np.inf, "immovable wall (k1 = inf)"),
     ],
 )
 def test_a_bad_row_is_named_by_column_and_first_row(column, value, message):
-    frame = paper_frame(6).set_index(pd.Index(list("abcdef")))
-    frame.loc[["c", "e"], column] = value
-    with pytest.raises(ParameterError, match=r"row 2 \(index 'c'\)") as info:
-        hertz_impacts(frame)
-    assert message in str(info.value)
+    rowcheck.assert_bad_row_named(hertz_impacts, paper_frame(6), column, value, message)
 
 
 def test_missing_columns_and_bad_options_are_named():

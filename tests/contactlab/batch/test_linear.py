@@ -1,6 +1,7 @@
 """linear_impacts against simulate_impact row by row, closed forms on a wall, re-contacts,
 bad rows, chunks and memory, Dask."""
 
+import functools
 import math
 import tracemalloc
 import warnings
@@ -8,6 +9,8 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
+import rowcheck
+from rowcheck import relative
 
 import contactlab as cl
 from contactlab import analytic
@@ -26,7 +29,7 @@ solver's own numbers by more than AGREEMENT, no solver can be held to AGREEMENT 
 # the kernels' real-mode branches: beyond real sensors, so the PlausibilityWarning is expected.
 pytestmark = pytest.mark.filterwarnings("ignore::contactlab.errors.PlausibilityWarning")
 
-COLUMNS = ("m1 [kg]", "k1 [N/m]", "c1 [N*s/m]", "m2 [kg]", "k2 [N/m]", "c2 [N*s/m]", "v0 [m/s]")
+COLUMNS = (*rowcheck.BODY_COLUMNS, "k2 [N/m]", "c2 [N*s/m]", "v0 [m/s]")
 GRID_FREE = (0, 4, 5)
 """contact time, restitution and contacts: read from events, not from an output grid."""
 
@@ -35,10 +38,7 @@ def random_frame(rng, n):
     """Sensors 3 kHz - 300 kHz with damping ratios 1e-3 - 3 (under- and overdamped),
     grains 0.01 - 30 times the sensor mass, contacts with damping ratios 0 - 5, and 15 %
     immovable walls (k1 = inf)."""
-    m1 = 10 ** rng.uniform(-4, -2, n)
-    k1 = m1 * (2 * np.pi * 10 ** rng.uniform(3.5, 5.5, n)) ** 2
-    c1 = 2 * 10 ** rng.uniform(-3, 0.5, n) * np.sqrt(k1 * m1)
-    m2 = m1 * 10 ** rng.uniform(-2, 1.5, n)
+    m1, k1, c1, m2 = rowcheck.random_bodies(rng, n)
     k2 = 10 ** rng.uniform(3, 7, n)
     zeta2 = np.where(rng.random(n) < 0.2, 0.0, 10 ** rng.uniform(-3, 0.7, n))
     k1[rng.random(n) < 0.15] = np.inf
@@ -55,15 +55,8 @@ def single(row, factor=1.0):
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         res = cl.simulate_impact(cl.Grain.from_mass(m2), sensor, law, v0 * factor)
-        numbers = result_row(res)
     coarse = any(issubclass(w.category, ResolutionWarning) for w in caught)
-    return np.array(numbers), coarse, res
-
-
-def relative(a, b):
-    with np.errstate(invalid="ignore", divide="ignore"):
-        rel = np.abs(a - b) / np.abs(b)
-    return np.where(np.isnan(a) & np.isnan(b), 0.0, np.where(a == b, 0.0, rel))
+    return np.array(result_row(res)), coarse, res
 
 
 def test_thousand_random_rows_give_the_single_solvers_numbers():
@@ -128,19 +121,13 @@ def test_a_light_grain_on_a_ringing_plate_recontacts_as_in_the_single_solver():
     assert np.all(relative(got, ref) <= AGREEMENT)
 
 
-def paper_frame(n):
-    sensor = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
-    values = (sensor.mass, sensor.stiffness, sensor.damping, 5.007e-5, 1e5, 1.0, 2.0)
-    frame = pd.DataFrame(dict(zip(COLUMNS, values, strict=True)), index=range(n))
-    frame["k2 [N/m]"] *= np.linspace(0.5, 1.5, n)
-    return frame
+paper_frame = functools.partial(rowcheck.paper_frame, COLUMNS, 1e5, 1.0)
 
 
 @pytest.mark.parametrize(
     ("column", "value", "message"),
     [
-        ("m2 [kg]", -1e-5, "column 'm2 [kg]' (grain mass) must be a number > 0"),
-        ("v0 [m/s]", np.nan, "'v0 [m/s]'"),
+        *rowcheck.BAD_BODY_ROWS,
         (
             "c2 [N*s/m]",
             np.inf,
@@ -148,15 +135,10 @@ def paper_frame(n):
             "number >= 0, finite",
         ),
         ("k2 [N/m]", 0.0, "'k2 [N/m]'"),
-        ("m1 [kg]", np.inf, "immovable wall (k1 = inf)"),
     ],
 )
 def test_a_bad_row_is_named_by_column_and_first_row(column, value, message):
-    frame = paper_frame(6).set_index(pd.Index(list("abcdef")))
-    frame.loc[["c", "e"], column] = value
-    with pytest.raises(ParameterError, match=r"row 2 \(index 'c'\)") as info:
-        linear_impacts(frame)
-    assert message in str(info.value)
+    rowcheck.assert_bad_row_named(linear_impacts, paper_frame(6), column, value, message)
 
 
 def test_missing_and_non_numeric_columns_are_named():

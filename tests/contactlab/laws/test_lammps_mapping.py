@@ -96,7 +96,7 @@ def test_laws_lammps_cannot_hold_are_refused_with_the_reason(law):
     with pytest.raises(ParameterError, match=rf"law {name} cannot be represented in LAMMPS") as e:
         granular_model(law, MASS, RADIUS)
     assert REFUSED[type(law)] in str(e.value)
-    assert "LinearViscoelastic, Hertz, HertzDamped, KuwabaraKono" in str(e.value)
+    assert "LinearViscoelastic, Hertz, HertzDamped, HertzViscous, KuwabaraKono" in str(e.value)
 
 
 def test_a_subclass_is_refused_as_its_force_may_differ():
@@ -116,5 +116,6 @@ def test_words_are_one_sided_and_write_floats_exactly():
         cl.laws.LinearViscoelastic,
         cl.laws.Hertz,
         cl.laws.HertzDamped,
+        cl.laws.HertzViscous,
         cl.laws.KuwabaraKono,
     }

@@ -176,6 +176,15 @@ def test_energy_never_grows_and_contact_momentum(tangential, spin):
         assert after == pytest.approx(before, rel=1e-9, abs=1e-12 * abs(GRAIN.mass * SPEED))
 
 
+def _lammps_rebound(lammps_rules, law, angle, spin, steps):
+    """Rebound ``(vn', vt', spin')`` by LAMMPS' update rules (conftest.py) of this file's
+    grain at SPEED and ``angle`` [rad] from the normal, spinning at ``spin`` [rad/s],
+    on a rigid flat through HERTZ and ``law`` (friction 0.092)."""
+    vn, vt = SPEED * math.cos(angle), SPEED * math.sin(angle)
+    tangential = (law.history_kind, law.stiffness, 0.092)
+    return lammps_rules(GRAIN.mass, GRAIN.radius, HERTZ.k_hertz, tangential, vn, vt, spin, steps)
+
+
 def test_total_form_energy_gain(lammps_rules):
     """LAMMPS' ``mindlin`` (total displacement) is not conservative: while sticking its
     force ``-kt(d) h`` does work ``integral kt' h**2 / 2``, which can come out positive.
@@ -189,17 +198,7 @@ def test_total_form_energy_gain(lammps_rules):
         GRAIN, cl.Sensor.rigid(), HERTZ, law, SPEED, angle, spin=spin, rtol=1e-11
     )
     gain = -res.energy_balance["dissipated"] / res.energy_balance["kinetic_in"]
-    vn, vt = SPEED * math.cos(angle), SPEED * math.sin(angle)
-    out = lammps_rules(
-        GRAIN.mass,
-        GRAIN.radius,
-        HERTZ.k_hertz,
-        (law.history_kind, law.stiffness, 0.092),
-        vn,
-        vt,
-        spin,
-        steps=8000,
-    )
+    out = _lammps_rebound(lammps_rules, law, angle, spin, steps=8000)
     e_in = 0.5 * GRAIN.mass * SPEED**2 + 0.5 * inertia * spin**2
     e_out = 0.5 * GRAIN.mass * (out[0] ** 2 + out[1] ** 2) + 0.5 * inertia * out[2] ** 2
     assert gain > 3e-8  # a real gain, ten times the solver's error at this tolerance
@@ -228,18 +227,10 @@ def test_spin_at_normal_incidence(spin):
 def test_lammps_update_rules_converge_to_the_solver(history, degrees, lammps_rules):
     """LAMMPS' discrete rules at a small step give this solver's rebound (stick/slip)."""
     law = TANGENTIAL[history]
-    vn, vt = SPEED * math.cos(math.radians(degrees)), SPEED * math.sin(math.radians(degrees))
-    res = cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), HERTZ, law, SPEED, math.radians(degrees))
-    ref = lammps_rules(
-        GRAIN.mass,
-        GRAIN.radius,
-        HERTZ.k_hertz,
-        (law.history_kind, law.stiffness, 0.092),
-        vn,
-        vt,
-        0.0,
-        steps=2000,
-    )
+    angle = math.radians(degrees)
+    res = cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), HERTZ, law, SPEED, angle)
+    ref = _lammps_rebound(lammps_rules, law, angle, 0.0, steps=2000)
+    vn = SPEED * math.cos(angle)
     # the rules are first order in the step (incremental); 2000 steps: < 1e-4 of the speed
     assert abs(res.tangential_velocity - ref[1]) < 1e-4 * SPEED
     assert abs(GRAIN.radius * (res.angular_velocity - ref[2])) < 1e-4 * SPEED

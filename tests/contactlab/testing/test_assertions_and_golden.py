@@ -71,7 +71,9 @@ def impact(damping=1.0, sensor=None, duration=300e-6):
 
 # --- closed forms ---------------------------------------------------------------------
 def test_every_law_has_closed_forms():
-    assert set(CLOSED_FORMS) == set(LAWS.values())
+    # a subset, not equality: register_closed_form adds user classes to the global registry
+    # (the public-API tests register one), which must not fail this test by run order
+    assert set(LAWS.values()) <= set(CLOSED_FORMS)
 
 
 def test_closed_forms_name_formula_and_reference():

@@ -128,56 +128,53 @@ def test_bad_line_deep_in_a_large_file_is_located(tmp_path):
         read_trace(path)
 
 
-def test_hdf5_without_unit_names_the_dataset(tmp_path):
+def _h5(tmp_path, name, datasets):
+    """An HDF5 file of ``{dataset: (values, attributes)}``, written in that order."""
     h5py = pytest.importorskip("h5py")
-    path = tmp_path / "nounit.h5"
+    path = tmp_path / name
     with h5py.File(path, "w") as f:
-        f["trace/value"] = np.zeros(3)
-        f["trace/t"] = np.arange(3.0)
-        f["trace/t"].attrs["unit"] = "s"
-    with pytest.raises(
-        TraceFormatError, match=re.escape("nounit.h5, dataset 'trace/value': needs a 'unit'")
-    ):
+        for key, (values, attrs) in datasets.items():
+            f[key] = values
+            f[key].attrs.update(attrs)
+    return path
+
+
+def _tdms(tmp_path, name, properties):
+    """A TDMS file of one channel ``g/c`` of four zeros with these properties."""
+    nptdms = pytest.importorskip("nptdms")
+    path = tmp_path / name
+    with nptdms.TdmsWriter(path) as writer:
+        writer.write_segment([nptdms.ChannelObject("g", "c", np.zeros(4), properties)])
+    return path
+
+
+def _refused(path, message):
+    """Reading ``path`` is a TraceFormatError naming the file, then ``message``."""
+    with pytest.raises(TraceFormatError, match=re.escape(f"{path.name}, {message}")):
         read_trace(path)
+
+
+def test_hdf5_without_unit_names_the_dataset(tmp_path):
+    datasets = {"trace/value": (np.zeros(3), {}), "trace/t": (np.arange(3.0), {"unit": "s"})}
+    path = _h5(tmp_path, "nounit.h5", datasets)
+    _refused(path, "dataset 'trace/value': needs a 'unit'")
 
 
 def test_hdf5_time_going_back_names_the_sample(tmp_path):
-    h5py = pytest.importorskip("h5py")
-    path = tmp_path / "back.h5"
-    with h5py.File(path, "w") as f:
-        f["v"] = np.zeros(3)
-        f["v"].attrs["unit"] = "V"
-        f["t"] = np.array([0.0, 2.0, 1.0])
-        f["t"].attrs["unit"] = "ms"
-    with pytest.raises(
-        TraceFormatError, match=re.escape("back.h5, sample 2: time 0.001 s is going back")
-    ):
-        read_trace(path)
+    t = np.array([0.0, 2.0, 1.0])
+    path = _h5(tmp_path, "back.h5", {"v": (np.zeros(3), {"unit": "V"}), "t": (t, {"unit": "ms"})})
+    _refused(path, "sample 2: time 0.001 s is going back")
 
 
 def test_tdms_without_time_axis(tmp_path):
-    nptdms = pytest.importorskip("nptdms")
-    path = tmp_path / "notime.tdms"
-    with nptdms.TdmsWriter(path) as writer:
-        channel = nptdms.ChannelObject("g", "c", np.zeros(4), {"unit_string": "Volts"})
-        writer.write_segment([channel])
-    with pytest.raises(
-        TraceFormatError, match=re.escape("notime.tdms, channel 'g/c': no wf_increment")
-    ):
-        read_trace(path)
+    path = _tdms(tmp_path, "notime.tdms", {"unit_string": "Volts"})
+    _refused(path, "channel 'g/c': no wf_increment")
 
 
 @pytest.mark.parametrize("interval", [0.0, -1e-6, np.inf, "1 us"])
 def test_tdms_bad_time_axis_property_is_named(tmp_path, interval):
-    nptdms = pytest.importorskip("nptdms")
-    path = tmp_path / "badtime.tdms"
-    properties = {"unit_string": "V", "wf_increment": interval}
-    with nptdms.TdmsWriter(path) as writer:
-        writer.write_segment([nptdms.ChannelObject("g", "c", np.zeros(4), properties)])
-    with pytest.raises(
-        TraceFormatError, match=re.escape(f"badtime.tdms, channel 'g/c': wf_increment {interval!r}")
-    ):
-        read_trace(path)
+    path = _tdms(tmp_path, "badtime.tdms", {"unit_string": "V", "wf_increment": interval})
+    _refused(path, f"channel 'g/c': wf_increment {interval!r}")
 
 
 @pytest.mark.parametrize(
@@ -189,11 +186,7 @@ def test_tdms_bad_time_axis_property_is_named(tmp_path, interval):
     ],
 )
 def test_hdf5_bad_time_attribute_is_named(tmp_path, attrs, message):
-    h5py = pytest.importorskip("h5py")
-    path = tmp_path / "badtime.h5"
-    with h5py.File(path, "w") as f:
-        f["v"] = np.zeros(4)
-        f["v"].attrs.update({"unit": "V", **attrs})
+    path = _h5(tmp_path, "badtime.h5", {"v": (np.zeros(4), {"unit": "V", **attrs})})
     with pytest.raises(
         TraceFormatError, match=r"badtime\.h5, dataset '/?v': " + re.escape(message)
     ):

@@ -20,6 +20,7 @@ import pytest
 
 from dem_check.campaign import Effects, find_impacts, realistic_record
 from dem_check.campaign.analysis import analyse_impact
+from dem_check.campaign.structure import record_modes
 
 NOISE = 0.03
 """White noise [N], 1 % of the hard grain's 3 N peak signal at 2 m/s."""
@@ -37,13 +38,12 @@ FORCE_TARGETS = 30.0
 samples there, docs/campaign.md)."""
 
 
-@pytest.fixture(scope="module")
-def analysed(hard_setup):
+def _record(hard_setup, crosstalk):
     grain, sensor, law = hard_setup
     effects = Effects.everything(
-        NOISE, 3.0, pink=0.3 * NOISE, crosstalk=0.0, full_scale=None, steps=0
+        NOISE, 3.0, pink=0.3 * NOISE, crosstalk=crosstalk, full_scale=None, steps=0
     )
-    record = realistic_record(
+    return realistic_record(
         grain,
         sensor,
         law,
@@ -55,6 +55,12 @@ def analysed(hard_setup):
         effects=effects,
         seed=11,
     )
+
+
+@pytest.fixture(scope="module")
+def analysed(hard_setup):
+    grain, sensor, _ = hard_setup
+    record = _record(hard_setup, 0.0)
     found = find_impacts(record.trace, sensor)
     rows = []
     for window in found.impacts:
@@ -105,3 +111,42 @@ def test_impulse_and_force_from_thirty_sigma(analysed):
         assert errors["impulse"] <= 0.05, errors  # the issue's targets, not loosened
         assert errors["peak_force"] <= 0.05, errors
         assert errors["contact_time"] <= 0.05, errors
+
+
+@pytest.fixture(scope="module")
+def with_crosstalk(hard_setup):
+    """The same record with crosstalk of 2 % of each peak (the structure's three modes),
+    analysed with and without its removal."""
+    grain, sensor, _ = hard_setup
+    record = _record(hard_setup, 0.02)
+    found = find_impacts(record.trace, sensor)
+    modes = record_modes(found, sensor)
+    rows = {True: [], False: []}
+    for window in found.impacts:
+        gap = np.abs(record.truth["onset [s]"] - window.onset)
+        true = record.truth.iloc[int(gap.argmin())]
+        for removed in rows:
+            row, _ = analyse_impact(found, window, sensor, grain, crosstalk=removed, modes=modes)
+            rows[removed].append((row, true))
+    return rows, record, modes
+
+
+def test_crosstalk_is_removed_to_the_issues_targets_from_thirty_sigma(with_crosstalk):
+    rows, record, modes = with_crosstalk
+    # the structure's 1890 and 4100 Hz modes are found on the record (the 730 Hz mode,
+    # 1.4 ms a period, rings too slowly for the 2 ms between an impact and its bounce)
+    assert any(abs(f / 4100.0 - 1.0) < 0.02 for f, _ in modes), modes
+    clear = [
+        (r, t) for r, t in rows[True] if t["peak_sensor_force [N]"] >= FORCE_TARGETS * record.noise
+    ]
+    assert len(clear) >= 5
+    for row, true in clear:
+        assert row["status"] == "ok" and row["crosstalk [N]"] > 0.0, row
+        errors = _errors(row, true)
+        assert errors["impulse"] <= 0.05, errors  # the issue's targets, not loosened
+        assert errors["peak_force"] <= 0.05, errors
+        assert errors["contact_time"] <= 0.05, errors
+    # without the removal the crosstalk holds the reconstructed force up: a contact time
+    # far off (the benchmark measured up to +100 %), so the test above is not trivial
+    kept = [_errors(r, t)["contact_time"] for r, t in rows[False] if r["status"] == "ok"]
+    assert max(kept) > 0.2

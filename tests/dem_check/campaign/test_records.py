@@ -151,18 +151,25 @@ def test_a_trigger_shifts_the_time_axis(hard_setup):
 
 
 @pytest.mark.parametrize(
-    "effects, name",
+    "changes, name",
     [
-        (Effects(pink=-1.0), "effects.pink"),
-        (Effects(bits=1), "effects.bits"),
-        (Effects(full_scale=0.0), "effects.full_scale"),
-        (Effects(mains=0.0), "effects.mains"),
-        ("loud", "effects"),
+        ({"pink": -1.0}, "pink"),
+        ({"bits": 1}, "bits"),
+        ({"full_scale": 0.0}, "full_scale"),
+        ({"mains": 0.0}, "mains"),
+        ({"harmonics": (0.3, float("nan"))}, "harmonics"),
+        ({"plate_modes": ((730.0,),)}, "plate_modes"),
+        ({"plate_modes": ((730.0, 1.5),)}, "plate_modes damping ratio"),
     ],
 )
-def test_bad_effects_are_named(hard_setup, effects, name):
-    grain, sensor, law = hard_setup
+def test_bad_effects_are_refused_naming_the_field(changes, name):
     with pytest.raises(ParameterError, match=name):
+        Effects(**changes)
+
+
+def test_effects_that_are_no_effects_are_refused(hard_setup):
+    grain, sensor, law = hard_setup
+    with pytest.raises(ParameterError, match="effects"):
         realistic_record(
-            grain, sensor, law, [2.0], [1e-3], length=2e-3, sample_rate=1e6, effects=effects
+            grain, sensor, law, [2.0], [1e-3], length=2e-3, sample_rate=1e6, effects="loud"
         )

@@ -1,0 +1,162 @@
+"""The structure's crosstalk of one impact, read on the record around it and removed.
+
+:mod:`contactlab.inverse.crosstalk` finds the structure's modes in the ringing after a
+contact and fits their response to the pulse; this module picks the record's windows
+for one impact found by :func:`dem_check.campaign.detection.find_impacts`:
+
+- before it, from the previous impact's decayed ringing (or the record's start) to the
+  end of its baseline window, at most :data:`SPAN`;
+- after its contact (a sensor period after the contact's bound), to
+  :data:`NEXT_MARGIN_PERIODS` sensor periods before the next impact's onset (or the
+  record's end), at most :data:`SPAN`.
+"""
+
+import math
+
+import numpy as np
+
+from contactlab.errors import ParameterError
+from contactlab.inverse.crosstalk import Crosstalk, fit_crosstalk, structure_modes
+
+__all__ = ["NEXT_MARGIN_PERIODS", "SPAN", "impact_crosstalk", "record_modes"]
+
+SPAN = 2e-3
+"""Longest window the crosstalk is fitted on, on each side of an impact [s]: long
+against the modes' periods, short against drift and 1/f noise (a quadratic follows
+them)."""
+
+IDENTIFICATION_SPAN = 5e-3
+"""Longest window after the contact the modes are identified on [s] (up to the next
+impact): a mode is sought from one period in it (200 Hz and up over 5 ms)."""
+
+NEXT_MARGIN_PERIODS = 2.0
+"""Sensor periods left before the next impact's onset [-] (its first touch precedes its
+5-sigma onset by a few microseconds)."""
+
+FREQUENCY_TOLERANCE = 0.04
+"""Poles found after different impacts within this relative frequency of the next lower
+one, and within twice it of the lowest, are one mode [-] (a plate mode is found within
++-2 % after each hit of a 2 MHz record)."""
+
+HALF = 0.5
+"""Fraction of the impacts after which a mode must be found [-] (at least two): on
+records without crosstalk and with 1/f noise as large as the white noise, the pencil's
+noise poles fall within :data:`FREQUENCY_TOLERANCE` of each other after two of four
+impacts, a plate mode's after three or four."""
+
+RESOLVED_PERIOD_SAMPLES = 4
+"""Fewest samples per sensor period for the sensor's ringing to be fitted [-]."""
+
+
+def _following(detection, index, sensor):
+    """Where the window after impact ``index`` must end [s]: before the next onset."""
+    if index + 1 < len(detection.impacts):
+        return detection.impacts[index + 1].onset - NEXT_MARGIN_PERIODS * sensor.period
+    return float(detection.record.t[-1])
+
+
+def record_modes(detection, sensor):
+    """The structure's modes of a record: those found after half of its impacts (two at least)
+    (each impact's ringing, from its decay to the next impact, at most
+    :data:`IDENTIFICATION_SPAN`; impacts followed by too short a window do not count),
+    or all of them when only one impact could be read.
+
+    A structure's modes are the same after every hit; a pole that the pencil fits to
+    noise, drift or hum after one impact is rarely found again within
+    :data:`FREQUENCY_TOLERANCE`.
+
+    Parameters
+    ----------
+    detection : Detection
+    sensor : Sensor
+
+    Returns
+    -------
+    list of (float, float)
+        ``(frequency [Hz], damping ratio [-])``, the medians of each group.
+    """
+    t = np.asarray(detection.record.t)
+    dt = float(t[1] - t[0])
+    if sensor.period < RESOLVED_PERIOD_SAMPLES * dt:
+        return []
+    found = []
+    for index, window in enumerate(detection.impacts):
+        stop = min(_following(detection, index, sensor), window.end + IDENTIFICATION_SPAN)
+        first, last = np.searchsorted(t, [window.end, stop])
+        values = np.asarray(detection.record.values[first:last], dtype=float)
+        if last - first >= 16 and np.isfinite(values).all():
+            try:
+                found.append(structure_modes(t[first:last], values, sensor))
+            except ParameterError:  # too short a window: this impact does not count
+                continue
+    return _pooled(found)
+
+
+def _pooled(found):
+    """Groups of poles within :data:`FREQUENCY_TOLERANCE` of each other, kept when
+    found after :data:`HALF` of the impacts, at least two (any, when one was read)."""
+    poles = sorted((f, z, k) for k, modes in enumerate(found) for f, z in modes)
+    groups, current = [], []
+    for pole in poles:
+        near = current and pole[0] <= current[-1][0] * (1.0 + FREQUENCY_TOLERANCE)
+        if current and not (near and pole[0] <= current[0][0] * (1.0 + 2 * FREQUENCY_TOLERANCE)):
+            groups.append(current)
+            current = []
+        current.append(pole)
+    if current:
+        groups.append(current)
+    needed = max(2, math.ceil(HALF * len(found))) if len(found) > 1 else 1
+    return [
+        (float(np.median([p[0] for p in g])), float(np.median([p[1] for p in g])))
+        for g in groups
+        if len({p[2] for p in g}) >= needed
+    ]
+
+
+def impact_crosstalk(detection, window, sensor, contact_end, segment, modes):
+    """The crosstalk of one impact on its segment (zero when no mode is significant).
+
+    Parameters
+    ----------
+    detection : Detection
+        The record's detection (the record and every impact).
+    window : ImpactWindow
+        The impact.
+    sensor : Sensor
+    contact_end : float
+        A time after the contact has ended [s] (the bound of the first lobe).
+    segment : slice
+        The impact's segment in the record.
+    modes : list of (float, float)
+        The record's structure modes (:func:`record_modes`).
+
+    Returns
+    -------
+    Crosstalk
+        On the segment's samples.
+    """
+    t = np.asarray(detection.record.t)
+    none = Crosstalk((), np.zeros(segment.stop - segment.start))
+    if not modes:
+        return none
+    index = detection.impacts.index(window)
+    previous = detection.impacts[index - 1].end if index > 0 else float(t[0])
+    base = window.baseline_window
+    pre = (max(previous, window.onset - SPAN), base[1]) if base[1] <= window.onset else None
+    post = (
+        contact_end + sensor.period,
+        min(_following(detection, index, sensor), contact_end + SPAN),
+    )
+    first = min(segment.start, int(np.searchsorted(t, pre[0]))) if pre else segment.start
+    stop = max(segment.stop, int(np.searchsorted(t, post[1], side="right")))
+    tt = t[first:stop]
+    yy = np.asarray(detection.record.values[first:stop], dtype=float)
+    in_post = (tt >= post[0]) & (tt <= post[1])
+    if in_post.sum() < 16:
+        return none
+    in_pre = (tt >= pre[0]) & (tt < pre[1]) if pre else np.zeros(tt.size, dtype=bool)
+    start = pre[1] if pre else window.onset
+    pulse = (tt >= start) & (tt < contact_end)
+    found = fit_crosstalk(tt, yy, sensor, window.onset, pulse, in_pre | in_post, post[0], modes)
+    inside = slice(segment.start - first, segment.stop - first)
+    return Crosstalk(found.modes, found.values[inside])

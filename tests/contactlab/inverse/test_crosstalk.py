@@ -1,0 +1,78 @@
+"""Structural crosstalk (contactlab.inverse.crosstalk) against signals built here from
+closed forms: damped sinusoids, a half-sine pulse and its exact convolution."""
+
+import math
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from contactlab.errors import ParameterError
+from contactlab.inverse.crosstalk import fit_crosstalk, structure_modes
+
+SENSOR = cl.Sensor.from_resonance(40e3, 0.01, damping_ratio=0.02)
+RATE = 2e6
+MODES = [(1890.0, 0.02), (4100.0, 0.015)]
+
+
+def _damped(s, frequency, zeta):
+    w = 2.0 * math.pi * frequency
+    return np.where(s >= 0.0, np.exp(-zeta * w / math.sqrt(1 - zeta**2) * s) * np.sin(w * s), 0.0)
+
+
+def test_structure_modes_finds_the_modes_beside_the_sensors_ringing():
+    t = np.arange(round(4e-3 * RATE)) / RATE
+    rng = np.random.default_rng(1)
+    sensor_ringing = 2.0 * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
+    modes = sum(0.05 * _damped(t + 3e-4, f, z) for f, z in MODES)
+    y = sensor_ringing + modes + 0.3 + 5.0 * t + rng.normal(0.0, 0.01, t.size)
+    found = structure_modes(t, y, SENSOR)
+    for frequency, zeta in MODES:
+        near = [(f, z) for f, z in found if abs(f / frequency - 1.0) < 0.01]
+        # 4 ms holds 7.6 and 16 periods at 20 noise sigmas: the pencil's frequency to
+        # 1 %, the damping ratio (a decay over a few periods) to 25 %
+        assert near, found
+        assert near[0][1] == pytest.approx(zeta, rel=0.25)
+
+
+def test_a_window_too_short_for_the_pencil_is_refused():
+    t = np.arange(200) / RATE
+    with pytest.raises(ParameterError, match="too short"):
+        structure_modes(t, np.sin(2e4 * t), SENSOR)
+
+
+def test_fit_crosstalk_recovers_the_response_to_the_pulse():
+    # the structure answers the contact force: its ringing is the pulse convolved with
+    # the mode's damped sine (computed here by numpy's direct convolution)
+    dt = 1.0 / RATE
+    t = np.arange(round(5e-3 * RATE)) * dt
+    onset, duration = 2e-3, 1e-4
+    pulse = np.where(
+        (t >= onset) & (t < onset + duration), np.sin(math.pi * (t - onset) / duration), 0.0
+    )
+    pulse *= 3.0
+    truth = np.zeros(t.size)
+    for (frequency, zeta), weight in zip(MODES, (200.0, 300.0), strict=True):
+        kernel = _damped(t, frequency, zeta)
+        truth += weight * np.convolve(pulse, kernel)[: t.size] * dt  # 1.3-2 % of the peak
+    rng = np.random.default_rng(2)
+    y = pulse + truth + 0.1 + rng.normal(0.0, 0.01, t.size)
+    contact_end = onset + 2 * duration
+    fitted = (t < onset - 5e-6) | (t > contact_end + SENSOR.period)
+    found = fit_crosstalk(
+        t, y, SENSOR, onset, (t >= onset) & (t < contact_end), fitted, contact_end, MODES
+    )
+    assert len(found.modes) == 2
+    # read through the pulse to 5 % of its largest value: noise 0.01 over 6000 fitted
+    # samples, and the pulse (read as the force the structure answers) holds the
+    # crosstalk itself, 2 % of it
+    inside = (t >= onset) & (t < contact_end + 1e-3)
+    assert np.max(np.abs(found.values - truth)[inside]) < 0.05 * np.max(np.abs(truth))
+    for mode, weight in zip(found.modes, (200.0, 300.0), strict=True):
+        # the response's amplitude: weight times the half-sine's Fourier transform at the
+        # mode, |F(f)| = I cos(pi f T) / (1 - (2 f T)**2) for impulse I and length T;
+        # 5 %: the damping (exp(a T / 2), 0.2 %) and the noise on the pulse read as force
+        x = mode.frequency * duration
+        spectrum = 3.0 * 2.0 / math.pi * duration * math.cos(math.pi * x) / (1 - (2 * x) ** 2)
+        assert mode.amplitude == pytest.approx(weight * spectrum, rel=0.05)
+    assert "1890 Hz" in found.describe() and "4100 Hz" in found.describe()
