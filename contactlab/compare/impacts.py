@@ -16,6 +16,7 @@ from contactlab.compare.waveform import (
 from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
+from contactlab.inverse.pulse import describe_window, pulse_baseline
 from contactlab.traces.prepare import noise_level, remove_baseline
 from contactlab.traces.trace import Trace
 from contactlab.validation import check_choice, check_number, check_text
@@ -122,17 +123,54 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     return Comparison(rows, a, b, labels, align, shift, window, threshold)
 
 
+def _without_baseline(trace, sensor, k):
+    """The trace less its baseline, its noise [N] and the notes saying how.
+
+    On a moving sensor the baseline is the pulse's local one
+    (:func:`contactlab.inverse.pulse.pulse_baseline`: a line before the pulse and on the
+    free ringing after it, with a status); a rigid sensor has no ringing to fit, and the
+    mean of the samples before the trigger (or of the quietest stretch) is removed, as
+    it is when the local baseline cannot be fitted (a noise-free trace; the status says
+    why).
+    """
+    trigger = trace.metadata.get("trigger_time")
+    trigger = 0.0 if trigger is None else trigger
+    t, values = np.asarray(trace.t), np.asarray(trace.values)
+    before = int(np.count_nonzero(t < trigger))
+    window = (float(t[0]), trigger) if before >= BASELINE_MIN_SAMPLES else None
+    status = "ok"
+    if not sensor.is_rigid:
+        try:
+            pulse = pulse_baseline(t, values, sensor, window, k)
+        except ParameterError as exc:  # e.g. a noise-free trace: no noise to fit against
+            status = f"no local baseline ({exc})"
+        else:
+            step = {"step": "remove_baseline", "local baseline": describe_window(pulse)}
+            text = f"removed: {describe_window(pulse)}"
+            notes = {"baseline": text, "baseline status": pulse.status}
+            notes.update({f"baseline note {i + 1}": note for i, note in enumerate(pulse.notes)})
+            return trace.derive(step, values=values - pulse.values), pulse.noise, notes
+    window = window or signals.quiet_window(t, values)
+    noise = noise_level(trace, window)
+    text = f"removed: the mean of {window[0]:.6g} to {window[1]:.6g} s"
+    return remove_baseline(trace, window), noise, {"baseline": text, "baseline status": status}
+
+
 def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshold=None):
     """Compare a measured sensor trace with the model of an impact set-up.
 
-    The trace's baseline (its samples before the trigger) is removed when it has one, and
-    both sensor signals are then read at ``k`` times the trace's noise, so the
-    measurement and the model are read alike. A lobe ends at its last crossing of that
-    level before the signal is back at the baseline (hysteresis equal to the threshold),
-    so noise on a slow rise or fall cannot cut it short. A trace with fewer than 16
-    samples before its trigger (one that starts at the impact) takes its baseline and
-    noise from its quietest stretch (:func:`contactlab.signals.quiet_window`);
-    :attr:`Comparison.notes` says which was done.
+    The trace's baseline is removed: a line fitted on its samples before the pulse (the
+    pre-trigger, or the samples before the pulse it finds) and, with the sensor's free
+    ringing, on the samples after the contact, so a drift or wander is removed as well
+    (:func:`contactlab.inverse.pulse.pulse_baseline`; a trace that starts at the impact
+    takes a constant fitted after the contact). Both sensor signals are then read at
+    ``k`` times the trace's noise, so the measurement and the model are read alike. A
+    lobe ends at its last crossing of that level before the signal is back at the
+    baseline (hysteresis equal to the threshold), so noise on a slow rise or fall cannot
+    cut it short. :attr:`Comparison.notes` says what was removed (``baseline``) and
+    whether it can be trusted (``baseline status``: ``ok``, ``short pre-trigger``,
+    ``drifting baseline``, ``not free ringing``; ``baseline note 1``, ... with the
+    numbers).
 
     Parameters
     ----------
@@ -166,21 +204,7 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
             f"load_preset); got {type(config).__name__}"
         )
     k = check_number("k", k, low=0.0, low_open=False)
-    trigger = trace.metadata.get("trigger_time")
-    trigger = 0.0 if trigger is None else trigger
-    before = int(np.count_nonzero(trace.t < trigger))
-    if before >= BASELINE_MIN_SAMPLES:
-        trace = remove_baseline(trace)
-        baseline = f"removed: mean of the {before} samples before {trigger:.6g} s"
-        noise = noise_level(trace)
-    else:
-        window = signals.quiet_window(trace.t, trace.values)
-        noise = noise_level(trace, window)
-        trace = remove_baseline(trace, window)
-        baseline = (
-            f"removed: only {before} samples before the trigger, so the mean of the "
-            f"record's quietest stretch, {window[0]:.6g} to {window[1]:.6g} s"
-        )
+    trace, noise, notes = _without_baseline(trace, config.sensor, k)
     if threshold is None:
         threshold = k * noise
     model = config.simulate()
@@ -188,7 +212,7 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
     result = compare(
         trace, model, tolerances, align, threshold, ("measured", "model"), hysteresis=threshold
     )
-    result.notes.update({"baseline": baseline, "lobe threshold [N]": threshold})
+    result.notes.update({**notes, "lobe threshold [N]": threshold})
     velocity_change = metrics.impulse(trace.t, trace.values, 0.0) / config.grain.mass
     result.physics = physics_problems(config.grain, float(np.max(trace.values)), velocity_change)
     return result

@@ -77,10 +77,8 @@ def baseline(t, y, window=None, k=5.0):
         The signal.
     window : (float, float), optional
         Baseline window ``[start, end)`` [s]. Default: the samples before ``t = 0``
-        (oscilloscopes write time relative to the trigger); a record with fewer than
-        :data:`BASELINE_MIN_SAMPLES` of them (it starts at, or just before, the pulse)
-        takes its quietest stretch (:func:`contactlab.signals.quiet_window`), which the
-        returned window names.
+        (oscilloscopes write time relative to the trigger; a record without them is
+        handled by :func:`contactlab.inverse.pulse.pulse_baseline`).
     k : float, default 5
         Onset threshold in baseline standard deviations [-].
 
@@ -103,8 +101,6 @@ def baseline(t, y, window=None, k=5.0):
     """
     if window is None:
         window = (float(t[0]), 0.0)
-        if int(signals.in_window(t, window).sum()) < BASELINE_MIN_SAMPLES:
-            window = _quiet_window_after(t, y)
     else:
         window = check_window("baseline_window", window)
     count = int(signals.in_window(t, window).sum())
@@ -119,19 +115,6 @@ def baseline(t, y, window=None, k=5.0):
         raise ParameterError(f"the baseline window {window} s is exactly constant (no noise)")
     onset = signals.detect_onset(t, y, window, k, name="baseline_window")
     return mean, noise, onset, window
-
-
-def _quiet_window_after(t, y):
-    """The quietest stretch of a record without a pre-trigger (it starts at, or just
-    before, the pulse): :func:`contactlab.signals.quiet_window`."""
-    try:
-        return signals.quiet_window(t, y)
-    except ParameterError as exc:
-        raise ParameterError(
-            f"the record has fewer than {BASELINE_MIN_SAMPLES} samples before t = 0 and is "
-            f"too short to find a quiet stretch after the pulse ({exc}); record a "
-            "pre-trigger or pass baseline_window=(start, end) [s]"
-        ) from None
 
 
 def lobe_around_peak(t, y, reference=0.0):

@@ -21,11 +21,12 @@ from scipy.optimize import least_squares
 from contactlab import signals
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
-from contactlab.inverse._signal import baseline, check_window, uniform_signal
+from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
 from contactlab.inverse.fit_models import FIT_MODELS, TRANSFORMS, FitModel
 from contactlab.inverse.fit_quality import FitQuality, FitQualityWarning, judge_fit
 from contactlab.inverse.fit_result import ContactFit, FittedParameter
 from contactlab.inverse.noise_window import clean_noise_window
+from contactlab.inverse.pulse import pulse_baseline
 from contactlab.inverse.reconstruct import reconstruct_force
 from contactlab.solver import simulate_impact
 from contactlab.validation import check_choice, check_count, check_number
@@ -128,6 +129,22 @@ class _Problem:
 
     def residuals(self, x):
         return (self.predict(self.values(x))[0] - self.y) / self.noise
+
+
+def _pulse(t, y, sensor, baseline_window):
+    """The pulse's local baseline (:func:`contactlab.inverse.pulse.pulse_baseline`) on
+    the noise window (default: the clean one before the pulse, or in a record without
+    a pre-trigger the samples before the pulse it finds)."""
+    if baseline_window is None and np.count_nonzero(t < 0.0) >= BASELINE_MIN_SAMPLES:
+        baseline_window = clean_noise_window(t, y)
+    pulse = pulse_baseline(t, y, sensor, baseline_window)
+    if pulse.status.startswith("short pre-trigger"):
+        raise ParameterError(
+            f"the pulse starts at {pulse.onset:.6g} s, with fewer than {BASELINE_MIN_SAMPLES} "
+            "samples before it: the fit judges its residuals against noise samples read "
+            "before the pulse; record a pre-trigger or pass baseline_window=(start, end) [s]"
+        )
+    return pulse
 
 
 def _starting_values(spec, grain, t, y, sensor, velocity, window):
@@ -247,14 +264,21 @@ def fit_contact(
     fixed : dict, optional
         Law parameters held at given values (SI units), e.g. ``{"damping": 1.0}``.
     baseline_window : (float, float), optional
-        Noise window [s] (baseline mean, noise). Default: from the record's start to one
-        onset-to-peak time before the pulse's detected onset
+        Noise window [s]. Default: from the record's start to one onset-to-peak time
+        before the pulse's detected onset
         (:func:`~contactlab.inverse.noise_window.clean_noise_window`), so that the start
         of the pulse, which an oscilloscope records before its trigger, is not taken for
-        noise.
+        noise; in a record without samples before ``t = 0``, the samples before the
+        pulse it finds. The baseline removed is the pulse's local one
+        (:func:`contactlab.inverse.pulse.pulse_baseline`: a line on the window's last 8
+        sensor periods and on the free ringing after the contact; its noise is read
+        there); a record that starts at the pulse is refused (no noise to judge the fit
+        against).
     window : (float, float), optional
         Samples fitted [s]. Default: from half a contact time before the
-        reconstructed onset to the end of the record.
+        reconstructed onset to the end of the pulse's post-contact window (16 sensor
+        periods of free ringing after the contact, where the local baseline was fitted;
+        a drift beyond it is not known).
     max_nfev : int, default 200
         Largest number of residual evaluations (each one simulation; the
         finite-difference Jacobian costs one more per fitted quantity).
@@ -314,14 +338,13 @@ def fit_contact(
     if window is not None:
         window = check_window("window", window)
     t, y, dt = uniform_signal(t, signal)
-    if baseline_window is None:
-        baseline_window = clean_noise_window(t, y)
-    mean, noise, _, baseline_window = baseline(t, y, baseline_window)
-    y = y - mean
+    pulse = _pulse(t, y, sensor, baseline_window)
+    y = y - pulse.values
+    noise, baseline_window = pulse.noise, pulse.window
     start = _starting_values(spec, grain, t, y, sensor, velocity, baseline_window)
     start.update(fixed)
     if window is None:
-        window = (start["onset"] - 0.5 * start["contact_time"], t[-1])
+        window = (start["onset"] - 0.5 * start["contact_time"], pulse.post[1])
     rows = (t >= window[0]) & (t <= window[1])
     fitted = [
         (name, kind)
@@ -398,6 +421,8 @@ def fit_contact(
         goodness=goodness,
         quality=quality,
         simulation=simulation,
+        baseline_status=pulse.status,
+        baseline_notes=pulse.notes,
     )
     _warn(fit, max_nfev)
     return fit

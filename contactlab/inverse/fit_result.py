@@ -80,6 +80,11 @@ class ContactFit:
     quality: FitQuality
     baseline_offset: FittedParameter
     simulation: object = field(repr=False, default=None)
+    baseline_status: str = "ok"
+    """The local baseline's status (:class:`contactlab.inverse.pulse.PulseBaseline`):
+    ``ok``, ``drifting baseline``, ``not free ringing``."""
+    baseline_notes: tuple = ()
+    """Why the baseline's status is not ``ok``, with the numbers."""
 
     @property
     def residuals(self):
@@ -136,6 +141,8 @@ class ContactFit:
                 "(MercuryDPM) with the same parameters"
             )
         lines.append(self.quality.summary())
+        lines.append(f"baseline: {self.baseline_status}")
+        lines += [f"  note: {note}" for note in self.baseline_notes]
         return "\n".join(lines)
 
     def to_dict(self):
@@ -154,6 +161,8 @@ class ContactFit:
             "goodness_of_fit": dict(self.goodness),
             "quality": self.quality.to_dict(),
             "baseline_offset": self.baseline_offset.to_dict(),
+            "baseline_status": self.baseline_status,
+            "baseline_notes": list(self.baseline_notes),
             "rebound_on_wall": self.rebound,
             "contact_time_on_sensor [s]": self.simulation.contact_time,
             "restitution_on_sensor [-]": self.simulation.restitution,

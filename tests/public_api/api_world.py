@@ -422,7 +422,7 @@ INSTANCES = {
     "contactlab.oblique_result.ObliqueResult": oblique,
     "contactlab.inverse.fit_result.ContactFit": fit,
     "contactlab.inverse.identify.SensorIdentification": _identification,
-    "contactlab.inverse.reconstruct.ForceReconstruction": _reconstruction,
+    "contactlab.inverse.reconstruction.ForceReconstruction": _reconstruction,
     "contactlab.study.setup.StudySetup": setup,
     "contactlab.study.sweep.SweepResult": lambda: _study(),
     "contactlab.study.design_map.DesignMap": lambda: _design_map(),

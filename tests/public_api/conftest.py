@@ -66,7 +66,7 @@ EXEMPT = {
     "contactlab.inverse.fit_result.FittedParameter": "result record built by fit_contact",
     "contactlab.inverse.compare_laws.LawComparison": "result record built by compare_laws",
     "contactlab.inverse.identify.SensorIdentification": "result record of identify_sensor",
-    "contactlab.inverse.reconstruct.ForceReconstruction": "result record of reconstruct_force",
+    "contactlab.inverse.reconstruction.ForceReconstruction": "result record of reconstruct_force",
     "contactlab.metrics.PulseMetrics": "result record built by pulse_metrics",
     "contactlab.signals.Baseline": "result record (a named tuple) built by baseline",
     "contactlab.signals.RunningBaseline": "result record (a named tuple) of running_baseline",

@@ -42,9 +42,12 @@ FIT_KEYS = (
     "contact_time_on_sensor [s]",
     "restitution_on_sensor [-]",
     "not_identifiable",
+    "baseline_status",
+    "baseline_notes",
 )
-"""Top-level keys of a FIT.json (:meth:`ContactFit.to_dict`; ``quality``, ``baseline_offset``
-and ``rebound_on_wall`` are optional, as files written before they existed lack them)."""
+"""Top-level keys of a FIT.json (:meth:`ContactFit.to_dict`; ``quality``, ``baseline_offset``,
+``rebound_on_wall``, ``baseline_status`` and ``baseline_notes`` are optional, as files
+written before they existed lack them; the last two are read, never exported)."""
 
 PHYSICAL_RANGES = {
     # name: keyword arguments of check_number for a physical value
@@ -247,6 +250,14 @@ def check_fit(data, where):
             check_number(f"{where}: {key}", data[key], low=None)
     if not isinstance(data.get("velocity_measured", False), bool):
         raise ParameterError(f"{where}: velocity_measured must be true or false")
+    if not isinstance(data.get("baseline_status", ""), str):
+        raise ParameterError(f"{where}: baseline_status must be text")
+    check_text(f"{where}: baseline_status", data.get("baseline_status", ""))
+    notes = data.get("baseline_notes", [])
+    if not isinstance(notes, list) or not all(isinstance(note, str) for note in notes):
+        raise ParameterError(f"{where}: baseline_notes must be a list of texts")
+    for note in notes:
+        check_text(f"{where}: baseline_notes", note)
     not_identifiable = data.get("not_identifiable", [])
     if not isinstance(not_identifiable, list):
         raise ParameterError(f"{where}: not_identifiable must be a list of parameter names")

@@ -301,3 +301,21 @@ def test_every_header_states_the_realised_rebound():
         else:
             assert f"realised rebound on a rigid plate: {fitted:.4f}, the fitted law's" in line
     assert math.isclose(fitted, 0.550283, rel_tol=1e-5)  # the table of tsuji_restitution
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "message"),
+    [
+        ("baseline_status", 3, "baseline_status must be text"),
+        ("baseline_notes", "drift", "baseline_notes must be a list of texts"),
+        ("baseline_notes", [1.0], "baseline_notes must be a list of texts"),
+        ("baseline_notes", ["drift\nshell touch /tmp/x"], "baseline_notes"),
+    ],
+)
+def test_a_fit_s_baseline_status_must_be_text(key, value, message):
+    """The local baseline's status and notes of a FIT.json are read, never exported:
+    anything but text is refused, a text status is exported as before."""
+    with pytest.raises(ParameterError, match=message):
+        export_dem({**LINEAR_FIT, key: value}, "yade")
+    good = {**LINEAR_FIT, "baseline_status": "drifting baseline", "baseline_notes": ["x"]}
+    assert export_dem(good, "yade") == export_dem(LINEAR_FIT, "yade")

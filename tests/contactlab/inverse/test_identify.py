@@ -9,6 +9,7 @@ import pytest
 import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.inverse import identify_sensor, matrix_pencil
+from contactlab.inverse.identify import DECAY_TIMES
 
 RESONANCE = 40e3  # [Hz]
 DAMPING_RATIO = 0.02  # [-]
@@ -62,9 +63,15 @@ def test_standard_errors_are_honest(identified):
 
 def test_automatic_window_starts_after_the_contact(impact, identified):
     contact_end = impact.contact_intervals[-1][1]
+    decay = 1.0 / (DAMPING_RATIO * 2.0 * math.pi * RESONANCE)  # 199 us
     for ident in identified:
         assert contact_end < ident.window[0] < 3 * contact_end
-        assert ident.window[1] == impact.t[-1]
+        # DECAY_TIMES decay times of a first fit (796 us here, the record ends 902 us
+        # after the window's start): that fit's damping is within a few per cent of the
+        # truth at 1 % noise, 10 % is ample
+        span = min(DECAY_TIMES * decay, impact.t[-1] - ident.window[0])
+        assert ident.window[1] - ident.window[0] == pytest.approx(span, rel=0.1)
+        assert ident.window[1] <= impact.t[-1]
 
 
 def test_matrix_pencil_is_exact_on_noiseless_exponentials():

@@ -147,6 +147,8 @@ def test_crosstalk_is_removed_to_the_issues_targets_from_thirty_sigma(with_cross
         assert errors["peak_force"] <= 0.05, errors
         assert errors["contact_time"] <= 0.05, errors
     # without the removal the crosstalk holds the reconstructed force up: a contact time
-    # far off (the benchmark measured up to +100 %), so the test above is not trivial
+    # far off (the benchmark measured up to +100 %), so the test above is not trivial;
+    # since reconstruct_force fits its own local line (single-trace paths, issue 22) it
+    # absorbs part of it: 19.7 % here (above 20 % before); twice the 5 % target shows it
     kept = [_errors(r, t)["contact_time"] for r, t in rows[False] if r["status"] == "ok"]
-    assert max(kept) > 0.2
+    assert max(kept) > 0.1

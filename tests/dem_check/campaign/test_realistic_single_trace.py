@@ -1,72 +1,199 @@
 """The single-trace paths on a realistic record (issue 22): they find the hit, or say why not.
 
-One impact of the hard grain 1 ms into a 4 ms record at 2 MHz (white noise 1 % of the
-peak), with one laboratory effect at a time (``dem_check.campaign.records``); measured
-figures for every effect are in ``docs/campaign.md`` ("Single-trace paths").
+One impact of the hard grain (contact 100 us: 200 samples per contact at 2 MHz, far above
+the 20 reconstruction needs) at 2 m/s, 1 ms into a 4 ms record or at its first sample,
+white noise 1 % of the 3 N peak, with one laboratory effect at a time
+(``dem_check.campaign.records``: the forward model's impact with what a laboratory adds).
+Measured figures for every effect, over four seeds, are in ``docs/campaign.md``
+("Single-trace paths"; ``benchmarks/bench_single_trace.py``).
 """
+
+from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
 
+from contactlab.compare import compare_trace
+from contactlab.config import load_config
 from contactlab.errors import ParameterError
-from contactlab.inverse import identify_sensor
+from contactlab.inverse import fit_contact, identify_sensor, reconstruct_force
 from dem_check.campaign import Effects, realistic_record
+
+ROOT = Path(__file__).resolve().parents[3]
 
 NOISE = 0.03
 """White noise [N], 1 % of the 3 N peak signal at 2 m/s."""
 
+ONSETS = {"1 ms in": 1e-3, "at the start": 0.0}
 
-def _record(hard_setup, effects):
+EFFECTS = {
+    "white": Effects(),
+    "1/f 0.3 sigma": Effects(pink=0.3 * NOISE),
+    "hum 1.5 sigma": Effects(hum=1.5 * NOISE),
+    "drift 20 sigma": Effects(drift=20 * NOISE),
+    "drift 100 sigma": Effects(drift=100 * NOISE),
+    "bounce": Effects(bounce=0.4),
+}
+"""The levels of ``Effects.everything`` one at a time (and a drift five times larger);
+1/f noise at 0.3 of the white noise, the campaign's envelope of the targets (1/f noise
+as large as the white noise is pinned below)."""
+
+
+def _record(hard_setup, effects, onset=1e-3, seed=3):
     grain, sensor, law = hard_setup
     return realistic_record(
         grain,
         sensor,
         law,
         [2.0],
-        [1e-3],
+        [onset],
         length=4e-3,
         sample_rate=2e6,
         noise=NOISE,
         effects=effects,
-        seed=3,
+        seed=seed,
     )
 
 
+def _arrays(record):
+    return np.asarray(record.trace.t), np.asarray(record.trace.values)
+
+
+def _cases(effects):
+    """Every effect 1 ms into the record, and at its start those a record that starts at
+    its impact can hold (a drift of 100 sigma there is the known limit, below)."""
+    return [
+        pytest.param(effect, onset, id=f"{name}, {where}")
+        for where, onset in ONSETS.items()
+        for name, effect in effects.items()
+        if onset > 0.0 or effect.drift < 100 * NOISE
+    ]
+
+
 @pytest.mark.parametrize(
-    "effects",
-    [Effects(), Effects(pink=NOISE), Effects(hum=1.5 * NOISE)],
-    ids=["white", "pink", "hum"],
+    ("effects", "onset"), _cases({**EFFECTS, "crosstalk 2 %": Effects(crosstalk=0.02)})
 )
-def test_identify_sensor_reads_the_ringing_under_noise_and_hum(hard_setup, effects):
+def test_identify_sensor_reads_the_ringing_under_every_effect(hard_setup, effects, onset):
     _, sensor, _ = hard_setup
-    record = _record(hard_setup, effects)
-    found = identify_sensor(np.asarray(record.trace.t), np.asarray(record.trace.values))
-    # measured: f1 within 0.06 %, zeta within 2.3 % (the ringing spans ~2.5 ms at 1 % noise)
-    assert found.resonance == pytest.approx(sensor.resonance, rel=1e-3)
+    found = identify_sensor(*_arrays(_record(hard_setup, effects, onset)))
+    # the default window is 4 decay times (0.8 ms) of ringing at 1 % noise: measured over
+    # two seeds f1 within 0.055 % and zeta within 1.9 % (drift, crosstalk and bounce
+    # included; before, these three were refused); 0.2 % and 5 % leave a factor 2.5-4
+    assert found.resonance == pytest.approx(sensor.resonance, rel=2e-3)
     assert found.damping_ratio == pytest.approx(sensor.damping_ratio, rel=0.05)
+    # the structure's ringing is left in the residual (1.6-1.75 times the noise measured,
+    # 0.94-0.98 without it): flagged, the rest not; 1/f noise leaves 1.1-1.2 times the
+    # noise read on the sample differences, near the 1.3 limit, so it is not judged here
+    if effects.pink == 0.0:
+        crosstalk = effects.crosstalk > 0.0
+        assert (found.status == "not free ringing") == crosstalk
+        assert ("crosstalk" in " ".join(found.notes)) == crosstalk
 
 
-@pytest.mark.parametrize(
-    "effects",
-    [Effects(drift=20 * NOISE), Effects(crosstalk=0.02), Effects(bounce=0.4)],
-    ids=["drift", "crosstalk", "bounce"],
+@pytest.mark.parametrize(("effects", "onset"), _cases(EFFECTS))
+def test_reconstruction_meets_the_targets_on_a_realistic_record(hard_setup, effects, onset):
+    record = _record(hard_setup, effects, onset)
+    truth = record.truth.iloc[0]
+    rec = reconstruct_force(*_arrays(record), hard_setup[1])
+    # the issue's targets: 5 % where a contact holds at least 20 samples (here 200);
+    # measured over four seeds at most 3.6 % (peak) and 2.4 % (contact time); before
+    # the local baseline, drift of 20 sigma gave +103 % contact time
+    assert rec.metrics.peak == pytest.approx(truth["peak_contact_force [N]"], rel=0.05)
+    assert rec.metrics.duration == pytest.approx(truth["contact_time [s]"], rel=0.05)
+    flags = set(rec.status.split(", "))
+    assert ("short pre-trigger" in flags) == (onset == 0.0)
+    # a drift of 100 sigma over 4 ms moves the baseline by 4.5-6 noise sigmas across the
+    # pulse (measured): said, although removed; 20 sigma moves it by about one
+    if effects.drift >= 100 * NOISE and onset > 0.0:
+        assert "drifting baseline" in flags
+    assert "not free ringing" not in flags
+    assert len(rec.notes) == len(flags - {"ok"})
+    assert f"status={rec.status!r}" in repr(rec)  # what the command line prints
+
+
+def test_a_record_that_starts_at_its_impact_under_fast_drift_says_so(hard_setup):
+    record = _record(hard_setup, Effects(drift=100 * NOISE), onset=0.0)
+    rec = reconstruct_force(*_arrays(record), hard_setup[1])
+    # nothing before the impact: the baseline is a constant read after the contact, and
+    # a drift of 100 sigma over 4 ms (a ramp of ~750 N/s here) puts it 0.26 N off under
+    # the pulse (peak +12 %, contact time +86 % measured): the result says that the
+    # baseline drifts after the contact (3.3 noise sigmas over the 0.4 ms fitted), that
+    # a constant could not follow it, and that the constant and the ringing leave 2.9
+    # times the record's sample-to-sample noise there
+    assert rec.status == "short pre-trigger, drifting baseline, not free ringing"
+    assert "a drift under the pulse is not seen" in rec.notes[0]
+    assert "record a pre-trigger" in rec.notes[1]
+
+
+def test_a_record_that_starts_at_its_impact_names_the_structure_s_ringing(hard_setup):
+    record = _record(hard_setup, Effects(crosstalk=0.02), onset=0.0)
+    rec = reconstruct_force(*_arrays(record), hard_setup[1])
+    # no noise before the pulse: the post-contact residual is judged against the noise
+    # of the sample differences (1.5-1.8 times it with crosstalk of 2 %, 0.9-1.2
+    # without, measured); contact time +15 % over four seeds
+    assert rec.status == "short pre-trigger, not free ringing"
+    assert "sample-to-sample noise" in rec.notes[1]
+
+
+def test_reconstruction_says_when_the_structure_rings(hard_setup):
+    record = _record(hard_setup, Effects(crosstalk=0.02))
+    rec = reconstruct_force(*_arrays(record), hard_setup[1])
+    # crosstalk of 2 % of the peak holds the reconstructed force above 2 % of its peak
+    # after the contact (contact time +12 % measured, +38 % before): not removed (the
+    # plate modes are the campaign's to separate), but said, with the numbers
+    assert "not free ringing" in rec.status
+    assert any("crosstalk" in note and "times the noise" in note for note in rec.notes)
+    assert rec.summary()["status"] == rec.status
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="1/f noise as large as the white noise (seed 3): reconstructed peak +7.0 % "
+    "(+0.9 to +7.0 % over four seeds; contact time within 1.1 %); GCV assumes white noise "
+    "and the 1/f noise under the pulse cannot be told from force (docs/campaign.md)",
 )
-def test_identify_sensor_says_why_not_when_the_window_holds_more_than_ringing(hard_setup, effects):
-    record = _record(hard_setup, effects)
-    with pytest.raises(ParameterError, match=r"window \(.*\) s") as caught:
-        identify_sensor(np.asarray(record.trace.t), np.asarray(record.trace.values))
-    # it names what it found and what to do, instead of a wrong resonance
-    assert "give window=" in str(caught.value) or "choose the window" in str(caught.value)
+def test_reconstruction_under_1_over_f_noise_as_large_as_the_white(hard_setup):
+    record = _record(hard_setup, Effects(pink=NOISE))
+    rec = reconstruct_force(*_arrays(record), hard_setup[1])
+    # the issue's 5 % target
+    assert rec.metrics.peak == pytest.approx(record.truth["peak_contact_force [N]"][0], rel=0.05)
 
 
-def test_identify_sensor_with_a_window_of_a_few_decay_times_under_drift(hard_setup):
-    _, sensor, _ = hard_setup
-    record = _record(hard_setup, Effects(drift=20 * NOISE))
-    t, y = np.asarray(record.trace.t), np.asarray(record.trace.values)
-    # the window the refusal asks for: after the contact (1.2 ms), 1.5 decay times
-    # 1 / (zeta w) = 200 us, over which the drift is a near-constant offset
-    found = identify_sensor(t, y, window=(1.25e-3, 1.55e-3))
-    # measured: f1 0.05 % and zeta 1.2 % off; 0.3 ms of ringing at 1 % noise scatters
-    # several times more than the 2.5 ms white noise alone allows (0.02 %, 2.3 %)
-    assert found.resonance == pytest.approx(sensor.resonance, rel=3e-3)
-    assert found.damping_ratio == pytest.approx(sensor.damping_ratio, rel=0.1)
+def test_compare_removes_a_drifting_baseline(hard_setup):
+    law = hard_setup[2]
+    config = replace(load_config(ROOT / "data" / "traces" / "model_hard.toml"), law=law)
+    record = _record(hard_setup, Effects(drift=100 * NOISE))
+    result = compare_trace(record.trace, config)
+    assert result.notes["baseline status"] == "drifting baseline"
+    assert "noise sigmas" in result.notes["baseline note 1"]
+    row = result.table.set_index("quantity").loc["peak_sensor_force"]
+    # the largest sample near a noisy peak overshoots by 2-3 noise sigmas (2-3 %): the
+    # tolerance compare_trace gives a measured trace (1 % + 4 sigma / peak = 5 %) holds;
+    # a constant baseline from the quietest stretch was off by up to the drift, 3 N
+    assert row["passed"], row
+    assert "baseline status: drifting baseline" in str(result)
+
+
+def test_fit_recovers_the_law_under_drift(hard_setup):
+    grain, sensor, law = hard_setup
+    record = _record(hard_setup, Effects(drift=100 * NOISE))
+    fit = fit_contact(*_arrays(record), grain, sensor, "linear", velocity=2.0)
+    # measured 0.10 % (stiffness) and 0.33 % (damping), as without drift: the fit runs
+    # on the record less the local line, up to the end of its post-contact window; 1 %
+    # is the campaign's figure for a linear fit at 1 % noise (docs/campaign.md)
+    assert fit.parameters["stiffness"].value == pytest.approx(law.stiffness, rel=0.01)
+    assert fit.parameters["damping"].value == pytest.approx(law.damping, rel=0.01)
+    assert fit.baseline_status == "drifting baseline"  # 4.5-6 noise sigmas (measured)
+    assert "baseline: drifting baseline" in fit.summary()
+    assert fit.to_dict()["baseline_notes"] == list(fit.baseline_notes)
+    # the residuals are noise: chi-squared near 1 (0.95 measured; the noise is read on
+    # 400 samples, its square known to 7 %: 0.8-1.2 is about three of those)
+    assert 0.8 < fit.goodness["reduced_chi_squared [-]"] < 1.2
+
+
+def test_fit_says_why_not_on_a_record_that_starts_at_the_pulse(hard_setup):
+    grain, sensor, _ = hard_setup
+    record = _record(hard_setup, Effects(), onset=0.0)
+    with pytest.raises(ParameterError, match="record a pre-trigger or pass baseline_window"):
+        fit_contact(*_arrays(record), grain, sensor, "linear", velocity=2.0)
