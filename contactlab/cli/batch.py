@@ -13,6 +13,7 @@ import pandas as pd
 
 from contactlab.batch.rows import ERROR_COLUMN
 from contactlab.errors import ParameterError
+from contactlab.tables import spreadsheet_safe
 
 __all__ = ["BATCH_LAWS", "add_batch_parser", "read_table"]
 
@@ -89,10 +90,8 @@ def _batch(args):
     except ParameterError as exc:
         raise ParameterError(f"{args.table}: {exc}") from None
     seconds = time.perf_counter() - start
-    if args.out:
-        solved.to_csv(args.out, index=False)
-    else:
-        solved.to_csv(sys.stdout, index=False)
+    # the user's own text columns are copied through: formula cells are neutralised
+    spreadsheet_safe(solved).to_csv(args.out if args.out else sys.stdout, index=False)
     where = f"wrote {args.out}: " if args.out else ""
     failed = int(solved[ERROR_COLUMN].ne("").sum()) if ERROR_COLUMN in solved else 0
     print(
