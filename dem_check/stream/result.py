@@ -23,10 +23,10 @@ import pandas as pd
 
 from contactlab.entry_checks import check_flag, check_instance
 from contactlab.errors import ParameterError
+from contactlab.tables import spreadsheet_safe
 from contactlab.traces.api import write_trace
 from contactlab.validation import check_count, check_number, check_path
 from dem_check.campaign.records import add_effects
-from contactlab.tables import spreadsheet_safe
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
 from dem_check.traces import Trace

@@ -11,8 +11,8 @@ import json
 from pathlib import Path
 
 from contactlab.entry_checks import check_callable, check_flag, check_instance
-from contactlab.validation import check_number, check_path, check_values
 from contactlab.tables import spreadsheet_safe
+from contactlab.validation import check_number, check_path, check_values
 from dem_check.stream.calibration import calibration_curve
 from dem_check.stream.case import StreamCase
 from dem_check.stream.report import write_report
