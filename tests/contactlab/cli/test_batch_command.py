@@ -105,7 +105,8 @@ def test_formula_cells_of_the_users_columns_are_neutralised(tmp_path):
     rows = len(HOSTILE)
     columns = {name: [values[0]] * rows for name, values in LINEAR.items()}
     offsets = [-1.5, -2.0, 0.0, 3.25, -1e-9, 7.0, -0.5, 2.0]
-    write(tmp_path / "in.csv", columns, {"label": HOSTILE, "offset [m]": offsets})
+    frame = pd.DataFrame({**columns, "label": HOSTILE, "offset [m]": offsets})
+    frame.to_csv(tmp_path / "in.csv", index=False, quoting=csv.QUOTE_NONNUMERIC)  # "\rx" quoted
     out = tmp_path / "out.csv"
     assert main(["batch", str(tmp_path / "in.csv"), "--law", "linear", "--out", str(out)]) == 0
     with out.open(newline="", encoding="utf-8") as fh:  # raw cells, not pandas' reading
