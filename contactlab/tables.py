@@ -8,6 +8,8 @@ user's own batch table): a spreadsheet runs a cell starting with ``=``, ``+``, `
 
 import pandas as pd
 
+from contactlab.entry_checks import check_instance
+
 __all__ = ["FORMULA_STARTS", "spreadsheet_safe"]
 
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
@@ -37,8 +39,13 @@ def spreadsheet_safe(table):
     -------
     pandas.DataFrame
         The copy, same index, columns and numeric dtypes.
+
+    Raises
+    ------
+    ParameterError
+        ``table`` is not a DataFrame.
     """
-    table = table.copy()
+    table = check_instance("table", table, pd.DataFrame).copy()
     for column in table.columns:
         if not pd.api.types.is_numeric_dtype(table[column]):
             table[column] = table[column].map(_neutral)

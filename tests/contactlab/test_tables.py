@@ -4,9 +4,11 @@ import ast
 from pathlib import Path
 
 import pandas as pd
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from contactlab.errors import ParameterError
 from contactlab.tables import FORMULA_STARTS, spreadsheet_safe
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -75,3 +77,8 @@ def test_every_csv_table_the_packages_write_is_spreadsheet_safe():
         for line in _unsafe_to_csv_calls(path)
     ]
     assert not unsafe, f"write these through contactlab.tables.spreadsheet_safe: {unsafe}"
+
+
+def test_a_table_that_is_not_a_dataframe_is_refused():
+    with pytest.raises(ParameterError, match="table must be a DataFrame"):
+        spreadsheet_safe([["=1+1"]])
