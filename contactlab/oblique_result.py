@@ -16,8 +16,45 @@ from contactlab.audit import (
 )
 from contactlab.entry_checks import check_flag
 from contactlab.quadrature import gauss_rule
+from contactlab.quantities import column
 
-__all__ = ["ObliqueResult"]
+__all__ = ["HEADLINE", "SIGNALS", "ObliqueResult"]
+
+HEADLINE = (
+    "velocity",
+    "angle",
+    "spin",
+    "contact_time",
+    "restitution",
+    "tangential_velocity",
+    "angular_velocity",
+    "rebound_angle",
+    "tangential_restitution",
+    "peak_normal_force",
+    "peak_tangential_force",
+)
+"""An oblique impact's headline numbers, in ``summary()`` order (:mod:`contactlab.quantities`)."""
+
+SIGNALS = (
+    "t",
+    "normal_force",
+    "tangential_force",
+    "sensor_force",
+    "x1",
+    "v1",
+    "x2",
+    "v2",
+    "tangential_velocity",
+    "angular_velocity",
+    "slip",
+)
+"""An oblique impact's signals, the columns of ``to_frame()`` (:mod:`contactlab.quantities`)."""
+
+_SIGNAL_ATTRIBUTES = {
+    "tangential_velocity": "tangential_velocity_signal",
+    "angular_velocity": "angular_velocity_signal",
+}
+"""Signals whose attribute is not their name (the name is the number after the contact)."""
 
 _PEAK_SAMPLES = 513
 """Points per contact phase on which the peak forces are read (besides the output grid)."""
@@ -55,6 +92,12 @@ MINDLIN_ENERGY = (
 class ObliqueResult:
     """One oblique impact: rebound numbers from the exact events, signals on a grid.
 
+    Data only, computed by :func:`contactlab.simulate_oblique`: the signals on the output
+    grid, the end state, and the solved contact as arrays
+    (:class:`~contactlab.kernels.oblique_sample.ContactPhases`: phases, steps, packed
+    parameters), which the peaks and the audit sample with the compiled sampler below
+    this module; no solver object and no law is called to read them.
+
     Signs: ``velocity`` is the impact speed and ``angle`` its angle from the normal; the
     normal axis points into the flat (``v2 > 0`` approaching), the tangential axis along
     the incoming tangential velocity; ``spin`` is signed so that the contact point slips
@@ -82,9 +125,10 @@ class ObliqueResult:
         velocity,
         angle,
         spin,
-        model,
+        inertia,
+        lever_arm,
         contact,
-        free,
+        signals,
         final_state,
         duration,
         sample_rate,
@@ -94,32 +138,13 @@ class ObliqueResult:
         self.normal_law, self.tangential_law = normal_law, tangential_law
         self.velocity, self.angle, self.spin = velocity, angle, spin
         self.duration, self.sample_rate = duration, sample_rate
-        self._model, self._contact, self._free = model, contact, free
+        self.inertia, self.lever_arm = inertia, lever_arm
+        self._contact = contact
         self._final = np.asarray(final_state, dtype=float)
-        n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
-        self.t = np.arange(n, dtype=float) / sample_rate
-        states, self._raw, self.normal_force, self.tangential_force, self.slip = self._evaluate(
-            self.t
-        )
+        self.t, states, self._raw, self.normal_force, self.tangential_force, self.slip = signals
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
         self.sensor_force = sensor.signal(states[:, :4], self.normal_force)
-
-    # -- dense evaluation ------------------------------------------------------------------
-    def _evaluate(self, times):
-        """States (n, 7), the normal law's unclipped formula (0 after the contact), normal and
-        tangential force [N] and slip [m/s] (n,) at increasing times [s]."""
-        times = np.asarray(times, dtype=float)
-        signals = (np.empty((times.size, 7)), *np.zeros((4, times.size)))
-        split = int(np.searchsorted(times, self.contact_time, side="left"))
-        if split:
-            self._contact(times[:split], tuple(a[:split] for a in signals))
-        if split < times.size:
-            states = signals[0]
-            states[split:, :4] = self._free.states(times[split:] - self._free.t0)
-            states[split:, 4:] = [self._final[4], self._final[5], 0.0]
-            signals[4][split:] = self._model.slip(self._final[None, :])[0]
-        return signals
 
     # -- rebound ---------------------------------------------------------------------------
     @property
@@ -231,17 +256,14 @@ class ObliqueResult:
         and ``dissipated`` (in minus out: friction, damping, the sensor's damper; >= 0 for
         a model that does not create energy).
         """
-        model, final = self._model, self._final
-        m, inertia = self.grain.mass, model.inertia
+        final = self._final
+        m, inertia = self.grain.mass, self.inertia
         out = {
             "kinetic_in": 0.5 * m * self.velocity**2 + 0.5 * inertia * self.spin**2,
             "grain_kinetic_out": 0.5 * m * (final[3] ** 2 + final[4] ** 2)
             + 0.5 * inertia * final[5] ** 2,
         }
-        sys_ = model.system
-        out["sensor_energy_out"] = (
-            0.0 if sys_.rigid else 0.5 * sys_.m1 * final[1] ** 2 + 0.5 * sys_.k1 * final[0] ** 2
-        )
+        out["sensor_energy_out"] = self.sensor.energy(final[0], final[1])
         out["dissipated"] = out["kinetic_in"] - out["grain_kinetic_out"] - out["sensor_energy_out"]
         return out
 
@@ -284,7 +306,7 @@ class ObliqueResult:
         ledger, rtol = self._end_energies(), self.rtol
         allowed = MINDLIN_ENERGY if self.tangential_law.name == "mindlin" else ""
         yield energy_check(ledger, ENERGY_ROUNDING * rtol, allowed)
-        m, radius, inertia = self.grain.mass, self.grain.radius, self._model.inertia
+        m, radius, inertia = self.grain.mass, self.grain.radius, self.inertia
         change = inertia * (self.angular_velocity - self.spin) + m * radius * (
             self.tangential_velocity - self.incident_tangential_velocity
         )
@@ -300,8 +322,7 @@ class ObliqueResult:
         """Per contact phase, Gauss-Legendre nodes [s] and weights graded at both ends and
         at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`), with the
         states and forces there (:meth:`_contact`)."""
-        sys_ = self._model.system
-        period = math.inf if sys_.rigid else 2.0 * math.pi / math.sqrt(sys_.k1 / sys_.m1)
+        period = math.inf if self.sensor.is_rigid else self.sensor.period
         for t0, t1, _ in self._contact.phases():
             nodes, weights = gauss_rule(t0, t1, period, graded=True, graded_end=True)
             yield nodes, weights, *self._contact(nodes)
@@ -309,25 +330,17 @@ class ObliqueResult:
     def _arm_shortening_moment(self):
         """``integral d F dt`` [N*m*s] over the contact with ``lever_arm="contact"`` (the
         torque arm ``R - d`` adds it to ``I dw + m R dvt``), 0 with the radius arm."""
-        model = self._model
-        if not model.contact_arm:
+        if self.lever_arm != "contact":
             return 0.0
         total = 0.0
         for _, weights, st, _, _, tangential, _ in self._gauss_nodes():
-            total += weights @ ((model.radius - model.arm(st[:, 2] - st[:, 0])) * tangential)
+            total += weights @ (np.maximum(st[:, 2] - st[:, 0], 0.0) * tangential)
         return total
 
     def _end_energies(self, **spent):
         """:class:`EnergyLedger` from the end states plus the integrals in ``spent`` [J]."""
-        m, inertia, final, sys_ = (
-            self.grain.mass,
-            self._model.inertia,
-            self._final,
-            self._model.system,
-        )
-        sensor = (
-            0.0 if sys_.rigid else 0.5 * sys_.m1 * final[1] ** 2 + 0.5 * sys_.k1 * final[0] ** 2
-        )
+        m, inertia, final = self.grain.mass, self.inertia, self._final
+        sensor = self.sensor.energy(final[0], final[1])
         return EnergyLedger(
             kinetic_in=0.5 * m * self.velocity**2 + 0.5 * inertia * self.spin**2,
             translation_out=0.5 * m * (final[3] ** 2 + final[4] ** 2),
@@ -338,7 +351,7 @@ class ObliqueResult:
 
     def _ledger(self):
         """The full ledger and the checks on Gauss-Legendre nodes of every phase."""
-        sys_, model = self._model.system, self._model
+        sensor, mu = self.sensor, self.tangential_law.friction
         sums = np.zeros(5)  # N d', -T s, c1 v1**2, N, T
         raw_worst, excess_worst = [], []
         peak = self.peak_normal_force
@@ -346,13 +359,13 @@ class ObliqueResult:
             integrands = (
                 normal * (st[:, 3] - st[:, 1]),
                 -tangential * slip,
-                sys_.c1 * st[:, 1] ** 2 if not sys_.rigid else np.zeros(nodes.size),
+                sensor.damping * st[:, 1] ** 2 if not sensor.is_rigid else np.zeros(nodes.size),
                 normal,
                 tangential,
             )
             sums += [weights @ f for f in integrands]
             raw_worst.append(worst_of(-raw / peak, nodes))
-            excess = np.abs(tangential) - model.law.friction * normal
+            excess = np.abs(tangential) - mu * normal
             excess_worst.append(worst_of(excess / peak, nodes))
         final = self._final
         left = elastic_energy(self.normal_law, final[2] - final[0])
@@ -395,17 +408,7 @@ class ObliqueResult:
             "tangential_law_parameters": self.tangential_law.parameters(),
             "grain": self.grain.to_dict(),
             "sensor": self.sensor.to_dict(),
-            "velocity [m/s]": self.velocity,
-            "angle [rad]": self.angle,
-            "spin [rad/s]": self.spin,
-            "contact_time [s]": self.contact_time,
-            "restitution [-]": self.restitution,
-            "tangential_velocity [m/s]": self.tangential_velocity,
-            "angular_velocity [rad/s]": self.angular_velocity,
-            "rebound_angle [rad]": self.rebound_angle,
-            "tangential_restitution [-]": self.tangential_restitution,
-            "peak_normal_force [N]": self.peak_normal_force,
-            "peak_tangential_force [N]": self.peak_tangential_force,
+            **{column(name): getattr(self, name) for name in HEADLINE},
             "phases": [list(p) for p in self.phases],
             "energy_balance [J]": self.energy_balance,
         }
@@ -415,19 +418,7 @@ class ObliqueResult:
         import pandas as pd
 
         return pd.DataFrame(
-            {
-                "t [s]": self.t,
-                "normal_force [N]": self.normal_force,
-                "tangential_force [N]": self.tangential_force,
-                "sensor_force [N]": self.sensor_force,
-                "x1 [m]": self.x1,
-                "v1 [m/s]": self.v1,
-                "x2 [m]": self.x2,
-                "v2 [m/s]": self.v2,
-                "tangential_velocity [m/s]": self.tangential_velocity_signal,
-                "angular_velocity [rad/s]": self.angular_velocity_signal,
-                "slip [m/s]": self.slip,
-            }
+            {column(name): getattr(self, _SIGNAL_ATTRIBUTES.get(name, name)) for name in SIGNALS}
         )
 
     to_frame = to_pandas

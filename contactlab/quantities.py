@@ -81,9 +81,20 @@ QUANTITIES = _vocabulary(
     # an oblique impact
     ("normal_force", "N", "normal contact force (>= 0)"),
     ("tangential_force", "N", "tangential contact force on the grain"),
+    ("angle", "rad", "angle of incidence from the surface normal"),
     ("spin", "rad/s", "grain angular velocity at the touch"),
-    ("tangential_velocity", "m/s", "tangential velocity of the grain's centre after"),
-    ("angular_velocity", "rad/s", "grain angular velocity after the contact"),
+    (
+        "tangential_velocity",
+        "m/s",
+        "tangential velocity of the grain's centre (a signal; as a number, after the contact)",
+    ),
+    (
+        "angular_velocity",
+        "rad/s",
+        "grain angular velocity (a signal; as a number, after the contact)",
+    ),
+    ("slip", "m/s", "contact-point slip vt - R w (R - d with the contact lever arm)"),
+    ("rebound_angle", "rad", "angle of the centre's rebound velocity from the normal"),
     ("tangential_restitution", "-", "contact-point slip after over before"),
     ("peak_normal_force", "N", "largest normal contact force"),
     ("peak_tangential_force", "N", "largest magnitude of the tangential force"),
@@ -105,6 +116,12 @@ QUANTITIES = _vocabulary(
     ("k_hertz", "N/m**1.5", "Hertz stiffness kH of F = kH d**1.5"),
     ("damping", "N*s/m**1.25", "Hertz damping eta of F = kH d**1.5 + eta d**0.25 d'"),
     ("v0", "m/s", "grain speed towards the sensor at the touch (a batch row's velocity)"),
+    ("radius", "m", "grain radius (the tangential force's lever arm)"),
+    ("k_mindlin", "N/m**1.5", "Mindlin's tangential stiffness coefficient: kt = k_mindlin sqrt(d)"),
+    ("friction", "-", "Coulomb friction coefficient mu"),
+    # an oblique impact's other rebound numbers (the batch's oblique frame)
+    ("contact_rebound_angle", "rad", "angle of the contact point's rebound velocity"),
+    ("phases", "-", "number of stick and slide phases of the contact"),
 )
 """The vocabulary: name -> :class:`Quantity`."""
 

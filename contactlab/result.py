@@ -88,6 +88,11 @@ class ImpactSignals:
         return end - start
 
     @property
+    def contacts(self):
+        """Number of contacts in the window [-] (a bounce back onto the sensor adds one)."""
+        return len(self.contact_intervals)
+
+    @property
     def separation_time(self):
         """Time of the first separation [s]."""
         return self.contact_intervals[0][1]

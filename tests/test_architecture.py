@@ -50,11 +50,8 @@ LAYERS = (
             "contactlab.traces",
         ),
     ),
-    ("solver", ("contactlab.solver", "contactlab.batch", "contactlab")),
-    (
-        "set-ups and studies",
-        ("contactlab.config", "contactlab.study", "contactlab.advisor", "contactlab.benchmarks"),
-    ),
+    ("solver", ("contactlab.solver", "contactlab.config", "contactlab.batch", "contactlab")),
+    ("studies", ("contactlab.study", "contactlab.advisor", "contactlab.benchmarks")),
     ("measurements", ("contactlab.compare", "contactlab.inverse")),
     ("applications", ("contactlab.testing", "contactlab.demo", "contactlab.cli")),
     (

@@ -13,8 +13,9 @@ import numpy as np
 import pandas as pd
 
 from contactlab.errors import ParameterError
+from contactlab.quantities import quantity
 
-__all__ = ["Column", "check_frame", "chunk_bounds", "impact_columns"]
+__all__ = ["Column", "check_frame", "chunk_bounds", "impact_columns", "input_column"]
 
 
 @dataclass(frozen=True)
@@ -129,14 +130,21 @@ def chunk_bounds(rows, chunk):
     return [(lo, min(lo + chunk, rows)) for lo in range(0, rows, chunk)]
 
 
+def input_column(name, **rules):
+    """The :class:`Column` of the quantity ``name`` of :mod:`contactlab.quantities` (its
+    column name and meaning), with the value ``rules`` of :class:`Column`."""
+    entry = quantity(name)
+    return Column(entry.column, entry.meaning, **rules)
+
+
 def impact_columns(*law):
     """A batch's input columns: the sensor and the grain, the law's ``law`` columns, the
     impact speed (in that order, the order of the kernels' arguments)."""
     return (
-        Column("m1 [kg]", "sensor moving mass", allow_inf=True),
-        Column("k1 [N/m]", "sensor stiffness, inf for an immovable wall", allow_inf=True),
-        Column("c1 [N*s/m]", "sensor damping", low_open=False),
-        Column("m2 [kg]", "grain mass"),
+        input_column("m1", allow_inf=True),
+        input_column("k1", allow_inf=True),
+        input_column("c1", low_open=False),
+        input_column("m2"),
         *law,
-        Column("v0 [m/s]", "impact speed"),
+        input_column("v0"),
     )

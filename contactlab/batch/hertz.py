@@ -11,7 +11,7 @@ contact pieces; rows it hands back are solved by :func:`contactlab.simulate_impa
 
 import numpy as np
 
-from contactlab.batch.frame import Column, impact_columns
+from contactlab.batch.frame import impact_columns, input_column
 from contactlab.batch.rows import DEFAULT_CHUNK, fallback_row, run_kernel, solve_frame
 from contactlab.kernels.impact_loop import solve_rows
 from contactlab.laws import HertzDamped
@@ -20,8 +20,8 @@ from contactlab.validation import check_number
 __all__ = ["DEFAULT_RTOL", "HERTZ_INPUTS", "hertz_impacts"]
 
 HERTZ_INPUTS = impact_columns(
-    Column("k_hertz [N/m**1.5]", "Hertz stiffness"),
-    Column("damping [N*s/m**1.25]", "Tsuji damping coefficient", low_open=False),
+    input_column("k_hertz"),
+    input_column("damping", low_open=False),
 )
 """Input columns of :func:`hertz_impacts`."""
 

@@ -13,7 +13,7 @@ close to critical damping for the modal form, a grain that settles on the plate 
 
 import numpy as np
 
-from contactlab.batch.frame import Column, impact_columns
+from contactlab.batch.frame import impact_columns, input_column
 from contactlab.batch.rows import (
     DEFAULT_CHUNK,
     RESULT_COLUMNS,
@@ -27,8 +27,8 @@ from contactlab.laws import LinearViscoelastic
 __all__ = ["LINEAR_INPUTS", "RESULT_COLUMNS", "linear_impacts", "solve_linear"]
 
 LINEAR_INPUTS = impact_columns(
-    Column("k2 [N/m]", "contact stiffness"),
-    Column("c2 [N*s/m]", "contact damping", low_open=False),
+    input_column("k2"),
+    input_column("c2", low_open=False),
 )
 """Input columns of :func:`linear_impacts`."""
 

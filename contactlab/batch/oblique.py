@@ -15,13 +15,14 @@ import math
 import numpy as np
 
 from contactlab.analytic.tangential import SOLID_SPHERE_INERTIA
-from contactlab.batch.frame import Column, impact_columns
+from contactlab.batch.frame import impact_columns, input_column
 from contactlab.batch.oblique_kernel import solve_rows
 from contactlab.batch.rows import DEFAULT_CHUNK, run_kernel, solve_frame
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import DAMPING_FORMS, HISTORY_FORMS, HertzDamped, Mindlin
 from contactlab.plausibility import internal
+from contactlab.quantities import columns
 from contactlab.solver.conventions import LEVER_ARMS
 from contactlab.solver.oblique import simulate_oblique
 from contactlab.validation import check_choice, check_inertia_factor, check_number
@@ -30,26 +31,26 @@ __all__ = ["OBLIQUE_INPUTS", "OBLIQUE_RESULTS", "oblique_impacts"]
 
 OBLIQUE_INPUTS = (
     *impact_columns(
-        Column("k_hertz [N/m**1.5]", "Hertz stiffness"),
-        Column("damping [N*s/m**1.25]", "Tsuji damping coefficient", low_open=False),
-        Column("k_mindlin [N/m**1.5]", "Mindlin stiffness 8 G* sqrt(R*)"),
-        Column("friction [-]", "Coulomb friction coefficient", low_open=False),
+        input_column("k_hertz"),
+        input_column("damping", low_open=False),
+        input_column("k_mindlin"),
+        input_column("friction", low_open=False),
     ),
-    Column("radius [m]", "grain radius"),
-    Column("angle [rad]", "angle of incidence from the normal", low_open=False, below=math.pi / 2),
-    Column("spin [rad/s]", "initial spin", signed=True),
+    input_column("radius"),
+    input_column("angle", low_open=False, below=math.pi / 2),
+    input_column("spin", signed=True),
 )
 """Input columns of :func:`oblique_impacts`, in the kernel's order."""
 
-OBLIQUE_RESULTS = (
-    "contact_time [s]",
-    "restitution [-]",
-    "tangential_velocity [m/s]",
-    "angular_velocity [rad/s]",
-    "rebound_angle [rad]",
-    "contact_rebound_angle [rad]",
-    "tangential_restitution [-]",
-    "phases [-]",
+OBLIQUE_RESULTS = columns(
+    "contact_time",
+    "restitution",
+    "tangential_velocity",
+    "angular_velocity",
+    "rebound_angle",
+    "contact_rebound_angle",
+    "tangential_restitution",
+    "phases",
 )
 """Columns :func:`oblique_impacts` adds: the :class:`~contactlab.ObliqueResult` attributes
 of the same names (``phases``: the number of stick and slide phases)."""

@@ -32,7 +32,7 @@ def _parameters(par, m1, k1, c1, m2, radius, inertia, k_hertz, eta, k_mindlin, m
     par[pw.STIFFNESS], par[pw.EXPONENT] = k_hertz, 1.5
     par[pw.DAMPING], par[pw.DAMPING_EXPONENT] = eta, 0.25
     par[pw.M1], par[pw.K1], par[pw.C1], par[pw.M2] = m1, k1, c1, m2
-    par[pw.RIGID] = 1.0 if rigid else 0.0
+    par[pw.RIGID], par[pw.MODEL] = (1.0 if rigid else 0.0), pw.OBLIQUE_MODEL
     par[ob.FRICTION], par[ob.KT], par[ob.KT_EXPONENT] = mu, k_mindlin, 0.5
     par[ob.FORCE_HISTORY], par[ob.RESCALED] = options[0], options[1]
     if options[2] > 0.0:  # Mindlin.for_contact: 2 gamma sqrt(m k_mindlin), damping_ratio

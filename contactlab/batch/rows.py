@@ -4,7 +4,8 @@ The batch solvers (:mod:`contactlab.batch.linear`, :mod:`contactlab.batch.hertz`
 everything but their kernel: the frame is checked (:func:`contactlab.batch.frame.check_frame`),
 solved in chunks that bound the working memory, several at a time on threads (the
 compiled kernels release Python's global interpreter lock), rows a kernel hands back
-are solved by :func:`contactlab.simulate_impact` (:func:`single_impact`), and the
+are solved by :func:`contactlab.simulate_impact` as an
+:class:`~contactlab.config.ImpactConfig` (:func:`row_config`, :func:`single_impact`), and the
 headline numbers are added to a copy of the frame (:data:`RESULT_COLUMNS`).
 """
 
@@ -17,11 +18,11 @@ import numpy as np
 
 from contactlab.batch.frame import check_frame, chunk_bounds
 from contactlab.bodies import Grain, Sensor
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError, RowFailedWarning
 from contactlab.kernels.modal import STATUS_OK
 from contactlab.plausibility import implausible_rows, internal
 from contactlab.quantities import columns
-from contactlab.solver import simulate_impact
 from contactlab.validation import check_count
 
 __all__ = [
@@ -29,16 +30,18 @@ __all__ = [
     "DEFAULT_CHUNK",
     "ERROR_COLUMN",
     "RESULT_COLUMNS",
+    "RESULT_NAMES",
     "check_threads",
     "fallback_row",
     "result_row",
+    "row_config",
     "run_kernel",
     "single_impact",
     "solve_frame",
     "warn_implausible",
 ]
 
-RESULT_COLUMNS = columns(
+RESULT_NAMES = (
     "contact_time",
     "sensor_response_time",
     "peak_contact_force",
@@ -46,6 +49,10 @@ RESULT_COLUMNS = columns(
     "restitution",
     "contacts",
 )
+"""Quantities a batch solver adds (:mod:`contactlab.quantities`), in the order of its
+kernel's outputs: attributes of :class:`contactlab.ImpactResult`."""
+
+RESULT_COLUMNS = columns(*RESULT_NAMES)
 """Columns a batch solver adds, in the order of its kernel's outputs."""
 
 ERROR_COLUMN = "error"
@@ -96,27 +103,34 @@ def warn_implausible(arrays, frame):
     implausible_rows("sensor_damping_ratio", ratio, labels, "sensor damping ratio [-]")
 
 
-def single_impact(m1, k1, c1, m2, law, v0, **options):
-    """One row by :func:`contactlab.simulate_impact`: the six headline numbers, in the
-    order of :data:`RESULT_COLUMNS` (``k1 = inf``: an immovable wall). The frame was
-    checked for plausibility as a whole: no warning per row here."""
+def single_impact(config, **options):
+    """One set-up by :func:`contactlab.simulate_impact`: the six headline numbers, in the
+    order of :data:`RESULT_COLUMNS`.
+
+    Parameters
+    ----------
+    config : contactlab.config.ImpactConfig
+        The set-up (:func:`row_config` makes one of a batch row).
+    **options
+        Keywords of :func:`contactlab.simulate_impact` (``method``, ``rtol``, ...).
+    """
+    with internal():
+        return result_row(config.simulate(**options))
+
+
+def result_row(result):
+    """The numbers of :data:`RESULT_NAMES` of an :class:`~contactlab.ImpactResult`, in
+    order (a tuple)."""
+    return tuple(getattr(result, name) for name in RESULT_NAMES)
+
+
+def row_config(m1, k1, c1, m2, law, v0):
+    """The :class:`~contactlab.config.ImpactConfig` of one batch row (``k1 = inf``: an
+    immovable wall; masses [kg], ``k1`` [N/m], ``c1`` [N*s/m], ``v0`` [m/s]). The frame
+    was checked for plausibility as a whole: no warning per row here."""
     with internal():
         sensor = Sensor.rigid() if math.isinf(k1) else Sensor(mass=m1, stiffness=k1, damping=c1)
-        res = simulate_impact(Grain.from_mass(m2), sensor, law, v0, **options)
-    return result_row(res)
-
-
-def result_row(res):
-    """The six headline numbers of an :class:`~contactlab.ImpactResult`, in the order of
-    :data:`RESULT_COLUMNS` (the number of contacts last)."""
-    return (
-        res.contact_time,
-        res.sensor_response_time,
-        res.peak_contact_force,
-        res.peak_sensor_force,
-        res.restitution,
-        len(res.contact_intervals),
-    )
+        return ImpactConfig(Grain.from_mass(m2), sensor, law, {"velocity": v0})
 
 
 KERNEL_ERRORS = (ArithmeticError, ValueError, np.linalg.LinAlgError)
@@ -148,7 +162,7 @@ def fallback_row(out, failures, row, m1, k1, c1, m2, law, v0, **options):
     solver refuses or fails, write NaN and record why in ``failures[row]`` (0-based row
     of the frame), so that one unsolvable row never costs the others their numbers."""
     try:
-        out[:] = single_impact(m1, k1, c1, m2, law, v0, **options)
+        out[:] = single_impact(row_config(m1, k1, c1, m2, law, v0), **options)
     except (ValueError, ArithmeticError, RuntimeError, np.linalg.LinAlgError) as exc:
         out[:] = math.nan
         failures[row] = f"{type(exc).__name__}: {exc}"

@@ -33,7 +33,7 @@ COMPILED_MODULES = (
     "contactlab.kernels.oblique_rhs",
     "contactlab.kernels.oblique_events",
     "contactlab.kernels.oblique_kernel",
-    "contactlab.solver.oblique_phases",
+    "contactlab.kernels.oblique_sample",
     "contactlab.batch.oblique_kernel",
 )
 """Modules with ``numba.njit(cache=True)`` functions."""

@@ -34,6 +34,7 @@ from contactlab.kernels.power import (
     K1,
     M1,
     M2,
+    NORMAL_MODEL,
     PARAMETERS,
     RIGID,
     STIFFNESS,
@@ -192,6 +193,24 @@ def _root(kind, lo, f_lo, hi, f_hi, piece, par, y, work):
     return x
 
 
+@njit(cache=True, error_model="numpy")
+def _refine_peak(slope_kind, peak, interval, piece, par, y, work, best):
+    """A maximum between two scan points, raised into ``best[peak]`` if it is before the
+    event: ``interval`` is ``(lo, slope at lo, hi, slope at hi, upto)`` [s] with the
+    slope of ``slope_kind`` falling through zero on it; the maximum is its root (Brent),
+    the value the sensor signal (``_SENSOR_SLOPE``) or the clipped contact force
+    (``_FORCE_SLOPE``) there. Called only where the maximum may beat the best so far
+    (:func:`may_exceed`), so the scan's hot loop stays a few comparisons a point."""
+    lo, s_lo, hi, s_hi, upto = interval
+    t_max = _root(slope_kind, lo, s_lo, hi, s_hi, piece, par, y, work)
+    if t_max > upto:
+        return
+    lam, vec, coef, nm, base, slope, y0 = piece
+    state(t_max, lam, vec, coef, nm, base, slope, y0, y)
+    value = signal(SENSOR, y, par) if slope_kind == _SENSOR_SLOPE else _clipped_force(y, par)
+    raise_peak(best, peak, value, best[PIECE_START] + t_max)
+
+
 @njit(cache=True, error_model="numpy", inline="always")
 def _read(event, y, par, track, values):
     """Signals of a scan point: [event, sensor signal, its slope, contact-force slope,
@@ -290,11 +309,15 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                 and falls(prev[2], cur[2])
                 and may_exceed(prev[1], prev[2], best[SENSOR_PEAK], h)
             ):
-                t_max = _root(_SENSOR_SLOPE, t_prev, prev[2], tau, cur[2], piece, par, y, work)
-                if t_max <= upto:
-                    state(t_max, lam, vec, coef, nm, base, slope, y0, y)
-                    at = best[PIECE_START] + t_max
-                    raise_peak(best, SENSOR_PEAK, signal(SENSOR, y, par), at)
+                interval = (t_prev, prev[2], tau, cur[2], upto)
+                _refine_peak(_SENSOR_SLOPE, SENSOR_PEAK, interval, piece, par, y, work, best)
+            if (
+                track[1]
+                and falls(prev[3], cur[3])
+                and may_exceed(prev[4], prev[3], best[CONTACT_PEAK], h)
+            ):
+                interval = (t_prev, prev[3], tau, cur[3], upto)
+                _refine_peak(_FORCE_SLOPE, CONTACT_PEAK, interval, piece, par, y, work, best)
             if track[0] and falls(prev[1], cur[1]):
                 t_end = _root(SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:
@@ -309,17 +332,6 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     t_end = _root(SENSOR, t_prev, prev[1], t_min, bottom, piece, par, y, work)
                     best[LOBE_END] = best[PIECE_START] + t_end
                     track[0] = False
-            if (
-                track[1]
-                and falls(prev[3], cur[3])
-                and may_exceed(prev[4], prev[3], best[CONTACT_PEAK], h)
-            ):
-                t_max = _root(_FORCE_SLOPE, t_prev, prev[3], tau, cur[3], piece, par, y, work)
-                if t_max <= upto:
-                    state(t_max, lam, vec, coef, nm, base, slope, y0, y)
-                    raise_peak(
-                        best, CONTACT_PEAK, _clipped_force(y, par), best[PIECE_START] + t_max
-                    )
             if hit >= 0.0:
                 return hit
             prev[:] = cur
@@ -422,7 +434,8 @@ def row_parameters(a, p, b, q, m1, k1, c1, m2, rigid, scan_cap):
     """Parameter array of a row with the force ``a d**p + b |d|**q d'``: the fields of
     :func:`contactlab.kernels.power.pack` (unsigned damping), then ``IN_CONTACT`` (1) and
     ``SCAN_CAP`` (``scan_cap``, scan points)."""
-    return np.array([a, p, b, q, 0.0, m1, k1, c1, m2, 1.0 if rigid else 0.0, 1.0, scan_cap])
+    rigid = 1.0 if rigid else 0.0
+    return np.array([a, p, b, q, 0.0, m1, k1, c1, m2, rigid, NORMAL_MODEL, 1.0, scan_cap])
 
 
 @njit(cache=True, error_model="numpy")

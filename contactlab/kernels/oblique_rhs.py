@@ -6,8 +6,9 @@ w, h]`` (a warped state carries ``s = tau**(1/4)`` as an eighth component, as in
 :func:`contactlab.kernels.power.force`, the tangential side the law's
 :class:`~contactlab.laws.tangential.TangentialForm`, the phase (stick 0, slide +1 or -1)
 a field of the packed parameters. The parameters travel as one float array (:func:`pack`):
-its first fields are those of :func:`contactlab.kernels.power.pack`, so the compiled
-DOP853 stepper tells the two models apart by its length (:mod:`contactlab.kernels.model_rhs`).
+its first fields are those of :func:`contactlab.kernels.power.pack`, with the ``model``
+field :data:`~contactlab.kernels.power.OBLIQUE_MODEL`, which tells the compiled DOP853
+stepper to integrate these equations (:mod:`contactlab.kernels.model_rhs`).
 """
 
 import math
@@ -15,7 +16,7 @@ import math
 import numpy as np
 
 from contactlab.compiled import njit
-from contactlab.kernels.power import C1, K1, M1, M2, RIGID, force, power
+from contactlab.kernels.power import C1, K1, M1, M2, MODEL, OBLIQUE_MODEL, RIGID, force, power
 from contactlab.kernels.power import PARAMETERS as NORMAL_PARAMETERS
 
 __all__ = [
@@ -85,6 +86,8 @@ def pack(normal, tangential, radius, inertia, contact_arm):
         Lever arm ``R - d`` (Kratos) instead of ``R``.
     """
     form = tangential
+    normal = normal.copy()
+    normal[MODEL] = OBLIQUE_MODEL
     return np.concatenate(
         (
             normal,

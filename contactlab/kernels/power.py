@@ -31,6 +31,9 @@ __all__ = [
     "K1",
     "M1",
     "M2",
+    "MODEL",
+    "NORMAL_MODEL",
+    "OBLIQUE_MODEL",
     "PARAMETERS",
     "RIGID",
     "SIGNED_DAMPING",
@@ -41,13 +44,28 @@ __all__ = [
     "rhs",
 ]
 
-PARAMETERS = ("a", "p", "b", "q", "signed", "m1", "k1", "c1", "m2", "rigid")
-"""Fields of the packed parameter array, in order (:func:`pack`)."""
+PARAMETERS = ("a", "p", "b", "q", "signed", "m1", "k1", "c1", "m2", "rigid", "model")
+"""Fields of the packed parameter array, in order (:func:`pack`); ``model`` says which
+equations the compiled stepper integrates (:mod:`contactlab.kernels.model_rhs`)."""
 
-STIFFNESS, EXPONENT, DAMPING, DAMPING_EXPONENT, SIGNED_DAMPING, M1, K1, C1, M2, RIGID = range(
-    len(PARAMETERS)
-)
+(
+    STIFFNESS,
+    EXPONENT,
+    DAMPING,
+    DAMPING_EXPONENT,
+    SIGNED_DAMPING,
+    M1,
+    K1,
+    C1,
+    M2,
+    RIGID,
+    MODEL,
+) = range(len(PARAMETERS))
 """Indices of the fields of :data:`PARAMETERS` in the packed array."""
+
+NORMAL_MODEL, OBLIQUE_MODEL = 0.0, 1.0
+"""Values of the ``model`` field: the normal contact's equations (:func:`rhs`), or the
+oblique impact's (:func:`contactlab.kernels.oblique_rhs.rhs`)."""
 
 
 def pack(form, m1, k1, c1, m2, rigid):
@@ -81,6 +99,7 @@ def pack(form, m1, k1, c1, m2, rigid):
             c1,
             m2,
             1.0 if rigid else 0.0,
+            NORMAL_MODEL,
         ]
     )
 

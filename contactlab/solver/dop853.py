@@ -182,6 +182,16 @@ class DenseSteps:
         self._starts = self._t_old.tolist()
 
     @property
+    def size(self):
+        """Number of steps."""
+        return self._h.size
+
+    def arrays(self):
+        """``(t_old, h, y_old, F)``, ``F`` (steps, 7, n): the layout of the compiled
+        kernels' kept steps (:mod:`contactlab.kernels.oblique_kernel`)."""
+        return self._t_old, self._h, self._y_old, np.moveaxis(self._F, 0, 1)
+
+    @property
     def boundaries(self):
         """Step boundaries [s] (steps + 1)."""
         return np.append(self._t_old, self._t_old[-1] + self._h[-1])

@@ -68,7 +68,7 @@ from contactlab.solver.impact import (
     auto_window,
     check_output_size,
 )
-from contactlab.solver.oblique_phases import PiecePhases, compiled_contact
+from contactlab.solver.oblique_phases import compiled_contact, grid_signals, piece_phases
 from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
 from contactlab.validation import check_choice, check_inertia_factor, check_number, keyword_checked
@@ -317,7 +317,7 @@ def _solve_contact(model, y0, rtol, scale):
         y = states(hit[0] - t)[0]
         t, touch = hit[0], False
         if hit[1] == 0:
-            return PiecePhases(model, pieces), y
+            return piece_phases(model.pack(), pieces), y
         if phase == STICK:
             phase = model.cap_rules.slide_phase(+1 if hit[1] == 1 else -1, y)
         else:
@@ -475,9 +475,10 @@ def simulate_oblique(
         velocity=velocity,
         angle=angle,
         spin=spin,
-        model=model,
+        inertia=inertia,
+        lever_arm=lever_arm,
         contact=contact,
-        free=free,
+        signals=grid_signals(contact, free, y_end, float(model.slip(y_end)), window, sample_rate),
         final_state=y_end,
         duration=window,
         sample_rate=sample_rate,

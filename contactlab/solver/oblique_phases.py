@@ -1,18 +1,17 @@
-"""The solved contact of an oblique impact: its phases and their states at any time.
+"""The solved contact of an oblique impact as data
+(:class:`~contactlab.kernels.oblique_sample.ContactPhases`).
 
-:func:`compiled_contact` runs :func:`contactlab.kernels.oblique_kernel.solve_contact`;
-:class:`ContactPhases` holds what it kept (each phase's start, end and code, and every
-step's interpolant) and evaluates states and forces at many times in one compiled pass
-(:func:`sample`): the output grid of :class:`~contactlab.ObliqueResult`, its peaks and its
-audit's quadrature nodes. :class:`PiecePhases` gives the same view of the contact the
-Python phase loop solves (Kratos' elastic Coulomb cap, not compiled yet).
+:func:`compiled_contact` runs :func:`contactlab.kernels.oblique_kernel.solve_contact` and
+keeps its phases and steps; :func:`piece_phases` packs the pieces of the Python phase
+loop (Kratos' elastic Coulomb cap, not compiled yet) into the same arrays, so the result
+holds one kind of data and evaluates it with one compiled sampler
+(:func:`contactlab.kernels.oblique_sample.sample`) whichever loop solved the contact.
 """
 
 import math
 
 import numpy as np
 
-from contactlab.compiled import njit
 from contactlab.errors import ParameterError
 from contactlab.kernels.oblique_kernel import (
     MAX_PHASES,
@@ -21,129 +20,10 @@ from contactlab.kernels.oblique_kernel import (
     STATUS_UNDERFLOW,
     solve_contact,
 )
-from contactlab.kernels.oblique_rhs import FRICTION, STICK, arm, trial_force
-from contactlab.kernels.power import RIGID, force
+from contactlab.kernels.oblique_sample import ContactPhases
 from contactlab.solver.adaptive import underflow_message
 
-__all__ = ["ContactPhases", "PiecePhases", "compiled_contact", "sample"]
-
-
-@njit(cache=True, error_model="numpy")
-def _step_index(t_old, lo, hi, t, j):
-    """The index in ``lo:hi`` of the last start ``t_old`` at or before ``t`` (the nearest
-    one outside them), searched from ``j`` (the last one found: the times are mostly
-    increasing)."""
-    if j < lo or j >= hi or t < t_old[j]:
-        j = lo + np.searchsorted(t_old[lo:hi], t, side="right") - 1
-    while j + 1 < hi and t_old[j + 1] <= t:
-        j += 1
-    return min(max(j, lo), hi - 1)
-
-
-@njit(cache=True, error_model="numpy")
-def _interpolate(F, y_old, j, x, out, i, first):
-    """Step ``j``'s interpolant at ``x`` into ``out[i, first:7]``: the seven-row form of
-    :func:`contactlab.kernels.dop853.interpolate`, written out (a loop over the rows
-    with a view per sample is several times slower on the output grid)."""
-    u = 1.0 - x
-    for c in range(first, 7):
-        acc = F[j, 6, c] * x
-        acc = (acc + F[j, 5, c]) * u
-        acc = (acc + F[j, 4, c]) * x
-        acc = (acc + F[j, 3, c]) * u
-        acc = (acc + F[j, 2, c]) * x
-        acc = (acc + F[j, 1, c]) * u
-        acc = (acc + F[j, 0, c]) * x
-        out[i, c] = acc + y_old[j, c]
-
-
-@njit(cache=True, error_model="numpy")
-def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip):
-    """States and forces of the contact at ``times`` [s] (each in ``[0, t_end]``).
-
-    Parameters
-    ----------
-    par : numpy.ndarray
-        Packed parameters (:func:`contactlab.kernels.oblique_rhs.pack`).
-    table : numpy.ndarray
-        The phases (count, 8) of :func:`contactlab.kernels.oblique_kernel.solve_contact`.
-    warp, steps : tuple
-        The kept steps ``(count, t_old, h, y_old, F)`` in ``s`` and in time.
-    times : numpy.ndarray
-        Times [s], any order (increasing is fastest).
-    states : numpy.ndarray
-        Out: states (len(times), 7).
-    raw, normal, tangential : numpy.ndarray
-        Out: the normal law's unclipped formula, the normal force (>= 0) and the
-        tangential force on the grain [N].
-    slip : numpy.ndarray
-        Out: the contact-point slip [m/s].
-    """
-    last = table.shape[0] - 1
-    starts = table[:, 0].copy()
-    _, w_t, w_h, w_y, w_F = warp
-    _, s_t, s_h, s_y, s_F = steps
-    mu = par[FRICTION]
-    first = 2 if par[RIGID] > 0.0 else 0  # on a wall x1 = v1 = 0: not interpolated
-    states[:, :first] = 0.0
-    jw = js = k = -1
-    for i in range(times.size):
-        t = times[i]
-        k = _step_index(starts, 0, last + 1, t, k)
-        t0, phase, switch = table[k, 0], table[k, 2], table[k, 3]
-        w0, w1, s0, s1 = int(table[k, 4]), int(table[k, 5]), int(table[k, 6]), int(table[k, 7])
-        tau = t - t0
-        if w1 > w0 and (s1 == s0 or tau < switch):
-            s = math.sqrt(math.sqrt(max(tau, 0.0)))
-            jw = _step_index(w_t, w0, w1, s, jw)
-            _interpolate(w_F, w_y, jw, (s - w_t[jw]) / w_h[jw], states, i, first)
-        else:
-            js = _step_index(s_t, s0, s1, t, js)
-            _interpolate(s_F, s_y, js, (t - s_t[js]) / s_h[js], states, i, first)
-        d = states[i, 2] - states[i, 0]
-        raw[i] = force(d, states[i, 3] - states[i, 1], par)
-        normal[i] = max(raw[i], 0.0)
-        slip[i] = states[i, 4] - arm(d, par) * states[i, 5]
-        if phase == STICK:
-            tangential[i] = trial_force(states[i, 6], d, slip[i], par)
-        else:
-            tangential[i] = phase * mu * normal[i]
-
-
-class ContactPhases:
-    """The phases of one contact and their dense states.
-
-    Parameters
-    ----------
-    par : numpy.ndarray
-        Packed parameters (:func:`contactlab.kernels.oblique_rhs.pack`).
-    table : numpy.ndarray
-        Rows ``(t0, t1, phase, switch, warped steps lo, hi, steps lo, hi)`` of the phases.
-    warp, steps : tuple
-        The kept steps (see :func:`sample`).
-    """
-
-    def __init__(self, par, table, warp, steps):
-        self._par, self._table, self._warp, self._steps = par, table, warp, steps
-
-    @property
-    def end(self):
-        """End of the contact [s]."""
-        return float(self._table[-1, 1])
-
-    def phases(self):
-        """``[(start [s], end [s], phase code), ...]``: stick 0, slide +1 or -1."""
-        return [(t0, t1, int(code)) for t0, t1, code in self._table[:, :3].tolist()]
-
-    def __call__(self, times, out=None):
-        """States (n, 7), unclipped normal formula, normal and tangential force [N] and the
-        contact-point slip [m/s] (n,) at ``times`` [s] inside the contact, into ``out``
-        (arrays of these shapes) if given."""
-        times = np.ascontiguousarray(times, dtype=float)
-        if out is None:
-            out = (np.empty((times.size, 7)), *np.empty((4, times.size)))
-        sample(self._par, self._table, self._warp, self._steps, times, *out)
-        return out
+__all__ = ["compiled_contact", "grid_signals", "piece_phases"]
 
 
 def compiled_contact(model, y0, rtol, atol, velocity):
@@ -180,42 +60,71 @@ def compiled_contact(model, y0, rtol, atol, velocity):
     return ContactPhases(par, table[:count], warp, steps), y_end
 
 
-class PiecePhases:
-    """:class:`ContactPhases`' view of the contact solved in Python: pieces with ``t0``,
-    ``t1``, ``phase`` (its force's sign, 0 sticking) and dense ``states``."""
+def piece_phases(par, pieces):
+    """The :class:`ContactPhases` of the Python phase loop's pieces.
 
-    def __init__(self, model, pieces):
-        self._model, self._pieces = model, pieces
+    Parameters
+    ----------
+    par : numpy.ndarray
+        Packed parameters (:meth:`contactlab.solver.oblique.ObliqueModel.pack`).
+    pieces : list
+        Pieces with ``t0``, ``t1`` [s], ``phase`` (the sign of the force, 0 sticking) and
+        dense ``states`` (:class:`contactlab.solver.pieces.DenseStates` of 7 states).
+    """
+    table, warp, steps = np.zeros((len(pieces), 8)), [], []
+    counts = [0, 0]
+    for row, piece in zip(table, pieces, strict=True):
+        states = piece.states
+        row[:4] = piece.t0, piece.t1, piece.phase, states.switch
+        for first, kept, store, which in ((4, states.start, warp, 0), (6, states.steps, steps, 1)):
+            size = 0 if kept is None else kept.size
+            row[first], row[first + 1] = counts[which], counts[which] + size
+            counts[which] += size
+            if kept is not None:
+                store.append(kept.arrays())
+    return ContactPhases(par, table, _stacked(warp, 8), _stacked(steps, 7))
 
-    @property
-    def end(self):
-        """End of the contact [s]."""
-        return self._pieces[-1].t1
 
-    def phases(self):
-        """``[(start [s], end [s], phase code), ...]``: stick 0, slide +1 or -1."""
-        return [(p.t0, p.t1, p.phase) for p in self._pieces]
+def _stacked(parts, width):
+    """One store ``(count, t_old, h, y_old, F)`` of the kernel's layout from several."""
+    if not parts:
+        return 0, np.empty(0), np.empty(0), np.empty((0, width)), np.empty((0, 7, width))
+    t_old, h, y_old, F = (np.concatenate(arrays) for arrays in zip(*parts, strict=True))
+    return t_old.size, t_old, h, np.ascontiguousarray(y_old), np.ascontiguousarray(F)
 
-    def __call__(self, times, out=None):
-        """As :meth:`ContactPhases.__call__`."""
-        times = np.asarray(times, dtype=float)
-        if out is None:
-            out = (np.empty((times.size, 7)), *np.empty((4, times.size)))
-        states, raw, normal, tangential, slip = out
-        model = self._model
-        for piece in self._pieces:
-            inside = (times >= piece.t0) & (times < piece.t1)
-            if piece is self._pieces[-1]:
-                inside |= times >= piece.t1
-            if not inside.any():
-                continue
-            st = piece.states(times[inside] - piece.t0)
-            d, r = st[:, 2] - st[:, 0], st[:, 3] - st[:, 1]
-            states[inside], raw[inside] = st, model.normal(d, r)
-            normal[inside] = np.maximum(raw[inside], 0.0)
-            slip[inside] = model.slip(st)
-            if piece.phase == STICK:
-                tangential[inside] = model.law.trial_force(st[:, 6], d, slip[inside])
-            else:
-                tangential[inside] = piece.phase * model.law.friction * normal[inside]
-        return out
+
+def grid_signals(contact, free, final, slip_after, duration, sample_rate):
+    """The signals of an oblique impact on its output grid, for
+    :class:`~contactlab.ObliqueResult`.
+
+    Parameters
+    ----------
+    contact : contactlab.kernels.oblique_sample.ContactPhases
+        The solved contact.
+    free : contactlab.solver.segment.Segment
+        The free flight after it.
+    final : numpy.ndarray
+        State (7,) at the separation.
+    slip_after : float
+        Contact-point slip after the contact [m/s].
+    duration, sample_rate : float
+        Window [s] and sample rate [Hz].
+
+    Returns
+    -------
+    tuple
+        Times (n,) [s], states (n, 7), the normal law's unclipped formula (0 after the
+        contact), normal and tangential force [N] and slip [m/s] (n,).
+    """
+    n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
+    times = np.arange(n, dtype=float) / sample_rate
+    signals = (np.empty((n, 7)), *np.zeros((4, n)))
+    split = int(np.searchsorted(times, contact.end, side="left"))
+    if split:
+        contact(times[:split], tuple(a[:split] for a in signals))
+    if split < n:
+        states = signals[0]
+        states[split:, :4] = free.states(times[split:] - free.t0)
+        states[split:, 4:] = [final[4], final[5], 0.0]
+        signals[4][split:] = slip_after
+    return (times, *signals)

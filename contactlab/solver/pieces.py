@@ -153,13 +153,13 @@ class DenseStates:
     """
 
     def __init__(self, t0, steps, start=None, switch=0.0, size=4):
-        self._t0, self._steps, self._start, self._switch = t0, steps, start, switch
+        self._t0, self.steps, self.start, self.switch = t0, steps, start, switch
         self._size = size
 
     def _early(self, tau):
-        if self._start is None:
+        if self.start is None:
             return np.zeros(tau.shape, dtype=bool)
-        return tau < self._switch if self._steps is not None else np.ones(tau.shape, bool)
+        return tau < self.switch if self.steps is not None else np.ones(tau.shape, bool)
 
     def __call__(self, tau):
         """States (n, 4) at local times ``tau`` [s] (any order)."""
@@ -167,20 +167,20 @@ class DenseStates:
         early = self._early(tau)
         if tau.size == 1:  # the metrics' root finders ask one time at a time
             if early[0]:
-                return self._start.at(max(float(tau[0]), 0.0) ** 0.25)[None, : self._size]
-            return self._steps.at(self._t0 + float(tau[0]))[None, :]
+                return self.start.at(max(float(tau[0]), 0.0) ** 0.25)[None, : self._size]
+            return self.steps.at(self._t0 + float(tau[0]))[None, :]
         out = np.empty((tau.size, self._size))
         if early.any():
-            out[early] = self._start(np.maximum(tau[early], 0.0) ** 0.25)[:, : self._size]
+            out[early] = self.start(np.maximum(tau[early], 0.0) ** 0.25)[:, : self._size]
         if not early.all():
-            out[~early] = self._steps(self._t0 + tau[~early])
+            out[~early] = self.steps(self._t0 + tau[~early])
         return out
 
     def grid(self, tau, step, out):
         """Write the states at increasing local times ``tau`` [s] into ``out`` (n, 4)."""
         split = int(np.count_nonzero(self._early(tau)))  # the early times come first
         if split:
-            out[:split] = self._start(np.maximum(tau[:split], 0.0) ** 0.25)[:, : self._size]
+            out[:split] = self.start(np.maximum(tau[:split], 0.0) ** 0.25)[:, : self._size]
         if split < tau.size:
-            self._steps(self._t0 + tau[split:], out=out[split:])
+            self.steps(self._t0 + tau[split:], out=out[split:])
         return out

@@ -4,7 +4,8 @@
 >>> from dem_check.engines import drop_test
 >>> grain = cl.Grain(diameter=5e-3, density=765.0)
 >>> law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
->>> res = drop_test(grain, cl.Sensor.rigid(), law, 2.0, engine="bullet")
+>>> setup = cl.config.ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": 2.0})
+>>> res = drop_test(setup, engine="bullet")
 >>> round(res.contact_time * 1e6, 1)  # pi sqrt(m/k) = 70.3 us
 70.3
 
@@ -39,7 +40,9 @@ an optional extra costs nothing until it is used.
 from importlib.metadata import entry_points
 
 from contactlab.audit import warn_if_broken
+from contactlab.config import ImpactConfig
 from contactlab.engines import GROUP, load_engine
+from contactlab.errors import ParameterError
 from dem_check.engines.result import EngineResult
 
 __all__ = ["ENGINES", "EngineResult", "drop_test", "engine_module"]
@@ -56,17 +59,21 @@ engine_module = load_engine
 an unknown name raises ParameterError listing the valid ones)."""
 
 
-def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", **options):
+def drop_test(config, *fields, time_step=None, engine="bullet", **options):
     """Drop the grain on the sensor in an engine and read the impact like the reduced model.
 
     Parameters
     ----------
-    grain : Grain
-    sensor : Sensor
-    law : ContactLaw
-        One the engine represents (pybullet: ``LinearViscoelastic``).
-    velocity : float
-        Grain speed towards the sensor at release [m/s].
+    config : contactlab.config.ImpactConfig
+        The set-up: grain, sensor, law (one the engine represents; pybullet:
+        ``LinearViscoelastic``) and the grain speed towards the sensor at release [m/s]
+        (``config.velocity``), as :func:`contactlab.simulate_impact` takes them; its other
+        simulation keys (duration, sample rate, method) are the reduced model's, not the
+        engine's.
+    *fields
+        The compatibility form ``drop_test(grain, sensor, law, velocity[, time_step])``:
+        the same set-up as separate arguments (an ImpactConfig's fields); the engines'
+        own ``drop_test`` functions (the plug-in interface) take them so.
     time_step : float, optional
         Engine step [s]; default the engine's own.
     engine : str, default "bullet"
@@ -85,9 +92,27 @@ def drop_test(grain, sensor, law, velocity, time_step=None, *, engine="bullet", 
     Raises
     ------
     ParameterError
-        For an unknown engine (listing the valid names) or what the engine refuses.
+        For a ``config`` that is not an ImpactConfig, an unknown engine (listing the valid
+        names) or what the engine refuses.
+    TypeError
+        For arguments of neither form.
     """
+    if isinstance(config, ImpactConfig):
+        if fields:
+            raise TypeError("drop_test(config, ...) takes the time step as a keyword")
+        setup = (config.grain, config.sensor, config.law, config.velocity)
+    elif not fields:
+        raise ParameterError(
+            f"config must be a contactlab.config.ImpactConfig; got {type(config).__name__}"
+        )
+    elif len(fields) in (3, 4):
+        setup, time_step = (config, *fields[:3]), fields[3] if len(fields) == 4 else time_step
+    else:
+        raise TypeError(
+            "drop_test takes an ImpactConfig, or grain, sensor, law, velocity[, time_step]; "
+            f"got {1 + len(fields)} positional arguments"
+        )
     module = engine_module(engine)
-    result = module.drop_test(grain, sensor, law, velocity, time_step, **options)
+    result = module.drop_test(*setup, time_step, **options)
     warn_if_broken(result.audit(), f"the {engine} engine's result")
     return result

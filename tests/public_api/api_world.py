@@ -523,9 +523,10 @@ def _comparison():
 
 @functools.cache
 def _engine_result():
+    from contactlab.config import ImpactConfig
     from dem_check import drop_test
 
-    return drop_test(grain(), sensor(), law(), 2.0)
+    return drop_test(ImpactConfig(grain(), sensor(), law(), {"velocity": 2.0}))
 
 
 @functools.cache

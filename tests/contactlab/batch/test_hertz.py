@@ -134,8 +134,8 @@ paper_frame = functools.partial(rowcheck.paper_frame, COLUMNS, 5.6e6, 0.05)
     ("column", "value", "message"),
     [
         *rowcheck.BAD_BODY_ROWS,
-        ("damping [N*s/m**1.25]", -1.0, "'damping [N*s/m**1.25]' (Tsuji damping coefficient)"),
-        ("k_hertz [N/m**1.5]", np.inf, "'k_hertz [N/m**1.5]' (Hertz stiffness)"),
+        ("damping [N*s/m**1.25]", -1.0, "'damping [N*s/m**1.25]' (Hertz damping eta of F"),
+        ("k_hertz [N/m**1.5]", np.inf, "'k_hertz [N/m**1.5]' (Hertz stiffness kH of F"),
     ],
 )
 def test_a_bad_row_is_named_by_column_and_first_row(column, value, message):

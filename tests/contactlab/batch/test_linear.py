@@ -128,7 +128,12 @@ paper_frame = functools.partial(rowcheck.paper_frame, COLUMNS, 1e5, 1.0)
     ("column", "value", "message"),
     [
         *rowcheck.BAD_BODY_ROWS,
-        ("c2 [N*s/m]", np.inf, "'c2 [N*s/m]' (contact damping) must be a number >= 0, finite"),
+        (
+            "c2 [N*s/m]",
+            np.inf,
+            "'c2 [N*s/m]' (linear contact damping (LinearViscoelastic.damping)) must be a "
+            "number >= 0, finite",
+        ),
         ("k2 [N/m]", 0.0, "'k2 [N/m]'"),
     ],
 )

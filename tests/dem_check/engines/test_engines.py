@@ -51,6 +51,22 @@ def test_dispatch_gives_the_engine_module_result(case):
     np.testing.assert_array_equal(via_registry.t, direct.t)
 
 
+@pytest.mark.bullet
+def test_an_impact_config_is_the_same_drop_test_as_its_fields(case):
+    grain, sensor, law, velocity = case
+    config = cl.config.ImpactConfig(grain, sensor, law, {"velocity": velocity})
+    from_config = drop_test(config, time_step=1e-7, duration=100e-6)
+    from_fields = drop_test(*case, 1e-7, duration=100e-6)
+    # the engine is deterministic (deterministicOverlappingPairs=1): bit-identical runs
+    np.testing.assert_array_equal(from_config.contact_force, from_fields.contact_force)
+
+
+@pytest.mark.parametrize("bad", [2.0, "fig6", [1, 2]])
+def test_a_config_that_is_not_one_is_refused_by_name(bad):
+    with pytest.raises(ParameterError, match=r"config must be a contactlab\.config\.ImpactConfig"):
+        drop_test(bad)
+
+
 def test_contact_crossings_interpolate_linearly():
     # piecewise-linear indicator: linear interpolation is exact at its zeros
     t = np.arange(8.0)
