@@ -30,6 +30,7 @@ LAYERS = (
             "contactlab.compiled",
             "contactlab.engines",
             "contactlab.quantities",
+            "contactlab.tables",
         ),
     ),
     ("compiled numerical core", ("contactlab.kernels",)),

@@ -5,6 +5,7 @@ The table's columns are the batch solver's, named with their units (``m1 [kg]``,
 file, line (the header is line 1) and column; a blank line is a bad row, not skipped.
 """
 
+import csv
 import sys
 import time
 from pathlib import Path
@@ -13,6 +14,7 @@ import pandas as pd
 
 from contactlab.batch.rows import ERROR_COLUMN
 from contactlab.errors import ParameterError
+from contactlab.tables import spreadsheet_safe
 
 __all__ = ["BATCH_LAWS", "add_batch_parser", "read_table"]
 
@@ -89,10 +91,11 @@ def _batch(args):
     except ParameterError as exc:
         raise ParameterError(f"{args.table}: {exc}") from None
     seconds = time.perf_counter() - start
-    if args.out:
-        solved.to_csv(args.out, index=False)
-    else:
-        solved.to_csv(sys.stdout, index=False)
+    # The user's own text columns are copied through: formula cells are neutralised, and
+    # text is quoted (pandas leaves a carriage return in a cell unquoted: a broken row).
+    spreadsheet_safe(solved).to_csv(
+        args.out if args.out else sys.stdout, index=False, quoting=csv.QUOTE_NONNUMERIC
+    )
     where = f"wrote {args.out}: " if args.out else ""
     failed = int(solved[ERROR_COLUMN].ne("").sum()) if ERROR_COLUMN in solved else 0
     print(

@@ -6,35 +6,12 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
+from contactlab.tables import spreadsheet_safe
 from contactlab.validation import make_folder
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import SKIPPED_STATUSES
 
 __all__ = ["CampaignResult"]
-
-
-FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
-"""First characters that make a spreadsheet read a CSV cell as a formula (OWASP, CSV
-injection)."""
-
-
-def spreadsheet_safe(table):
-    """A copy of ``table`` whose text cells cannot run as spreadsheet formulas.
-
-    A text cell starting with one of :data:`FORMULA_STARTS` (a file named
-    ``=HYPERLINK(...).csv``, a metadata entry) gets a leading ``'``, which spreadsheets
-    show as text; numbers are untouched (a negative number is a number, not text).
-    """
-
-    def neutral(cell):
-        return "'" + cell if isinstance(cell, str) and cell.startswith(FORMULA_STARTS) else cell
-
-    table = table.copy()
-    for column in table.columns:
-        if not pd.api.types.is_numeric_dtype(table[column]):
-            table[column] = table[column].map(neutral)
-    table.columns = [neutral(str(c)) for c in table.columns]
-    return table
 
 
 def _json_ready(value):

@@ -23,10 +23,10 @@ import pandas as pd
 
 from contactlab.entry_checks import check_flag, check_instance
 from contactlab.errors import ParameterError
+from contactlab.tables import spreadsheet_safe
 from contactlab.traces.api import write_trace
 from contactlab.validation import check_count, check_number, check_path
 from dem_check.campaign.records import add_effects
-from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.engine import simulate_stream
 from dem_check.stream.truth import impacts_truth
 from dem_check.traces import Trace
@@ -148,7 +148,7 @@ class StreamResult:
             name="S1",
             comments={"source": "dem_check.stream", "time_step [s]": repr(self.time_step)},
         )
-        self.steps.to_csv(out / "steps.csv.gz", index=False)
+        spreadsheet_safe(self.steps).to_csv(out / "steps.csv.gz", index=False)
         # particle kinds are named in the user's case: no cell may run as a formula
         spreadsheet_safe(self.truth).to_csv(out / "truth.csv", index=False)
         spreadsheet_safe(self.particles).to_csv(out / "particles.csv")

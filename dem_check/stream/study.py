@@ -11,8 +11,8 @@ import json
 from pathlib import Path
 
 from contactlab.entry_checks import check_callable, check_flag, check_instance
+from contactlab.tables import spreadsheet_safe
 from contactlab.validation import check_number, check_path, check_values
-from dem_check.campaign.result import spreadsheet_safe
 from dem_check.stream.calibration import calibration_curve
 from dem_check.stream.case import StreamCase
 from dem_check.stream.report import write_report
@@ -64,9 +64,9 @@ def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None, 
     features = hit_features(result, scored, trace)
     confusion = discrimination(features) if features["kind"].nunique() > 1 else None
     if curve is not None:
-        curve.to_csv(out / "pileup.csv", index=False)
+        spreadsheet_safe(curve).to_csv(out / "pileup.csv", index=False)
     if calibration is not None:
-        calibration.table.to_csv(out / "calibration.csv", index=False)
+        spreadsheet_safe(calibration.table).to_csv(out / "calibration.csv", index=False)
     write_report(out, result, scored, features, confusion, curve, calibration)
     summary = {
         "impacts": len(result.truth),

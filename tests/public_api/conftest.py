@@ -46,6 +46,7 @@ NOT_PUBLIC = {
     "contactlab.quadrature": "Gauss-Legendre rule of the audits (internal)",
     "contactlab.plotting": "drawing helpers of the results' plot methods (covered there)",
     "contactlab.strict_json": "JSON writer of the results (internal)",
+    "contactlab.tables": "spreadsheet-safe CSV tables (internal; tests/contactlab/test_tables.py)",
     "contactlab.audit": "invariant checks run by the solvers on their own results",
     "contactlab.impact_audit": "the normal impact's audit, run by the solver",
     "contactlab.result": "the result record ImpactResult (its methods are covered)",

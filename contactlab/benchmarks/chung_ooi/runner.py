@@ -136,10 +136,13 @@ def _write_tables(out, rows, found):
     ``chung_ooi_attribution.csv`` (every variant at every angle)."""
     import pandas as pd
 
-    pd.DataFrame(rows).to_csv(Path(out) / "chung_ooi.csv", index=False)
+    from contactlab.tables import spreadsheet_safe
+
+    spreadsheet_safe(pd.DataFrame(rows)).to_csv(Path(out) / "chung_ooi.csv", index=False)
     if found:
         table = [r for item in found for r in item.table()]
-        pd.DataFrame(table).to_csv(Path(out) / "chung_ooi_attribution.csv", index=False)
+        attribution_csv = Path(out) / "chung_ooi_attribution.csv"
+        spreadsheet_safe(pd.DataFrame(table)).to_csv(attribution_csv, index=False)
 
 
 def _number(value, missing="not run"):

@@ -1,5 +1,6 @@
 """The ``contactlab batch`` command: a CSV table through the batch solvers."""
 
+import csv
 import re
 
 import numpy as np
@@ -95,3 +96,25 @@ def test_a_table_with_an_unsolvable_row_is_written_and_exits_1(tmp_path, capsys)
     err = capsys.readouterr().err
     assert "1 of 3 rows could not be solved" in err and "2 impacts solved" in err
     assert "Traceback" not in err
+
+
+HOSTILE = ["=cmd|' /C calc'!A0", "+1", "-2+3", "@SUM(1)", "\tx", "\rx", "plain", "a=b"]
+
+
+def test_formula_cells_of_the_users_columns_are_neutralised(tmp_path):
+    rows = len(HOSTILE)
+    columns = {name: [values[0]] * rows for name, values in LINEAR.items()}
+    offsets = [-1.5, -2.0, 0.0, 3.25, -1e-9, 7.0, -0.5, 2.0]
+    frame = pd.DataFrame({**columns, "label": HOSTILE, "offset [m]": offsets})
+    frame.to_csv(tmp_path / "in.csv", index=False, quoting=csv.QUOTE_NONNUMERIC)  # "\rx" quoted
+    out = tmp_path / "out.csv"
+    assert main(["batch", str(tmp_path / "in.csv"), "--law", "linear", "--out", str(out)]) == 0
+    with out.open(newline="", encoding="utf-8") as fh:  # raw cells, not pandas' reading
+        header, *body = csv.reader(fh)
+    label, offset = header.index("label"), header.index("offset [m]")
+    want = [("'" + cell if cell[0] in "=+-@\t\r" else cell) for cell in HOSTILE]
+    assert [row[label] for row in body] == want
+    # a negative number is a number: written bare, read back exactly
+    assert [float(row[offset]) for row in body] == offsets
+    assert not any(row[offset].startswith("'") for row in body)
+    assert len(body) == rows and "error" not in header  # every row solved

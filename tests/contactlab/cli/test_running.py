@@ -152,7 +152,7 @@ def test_piping_into_head_ends_quietly(tmp_path):
         text=True,
         check=False,
     )
-    assert run.stdout.splitlines()[0].startswith("m1 [kg],")
+    assert run.stdout.splitlines()[0].startswith('"m1 [kg]",')  # text is quoted
     assert "Traceback" not in run.stderr and "BrokenPipe" not in run.stderr, run.stderr
 
 

@@ -11,7 +11,6 @@ from contactlab.config import load_config
 from contactlab.errors import ParameterError
 from dem_check import run_campaign
 from dem_check.campaign.inputs import expand_paths
-from dem_check.campaign.result import spreadsheet_safe
 
 TRACES = Path(__file__).resolve().parents[3] / "data" / "traces"
 SENSITIVITY = 0.01124  # [V/N], data/traces/README.md
@@ -96,11 +95,3 @@ def test_a_damaged_file_costs_no_other_file_its_rows(tmp_path, monkeypatch):
     assert not written["file"].str.startswith("=").any()
     assert written["file"].str.startswith("'=").sum() == 1
     assert (pd.read_csv(out / "impacts.csv")["file"].str.startswith("'=")).all()
-
-
-def test_spreadsheet_safe_neutralises_text_only():
-    table = pd.DataFrame({"file": ["=1+1", "+A1", "-2", "@x", "\tx", "plain"], "v": range(-3, 3)})
-    safe = spreadsheet_safe(table)
-    assert list(safe["file"]) == ["'=1+1", "'+A1", "'-2", "'@x", "'\tx", "plain"]
-    assert list(safe["v"]) == list(range(-3, 3))  # negative numbers stay numbers
-    assert table["file"].iloc[0] == "=1+1"  # the result's own table is untouched
