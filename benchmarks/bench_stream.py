@@ -121,18 +121,18 @@ def main():
     with tempfile.TemporaryDirectory() as tmp:
         one, steps, truth1, _ = _timed(SMALL, 1, tmp)
         two, _, truth2, _ = _timed(SMALL, 2, tmp)
-        same = truth1.select_dtypes("number").equals(truth2.select_dtypes("number"))
+        same = _agreement(truth1, truth2)
         print("2. strong scaling (small stream, fresh processes)")
         print(
             f"   1 process {one:.1f} s, 2 processes {two:.1f} s: speed-up {one / two:.2f}; "
-            f"truth identical: {same}"
+            f"truth on 1 and 2 ranks: {same}"
         )
 
         if not args.skip_goal:
             _goal(args, tmp)
         one, steps, truth1, moved = _timed(WIDE, 1, tmp)
         two, _, truth2, _ = _timed(WIDE, 2, tmp)
-        same = truth1.select_dtypes("number").equals(truth2.select_dtypes("number"))
+        same = _agreement(truth1, truth2)
         print("4. a wide plate: 100 000 particles/s for 10 ms, 0.3 m square, 50 mm fall")
         print(
             f"   {moved / steps:.0f} particles in flight on average over {steps} steps "
@@ -141,8 +141,23 @@ def main():
         print(
             f"   1 process {one:.1f} s ({moved / one:.3g} particle-steps/s), 2 processes "
             f"{two:.1f} s ({moved / two:.3g} particle-steps/s): speed-up {one / two:.2f}; "
-            f"truth identical: {same}"
+            f"truth on 1 and 2 ranks: {same}"
         )
+
+
+def _agreement(one, two):
+    """How the truth of 1 and 2 ranks agree: 'identical', the largest difference of a
+    quantity relative to its largest magnitude (the ranks' summation order of the plate
+    force leaves round-off, as tests/dem_check/stream/test_stream_mpi.py allows at 1e-9),
+    or 'different particles'."""
+    if list(one["pid"]) != list(two["pid"]):
+        return "different particles"
+    a, b = one.select_dtypes("number"), two.select_dtypes("number")
+    if a.equals(b):
+        return "identical"
+    scale = a.abs().max().where(lambda m: m > 0, 1.0)
+    worst = ((a - b).abs().max() / scale).max()
+    return f"largest difference {worst:.1e} of each quantity's largest magnitude"
 
 
 def _goal(args, tmp):
