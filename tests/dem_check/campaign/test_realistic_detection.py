@@ -92,6 +92,24 @@ def _ringing(truth, effects):
     return out
 
 
+def _record(hard_setup, velocities, onsets, *, length, seed, effects, sample_rate=2e6):
+    """A realistic record of the hard grain's impacts at ``onsets`` [s] with ``velocities``
+    [m/s], white noise NOISE [N] plus ``effects``."""
+    grain, sensor, law = hard_setup
+    return realistic_record(
+        grain,
+        sensor,
+        law,
+        velocities,
+        onsets,
+        length=length,
+        sample_rate=sample_rate,
+        noise=NOISE,
+        effects=effects,
+        seed=seed,
+    )
+
+
 def _check(record, sensor, effects):
     found = find_impacts(record.trace, sensor)
     true_onsets = record.truth["onset [s]"].to_numpy()
@@ -120,19 +138,10 @@ def _check(record, sensor, effects):
 )
 @given(scenarios())
 def test_nothing_invented_and_every_clear_impact_found(hard_setup, scenario):
-    grain, sensor, law = hard_setup
+    sensor = hard_setup[1]
     rate, onsets, velocities, effects, length, seed = scenario
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        velocities,
-        onsets,
-        length=length,
-        sample_rate=rate,
-        noise=NOISE,
-        effects=effects,
-        seed=seed,
+    record = _record(
+        hard_setup, velocities, onsets, length=length, sample_rate=rate, effects=effects, seed=seed
     )
     _check(record, sensor, effects)
 
@@ -152,7 +161,7 @@ def test_nothing_invented_and_every_clear_impact_found(hard_setup, scenario):
 def test_a_record_that_starts_at_its_impact_under_fast_drift(
     hard_setup, pink, drift, hum, bounce, delay
 ):
-    grain, sensor, law = hard_setup
+    sensor = hard_setup[1]
     effects = Effects(
         pink=pink * NOISE,
         drift=drift * NOISE,
@@ -162,18 +171,7 @@ def test_a_record_that_starts_at_its_impact_under_fast_drift(
         bounce=bounce,
         bounce_delay=delay,
     )
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [1.25],
-        np.array([0.0]),
-        length=6e-3,
-        sample_rate=2e6,
-        noise=NOISE,
-        effects=effects,
-        seed=250,
-    )
+    record = _record(hard_setup, [1.25], np.array([0.0]), length=6e-3, effects=effects, seed=250)
     _check(record, sensor, effects)
 
 
@@ -195,18 +193,9 @@ EVERYTHING = Effects.everything(NOISE, 3.0)
     ids=["pink", "drift", "hum", "crosstalk", "adc", "steps", "bounce", "everything"],
 )
 def test_each_effect_alone(hard_setup, effects):
-    grain, sensor, law = hard_setup
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.0, 1.0, 0.5],
-        [1e-3, 6e-3, 11e-3],
-        length=16e-3,
-        sample_rate=2e6,
-        noise=NOISE,
-        effects=effects,
-        seed=4,
+    sensor = hard_setup[1]
+    record = _record(
+        hard_setup, [2.0, 1.0, 0.5], [1e-3, 6e-3, 11e-3], length=16e-3, effects=effects, seed=4
     )
     found = _check(record, sensor, effects)
     assert len(found.impacts) >= 3
@@ -217,16 +206,12 @@ def test_each_effect_alone(hard_setup, effects):
 def test_an_offset_step_in_the_first_or_last_block_is_no_impact(hard_setup, at, sign):
     # blocks are 1.6 ms (64 periods of the 40 kHz sensor): the steps lie in the record's
     # first block (before and after its middle) and in its last block
-    grain, sensor, law = hard_setup
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
+    sensor = hard_setup[1]
+    record = _record(
+        hard_setup,
         [2.0, 1.0],
         [4e-3, 9e-3],
         length=14.5e-3,
-        sample_rate=2e6,
-        noise=NOISE,
         effects=Effects(pink=NOISE, hum=NOISE),
         seed=5,
     )
@@ -239,18 +224,9 @@ def test_an_offset_step_in_the_first_or_last_block_is_no_impact(hard_setup, at, 
 
 
 def test_an_impact_at_the_records_first_sample_is_analysed(hard_setup):
-    grain, sensor, law = hard_setup
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.0],
-        [0.0],
-        length=3e-3,
-        sample_rate=2e6,
-        noise=NOISE,
-        effects=Effects(pink=NOISE, hum=NOISE),
-        seed=1,
+    sensor = hard_setup[1]
+    record = _record(
+        hard_setup, [2.0], [0.0], length=3e-3, effects=Effects(pink=NOISE, hum=NOISE), seed=1
     )
     (window,) = find_impacts(record.trace, sensor).impacts
     assert window.status == "short pre-trigger" and "after its ringing" in window.reason
@@ -258,16 +234,12 @@ def test_an_impact_at_the_records_first_sample_is_analysed(hard_setup):
 
 
 def test_a_clipped_impact_is_flagged_with_its_peak_as_a_lower_bound(hard_setup):
-    grain, sensor, law = hard_setup
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
+    sensor = hard_setup[1]
+    record = _record(
+        hard_setup,
         [2.0, 1.0],
         [1e-3, 6e-3],
         length=9e-3,
-        sample_rate=2e6,
-        noise=NOISE,
         effects=Effects(full_scale=2.0, bits=16),
         seed=2,
     )
@@ -278,17 +250,9 @@ def test_a_clipped_impact_is_flagged_with_its_peak_as_a_lower_bound(hard_setup):
 
 
 def test_min_force_and_min_separation_keep_a_row_with_the_reason(hard_setup):
-    grain, sensor, law = hard_setup
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.0, 2.0, 0.5],
-        [1e-3, 3.5e-3, 8.5e-3],
-        length=12e-3,
-        sample_rate=2e6,
-        noise=NOISE,
-        seed=3,
+    sensor = hard_setup[1]
+    record = _record(
+        hard_setup, [2.0, 2.0, 0.5], [1e-3, 3.5e-3, 8.5e-3], length=12e-3, effects=Effects(), seed=3
     )
     limited = find_impacts(record.trace, sensor, min_force=1.0, min_separation=3e-3)
     statuses = [w.status for w in limited.impacts]
