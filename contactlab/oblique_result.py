@@ -144,7 +144,7 @@ class ObliqueResult:
         self.t, states, self._raw, self.normal_force, self.tangential_force, self.slip = signals
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
-        self.sensor_force = sensor.signal(states[:, :4], self.normal_force)
+        self.sensor_force = sensor.signal(states[:, :2], self.normal_force)
 
     # -- rebound ---------------------------------------------------------------------------
     @property
@@ -228,14 +228,7 @@ class ObliqueResult:
 
     @cached_property
     def _peaks(self):
-        times = np.concatenate(
-            [
-                np.linspace(t0, t1, _PEAK_SAMPLES, endpoint=False)
-                for t0, t1, _ in self._contact.phases()
-            ]
-        )
-        _, _, normal, tangential, _ = self._contact(times)
-        return float(normal.max()), float(np.abs(tangential).max())
+        return self._contact.peaks(_PEAK_SAMPLES)
 
     @property
     def peak_normal_force(self):

@@ -15,44 +15,87 @@ import math
 import numpy as np
 
 from contactlab.compiled import njit
+from contactlab.errors import ParameterError
 from contactlab.kernels.oblique_rhs import FRICTION, STICK, arm, trial_force
 from contactlab.kernels.power import RIGID, force
 
-__all__ = ["ContactPhases", "sample"]
+__all__ = ["ContactPhases", "peak_forces", "sample"]
 
 
 @njit(cache=True, error_model="numpy")
-def _step_index(t_old, lo, hi, t, j):
-    """The index in ``lo:hi`` of the last start ``t_old`` at or before ``t`` (the nearest
-    one outside them), searched from ``j`` (the last one found: the times are mostly
-    increasing)."""
-    if j < lo or j >= hi or t < t_old[j]:
-        j = lo + np.searchsorted(t_old[lo:hi], t, side="right") - 1
-    while j + 1 < hi and t_old[j + 1] <= t:
-        j += 1
-    return min(max(j, lo), hi - 1)
+def _before(times, i, stop, t0, bound):
+    """The first index in ``i:stop`` whose ``times - t0`` is not below ``bound``
+    (``stop`` if none)."""
+    while i < stop and times[i] - t0 < bound:
+        i += 1
+    return i
 
 
 @njit(cache=True, error_model="numpy")
-def _interpolate(F, y_old, j, x, out, i, first):
-    """Step ``j``'s interpolant at ``x`` into ``out[i, first:7]``: the seven-row form of
-    :func:`contactlab.kernels.dop853.interpolate`, written out (a loop over the rows
-    with a view per sample is several times slower on the output grid)."""
-    u = 1.0 - x
+def _interpolate(F, y_old, j, span, times, warped_from, first, states, xs):
+    """Step ``j``'s interpolant (``F`` (steps, 7, n), ``y_old`` (steps, n)) at
+    ``times[lo:hi]`` into ``states[first:7, lo:hi]``: the seven-row form of
+    :func:`contactlab.kernels.dop853.interpolate`, written out, a component at a time
+    over the samples (a loop the compiler vectorises; the same operations in the same
+    order as sample by sample).
+
+    ``span`` is ``(lo, hi, t_old, h)``; ``warped_from`` the phase's start [s] if the step
+    is in ``s = tau**(1/4)``, nan if in time; ``xs`` scratch (len(times),)."""
+    lo, hi, t_old, h = span
+    if math.isnan(warped_from):
+        for m in range(lo, hi):
+            xs[m] = (times[m] - t_old) / h
+    else:
+        for m in range(lo, hi):
+            xs[m] = (math.sqrt(math.sqrt(max(times[m] - warped_from, 0.0))) - t_old) / h
     for c in range(first, 7):
-        acc = F[j, 6, c] * x
-        acc = (acc + F[j, 5, c]) * u
-        acc = (acc + F[j, 4, c]) * x
-        acc = (acc + F[j, 3, c]) * u
-        acc = (acc + F[j, 2, c]) * x
-        acc = (acc + F[j, 1, c]) * u
-        acc = (acc + F[j, 0, c]) * x
-        out[i, c] = acc + y_old[j, c]
+        f0, f1, f2, f3 = F[j, 0, c], F[j, 1, c], F[j, 2, c], F[j, 3, c]
+        f4, f5, f6, y = F[j, 4, c], F[j, 5, c], F[j, 6, c], y_old[j, c]
+        for m in range(lo, hi):
+            x = xs[m]
+            u = 1.0 - x
+            acc = f6 * x
+            acc = (acc + f5) * u
+            acc = (acc + f4) * x
+            acc = (acc + f3) * u
+            acc = (acc + f2) * x
+            acc = (acc + f1) * u
+            acc = (acc + f0) * x
+            states[c, m] = acc + y
+
+
+@njit(cache=True, error_model="numpy")
+def _forces(par, phase, lo, hi, states, raw, normal, tangential, slip):
+    """Normal and tangential forces and slip of ``states[:, lo:hi]`` in ``phase``."""
+    mu = par[FRICTION]
+    for m in range(lo, hi):
+        d = states[2, m] - states[0, m]
+        raw[m] = force(d, states[3, m] - states[1, m], par)
+        normal[m] = max(raw[m], 0.0)
+        slip[m] = states[4, m] - arm(d, par) * states[5, m]
+        if phase == STICK:
+            tangential[m] = trial_force(states[6, m], d, slip[m], par)
+        else:
+            tangential[m] = phase * mu * normal[m]
+
+
+@njit(cache=True, error_model="numpy")
+def _warped_end(w_t, j, i, stop, times, t0):
+    """The first index in ``i:stop`` whose ``s = (t - t0)**(1/4)`` reaches ``w_t[j]``."""
+    while i < stop and math.sqrt(math.sqrt(max(times[i] - t0, 0.0))) < w_t[j]:
+        i += 1
+    return i
 
 
 @njit(cache=True, error_model="numpy")
 def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip):
-    """States and forces of the contact at ``times`` [s] (each in ``[0, t_end]``).
+    """States and forces of the contact at ``times`` [s] (non-decreasing, each in
+    ``[0, t_end]``); returns False, and fills nothing, if ``times`` decrease somewhere.
+
+    Step by step: each phase's samples run through its warped steps (``s =
+    tau**(1/4)``, up to the hand-over at ``switch``), then its steps in time; a sample is
+    read on the last step that starts at or before it (the first one before the first
+    start).
 
     Parameters
     ----------
@@ -63,44 +106,66 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
     warp, steps : tuple
         The kept steps ``(count, t_old, h, y_old, F)`` in ``s`` and in time.
     times : numpy.ndarray
-        Times [s], any order (increasing is fastest).
+        Times [s], non-decreasing.
     states : numpy.ndarray
-        Out: states (len(times), 7).
+        Out: states (7, >= len(times)), a row per component (the out arrays may be
+        longer than ``times``: their first len(times) columns are written).
     raw, normal, tangential : numpy.ndarray
         Out: the normal law's unclipped formula, the normal force (>= 0) and the
         tangential force on the grain [N].
     slip : numpy.ndarray
         Out: the contact-point slip [m/s].
     """
-    last = table.shape[0] - 1
-    starts = table[:, 0].copy()
+    n = times.size
+    for i in range(1, n):
+        if times[i] < times[i - 1]:
+            return False
     _, w_t, w_h, w_y, w_F = warp
     _, s_t, s_h, s_y, s_F = steps
-    mu = par[FRICTION]
     first = 2 if par[RIGID] > 0.0 else 0  # on a wall x1 = v1 = 0: not interpolated
-    states[:, :first] = 0.0
-    jw = js = k = -1
-    for i in range(times.size):
-        t = times[i]
-        k = _step_index(starts, 0, last + 1, t, k)
+    states[:first, :n] = 0.0
+    xs, last, i = np.empty(n), table.shape[0] - 1, 0
+    for k in range(last + 1):
+        stop = n if k == last else _before(times, i, n, 0.0, table[k + 1, 0])
         t0, phase, switch = table[k, 0], table[k, 2], table[k, 3]
         w0, w1, s0, s1 = int(table[k, 4]), int(table[k, 5]), int(table[k, 6]), int(table[k, 7])
-        tau = t - t0
-        if w1 > w0 and (s1 == s0 or tau < switch):
-            s = math.sqrt(math.sqrt(max(tau, 0.0)))
-            jw = _step_index(w_t, w0, w1, s, jw)
-            _interpolate(w_F, w_y, jw, (s - w_t[jw]) / w_h[jw], states, i, first)
-        else:
-            js = _step_index(s_t, s0, s1, t, js)
-            _interpolate(s_F, s_y, js, (t - s_t[js]) / s_h[js], states, i, first)
-        d = states[i, 2] - states[i, 0]
-        raw[i] = force(d, states[i, 3] - states[i, 1], par)
-        normal[i] = max(raw[i], 0.0)
-        slip[i] = states[i, 4] - arm(d, par) * states[i, 5]
-        if phase == STICK:
-            tangential[i] = trial_force(states[i, 6], d, slip[i], par)
-        else:
-            tangential[i] = phase * mu * normal[i]
+        start = i
+        if w1 > w0:
+            warped = stop if s1 == s0 else _before(times, i, stop, t0, switch)
+            for j in range(w0, w1):
+                end = warped if j + 1 == w1 else _warped_end(w_t, j + 1, i, warped, times, t0)
+                span = (i, end, w_t[j], w_h[j])
+                _interpolate(w_F, w_y, j, span, times, t0, first, states, xs)
+                i = end
+        for j in range(s0, s1):
+            end = stop if j + 1 == s1 else _before(times, i, stop, 0.0, s_t[j + 1])
+            _interpolate(s_F, s_y, j, (i, end, s_t[j], s_h[j]), times, math.nan, first, states, xs)
+            i = end
+        _forces(par, phase, start, stop, states, raw, normal, tangential, slip)
+    return True
+
+
+@njit(cache=True, error_model="numpy")
+def peak_forces(par, table, warp, steps, nodes):
+    """Largest normal force and largest magnitude of the tangential force [N] on
+    ``nodes`` times per phase, ``numpy.linspace(t0, t1, nodes, endpoint=False)`` of each
+    (arguments as :func:`sample`)."""
+    count = table.shape[0]
+    times = np.empty(count * nodes)
+    for k in range(count):
+        t0, spacing = table[k, 0], (table[k, 1] - table[k, 0]) / nodes
+        for m in range(nodes):
+            times[k * nodes + m] = m * spacing + t0
+    size = times.size
+    states, raw, normal, tangential, slip = (
+        np.empty((7, size)),
+        np.empty(size),
+        np.empty(size),
+        np.empty(size),
+        np.empty(size),
+    )
+    sample(par, table, warp, steps, times, states, raw, normal, tangential, slip)
+    return normal.max(), np.abs(tangential).max()
 
 
 class ContactPhases:
@@ -130,10 +195,19 @@ class ContactPhases:
 
     def __call__(self, times, out=None):
         """States (n, 7), unclipped normal formula, normal and tangential force [N] and the
-        contact-point slip [m/s] (n,) at ``times`` [s] inside the contact, into ``out``
-        (arrays of these shapes) if given."""
+        contact-point slip [m/s] (n,) at non-decreasing ``times`` [s] inside the contact,
+        into ``out`` if given (states (7, >= n), a row per component, and four (>= n,)
+        arrays: the first n columns are written; the states come back as the transpose of
+        the first n)."""
         times = np.ascontiguousarray(times, dtype=float)
         if out is None:
-            out = (np.empty((times.size, 7)), *np.empty((4, times.size)))
-        sample(self._par, self._table, self._warp, self._steps, times, *out)
-        return out
+            out = (np.empty((7, times.size)), *np.empty((4, times.size)))
+        if not sample(self._par, self._table, self._warp, self._steps, times, *out):
+            raise ParameterError("times must be non-decreasing [s]")
+        n = times.size
+        return (out[0][:, :n].T, *(a[:n] for a in out[1:]))
+
+    def peaks(self, nodes):
+        """Largest normal force and largest magnitude of the tangential force [N] on
+        ``nodes`` equally spaced times per phase (:func:`peak_forces`)."""
+        return peak_forces(self._par, self._table, self._warp, self._steps, nodes)

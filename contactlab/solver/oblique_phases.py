@@ -118,13 +118,12 @@ def grid_signals(contact, free, final, slip_after, duration, sample_rate):
     """
     n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
     times = np.arange(n, dtype=float) / sample_rate
-    signals = (np.empty((n, 7)), *np.zeros((4, n)))
+    states, signals = np.empty((7, n)), np.zeros((4, n))
     split = int(np.searchsorted(times, contact.end, side="left"))
     if split:
-        contact(times[:split], tuple(a[:split] for a in signals))
+        contact(times[:split], (states, *signals))
     if split < n:
-        states = signals[0]
-        states[split:, :4] = free.states(times[split:] - free.t0)
-        states[split:, 4:] = [final[4], final[5], 0.0]
-        signals[4][split:] = slip_after
-    return (times, *signals)
+        states[:4, split:] = free.states(times[split:] - free.t0).T
+        states[4:, split:] = np.array([final[4], final[5], 0.0])[:, None]
+        signals[3, split:] = slip_after
+    return (times, states.T, *signals)
