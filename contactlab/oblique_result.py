@@ -11,10 +11,10 @@ from contactlab.audit import (
     EnergyLedger,
     elastic_energy,
     energy_check,
-    grid_checks,
     worst_of,
 )
 from contactlab.entry_checks import check_flag
+from contactlab.kernels.oblique_sample import grid_worst
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 
@@ -279,17 +279,16 @@ class ObliqueResult:
         full = check_flag("full", full)
         checks = list(self._end_checks())
         if not full:
-            inside = slice(0, int(np.searchsorted(self.t, self.contact_time, side="left")))
-            checks += grid_checks(
-                self.t,
-                inside,
-                self._raw,
-                self.normal_force,
-                self.tangential_force,
-                self.tangential_law.friction,
-                self.peak_normal_force,
-                FORCE_ROUNDING,
+            inside = int(np.searchsorted(self.t, self.contact_time, side="left"))
+            friction, peak = self.tangential_law.friction, self.peak_normal_force
+            worst = grid_worst(
+                self.t, inside, self._raw, self.normal_force, self.tangential_force, friction
             )
+            scale = "peak normal force"
+            checks += [
+                Check(name, value / peak, FORCE_ROUNDING, scale, at)
+                for name, value, at in (("one_sided", *worst[:2]), ("coulomb", *worst[2:]))
+            ]
             return Audit(None, tuple(checks))
         ledger, dense = self._ledger()
         return Audit(ledger, tuple(checks + dense))

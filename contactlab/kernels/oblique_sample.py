@@ -19,7 +19,7 @@ from contactlab.errors import ParameterError
 from contactlab.kernels.oblique_rhs import FRICTION, STICK, arm, trial_force
 from contactlab.kernels.power import RIGID, force
 
-__all__ = ["ContactPhases", "peak_forces", "sample"]
+__all__ = ["ContactPhases", "grid_worst", "peak_forces", "sample"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -114,7 +114,8 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
         Out: the normal law's unclipped formula, the normal force (>= 0) and the
         tangential force on the grain [N].
     slip : numpy.ndarray
-        Out: the contact-point slip [m/s].
+        Out: the contact-point slip [m/s] (the scratch of the interpolation variable
+        until a phase's forces are read).
     """
     n = times.size
     for i in range(1, n):
@@ -124,7 +125,7 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
     _, s_t, s_h, s_y, s_F = steps
     first = 2 if par[RIGID] > 0.0 else 0  # on a wall x1 = v1 = 0: not interpolated
     states[:first, :n] = 0.0
-    xs, last, i = np.empty(n), table.shape[0] - 1, 0
+    xs, last, i = slip, table.shape[0] - 1, 0
     for k in range(last + 1):
         stop = n if k == last else _before(times, i, n, 0.0, table[k + 1, 0])
         t0, phase, switch = table[k, 0], table[k, 2], table[k, 3]
@@ -166,6 +167,45 @@ def peak_forces(par, table, warp, steps, nodes):
     )
     sample(par, table, warp, steps, times, states, raw, normal, tangential, slip)
     return normal.max(), np.abs(tangential).max()
+
+
+@njit(cache=True, error_model="numpy")
+def _beats(value, best):
+    """Whether ``value`` replaces ``best`` as the largest: larger, or the first nan (which
+    nothing replaces: ``numpy.argmax``'s rule)."""
+    return value > best or (math.isnan(value) and not math.isnan(best))
+
+
+@njit(cache=True, error_model="numpy")
+def grid_worst(t, inside, raw, normal, tangential, friction):
+    """The worst one-sided force and Coulomb excess on an output grid, in one pass.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times [s].
+    inside : int
+        How many samples, from the first, lie inside the contact.
+    raw, normal, tangential : numpy.ndarray
+        The normal law's unclipped formula, the normal force and the tangential force [N].
+    friction : float
+        Coulomb friction coefficient [-].
+
+    Returns
+    -------
+    tuple
+        ``(largest -raw [N] inside, its time [s], largest |T| - friction N [N], its time
+        [s])``: the first time of each largest value (nan wins, as in ``numpy.argmax``);
+        ``-inf`` and nan where there are no samples.
+    """
+    one_sided, one_sided_at, excess, excess_at = -math.inf, math.nan, -math.inf, math.nan
+    for i in range(t.size):
+        if i < inside and _beats(-raw[i], one_sided):
+            one_sided, one_sided_at = -raw[i], t[i]
+        value = abs(tangential[i]) - friction * normal[i]
+        if _beats(value, excess):
+            excess, excess_at = value, t[i]
+    return one_sided, one_sided_at, excess, excess_at
 
 
 class ContactPhases:

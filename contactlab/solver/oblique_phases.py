@@ -117,13 +117,15 @@ def grid_signals(contact, free, final, slip_after, duration, sample_rate):
         contact), normal and tangential force [N] and slip [m/s] (n,).
     """
     n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
-    times = np.arange(n, dtype=float) / sample_rate
-    states, signals = np.empty((7, n)), np.zeros((4, n))
+    times = np.arange(n, dtype=float)
+    times /= sample_rate
+    block = np.empty((11, n))  # one allocation: states (7 rows), raw, N, T, slip
     split = int(np.searchsorted(times, contact.end, side="left"))
     if split:
-        contact(times[:split], (states, *signals))
+        contact(times[:split], (block[:7], *block[7:]))
     if split < n:
-        states[:4, split:] = free.states(times[split:] - free.t0).T
-        states[4:, split:] = np.array([final[4], final[5], 0.0])[:, None]
-        signals[3, split:] = slip_after
-    return (times, states.T, *signals)
+        block[:4, split:] = free.states(times[split:] - free.t0).T
+        block[4:7, split:] = np.array([final[4], final[5], 0.0])[:, None]
+        block[7:10, split:] = 0.0
+        block[10, split:] = slip_after
+    return (times, block[:7].T, *block[7:])
