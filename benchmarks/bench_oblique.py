@@ -25,7 +25,9 @@ import numpy as np
 import pandas as pd
 
 import contactlab as cl
+from contactlab.solver.exact import free_flight
 from contactlab.solver.oblique import ObliqueModel, _solve_contact
+from contactlab.solver.oblique_phases import grid_signals
 from contactlab.solver.system import System
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests/contactlab/solver"))
@@ -60,6 +62,31 @@ def ours_contact_only(law, angle):
     )
     y0 = np.array([0.0, 0.0, 0.0, SPEED * math.cos(angle), SPEED * math.sin(angle), 0.0, 0.0])
     return _solve_contact(model, y0, RTOL, (SPEED, GRAIN.mass * SPEED / 1e-6))[1][4:6]
+
+
+def pieces(law, angle):
+    """(median, fastest) [s] of the full call's pieces after the contact integration: the
+    output grid (:func:`contactlab.solver.oblique_phases.grid_signals`), the peak search
+    and the cheap audit without it."""
+    res = cl.simulate_oblique(GRAIN, cl.Sensor.rigid(), NORMAL, law, SPEED, angle, rtol=RTOL)
+    contact = res._contact
+    final, slip_after = res._final, res.slip_after
+    system = System(GRAIN, cl.Sensor.rigid())
+    free = free_flight(system, NORMAL, 0.0, contact.end, final[:4], res.duration - contact.end)[0]
+
+    def grid():
+        grid_signals(contact, free, final, slip_after, res.duration, res.sample_rate)
+
+    def peaks():
+        res.__dict__.pop("_peaks", None)
+        return res._peaks
+
+    res._peaks  # noqa: B018 (cached: the audit below reads it)
+    return {
+        "grid": median_time(grid),
+        "peaks": median_time(peaks),
+        "audit": median_time(lambda: res.audit(full=False)),
+    }
 
 
 def scipy_reference(law, angle):
@@ -137,6 +164,11 @@ def main():
             print(
                 f"{'':12s} rebound: vt' {a[0]:.10f} vs {b[0]:.10f} m/s, spin' {a[1]:.7f} vs "
                 f"{b[1]:.7f} rad/s"
+            )
+            parts = pieces(law, angle)
+            print(
+                f"{'':12s} pieces, median (fastest) [ms]: "
+                + ", ".join(f"{k} {v[0] * 1e3:.3f} ({v[1] * 1e3:.3f})" for k, v in parts.items())
             )
         try:
             rate, worst = batch_sweep(law)

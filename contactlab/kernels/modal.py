@@ -320,15 +320,11 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     hit = _crossed_side(event, direction, hit, tau, piece, par, y)
             upto = tau if hit < 0.0 else hit
             h = tau - t_prev
-            span = (t_prev, tau, upto)
+            between = (prev, cur, t_prev, tau, upto)
             if track[0]:  # readings [1] the sensor signal, [2] its slope
-                _lobe_peak(
-                    _SENSOR_SLOPE, SENSOR_PEAK, 1, prev, cur, span, piece, par, y, work, best
-                )
+                _lobe_peak(_SENSOR_SLOPE, SENSOR_PEAK, 1, between, piece, par, y, work, best)
             if track[1]:  # readings [4] the contact force, [3] its slope
-                _lobe_peak(
-                    _FORCE_SLOPE, CONTACT_PEAK, 4, prev, cur, span, piece, par, y, work, best
-                )
+                _lobe_peak(_FORCE_SLOPE, CONTACT_PEAK, 4, between, piece, par, y, work, best)
             if track[0] and falls(prev[1], cur[1]):
                 t_end = _root(SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:
