@@ -45,7 +45,6 @@ __all__ = [
     "EnergyLedger",
     "elastic_energy",
     "energy_check",
-    "grid_checks",
     "warn_if_broken",
 ]
 
@@ -249,36 +248,3 @@ def worst_of(values, times):
         return -math.inf, math.nan
     i = int(np.argmax(values))
     return float(values[i]), float(times[i])
-
-
-def grid_checks(t, inside, normal_raw, normal, tangential, friction, peak, tolerance):
-    """The cheap ``one_sided`` and ``coulomb`` checks on signals already on a grid.
-
-    Parameters
-    ----------
-    t : numpy.ndarray
-        Times [s].
-    inside : numpy.ndarray of bool or slice
-        Samples inside the contact.
-    normal_raw : numpy.ndarray or None
-        The normal law's unclipped formula on the samples [N] (None: no one-sided check).
-    normal, tangential : numpy.ndarray
-        Normal force (clipped, >= 0) and tangential force [N]; ``tangential`` None skips
-        the Coulomb check.
-    friction : float
-        Coulomb friction coefficient [-].
-    peak : float
-        Peak normal force [N] (the scale).
-    tolerance : float
-        Tolerance of both [-].
-    """
-    checks = []
-    scale = "peak normal force"
-    if normal_raw is not None:
-        worst, at = worst_of(-normal_raw[inside] / peak, t[inside])
-        checks.append(Check("one_sided", worst, tolerance, scale, at))
-    if tangential is not None:
-        excess = (np.abs(tangential) - friction * normal) / peak
-        worst, at = worst_of(excess, t)
-        checks.append(Check("coulomb", worst, tolerance, scale, at))
-    return checks
