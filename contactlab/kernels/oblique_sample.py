@@ -240,11 +240,13 @@ class ContactPhases:
         arrays: the first n columns are written; the states come back as the transpose of
         the first n)."""
         times = np.ascontiguousarray(times, dtype=float)
+        n = times.size
         if out is None:
-            out = (np.empty((7, times.size)), *np.empty((4, times.size)))
+            out = (np.empty((7, n)), *np.empty((4, n)))
+        elif out[0].shape[0] != 7 or min(out[0].shape[1], *(a.size for a in out[1:])) < n:
+            raise ParameterError(f"out must hold states (7, >= {n}) and four (>= {n},) arrays")
         if not sample(self._par, self._table, self._warp, self._steps, times, *out):
             raise ParameterError("times must be non-decreasing [s]")
-        n = times.size
         return (out[0][:, :n].T, *(a[:n] for a in out[1:]))
 
     def peaks(self, nodes):

@@ -98,7 +98,10 @@ def test_peaks_are_the_largest_forces_on_the_phase_nodes():
     assert res.peak_normal_force == max(normal.max(), res.normal_force.max())
 
 
-def test_decreasing_times_are_refused():
+def test_decreasing_times_and_short_outputs_are_refused():
     contact = RESULTS["flat"]._contact
     with pytest.raises(ParameterError, match="times"):
         contact(np.array([2e-6, 1e-6]))
+    short = (np.empty((7, 1)), *np.empty((4, 1)))
+    with pytest.raises(ParameterError, match="out"):
+        contact(np.array([1e-6, 2e-6]), short)
