@@ -22,7 +22,7 @@ from contactlab.kernels import power_piece
 from contactlab.kernels.power import force, pack
 from contactlab.laws import Hertz, HertzDamped, HuntCrossley, KuwabaraKono, LinearViscoelastic
 from contactlab.solver import adaptive
-from contactlab.solver.pieces import DenseStates
+from contactlab.kernels.segments import DenseStates
 from contactlab.solver.system import System, event_directions
 
 EPS = np.finfo(float).eps
