@@ -7,8 +7,8 @@ from scipy.optimize import minimize_scalar
 
 from contactlab.kernels import power_piece
 from contactlab.kernels.power import pack
-from contactlab.roots import crossed_side, departure_root, is_past, locate_root, waits
 from contactlab.kernels.segments import DenseStates, DenseSteps, Segment, interpolate
+from contactlab.roots import crossed_side, departure_root, is_past, locate_root, waits
 from contactlab.solver.dop853 import Stepper
 from contactlab.solver.system import event_directions
 

@@ -9,8 +9,9 @@ headline numbers, read while the pieces were solved. The pieces become
 signals on the output grid and the dense solution for the audit: exact ones (modal
 rates and weights, :mod:`contactlab.solver.exact`), and for a power-law contact the
 interpolants of the same compiled DOP853 piece run again from its recorded start over
-its recorded horizon (the same steps). An impact the loop does not take (modes too close to defective, a
-first contact that does not end, too many contacts) is solved by the Python pieces.
+its recorded horizon (the same steps). An impact the loop does not take (modes too close
+to defective, a first contact that does not end, too many contacts) is solved by the
+Python pieces.
 """
 
 import math

@@ -20,7 +20,6 @@ import math
 import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
-
 __all__ = ["Stepper"]
 
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0

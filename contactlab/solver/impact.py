@@ -35,13 +35,13 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
+from contactlab.kernels.segments import Segment
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.plausibility import check_plausible
 from contactlab.result import ImpactResult
 from contactlab.solver.adaptive import adaptive_contact
 from contactlab.solver.compiled import core_law, solve_on_core
 from contactlab.solver.euler import solve_euler
-from contactlab.kernels.segments import Segment
 from contactlab.solver.exact import affine_states, exact_contact, free_flight
 from contactlab.solver.system import System
 from contactlab.validation import check_choice, check_number, keyword_checked
