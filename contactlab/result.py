@@ -8,6 +8,7 @@ import numpy as np
 
 from contactlab import metrics
 from contactlab.entry_checks import check_flag
+from contactlab.kernels.segments import segment_force
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
@@ -150,6 +151,12 @@ class ImpactResult(ImpactSignals):
     ``rebound_velocity`` [m/s], ``contact_intervals`` [(start, end) s] and
     ``energy_balance`` [J]. The solver may hand some of them over already read
     (``headline``, keys of :data:`SOLVER_READINGS`).
+
+    The dense solution is data: ``segments``, the solved pieces
+    (:class:`contactlab.kernels.segments.Segment`: modal rates and weights, affine loads,
+    DOP853 interpolants or Euler samples), evaluated by :mod:`contactlab.kernels.segments`;
+    a contact piece's force is the law's branch formula (``law.branch(seg.branch,
+    seg.overlap)``), clipped. Nothing of the solver is kept or called.
     """
 
     def __init__(
@@ -231,7 +238,7 @@ class ImpactResult(ImpactSignals):
             tau = times[mask] - seg.t0
             st = seg.states(tau)
             states[mask] = st
-            force[mask] = seg.force(tau, st, self._formulas[i])
+            force[mask] = segment_force(seg, tau, st, self._formulas[i])
         return states, force
 
     def _evaluate_grid(self):
@@ -250,7 +257,7 @@ class ImpactResult(ImpactSignals):
             if hi > lo:
                 tau = self.t[lo:hi] - seg.t0
                 st = seg.states_on_grid(tau, step, states[lo:hi])
-                force[lo:hi] = seg.force(tau, st, formula)
+                force[lo:hi] = segment_force(seg, tau, st, formula)
         return states, force
 
     def _segment_at(self, t):
@@ -264,7 +271,7 @@ class ImpactResult(ImpactSignals):
         seg = self.segments[i]
         tau = np.array([t - seg.t0])
         states = seg.states(tau)
-        return states, seg.force(tau, states, self._formulas[i])
+        return states, segment_force(seg, tau, states, self._formulas[i])
 
     def _signal_at(self, t):
         if self.sensor.is_rigid:
@@ -299,7 +306,7 @@ class ImpactResult(ImpactSignals):
             nodes, weights = gauss_rule(lo, hi, period, graded=seg.kind == "contact")
             tau = nodes - seg.t0  # every panel's nodes in one evaluation of the piece
             st = seg.states(tau)
-            total += float(weights @ integrand(st, seg.force(tau, st, formula)))
+            total += float(weights @ integrand(st, segment_force(seg, tau, st, formula)))
         return total
 
     def _system_period(self):

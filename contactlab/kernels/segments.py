@@ -19,8 +19,9 @@ layer below it and never calls back into the solver:
 * :class:`SampledStates`: the paper's Euler steps, interpolated.
 
 A :class:`Segment` is one piece: its start, end, kind, the law branch it followed (name
-and the largest overlap the branch was built with: the contact force is the law's, asked
-by the result, :func:`contact_force`) and its states. State vector everywhere:
+and the largest overlap the branch was built with) and its states; its contact force is
+:func:`segment_force`, the law's branch formula (asked by the result: laws hold forces)
+clipped, or the piece's prescribed load. State vector everywhere:
 ``[x1, v1, x2, v2]`` (sensor displacement [m] and velocity [m/s], grain displacement [m]
 and velocity [m/s]).
 """
@@ -45,6 +46,7 @@ __all__ = [
     "Trajectory",
     "contact_force",
     "interpolate",
+    "segment_force",
 ]
 
 
@@ -448,19 +450,20 @@ class Segment:
         """Write the states at uniformly spaced local times ``tau`` [s] into ``out`` (n, 4)."""
         return self.states.grid(tau, step, out)
 
-    def force(self, tau, states, formula=None):
-        """Contact force S2 [N] at local times ``tau`` [s] with ``states`` (n, 4).
 
-        ``formula(d, d')`` is the law branch's force of a contact piece (the law's, asked
-        by the caller with :attr:`branch` and :attr:`overlap`), clipped here
-        (:func:`contact_force`); a pulse piece's force is ``max(a + b tau, 0)``, a free
-        flight's zero, Euler's the recorded one.
-        """
-        if self.kind == "contact":
-            return contact_force(formula, states)
-        if self.kind == "pulse":
-            a, b = self.load
-            return np.maximum(a + b * np.asarray(tau), 0.0)
-        if self.kind == "euler":
-            return np.interp(np.atleast_1d(tau), self.states.t, self.states.force)
-        return np.zeros(len(states))
+def segment_force(segment, tau, states, formula=None):
+    """Contact force S2 [N] of ``segment`` at local times ``tau`` [s] with ``states`` (n, 4).
+
+    ``formula(d, d')`` is the law branch's force of a contact piece (the law's, asked by
+    the caller with the segment's ``branch`` and ``overlap``), clipped here
+    (:func:`contact_force`); a pulse piece's force is ``max(a + b tau, 0)``, a free
+    flight's zero, Euler's the recorded one.
+    """
+    if segment.kind == "contact":
+        return contact_force(formula, states)
+    if segment.kind == "pulse":
+        a, b = segment.load
+        return np.maximum(a + b * np.asarray(tau), 0.0)
+    if segment.kind == "euler":
+        return np.interp(np.atleast_1d(tau), segment.states.t, segment.states.force)
+    return np.zeros(len(states))
