@@ -29,6 +29,12 @@ from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import check_window, uniform_signal
+from contactlab.inverse.noise_colour import (
+    NOISE_MODELS,
+    block_noise_model,
+    describe_model,
+    whiten_problem,
+)
 from contactlab.inverse.pulse import pulse_baseline
 from contactlab.inverse.reconstruction import ForceReconstruction
 from contactlab.metrics import pulse_metrics
@@ -43,6 +49,11 @@ four times; a contact long enough to be resolved has little content above it."""
 
 DEFAULT_MAX_UNKNOWNS = 400
 """Default largest number of force values in the Tikhonov problem (sets the grid step)."""
+
+DEFAULT_NOISE_MODEL = "ar"
+"""Default noise model of the Tikhonov reconstruction (:data:`NOISE_MODELS`): an
+autoregressive model fitted on the baseline window, the problem whitened with it
+(generalised least squares; :mod:`contactlab.inverse.noise_colour`)."""
 
 ROWS_AFTER_WINDOW = 3.0
 """Sensor periods of free ringing after the window used as data. The ringing is fixed
@@ -227,7 +238,9 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
         )
     h = _toeplitz(sensor, dt, q, rows, columns)
     data = y[ia : ia + rows * q].reshape(rows, q).mean(axis=1)
-    lam = CRITERIA[criterion](_StandardForm(h, data), noise / math.sqrt(q))
+    model = block_noise_model(options["quiet"], q, options["noise_model"])
+    h, data, block_noise = whiten_problem(model, h, data, y[:ia], q, noise / math.sqrt(q))
+    lam = CRITERIA[criterion](_StandardForm(h, data), block_noise)
     penalty = lam * np.diff(np.eye(columns), axis=0)
     values, _ = nnls(np.vstack([h, penalty]), np.concatenate([data, np.zeros(columns - 1)]))
     knots = t[ia] + np.arange(-1, columns + 1) * q * dt
@@ -238,6 +251,7 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
         "grid_step [s]": q * dt,
         "unknowns": columns,
         "data_blocks": rows,
+        **describe_model(model),
     }
     return force, params
 
@@ -308,6 +322,7 @@ def reconstruct_force(
     max_unknowns=None,
     threshold=None,
     crosstalk=True,
+    noise_model=None,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -400,6 +415,7 @@ def reconstruct_force(
         ("cutoff", cutoff, "inverse"),
         ("regularization", regularization, "tikhonov"),
         ("max_unknowns", max_unknowns, "tikhonov"),
+        ("noise_model", noise_model, "tikhonov"),
     ):
         if value is not None and method != owner:
             raise ParameterError(f"{name} applies to method={owner!r}, not {method!r}")
@@ -407,6 +423,7 @@ def reconstruct_force(
         cutoff = check_number("cutoff", cutoff, low=0.0, high=0.5 / dt, high_open=True, unit="Hz")
     options = {
         "regularization": check_choice("regularization", regularization or "gcv", tuple(CRITERIA)),
+        "noise_model": check_choice("noise_model", noise_model or DEFAULT_NOISE_MODEL, NOISE_MODELS),
         "cutoff": cutoff,
         "max_unknowns": check_count(
             "max_unknowns", DEFAULT_MAX_UNKNOWNS if max_unknowns is None else max_unknowns, 2
@@ -417,6 +434,7 @@ def reconstruct_force(
     pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk)
     y = y - pulse.values
     noise, onset, base = pulse.noise, pulse.onset, pulse.window
+    options["quiet"] = y[signals.in_window(t, base)]
     ta, tb = check_window("window", pulse.contact if window is None else window)
     if not float(t[0]) <= ta < float(t[-1]):
         raise ParameterError(
