@@ -32,8 +32,8 @@ import numpy as np
 import pandas as pd
 
 import contactlab as cl
-from contactlab.config import load_config
 import contactlab.inverse.reconstruct as reconstruct_module
+from contactlab.config import load_config
 from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
 from dem_check.campaign.analysis import analyse_impact

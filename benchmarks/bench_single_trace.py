@@ -37,9 +37,9 @@ from pathlib import Path
 import numpy as np
 
 import contactlab as cl
+import contactlab.inverse.reconstruct as reconstruct_module
 from contactlab.compare import compare_trace
 from contactlab.config import load_config
-import contactlab.inverse.reconstruct as reconstruct_module
 from contactlab.errors import ParameterError
 from contactlab.inverse import identify_sensor, reconstruct_force
 from contactlab.inverse.pulse import pulse_baseline
