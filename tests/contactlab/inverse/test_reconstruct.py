@@ -121,6 +121,8 @@ def test_demo_figure_is_written(tmp_path):
         ({"method": "inverse", "cutoff": 3e6}, "cutoff"),
         ({"cutoff": 1e5}, "cutoff applies to method='inverse'"),
         ({"method": "inverse", "regularization": "gcv"}, "regularization applies"),
+        ({"noise_model": "pink"}, "noise_model must be one of"),
+        ({"method": "inverse", "noise_model": "ar"}, "noise_model applies"),
         ({"window": (1e-5,)}, "window must be"),
         ({"window": 1e-5}, "window must be"),
         ({"window": (-1.0, 1e-4)}, "window start must lie within the record"),
