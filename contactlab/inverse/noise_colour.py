@@ -40,6 +40,7 @@ __all__ = [
     "block_noise_model",
     "describe_model",
     "fit_ar_noise",
+    "ringing_residual",
     "whiten_problem",
 ]
 
@@ -220,3 +221,34 @@ def describe_model(model):
         "ar_coefficients [-]": [float(a) for a in model.coefficients],
         "innovation [N]": model.innovation,
     }
+
+
+def ringing_residual(t, y, window, sensor):
+    """The record less the sensor's free ringing and a line over ``window`` [s].
+
+    After the contact the sensor rings freely; what its fitted ringing and a line (the
+    drift, as the baseline window's line before a pulse) leave is the noise: the quiet
+    samples of a record that starts at its pulse.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Time [s] and signal [N].
+    window : (float, float)
+        ``[start, end]`` [s], after the contact.
+    sensor : Sensor
+        Its resonance and damping ratio give the ringing.
+
+    Returns
+    -------
+    numpy.ndarray
+        The residual on the window's samples [N].
+    """
+    from contactlab.inverse.local_baseline import _ringing
+
+    inside = (t >= window[0]) & (t <= window[1])
+    ringing, _, _ = _ringing(t[inside] - window[0], sensor)
+    s = t[inside] - window[0]
+    design = np.column_stack([np.ones(s.size), s / max(float(s[-1]), 1e-300), ringing])
+    coefficients, *_ = np.linalg.lstsq(design, y[inside], rcond=None)
+    return y[inside] - design @ coefficients

@@ -28,11 +28,12 @@ from scipy.optimize import nnls
 from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
-from contactlab.inverse._signal import check_window, uniform_signal
+from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
 from contactlab.inverse.noise_colour import (
     NOISE_MODELS,
     block_noise_model,
     describe_model,
+    ringing_residual,
     whiten_problem,
 )
 from contactlab.inverse.pulse import pulse_baseline
@@ -324,8 +325,10 @@ def reconstruct_force(
         baseline window (Burg, order by BIC, kept only if it differs from white noise
         at the 1 % level; :mod:`contactlab.inverse.noise_colour`) whitens the data and
         the sensor matrix before lambda is chosen and the force solved (generalised
-        least squares); with white noise, too few quiet samples (fewer than 20 blocks)
-        or no baseline before the pulse (a short pre-trigger) it is the white model.
+        least squares); a record without a baseline before the pulse (a short
+        pre-trigger) reads the model after the contact, on what the sensor's free
+        ringing and a line leave; with white noise or fewer than 20 blocks of quiet
+        samples it is the white model.
         ``parameters["noise_model"]`` says which was used (``"AR(p)"`` with its
         coefficients and innovation, or ``"white"``). ``"white"``: ordinary least
         squares, as before coloured noise was modelled.
@@ -397,7 +400,10 @@ def reconstruct_force(
     pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk)
     y = y - pulse.values
     noise, onset, base = pulse.noise, pulse.onset, pulse.window
-    options["quiet"] = y[signals.in_window(t, base)]
+    quiet = y[signals.in_window(t, base)]
+    if quiet.size < BASELINE_MIN_SAMPLES:  # a short pre-trigger: the noise after the contact
+        quiet = ringing_residual(t, y, pulse.post, sensor)
+    options["quiet"] = quiet
     ta, tb = check_window("window", pulse.contact if window is None else window)
     if not float(t[0]) <= ta < float(t[-1]):
         raise ParameterError(

@@ -167,20 +167,24 @@ def test_reconstruction_says_when_no_structure_mode_explains_the_ringing(hard_se
     assert "nothing removed" in rec.notes[-1]
 
 
-def test_reconstruction_under_1_over_f_noise_as_large_as_the_white(hard_setup):
-    record = _record(hard_setup, Effects(pink=NOISE))
+@pytest.mark.parametrize("onset", ONSETS.values(), ids=ONSETS.keys())
+def test_reconstruction_under_1_over_f_noise_as_large_as_the_white(hard_setup, onset):
+    record = _record(hard_setup, Effects(pink=NOISE), onset)
     truth = record.truth.iloc[0]
     rec = reconstruct_force(*_arrays(record), hard_setup[1])
-    # the 5 % target. Seed 3 was +7.0 % (a strict xfail) while GCV assumed white
-    # noise; the noise's AR model read on the baseline window whitens the problem: +0.6 %
-    # (contact time +3.2 %; over seeds 3-6 at most +2.3 % and +3.2 %, docs/campaign.md)
+    # the 5 % target. 1 ms in, seed 3 was +7.0 % (a strict xfail) while GCV
+    # assumed white noise; the noise's AR model read on the baseline window whitens the
+    # problem: +0.6 % (contact time +3.2 %; seeds 3-6 at most +2.3 % and +3.2 %). At the
+    # start it is read after the contact, on what the free ringing leaves: +2.0 % (white
+    # model +3.0 %; seeds 0-6 at most 2.0 % and 1.6 %, docs/campaign.md)
     assert rec.parameters["noise_model"].startswith("AR(")
     assert rec.metrics.peak == pytest.approx(truth["peak_contact_force [N]"], rel=0.05)
     assert rec.metrics.duration == pytest.approx(truth["contact_time [s]"], rel=0.05)
-    # with the white model the same record gives the old +7.0 %: what the whitening buys
-    # (over 5 % shows it)
-    white = reconstruct_force(*_arrays(record), hard_setup[1], noise_model="white")
-    assert white.metrics.peak > 1.05 * truth["peak_contact_force [N]"]
+    if onset > 0.0:
+        # with the white model the same record gives the old +7.0 %: what the whitening
+        # buys (over 5 % shows it)
+        white = reconstruct_force(*_arrays(record), hard_setup[1], noise_model="white")
+        assert white.metrics.peak > 1.05 * truth["peak_contact_force [N]"]
 
 
 def test_compare_removes_a_drifting_baseline(hard_setup):
