@@ -32,6 +32,9 @@ class StandardForm:
     With ``f = f0 * 1 + C d`` (``C`` cumulative sums, ``d`` the differences) the
     penalty is ``||d||**2`` and ``f0`` is free; projecting ``f0`` out (Elden 1977)
     leaves a standard-form problem solved for every lambda by the SVD's filter factors.
+    ``h`` is the model matrix, ``y`` the data (one entry per row); ``smoothest`` makes
+    GCV take the smoothest of its near-equal local minima (a whitened problem, whose
+    noise model was estimated: :func:`contactlab.inverse.reconstruct_force`).
     """
 
     def __init__(self, h, y, smoothest=False):
