@@ -151,3 +151,37 @@ def test_on_white_noise_the_model_stays_white(half_sine_signal):
     assert ar.parameters["noise_model"] == "white"
     # the same estimator, so the same force (the same operations in the same order)
     np.testing.assert_array_equal(ar.force, white.force)
+
+
+class _TwoMinima:
+    """A problem whose GCV score over log10(lambda) in [-4, 2] has a rough minimum at -2
+    (depth 1) and a smooth one at 0 (depth ``smooth``), with 100 effective parameters
+    for 200 data (so one standard error of the score is sqrt(2 / 100) = 14 %)."""
+
+    y = np.zeros(200)
+
+    def __init__(self, smooth, smoothest):
+        self.smooth, self.smoothest = smooth, smoothest
+
+    def bracket(self):
+        return -4.0, 2.0
+
+    def dof(self, lam):
+        return 100.0
+
+    def residual2(self, lam):
+        x = np.log10(lam)
+        score = min(1.0 + (x + 2.0) ** 2, self.smooth + 4.0 * x**2)
+        return score * 100.0**2
+
+
+@pytest.mark.parametrize(
+    ("smooth", "smoothest", "expected"),
+    [(1.02, True, 0.0), (1.02, False, -2.0), (1.3, True, -2.0), (0.98, False, 0.0)],
+)
+def test_gcv_takes_the_smoothest_minimum_within_one_standard_error(smooth, smoothest, expected):
+    from contactlab.inverse.regularization import CRITERIA
+
+    lam = CRITERIA["gcv"](_TwoMinima(smooth, smoothest), None)
+    # the bounded refinement finds the parabola's vertex to its tolerance, ~1e-5 in x
+    assert np.log10(lam) == pytest.approx(expected, abs=1e-3)
