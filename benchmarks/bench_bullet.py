@@ -8,6 +8,7 @@ spring the plate is pushed away freely, so the contact share of the steps is sim
 not identical). Target: <= 30 ms per impact of the base case.
 """
 
+from contactlab.config import ImpactConfig
 import statistics
 import time
 
@@ -30,7 +31,7 @@ def _median(fn):
 def _impact(grain, sensor, law):
     """Wall time of one whole drop_test [s] and its engine-step wall time and step count."""
     clock = time.perf_counter()
-    res = drop_test(grain, sensor, law, 2.0, TIME_STEP)
+    res = drop_test(ImpactConfig(grain, sensor, law, {"velocity": 2.0}), time_step=TIME_STEP)
     total = time.perf_counter() - clock
     return total, res.metadata["wall_time [s]"], res.metadata["steps"]
 

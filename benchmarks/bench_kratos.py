@@ -13,6 +13,7 @@ and the attribution of Kratos' test-4 differences rule by rule (issue 27).
    tangential damping and the Coulomb cap act. ``--figure FOLDER`` also draws it.
 """
 
+from contactlab.config import ImpactConfig
 import math
 import sys
 import tempfile
@@ -58,10 +59,10 @@ def drop_tests():
     worst = 0.0
     for law_name, law in laws.items():
         for sensor_name, sensor in sensors.items():
-            case = (body, sensor, law, V0)
-            t_kratos = median_time(lambda case=case: kratos.drop_test(*case), REPEATS)
-            t_lammps = median_time(lambda case=case: lammps.drop_test(*case), REPEATS)
-            res = kratos.drop_test(body, sensor, law, V0)
+            case = ImpactConfig(body, sensor, law, {"velocity": V0})
+            t_kratos = median_time(lambda case=case: kratos.drop_test(case), REPEATS)
+            t_lammps = median_time(lambda case=case: lammps.drop_test(case), REPEATS)
+            res = kratos.drop_test(case)
             ref = cl.simulate_impact(body, sensor, law, V0)
             error = max(abs(getattr(res, q) / getattr(ref, q) - 1.0) for q in QUANTITIES)
             worst = max(worst, t_kratos)

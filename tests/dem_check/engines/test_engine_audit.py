@@ -1,6 +1,7 @@
 """Engine results audit themselves: energy, one-sided force, momentum (and, for LAMMPS'
 oblique rebounds, angular momentum and Coulomb's inequality integrated over the contact)."""
 
+from contactlab.config import ImpactConfig
 import math
 import warnings
 
@@ -25,7 +26,7 @@ LAWS = {
 def _drop(engine, sensor, law):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", cl.errors.ContactlabWarning)
-        return drop_test(GRAIN, sensor, law, 2.0, engine=engine)
+        return drop_test(ImpactConfig(GRAIN, sensor, law, {"velocity": 2.0}), engine=engine)
 
 
 @pytest.mark.bullet
