@@ -8,14 +8,13 @@ spring the plate is pushed away freely, so the contact share of the steps is sim
 not identical). Target: <= 30 ms per impact of the base case.
 """
 
-from contactlab.config import ImpactConfig
 import statistics
 import time
 
 import pybullet as pb
 
 import contactlab as cl
-from contactlab.config import load_preset
+from contactlab.config import ImpactConfig, load_preset
 from dem_check.engines.bullet import drop_scene, drop_test
 
 REPEATS = 7

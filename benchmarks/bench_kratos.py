@@ -13,7 +13,6 @@ and the attribution of Kratos' test-4 differences rule by rule (issue 27).
    tangential damping and the Coulomb cap act. ``--figure FOLDER`` also draws it.
 """
 
-from contactlab.config import ImpactConfig
 import math
 import sys
 import tempfile
@@ -31,6 +30,7 @@ from contactlab.benchmarks.chung_ooi.figures import save_attribution_figure
 from contactlab.benchmarks.chung_ooi.grading import grain, rebound
 from contactlab.benchmarks.chung_ooi.oblique import ANGLES
 from contactlab.cli import _benchmark_engines
+from contactlab.config import ImpactConfig
 from contactlab.solver import wall_impact
 from contactlab.solver.conventions import DEM_CONVENTIONS
 from dem_check.engines import kratos, lammps

@@ -178,7 +178,9 @@ class EngineChecks:
         (:func:`engine_check`: ``config`` an ImpactConfig; ``options`` are the engine's
         ``drop_test`` keywords; the deprecated ``grain, sensor, law, velocity[,
         time_step]`` form warns)."""
-        config, time_step = engine_config(config, fields, time_step, f"dem_check.{self.name}.engine_check")
+        config, time_step = engine_config(
+            config, fields, time_step, f"dem_check.{self.name}.engine_check"
+        )
         return engine_check(
             self.drop_test,
             config,
@@ -194,7 +196,11 @@ class EngineChecks:
         ``attrs["order"]``: the observed orders; the deprecated ``grain, sensor, law,
         velocity, time_steps`` form warns)."""
         config, time_steps = engine_config(
-            config, fields, time_steps, f"dem_check.{self.name}.convergence_study", last="time_steps"
+            config,
+            fields,
+            time_steps,
+            f"dem_check.{self.name}.convergence_study",
+            last="time_steps",
         )
         return convergence_study(self.drop_test, config, time_steps, **options)
 

@@ -14,9 +14,7 @@ _NOTES = ("contact_damping_passed [N*s/m]", "compensate_damping")
 _CHECKS = EngineChecks(drop_test, "bullet", _NOTES)
 
 
-def engine_check(
-    config, *fields, time_step=None, compensate_damping=False, tolerances=None
-):
+def engine_check(config, *fields, time_step=None, compensate_damping=False, tolerances=None):
     """Run the impact in pybullet and in the reduced model, and compare them.
 
     Parameters

@@ -6,13 +6,13 @@ half-step velocity), so the elastic impacts meet their closed forms closer than 
 damped rebounds do at the default step (1000 steps per contact).
 """
 
-from contactlab.config import ImpactConfig
 import math
 
 import pytest
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.config import ImpactConfig
 from dem_check.engines import engine_module
 
 V0 = 2.0  # impact speed [m/s]
@@ -27,7 +27,9 @@ DEM_ENGINES = [
 def test_elastic_contacts_match_closed_forms(grain, laws, engine):
     drop_test = engine_module(engine).drop_test
     k = laws["linear"].stiffness
-    linear = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), cl.laws.LinearViscoelastic(k, 0.0), {"velocity": V0}))
+    linear = drop_test(
+        ImpactConfig(grain, cl.Sensor.rigid(), cl.laws.LinearViscoelastic(k, 0.0), {"velocity": V0})
+    )
     # second order: 1000 steps per contact err ~1e-6 (measured 5e-7)
     assert linear.contact_time == pytest.approx(math.pi * math.sqrt(grain.mass / k), rel=1e-5)
     # the force's kinks at touch and separation cost O(dt**2) energy: measured 1.2e-6

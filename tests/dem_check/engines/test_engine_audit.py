@@ -1,7 +1,6 @@
 """Engine results audit themselves: energy, one-sided force, momentum (and, for LAMMPS'
 oblique rebounds, angular momentum and Coulomb's inequality integrated over the contact)."""
 
-from contactlab.config import ImpactConfig
 import math
 import warnings
 
@@ -10,6 +9,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.analytic import gross_sliding_rebound
+from contactlab.config import ImpactConfig
 from dem_check import drop_test
 from dem_check.engines.result import EngineResult
 

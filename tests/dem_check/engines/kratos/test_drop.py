@@ -6,7 +6,6 @@ the impacts then agree with closed forms and with :func:`contactlab.simulate_imp
 what the time step explains (symplectic Euler: first order with damping).
 """
 
-from contactlab.config import ImpactConfig
 import subprocess
 import sys
 import tempfile
@@ -19,6 +18,7 @@ from hypothesis import strategies as st
 
 import contactlab as cl
 import dem_check
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from contactlab.solver.wall import wall_contact_time
 from dem_check.engines.kratos import drop_test, engine_check, load_kratos
@@ -49,7 +49,9 @@ def test_each_step_force_is_the_laws_force(grain, paper_sensor, laws, name, rigi
 @pytest.mark.parametrize("name", LAW_NAMES)
 def test_impact_agrees_with_the_exact_solver(grain, paper_sensor, laws, name, rigid):
     sensor = cl.Sensor.rigid() if rigid else paper_sensor
-    res = dem_check.drop_test(ImpactConfig(grain, sensor, laws[name], {"velocity": V0}), engine="kratos")
+    res = dem_check.drop_test(
+        ImpactConfig(grain, sensor, laws[name], {"velocity": V0}), engine="kratos"
+    )
     ref = cl.simulate_impact(grain, sensor, laws[name], V0)
     assert res.method == "kratos"
     # default step (1000 per contact, 200 per sensor period): largest measured error
@@ -97,7 +99,9 @@ def test_a_coarse_time_step_is_refused(grain, laws):
     law = laws["hertz"]
     contact = wall_contact_time(law, grain.mass, V0)
     with pytest.raises(ParameterError, match="time_step"):
-        drop_test(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}), time_step=contact / 5)
+        drop_test(
+            ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}), time_step=contact / 5
+        )
 
 
 def test_no_file_left_behind_and_one_thread(grain, laws, tmp_path, monkeypatch):

@@ -8,7 +8,6 @@ the exported time step, and set against the fitted law's exact wall impact
 (``tests/dem_check/engines/lammps/test_realise.py``).
 """
 
-from contactlab.config import ImpactConfig
 import json
 
 import pytest
@@ -17,6 +16,7 @@ from documents import E_STAR, GRAIN, VELOCITY, fit_document
 import contactlab as cl
 from contactlab import analytic
 from contactlab.cli import main
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from contactlab.inverse import export_dem
 from contactlab.solver import wall_impact
@@ -57,7 +57,11 @@ def _fits(restitution):
 def _realise(path, law):
     document = json.loads(path.read_text(encoding="utf-8"))
     step = document["contactlab_export"]["MaxTimeStep [s]"]
-    return drop_test(ImpactConfig(GRAIN, cl.Sensor.rigid(), law, {"velocity": VELOCITY}), time_step=step, materials=path)
+    return drop_test(
+        ImpactConfig(GRAIN, cl.Sensor.rigid(), law, {"velocity": VELOCITY}),
+        time_step=step,
+        materials=path,
+    )
 
 
 CASES = [(name, e) for name in ("linear", "hertz_damped") for e in (0.2, 0.5, 0.9)]
@@ -114,4 +118,7 @@ def test_a_materials_file_needs_a_rigid_sensor_and_must_exist(tmp_path, paper_se
     with pytest.raises(ParameterError, match="materials"):
         drop_test(ImpactConfig(GRAIN, paper_sensor, law, {"velocity": VELOCITY}), materials=path)
     with pytest.raises(ParameterError, match="materials: no such file"):
-        drop_test(ImpactConfig(GRAIN, cl.Sensor.rigid(), law, {"velocity": VELOCITY}), materials=tmp_path / "none.json")
+        drop_test(
+            ImpactConfig(GRAIN, cl.Sensor.rigid(), law, {"velocity": VELOCITY}),
+            materials=tmp_path / "none.json",
+        )

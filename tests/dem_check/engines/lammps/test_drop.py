@@ -7,12 +7,12 @@ the order velocity Verlet has (2 undamped, 1 with damping evaluated at the half-
 velocity).
 """
 
-from contactlab.config import ImpactConfig
 import numpy as np
 import pytest
 
 import contactlab as cl
 import dem_check
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError, WindowWarning
 from contactlab.laws import lammps as lammps_laws
 from contactlab.solver.wall import wall_contact_time
@@ -61,8 +61,12 @@ def test_impact_agrees_with_the_exact_solver(grain, paper_sensor, laws, name, ri
 
 def test_plate_radius_does_not_change_the_impact(grain, paper_sensor, laws):
     law = laws["hertz_damped"]
-    small = drop_test(ImpactConfig(grain, paper_sensor, law, {"velocity": V0}), plate_radius=2.0 * grain.radius)
-    large = drop_test(ImpactConfig(grain, paper_sensor, law, {"velocity": V0}), plate_radius=50.0 * grain.radius)
+    small = drop_test(
+        ImpactConfig(grain, paper_sensor, law, {"velocity": V0}), plate_radius=2.0 * grain.radius
+    )
+    large = drop_test(
+        ImpactConfig(grain, paper_sensor, law, {"velocity": V0}), plate_radius=50.0 * grain.radius
+    )
     assert small.metadata["effective_radius [m]"] != large.metadata["effective_radius [m]"]
     # R* enters the mapped stiffness and cancels; what is left is the rounding of plate
     # coordinates ~ eps * Rp over displacements of ~1e-7 m (measured 4.5e-9)
@@ -75,7 +79,9 @@ def test_convergence_order(grain, laws, name, order):
     law = laws[name]
     contact = wall_contact_time(law, grain.mass, V0)
     steps = [contact / n for n in (50, 100, 200)]
-    study = convergence_study(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}), time_steps=steps)
+    study = convergence_study(
+        ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}), time_steps=steps
+    )
     # a fitted slope over a factor 4 in dt: 0.2 separates orders 1 and 2 with room
     assert study.attrs["order"]["contact_time"] == pytest.approx(order, abs=0.2)
 
@@ -87,7 +93,9 @@ def test_engine_check_of_the_base_case_passes(grain, paper_sensor, laws):
 
 
 def test_dispatch_by_engine_name(grain, laws):
-    via_registry = dem_check.drop_test(ImpactConfig(grain, cl.Sensor.rigid(), laws["hertz"], {"velocity": V0}), engine="lammps")
+    via_registry = dem_check.drop_test(
+        ImpactConfig(grain, cl.Sensor.rigid(), laws["hertz"], {"velocity": V0}), engine="lammps"
+    )
     direct = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), laws["hertz"], {"velocity": V0}))
     assert via_registry.method == direct.method == "lammps"
     # LAMMPS runs deterministically on one process: bit-identical runs
@@ -106,18 +114,25 @@ def test_default_time_step_resolves_contact_and_sensor(grain, paper_sensor, laws
 def test_coarse_step_and_bad_input_are_named(grain, laws):
     law = laws["hertz"]
     with pytest.raises(ParameterError, match="time_step"):
-        drop_test(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}), time_step=wall_contact_time(law, grain.mass, V0) / 10)
+        drop_test(
+            ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}),
+            time_step=wall_contact_time(law, grain.mass, V0) / 10,
+        )
     with pytest.raises(ParameterError, match="velocity"):
         drop_test(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": -1.0}))
     with pytest.raises(ParameterError, match="law WaltonBraun cannot be represented"):
-        drop_test(ImpactConfig(grain, cl.Sensor.rigid(), cl.laws.WaltonBraun(1e5, 2e5), {"velocity": V0}))
+        drop_test(
+            ImpactConfig(grain, cl.Sensor.rigid(), cl.laws.WaltonBraun(1e5, 2e5), {"velocity": V0})
+        )
     with pytest.raises(TypeError, match="no_such_option"):
         drop_test(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}), no_such_option=1)
 
 
 def test_short_duration_warns(grain, laws):
     with pytest.warns(WindowWarning, match="longer duration"):
-        drop_test(ImpactConfig(grain, cl.Sensor.rigid(), laws["hertz"], {"velocity": V0}), duration=20e-6)
+        drop_test(
+            ImpactConfig(grain, cl.Sensor.rigid(), laws["hertz"], {"velocity": V0}), duration=20e-6
+        )
 
 
 def test_lammps_refusal_names_the_law(grain, laws, monkeypatch):

@@ -1,11 +1,11 @@
 """LAMMPS' ``hertz`` with ``damping velocity`` holds HertzViscous exactly, step by step,
 and its drop test agrees with the reduced model."""
 
-from contactlab.config import ImpactConfig
 import numpy as np
 import pytest
 
 import contactlab as cl
+from contactlab.config import ImpactConfig
 from contactlab.laws import HertzViscous
 from dem_check.engines.lammps import drop_test
 
