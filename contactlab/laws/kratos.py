@@ -53,10 +53,8 @@ this module reads them, so a new law adds neither a branch nor an entry here.
 """
 
 from contactlab.laws import LAWS
-from contactlab.laws.base import stated
-from contactlab.laws.engine_support import refuse_unsupported
+from contactlab.laws.engine_support import engine_mapping, stated_support
 from contactlab.laws.kratos_form import HERTZ_LAW, LINEAR_LAW, KratosContact, linear_kn_factor
-from contactlab.validation import check_positive
 
 __all__ = [
     "ENGINE_LAWS",
@@ -68,12 +66,10 @@ __all__ = [
     "linear_kn_factor",
 ]
 
-ENGINE_LAWS = tuple(cls for cls in LAWS.values() if "_kratos_model" in vars(cls))
-"""Laws Kratos' DEM contact laws hold exactly: those that state a ``_kratos_model``."""
-
-REFUSED = {cls: cls.kratos_refusal for cls in LAWS.values() if "kratos_refusal" in vars(cls)}
-"""Laws Kratos cannot hold exactly: law class -> the reason each states (quoted in the
-ParameterError)."""
+ENGINE_LAWS, REFUSED = stated_support(LAWS.values(), "_kratos_model", "kratos_refusal")
+"""Laws Kratos' DEM contact laws hold exactly: those that state a ``_kratos_model``
+(``ENGINE_LAWS``), and those Kratos cannot hold exactly: law class -> the reason each
+states, quoted in the ParameterError (``REFUSED``)."""
 
 
 def kratos_contact(law, effective_mass, effective_radius, wall):
@@ -101,7 +97,13 @@ def kratos_contact(law, effective_mass, effective_radius, wall):
     ParameterError
         For a law Kratos cannot hold, naming it and why (:data:`REFUSED`).
     """
-    mass = check_positive("effective_mass", effective_mass, "kg")
-    radius = check_positive("effective_radius", effective_radius, "m")
-    refuse_unsupported(law, ENGINE_LAWS, REFUSED, "Kratos DEM", "Kratos' DEM contact laws")
-    return stated(law, "_kratos_model")(mass, radius, wall)
+    return engine_mapping(
+        law,
+        "_kratos_model",
+        (ENGINE_LAWS, REFUSED),
+        "Kratos DEM",
+        "Kratos' DEM contact laws",
+        effective_mass,
+        effective_radius,
+        wall,
+    )

@@ -17,6 +17,7 @@ __all__ = [
     "LINEAR_LAW",
     "KratosContact",
     "kratos_hertz",
+    "kratos_model",
     "linear_kn_factor",
 ]
 
@@ -76,16 +77,22 @@ class KratosContact(EngineContact):
         )
 
 
-def kratos_hertz(law, effective_mass, effective_radius):
-    """A Hertz-family law (``kH``, a constant damping ratio) as Kratos' Hertz law:
-    ``E* = 3 kH / (4 sqrt(R*))``, ``gamma = law._damping_ratio(m*)`` (at a wall and between
-    spheres alike)."""
-    e_star = 3.0 * law.k_hertz / (4.0 * math.sqrt(effective_radius))
+def kratos_model(law, name, e_star, effective_mass, effective_radius):
+    """``law`` as Kratos' law ``name`` with effective modulus ``e_star`` [Pa] (both bodies
+    ``E = 2 E*``, Poisson ratio 0) and ``DAMPING_GAMMA = law._damping_ratio(m*)``, the
+    law's constant damping ratio."""
     return KratosContact(
-        name=HERTZ_LAW,
+        name=name,
         young=2.0 * e_star,
         gamma=law._damping_ratio(effective_mass),
         law=law,
         effective_mass=effective_mass,
         effective_radius=effective_radius,
     )
+
+
+def kratos_hertz(law, effective_mass, effective_radius):
+    """A Hertz-family law (``kH``, a constant damping ratio) as Kratos' Hertz law:
+    ``E* = 3 kH / (4 sqrt(R*))`` (at a wall and between spheres alike)."""
+    e_star = 3.0 * law.k_hertz / (4.0 * math.sqrt(effective_radius))
+    return kratos_model(law, HERTZ_LAW, e_star, effective_mass, effective_radius)

@@ -9,7 +9,7 @@ from contactlab.laws.base import PowerForm, SmoothLaw, force_function, one_sided
 from contactlab.laws.closed_form import SCHWAGER_2007, closed_form
 from contactlab.laws.granular import GranularModel
 from contactlab.laws.hertz import Hertz
-from contactlab.laws.kratos_form import LINEAR_LAW, KratosContact, linear_kn_factor
+from contactlab.laws.kratos_form import LINEAR_LAW, kratos_model, linear_kn_factor
 from contactlab.quantities import column
 from contactlab.validation import check_choice, check_non_negative, check_positive
 
@@ -148,14 +148,7 @@ class LinearViscoelastic(SmoothLaw):
         (:func:`~contactlab.laws.kratos_form.linear_kn_factor`) and ``gamma = c / (2
         sqrt(m* k))`` (:mod:`contactlab.laws.kratos`)."""
         e_star = self.stiffness / (linear_kn_factor(wall) * effective_radius)
-        return KratosContact(
-            name=LINEAR_LAW,
-            young=2.0 * e_star,
-            gamma=self._damping_ratio(effective_mass),
-            law=self,
-            effective_mass=effective_mass,
-            effective_radius=effective_radius,
-        )
+        return kratos_model(self, LINEAR_LAW, e_star, effective_mass, effective_radius)
 
     def _damping_ratio(self, mass):
         """Kratos' damping ratio ``c / (2 sqrt(m* k))`` [-] on a grain of ``mass`` [kg]

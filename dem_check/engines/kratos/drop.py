@@ -154,17 +154,7 @@ def drop_test(
     """
     config, time_step = engine_config(config, fields, time_step, "dem_check.kratos.drop_test")
     grain, sensor, law = config.grain, config.sensor, config.law
-    plan = drop_plan(
-        grain,
-        sensor,
-        law,
-        config.velocity,
-        time_step,
-        duration,
-        threshold,
-        default_time_step,
-        MIN_STEPS,
-    )
+    plan = drop_plan(config, time_step, duration, threshold, default_time_step, MIN_STEPS)
     velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     scene = drop_scene(grain, sensor, law, velocity, dt, gap, plate_radius)
     limit = step_limit(scene, after, MAX_STEPS, "Kratos", start_states=True)

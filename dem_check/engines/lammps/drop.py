@@ -116,17 +116,7 @@ def drop_test(
     """
     config, time_step = engine_config(config, fields, time_step, "dem_check.lammps.drop_test")
     grain, sensor, law = config.grain, config.sensor, config.law
-    plan = drop_plan(
-        grain,
-        sensor,
-        law,
-        config.velocity,
-        time_step,
-        duration,
-        threshold,
-        default_time_step,
-        MIN_STEPS,
-    )
+    plan = drop_plan(config, time_step, duration, threshold, default_time_step, MIN_STEPS)
     velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     deck = drop_deck(grain, sensor, law, velocity, dt, after, gap, plate_radius)
     limit = step_limit(deck, after, MAX_STEPS, "LAMMPS")
