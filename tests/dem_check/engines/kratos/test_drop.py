@@ -1,7 +1,7 @@
 """Kratos DEM drop tests against closed forms, the exact reduced model and invariants.
 
 Step by step, Kratos' contact force is the law's force of the state it was computed from
-(the mapping of :mod:`dem_check.engines.kratos.laws` is exact, ``DAMPING_GAMMA`` included);
+(the mapping of :mod:`contactlab.laws.kratos` is exact, ``DAMPING_GAMMA`` included);
 the impacts then agree with closed forms and with :func:`contactlab.simulate_impact` within
 what the time step explains (symplectic Euler: first order with damping).
 """
