@@ -77,13 +77,10 @@ def kratos_contact(law, effective_mass, effective_radius, wall):
 
     Parameters
     ----------
-    law : ContactLaw
-        A law whose own class states a ``_kratos_model`` (:data:`ENGINE_LAWS`; a subclass
-        may change the force, so it does not inherit its parent's mapping).
-    effective_mass : float
-        ``m*`` Kratos will use for the contact [kg] (the grain's mass at a wall).
-    effective_radius : float
-        ``R*`` Kratos will use for the contact [m] (the grain's radius at a wall).
+    law, effective_mass, effective_radius
+        As for :func:`contactlab.laws.lammps.granular_model`: a law whose own class
+        states a ``_kratos_model`` (:data:`ENGINE_LAWS`), and the ``m*`` [kg] and ``R*``
+        [m] Kratos will use for the contact.
     wall : bool
         Whether the contact is with a rigid wall (Kratos' DEM-FEM contact) or between two
         spheres; the linear law's stiffness differs (:func:`linear_kn_factor`).
