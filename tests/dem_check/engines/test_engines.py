@@ -1,5 +1,7 @@
 """The engine interface: one ``drop_test`` dispatching by name through ``ENGINES``."""
 
+import inspect
+
 import numpy as np
 import pytest
 
@@ -9,6 +11,7 @@ from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from dem_check import engines
 from dem_check.engines import ENGINES, bullet, drop_test, engine_module
+from dem_check.engines.config import engine_config
 from dem_check.engines.result import contact_crossings
 
 
@@ -58,10 +61,32 @@ def test_dispatch_gives_the_engine_module_result(case):
 def test_the_positional_form_warns_and_runs_the_same_drop_test(case, entry):
     fields = (case.grain, case.sensor, case.law, case.velocity)
     from_config = entry(case, time_step=1e-7, duration=100e-6)
-    with pytest.warns(DeprecationWarning, match=r"drop_test\(ImpactConfig\(grain, sensor"):
+    with pytest.warns(DeprecationWarning, match=r"drop_test\(ImpactConfig\(grain, sensor") as w:
         from_fields = entry(*fields, 1e-7, duration=100e-6)
+    assert w[0].filename == __file__  # the warning points at the caller's line
     # the engine is deterministic (deterministicOverlappingPairs=1): bit-identical runs
     np.testing.assert_array_equal(from_config.contact_force, from_fields.contact_force)
+
+
+def test_the_checks_read_the_old_form_with_its_last_argument(case):
+    fields = (case.grain, case.sensor, case.law, case.velocity)
+    steps = (1e-7, 5e-8)
+    new_call = (
+        r"f\(ImpactConfig\(grain, sensor, law, \{'velocity': velocity\}\), time_steps=\.\.\.\)"
+    )
+    with pytest.warns(DeprecationWarning, match=new_call):
+        config, read = engine_config(fields[0], (*fields[1:], steps), None, "f", "time_steps")
+    assert (config.grain, config.sensor, config.law, config.velocity) == fields
+    assert read == steps
+    assert engine_config(case, (), steps, "f", "time_steps") == (case, steps)
+
+
+@pytest.mark.parametrize("name", sorted(ENGINES))
+def test_every_engine_takes_one_config(name):
+    """The plug-in interface (contactlab/engines.py): ``drop_test(config, *, time_step)``."""
+    parameters = inspect.signature(engine_module(name).drop_test).parameters
+    assert next(iter(parameters)) == "config"
+    assert parameters["time_step"].kind is inspect.Parameter.KEYWORD_ONLY
 
 
 def test_positional_fields_after_a_config_are_refused(case):
