@@ -4,7 +4,7 @@ import sys
 from pathlib import Path
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import add_outputs
+from contactlab.cli.running import add_crosstalk_flag, add_outputs
 from contactlab.errors import ParameterError
 
 __all__ = ["add_inverse_parsers"]
@@ -73,6 +73,7 @@ def _reconstruct(args):
         baseline_window=args.baseline,
         regularization=args.regularization,
         cutoff=args.cutoff,
+        crosstalk=not args.no_crosstalk,
     )
     if args.plot:
         _save_plot(rec.plot()[0], args.plot)
@@ -94,6 +95,7 @@ def _fit(args):
         None if args.law == "auto" else args.law,
         velocity=args.velocity,
         baseline_window=args.baseline,
+        crosstalk=not args.no_crosstalk,
     )
     fit = result.best if args.law == "auto" else result
     if args.out:
@@ -153,6 +155,7 @@ def add_inverse_parsers(sub):
     p.add_argument("--regularization", choices=tuple(CRITERIA), help="tikhonov (default gcv)")
     p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
+    add_crosstalk_flag(p)
     add_outputs(p, _reconstruct, plot="write signal and reconstructed force")
 
     p = sub.add_parser("fit", help="fit a contact law to a trace through the two-mass model")
@@ -168,6 +171,7 @@ def add_inverse_parsers(sub):
     p.add_argument("--velocity", type=float, help="measured impact velocity [m/s] (fixed)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
     p.add_argument("--out", metavar="FIT.json", help="write the fit as JSON")
+    add_crosstalk_flag(p)
     add_outputs(p, _fit, plot="write trace, fitted signal and force", json="print the fit as JSON")
 
     p = sub.add_parser(
