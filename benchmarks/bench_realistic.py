@@ -22,6 +22,7 @@ Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]``
 """
 
 import argparse
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -74,10 +75,13 @@ def speed():
         started, cpu = time.perf_counter(), time.process_time()
         result = run_campaign([path], sensor, grain)
         total, cpu = time.perf_counter() - started, time.process_time() - cpu
+        load = os.getloadavg()[0]
+    print(f"load average before the run: {os.getloadavg()[0]:.1f} (1 min)")
     print(f"{len(record.trace)} samples, {len(record.truth)} true impacts (with bounces)")
     print(f"run_campaign: {total:.2f} s ({total / read:.0f} x reading the file, {read:.3f} s)")
     print(f"run_campaign CPU time of this process: {cpu:.2f} s (wall time on a loaded machine")
     print("  is larger; set OPENBLAS_NUM_THREADS=1 on a shared machine)")
+    print(f"load average after the run: {load:.1f} (1 min)")
     for stage, seconds in result.timings.items():
         print(f"  {stage}: {seconds:.2f} s")
     print(result.impacts["status"].value_counts().to_string())
