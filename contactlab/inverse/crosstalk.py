@@ -14,7 +14,9 @@ contact:
    the sensor resonance, decimated to :data:`DECIMATED_PER_CUTOFF` samples per cutoff
    period and given to the matrix pencil
    (:func:`contactlab.inverse.identify.matrix_pencil`); its oscillating poles in the band
-   with a damping ratio under :data:`MAX_DAMPING` are the candidate modes.
+   with a damping ratio under :data:`MAX_DAMPING` are the candidate modes. Several
+   impacts' windows, short ones included, are read together by
+   :func:`joint_structure_modes` (a multi-channel matrix pencil).
 2. **Fit** (:func:`fit_crosstalk`) on the samples before the impact and after its contact:
    a quadratic, the sensor's free ringing after the contact and, for each mode, its
    response to the pulse (the pulse's samples convolved with the mode's damped cosine
@@ -302,8 +304,9 @@ def _in_band(poles, low, cutoff):
 
 
 def _autocovariance(noise, sensor, lags):
-    """Biased autocovariance of a noise stretch's band (as :func:`_band` with a quadratic)
-    at ``lags`` decimated lags, zero beyond the stretch."""
+    """Biased autocovariance of a noise stretch's band (:func:`_band` less its mean only:
+    a quadratic would take 1/f power near a low pole out of a short pre-trigger) at
+    ``lags`` decimated lags, zero beyond the stretch."""
     t, y = check_samples("noise t", noise[0]), check_samples("noise y", noise[1])
     if t.shape != y.shape or t.size < 16:
         raise ParameterError(f"noise must be equal t and y of >= 16 samples; got {t.size}")
@@ -442,8 +445,9 @@ def single_impact_crosstalk(t, y, sensor, onset, pre_end, contact_end):
     finds on the ringing after its contact (from ``contact_end`` to the record's end, at
     most :data:`SINGLE_IDENTIFICATION_SPAN`), kept by :func:`fit_crosstalk` when their
     response to this pulse is significant. The campaign instead keeps the modes found
-    after half of a record's impacts, which a single trace cannot do: a pole the pencil
-    fits to 1/f noise survives here when :func:`fit_crosstalk` finds it significant.
+    after half of a record's impacts, which a single trace cannot do; a candidate must
+    instead also be significant under the noise of the pre-trigger (``noise=`` of
+    :func:`structure_modes`), which drops the poles the pencil fits to 1/f noise.
 
     Parameters
     ----------
