@@ -234,8 +234,11 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES):
     """
     max_modes = check_count("max_modes", max_modes)
     bands = []
-    for t, y in windows:
-        t, y = check_samples("t", t), check_samples("y", y)
+    for window in windows:
+        try:
+            t, y = check_samples("t", window[0]), check_samples("y", window[1])
+        except (TypeError, IndexError, KeyError):
+            raise ParameterError(f"windows must hold (t, y) pairs; got {window!r:.60}") from None
         if t.shape != y.shape or t.size < 16:
             raise ParameterError(
                 f"each window must be equal t and y of >= 16 samples; got {t.size}"

@@ -116,3 +116,10 @@ def test_joint_pencil_keeps_no_mode_on_noise():
     # noise are not significant after half of the windows (the campaign's rule)
     assert significant.shape == (8, len(candidates))
     assert (significant.sum(axis=0) < 4).all(), (candidates, significant.sum(axis=0))
+
+
+def test_joint_pencil_refuses_what_is_not_windows():
+    with pytest.raises(ParameterError, match="windows must hold"):
+        joint_structure_modes([1.0, 2.0], SENSOR)
+    with pytest.raises(ParameterError, match=">= 16 samples"):
+        joint_structure_modes([(np.arange(4.0), np.zeros(4))], SENSOR)
