@@ -18,7 +18,8 @@ starts from the same impacts and adds, each one switched on alone by its field o
   ``bits`` bits: samples are quantised to its steps and clipped at its rails (the rail
   value is written, as most instruments do, not +-inf);
 - ``steps`` and ``step_size``: DC offset steps (a charge amplifier's range change or
-  reset) at random times, heights ``+-step_size`` [N];
+  reset) at random times, heights ``+-step_size`` [N]; ``offsets``: steps at given
+  times with given heights (near a record's edge or an impact, where they are hardest);
 - ``bounce`` and ``bounce_delay``: each impact followed by a second one at ``bounce``
   times its velocity, ``bounce_delay`` [s] later (a double hit or a grain's bounce).
 
@@ -76,6 +77,9 @@ class Effects:
     """Number of DC offset steps, at random times [-]."""
     step_size: float = 0.0
     """Height of each offset step, sign random [N]."""
+    offsets: tuple = ()
+    """Offset steps at given places: ``(time [s] from the record's first sample, height
+    [N], signed)`` pairs, added to the ``steps`` random ones."""
     bounce: float = 0.0
     """Velocity of the bounce or second hit after each impact, as a fraction of the
     impact's [-] (0: none)."""
@@ -175,11 +179,17 @@ def _crosstalk(rng, t, truth, effects):
 
 
 def _steps(rng, t, effects):
+    """The offset steps' levels at every sample [N] and their times [s], in time order:
+    ``steps`` at random times, then ``offsets``."""
     times = np.sort(rng.uniform(t[0], t[-1], effects.steps))
+    heights = effects.step_size * rng.choice((-1.0, 1.0), size=times.size)
+    placed = np.array(effects.offsets, dtype=float).reshape(-1, 2)
+    times = np.concatenate([times, t[0] + placed[:, 0]])
+    heights = np.concatenate([heights, placed[:, 1]])
     levels = np.zeros(t.size)
-    for at in times:
-        levels[t >= at] += effects.step_size * rng.choice((-1.0, 1.0))
-    return levels, times
+    for at, height in zip(times, heights, strict=True):
+        levels[t >= at] += height
+    return levels, np.sort(times)
 
 
 def _adc(values, effects):
@@ -267,8 +277,20 @@ def _check_fields(effects):
                 ),
             )
         )
+    offsets = []
+    for step in _sequence("offsets", effects.offsets):
+        pair = _sequence("offsets", step)
+        if len(pair) != 2:
+            raise ParameterError(f"offsets must hold (time [s], height [N]) pairs; got {pair!r}")
+        offsets.append(
+            (
+                check_number("offsets time", pair[0], low=0.0, low_open=False, unit="s"),
+                check_number("offsets height", pair[1], unit="N"),
+            )
+        )
     object.__setattr__(effects, "harmonics", harmonics)
     object.__setattr__(effects, "plate_modes", tuple(modes))
+    object.__setattr__(effects, "offsets", tuple(offsets))
 
 
 def _sequence(name, value):
