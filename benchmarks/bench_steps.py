@@ -5,8 +5,8 @@ sensor, contact 100 us; white noise 0.03 N, 1 % of the 3 N peak at 2 m/s) at 1, 
 5 MHz, 1-4 impacts of 0.2-2.5 m/s with bounces (40 % of the velocity, 1.5-3 ms later),
 every other effect of ``Effects.everything`` on (1/f noise as large as the white noise,
 hum of 1.5 sigma, crosstalk of 2 %, a 16-bit ADC clipping at 1.2 times the largest
-peak plus the drift and the steps), drift of 20-50 noise sigmas (10 when the record starts at its impact: the known
-limit of docs/campaign.md) and **two offset steps** of 3-30 noise sigmas, up or down,
+peak plus the drift and the steps), drift of 20-50 noise sigmas (10 when the record
+starts at its impact: the known limit of docs/campaign.md) and **two offset steps** of 3-30 noise sigmas, up or down,
 each at a random place of one kind: anywhere, within 0.2 ms of the record's start or
 end, up to 0.3 ms before an impact, or up to 0.3 ms after one (in its ringing).
 
@@ -119,21 +119,22 @@ def judge(record, effects, found):
     """What went wrong on one record: a list of ``(kind, detail)``."""
     true_onsets = record.truth["onset [s]"].to_numpy()
     wrong = []
+    for window in found.steps:
+        steps = np.abs(record.step_times - window.onset)
+        if not steps.size or steps.min() > MATCH:
+            wrong.append(("invented step", f"{window.onset:.6g} s {window.reason}"))
     for window in found.impacts:
         near = np.abs(true_onsets - window.onset).min() if true_onsets.size else np.inf
-        if window.status == "offset step":
-            steps = np.abs(record.step_times - window.onset)
-            if not steps.size or steps.min() > MATCH:
-                wrong.append(("invented step", f"{window.onset:.6g} s {window.reason}"))
-        elif near > MATCH:
+        if near > MATCH:
             wrong.append(("invented", f"{window.status} at {window.onset:.6g} s"))
-    onsets = np.array([w.onset for w in found.impacts if w.status != "offset step"])
+    onsets = np.array([w.onset for w in found.impacts])
     structure = ringing(record.truth, effects)
     for (_, row), ring in zip(record.truth.iterrows(), structure, strict=True):
         noise = np.hypot(record.noise, ring / np.sqrt(2.0))
         if row["peak_sensor_force [N]"] >= CLEAR * noise:
             if not onsets.size or np.abs(onsets - row["onset [s]"]).min() > MATCH:
-                wrong.append(("missed", f"{row['onset [s]']:.6g} s, {row['velocity [m/s]']:.3g} m/s"))
+                what = f"{row['onset [s]']:.6g} s, {row['velocity [m/s]']:.3g} m/s"
+                wrong.append(("missed", what))
     return wrong
 
 
@@ -152,7 +153,7 @@ def main():
         wrong = judge(record, effects, found)
         for kind, _ in wrong:
             counts[kind] += 1
-        rows = [w.onset for w in found.impacts if w.status == "offset step"]
+        rows = [w.onset for w in found.steps]
         counts["steps"] += record.step_times.size
         counts["steps found"] += sum(
             bool(rows) and np.abs(np.array(rows) - at).min() <= MATCH for at in record.step_times

@@ -61,6 +61,7 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
+from dem_check.campaign.steps import edge_steps, find_steps, remove_steps
 
 __all__ = [
     "ANALYSED",
@@ -124,7 +125,8 @@ class ImpactWindow:
     status: str
     """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``,
     ``"no baseline"``, ``"negative"``, ``"overrange"``, ``"clipped"``,
-    ``"below min_force"`` or ``"too close"``: those of :data:`ANALYSED` are analysed."""
+    ``"below min_force"``, ``"too close"`` or ``"offset step"`` (a row of
+    :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is)."""
     significance: float = float("nan")
@@ -152,7 +154,11 @@ class Detection:
     local_noise: np.ndarray = None
     """Local noise of the smoothed record at every sample [N]."""
     record: Trace = None
-    """The record as given [N] (each analysed impact fits its own baseline on it)."""
+    """The record as given [N], its offset steps taken off (each analysed impact fits
+    its own baseline on it)."""
+    steps: list = ()
+    """:class:`ImpactWindow` rows of the record's DC offset steps (status ``"offset
+    step"``, ``peak`` the height [N]), in time order."""
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -217,9 +223,54 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     if not isinstance(sensor, Sensor):
         raise ParameterError(f"sensor must be a Sensor; got {type(sensor).__name__}")
     min_force, min_separation = check_limits(min_force, min_separation)
+    stage = _candidates(trace, sensor)
+    mask = np.zeros(len(trace), dtype=bool)
+    for first, last in stage["runs"]:
+        # a run to the record's end is left in: a step there that the running baseline
+        # missed reads as such a run, and the levels on both sides of it are needed
+        if last + stage["scales"]["hold"] < len(trace):
+            mask[first : last + stage["scales"]["hold"] + 1] = True
+    period = stage["scales"]["period"]
+    steps = find_steps(stage["finite"], period, mask)
+    edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
+    known = np.array([s.index for s in steps])
+    steps += [e for e in edges if not known.size or np.abs(known - e.index).min() > period]
+    steps.sort(key=lambda step: step.index)
+    if steps:
+        removed = {
+            "step": "offset_steps_removed",
+            "steps": [(float(trace.t[s.index]), s.height) for s in steps],
+        }
+        trace = trace.derive(removed, values=remove_steps(trace.values, steps))
+        stage = _candidates(trace, sensor)
+    floor, smoothed, ratio, runs = (stage[k] for k in ("floor", "smoothed", "ratio", "runs"))
+    t = smoothed.t
+    windows, previous_end = [], 0
+    for k, (first, last) in enumerate(runs):
+        following = runs[k + 1][0] if k + 1 < len(runs) else t.size
+        stop = min(last + stage["scales"]["hold"] + stage["scales"]["tail"], following, t.size)
+        candidate = (previous_end, first, last, stop)
+        windows += _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
+        previous_end = last + 1
+    windows = _apply_limits(windows, min_force, min_separation)
+    return Detection(
+        floor,
+        windows,
+        stage["signal"],
+        smoothed,
+        stage["lowpassed"],
+        stage["local"],
+        trace,
+        [_step_row(step, t) for step in steps],
+    )
+
+
+def _candidates(trace, sensor):
+    """Noise floor, smoothed residual, its ratio to the local noise, time scales,
+    flagged samples and candidate runs of a record (module steps 1-3)."""
     floor, signal, smoothed, lowpassed, local = noise_floor(trace, sensor)
-    t, z = smoothed.t, np.asarray(smoothed.values)
-    dt = float(t[1] - t[0])
+    z = np.asarray(smoothed.values)
+    dt = float(smoothed.t[1] - smoothed.t[0])
     scales = {
         "period": max(1, round(sensor.period / dt)),
         "hold": _samples(QUIET_PERIODS, sensor, dt, QUIET_MIN_SAMPLES),
@@ -233,16 +284,41 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         "overrange": np.asarray(trace.metadata["overrange"], dtype=int),
         "clipped": clipped_samples(finite, floor.noise),
     }
-    runs = candidate_runs(ratio, scales["hold"], floor.sigmas)
-    windows, previous_end = [], 0
-    for k, (first, last) in enumerate(runs):
-        following = runs[k + 1][0] if k + 1 < len(runs) else t.size
-        stop = min(last + scales["hold"] + scales["tail"], following, t.size)
-        candidate = (previous_end, first, last, stop)
-        windows += _classify(smoothed, ratio, candidate, scales, floor, flagged)
-        previous_end = last + 1
-    windows = _apply_limits(windows, min_force, min_separation)
-    return Detection(floor, windows, signal, smoothed, lowpassed, local, trace)
+    return {
+        "floor": floor,
+        "signal": signal,
+        "smoothed": smoothed,
+        "lowpassed": lowpassed,
+        "local": local,
+        "ratio": ratio,
+        "scales": scales,
+        "finite": finite,
+        "flagged": flagged,
+        "runs": candidate_runs(ratio, scales["hold"], floor.sigmas),
+    }
+
+
+def _step_row(step, t):
+    """The candidates-table row of an offset step (status ``"offset step"``)."""
+    at = float(t[step.index])
+    reason = (
+        f"the level changed by {step.height:.4g} N at {at:.6g} s and stayed "
+        f"({step.significance:.3g} sigma of a level change): a DC offset step, not an "
+        "impact (an impact's signal returns to its level after the contact and the "
+        "sensor's ringing); the record after it was shifted back before impacts were "
+        "looked for"
+    )
+    return ImpactWindow(
+        at,
+        (np.nan, np.nan),
+        step.window[0],
+        step.window[1],
+        at,
+        "offset step",
+        reason,
+        significance=step.significance,
+        peak=step.height,
+    )
 
 
 def _apply_limits(windows, min_force, min_separation):
