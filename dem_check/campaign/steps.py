@@ -245,35 +245,35 @@ def edge_steps(values, runs, period, reach):
     size = WINDOW_PERIODS * period
     found = []
     for first, last in runs:
-        if first > 0 and last + reach >= values.size and first >= period:
-            inside, outside, at, sign = (
-                values[first:],
-                values[max(0, first - size) : first],
-                first,
-                1.0,
-            )
-        elif first == 0 and last + reach < values.size and last + 1 >= period // 2:
-            inside, outside, at, sign = (
-                values[: last + 1],
-                values[last + 1 : last + 1 + size],
-                last + 1,
-                -1.0,
-            )
+        if first >= period and last + reach >= values.size:  # to the record's end
+            at = first + _edge_split(values[first:], values[max(0, first - size) : first], 1)
+            old, new = values[max(0, at - size) : at], values[at:]
+        elif first == 0 and period // 2 <= last + 1 < values.size - reach:  # from its start
+            at = _edge_split(values[: last + 1], values[last + 1 : last + 1 + size], -1)
+            old, new = values[:at], values[at : at + size]
         else:
             continue
-        if inside.size < 2 or outside.size < period:
+        if min(old.size, new.size) < 2 or max(old.size, new.size) < period:
             continue
+        inside, outside = (new, old) if first else (old, new)
         spread = [MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))) for x in (inside, outside)]
-        height = sign * float(np.median(inside) - np.median(outside))
-        if spread[0] > FLAT_RATIO * spread[1] or abs(height) < STEP_SIGMAS * spread[1] / np.sqrt(
-            inside.size
-        ):
-            continue
-        lo, hi = max(0, at - period), min(values.size, at + period)
-        level = float(np.median(outside if sign > 0 else inside))
-        split, _ = _split(values[lo:hi], level, height, spread[1])
-        found.append(OffsetStep(lo + split, height, abs(height) / spread[1], (lo, hi)))
+        height = float(np.median(new) - np.median(old))
+        significance = abs(height) / max(spread[1], np.finfo(float).tiny)
+        flat = spread[0] <= FLAT_RATIO * spread[1]
+        if flat and significance * np.sqrt(inside.size) >= STEP_SIGMAS:
+            found.append(OffsetStep(at, height, significance, (first, last + 1)))
     return found
+
+
+def _edge_split(run, beside, side):
+    """Index in ``run`` where the level of the samples ``beside`` it (before it when
+    ``side`` is 1, after it when -1) gives way to the level of the run's far end."""
+    tail = max(2, run.size // 4)
+    far_level = np.median(run[-tail:] if side > 0 else run[:tail])
+    near_level = float(np.median(beside))
+    if side > 0:
+        return _split(run, near_level, far_level - near_level, np.inf)[0]
+    return _split(run, far_level, near_level - far_level, np.inf)[0]
 
 
 def remove_steps(values, steps):
