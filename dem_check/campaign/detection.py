@@ -224,13 +224,13 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         raise ParameterError(f"sensor must be a Sensor; got {type(sensor).__name__}")
     min_force, min_separation = check_limits(min_force, min_separation)
     stage = _candidates(trace, sensor)
+    period = stage["scales"]["period"]
     mask = np.zeros(len(trace), dtype=bool)
     for first, last in stage["runs"]:
         # a run to the record's end is left in: a step there that the running baseline
         # missed reads as such a run, and the levels on both sides of it are needed
-        if last + stage["scales"]["hold"] < len(trace):
-            mask[first : last + stage["scales"]["hold"] + 1] = True
-    period = stage["scales"]["period"]
+        if last + stage["scales"]["hold"] < len(trace):  # with the lobe's rise before
+            mask[max(0, first - 2 * period) : last + stage["scales"]["hold"] + 1] = True
     steps = find_steps(stage["finite"], period, mask)
     edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
     known = np.array([s.index for s in steps])

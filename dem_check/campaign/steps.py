@@ -62,6 +62,11 @@ before and after a boundary [-]: a step moves the rate at about one window of th
 STEP_SIGMAS = 8.0
 """Smallest level change that is a step, in noise sigmas of the level change [-]."""
 
+LEAST_HEIGHT = 3.0
+"""Smallest step, in noise sigmas of the samples (on first differences) [-]: the level
+change of a long quiet stretch is known far better than that, and an impact's lobe
+just outside the first pass's run or its ringing's mean moves it by that much."""
+
 FLAT_RATIO = 1.5
 """A run at a record's edge is a step when the record's spread within it is at most this
 many times the spread of the quiet samples beside it [-] (an impact's lobe and ringing
@@ -183,7 +188,8 @@ def _one_pass(values, period, masked):
         MAD_TO_SIGMA * np.median(np.abs(np.diff(values))) / np.sqrt(2.0),
     )
     found = []
-    for k in np.flatnonzero((significance >= STEP_SIGMAS) & largest):
+    high = np.abs(changes["height"]) >= LEAST_HEIGHT * noise[1]
+    for k in np.flatnonzero((significance >= STEP_SIGMAS) & largest & high):
         # a step moves the medians for half a window either side of it
         lo, hi = max(k + 1 - size // 2, 0), min(k + 1 + size // 2, levels.size - 1)
         window = (int(firsts[lo]), int(stops[hi]))
