@@ -97,7 +97,8 @@ BASELINE_MIN_SAMPLES = 16
 
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the ringing envelope to be followed (overlap
-check, step 5) [-]; a coarser record cannot show the ringing grow."""
+check, step 5) and for offset steps to be looked for (step 0) [-]; a coarser record
+cannot show the ringing grow, nor average it out over a period."""
 
 GROWTH_FACTOR = 1.5
 """Largest growth of the ringing envelope from one sensor period to the next that is
@@ -231,11 +232,13 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         # missed reads as such a run, and the levels on both sides of it are needed
         if last + stage["scales"]["hold"] < len(trace):  # with the lobe's rise before
             mask[max(0, first - 2 * period) : last + stage["scales"]["hold"] + 1] = True
-    steps = find_steps(stage["finite"], period, mask)
-    edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
-    known = np.array([s.index for s in steps])
-    steps += [e for e in edges if not known.size or np.abs(known - e.index).min() > period]
-    steps.sort(key=lambda step: step.index)
+    steps = []
+    if period >= RESOLVED_PERIOD_SAMPLES:  # a period's mean averages its ringing out
+        steps = find_steps(stage["finite"], period, mask)
+        edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
+        known = np.array([s.index for s in steps])
+        steps += [e for e in edges if not known.size or np.abs(known - e.index).min() > period]
+        steps.sort(key=lambda step: step.index)
     if steps:
         removed = {
             "step": "offset_steps_removed",

@@ -229,9 +229,9 @@ def find_steps(values, period, masked):
 
 
 def edge_steps(values, runs, period, reach):
-    """Steps that the first pass read as a run to the record's last sample (or from its
-    first): the record within the run stays at one level, as flat as the noise before
-    it (after it), where an impact's main lobe and ringing are not.
+    """Steps that the first pass read as a run to the record's last sample: from the
+    step on, the record stays at one level, as flat as the noise before it, where an
+    impact's main lobe and ringing are not.
 
     Parameters
     ----------
@@ -251,35 +251,22 @@ def edge_steps(values, runs, period, reach):
     size = WINDOW_PERIODS * period
     found = []
     for first, last in runs:
-        if first >= period and last + reach >= values.size:  # to the record's end
-            at = first + _edge_split(values[first:], values[max(0, first - size) : first], 1)
-            old, new = values[max(0, at - size) : at], values[at:]
-        elif first == 0 and period // 2 <= last + 1 < values.size - reach:  # from its start
-            at = _edge_split(values[: last + 1], values[last + 1 : last + 1 + size], -1)
-            old, new = values[:at], values[at : at + size]
-        else:
+        if first < period or last + reach < values.size:  # not a run to the end
             continue
-        if min(old.size, new.size) < 2 or max(old.size, new.size) < period:
+        run, before = values[first:], values[first - min(first, size) : first]
+        tail = np.median(run[-max(2, run.size // 4) :])  # the level at the end
+        level = float(np.median(before))
+        at = first + _split(run, level, tail - level, np.inf)[0]
+        new, old = values[at:], values[max(0, at - size) : at]
+        if new.size < 2 or old.size < period:
             continue
-        inside, outside = (new, old) if first else (old, new)
-        spread = [MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))) for x in (inside, outside)]
+        spread = [MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))) for x in (new, old)]
         height = float(np.median(new) - np.median(old))
         significance = abs(height) / max(spread[1], np.finfo(float).tiny)
         flat = spread[0] <= FLAT_RATIO * spread[1]
-        if flat and significance * np.sqrt(inside.size) >= STEP_SIGMAS:
-            found.append(OffsetStep(at, height, significance, (first, last + 1)))
+        if flat and significance * np.sqrt(new.size) >= STEP_SIGMAS:
+            found.append(OffsetStep(at, height, significance, (first, values.size)))
     return found
-
-
-def _edge_split(run, beside, side):
-    """Index in ``run`` where the level of the samples ``beside`` it (before it when
-    ``side`` is 1, after it when -1) gives way to the level of the run's far end."""
-    tail = max(2, run.size // 4)
-    far_level = np.median(run[-tail:] if side > 0 else run[:tail])
-    near_level = float(np.median(beside))
-    if side > 0:
-        return _split(run, near_level, far_level - near_level, np.inf)[0]
-    return _split(run, far_level, near_level - far_level, np.inf)[0]
 
 
 def remove_steps(values, steps):
