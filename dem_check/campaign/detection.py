@@ -236,8 +236,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     if period >= RESOLVED_PERIOD_SAMPLES:  # a period's mean averages its ringing out
         steps = find_steps(stage["finite"], period, mask)
         edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
-        known = np.array([s.index for s in steps])
-        steps += [e for e in edges if not known.size or np.abs(known - e.index).min() > period]
+        # an edge step's height is read on all the samples after it: it replaces a step
+        # found on the period means' shortened windows there
+        near = [e.window[0] - period for e in edges]
+        steps = [s for s in steps if all(s.index < at for at in near)] + edges
         steps.sort(key=lambda step: step.index)
     if steps:
         removed = {

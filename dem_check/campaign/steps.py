@@ -37,7 +37,7 @@ impacts are then found on what is left; each is listed as a row with status
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
+from scipy.ndimage import maximum_filter1d, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA
 
@@ -107,6 +107,18 @@ def _window_medians(levels, size):
     return np.nanmedian(before, axis=1), np.nanmedian(after, axis=1), counts
 
 
+def _running_nanmedian(values, half):
+    """Median of the finite values within ``half`` places either side of each (0 where
+    there is none): rates read on windows cut short at the record's edges, whose short
+    span inflates a step's rate, are left out as nan."""
+    pad = np.full(half, np.nan)
+    windows = np.lib.stride_tricks.sliding_window_view(np.r_[pad, values, pad], 2 * half + 1)
+    finite = np.isfinite(windows).any(axis=1)
+    out = np.zeros(values.size)
+    out[finite] = np.nanmedian(windows[finite], axis=1)
+    return out
+
+
 def _block_levels(values, period, masked):
     """Mean of each block of ``period`` samples left after the mask, with its first
     sample index and centre index."""
@@ -135,10 +147,10 @@ def _level_changes(levels, firsts, stops):
     change = after - before
     # the median rate of change over DRIFT_WINDOWS windows either side: a step raises
     # the rate at fewer than a window of boundaries, the drift at all of them
-    slope = median_filter(change / span, size=2 * DRIFT_WINDOWS * size + 1, mode="nearest")
+    full = (n_before == size) & (n_after == size)
+    slope = _running_nanmedian(np.where(full, change / span, np.nan), DRIFT_WINDOWS * size)
     corrected = change - slope * span
     scale = np.sqrt((1.0 / n_before + 1.0 / n_after) * size / 2.0)
-    full = (n_before == size) & (n_after == size)
     reference = corrected[full] if full.sum() >= 4 * size else corrected
     spread = MAD_TO_SIGMA * np.median(np.abs(reference - np.median(reference)))
     significance = np.abs(corrected) / np.maximum(spread * scale, np.finfo(float).tiny)
@@ -253,10 +265,12 @@ def edge_steps(values, runs, period, reach):
     for first, last in runs:
         if first < period or last + reach < values.size:  # not a run to the end
             continue
-        run, before = values[first:], values[first - min(first, size) : first]
-        tail = np.median(run[-max(2, run.size // 4) :])  # the level at the end
+        # the running baseline may follow a step for a while: the run can start late
+        start = max(period, first - size // 2)
+        run, before = values[start:], values[start - min(start, size) : start]
+        tail = np.median(values[first:][-max(2, (values.size - first) // 4) :])  # end level
         level = float(np.median(before))
-        at = first + _split(run, level, tail - level, np.inf)[0]
+        at = start + _split(run, level, tail - level, np.inf)[0]
         new, old = values[at:], values[max(0, at - size) : at]
         if new.size < 2 or old.size < period:
             continue
