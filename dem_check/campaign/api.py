@@ -136,6 +136,7 @@ def _impact_table(rows):
 def _file_row(path, status, reason, trace=None, floor=None, found=()):
     row = dict.fromkeys(_FILE_COLUMNS)
     row.update(file=path, status=status, reason=reason, impacts=len(found))
+    row["impacts"] = sum(r["status"] != "offset step" for r in found)
     row["impacts_ok"] = sum(r["status"] in detection.ANALYSED for r in found)
     if trace is not None:
         dt = float(trace.t[1] - trace.t[0]) if len(trace) > 1 else float("nan")
@@ -216,8 +217,12 @@ def _analyse_file(path, options, timings, progress):
             row = window_row(window)
             row["significance [-]"] = window.significance
         rows.append({"file": path, "impact": k, **row})
+    for k, step in enumerate(found.steps, start=len(found.impacts)):  # listed, not analysed
+        rows.append(
+            {"file": path, "impact": k, **window_row(step), "significance [-]": step.significance}
+        )
     timings["analyse"] += time.perf_counter() - started
-    if rows:
+    if any(r["status"] != "offset step" for r in rows):
         status, reason = "ok", ""
     else:
         status = "no impact"
