@@ -6,9 +6,10 @@ sensor, contact 100 us; white noise 0.03 N, 1 % of the 3 N peak at 2 m/s) at 1, 
 every other effect of ``Effects.everything`` on (1/f noise as large as the white noise,
 hum of 1.5 sigma, crosstalk of 2 %, a 16-bit ADC clipping at 1.2 times the largest
 peak plus the drift and the steps), drift of 20-50 noise sigmas (10 when the record
-starts at its impact: the known limit of docs/campaign.md) and **two offset steps** of 3-30 noise sigmas, up or down,
-each at a random place of one kind: anywhere, within 0.2 ms of the record's start or
-end, up to 0.3 ms before an impact, or up to 0.3 ms after one (in its ringing).
+starts at its impact: the known limit of docs/campaign.md) and **two offset steps** of
+3-30 noise sigmas, up or down, each at a random place of one kind: anywhere, within
+0.2 ms of the record's start or end, up to 0.3 ms before an impact, or up to 0.3 ms
+after one (in its ringing).
 
 Counted, as ``tests/dem_check/campaign/test_realistic_detection.py`` asserts them:
 *invented* (an impact row more than 60 us from every true onset), *missed* (a true

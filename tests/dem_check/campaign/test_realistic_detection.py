@@ -16,11 +16,11 @@ imported, so a full run and a run of this file draw differently) drew a 0.25 m/s
 (12 sigmas of random noise) 3.9 ms after a 2 m/s one at 5 MHz with crosstalk of 1.6 %:
 the ringing there is up to 0.12 N (3.5 noise sigmas), and it was missed.
 
-Offset steps are left out of the random sweep: a step a few tenths of a millisecond
-before a weak impact can still displace its onset by more than :data:`MATCH`
-(``docs/campaign.md``); steps alone, and steps in the record's first and last block
-(which read as impacts before ``running_baseline`` gave those blocks the level of the
-record's first and last samples), are tested below. Bounces come 1.5-3 ms after their
+Offset steps are in the sweep (0-2 per record, 3-30 noise sigmas, up or down, within
+0.2 ms of the record's end or anywhere at least :data:`STEP_CLEAR` from its start, the
+impacts and each other): each step row must lie within :data:`MATCH` of a true step.
+Closer to the start or to another step, a step still invents an impact (pinned below;
+the hard mix of ``benchmarks/bench_steps.py``, docs/campaign.md). Bounces come 1.5-3 ms after their
 impact: a weak one (13 sigma) 1 ms after a 2.5 m/s impact was missed, merged into the
 run of the first impact's ringing without the envelope growing enough to flag an
 overlap (known limit, ``docs/campaign.md``).
