@@ -29,6 +29,7 @@ import numpy as np
 import contactlab as cl
 from contactlab.config import load_config
 from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign.records import ringing_at_onsets
 
 ROOT = Path(__file__).resolve().parents[1]
 NOISE = 0.03  # [N]
@@ -57,7 +58,6 @@ def _step_time(rng, kind, onsets, length):
 
 def hard_mix(seed):
     """One record of the hard mix (module docstring) and its effects."""
-    grain, sensor, law = hard()
     rng = np.random.default_rng(seed)
     rate = float(rng.choice([1e6, 2e6, 5e6]))
     count = int(rng.integers(1, 5))
@@ -88,32 +88,9 @@ def hard_mix(seed):
         offsets=offsets,
         bounce_delay=delay,
     )
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        velocities,
-        onsets,
-        length=length,
-        sample_rate=rate,
-        noise=NOISE,
-        effects=effects,
-        seed=seed,
-    )
+    sampling = {"length": length, "sample_rate": rate, "noise": NOISE}
+    record = realistic_record(*hard(), velocities, onsets, **sampling, effects=effects, seed=seed)
     return record, effects
-
-
-def ringing(truth, effects):
-    """Largest amplitude of the structure's ringing (crosstalk of the impacts before) at
-    each true onset [N]: every mode at its largest initial weight, decayed since."""
-    onsets, peaks = truth["onset [s]"].to_numpy(), truth["peak_sensor_force [N]"].to_numpy()
-    out = np.zeros(onsets.size)
-    for k, at in enumerate(onsets):
-        since = at - onsets[onsets < at]
-        for frequency, zeta in effects.plate_modes:
-            decay = np.exp(-zeta * 2.0 * np.pi * frequency * since)
-            out[k] += effects.crosstalk * float(np.sum(peaks[onsets < at] * decay))
-    return out
 
 
 def judge(record, effects, found):
@@ -129,7 +106,7 @@ def judge(record, effects, found):
         if near > MATCH:
             wrong.append(("invented", f"{window.status} at {window.onset:.6g} s"))
     onsets = np.array([w.onset for w in found.impacts])
-    structure = ringing(record.truth, effects)
+    structure = ringing_at_onsets(record.truth, effects)
     for (_, row), ring in zip(record.truth.iterrows(), structure, strict=True):
         noise = np.hypot(record.noise, ring / np.sqrt(2.0))
         if row["peak_sensor_force [N]"] >= CLEAR * noise:

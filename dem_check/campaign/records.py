@@ -41,7 +41,7 @@ from contactlab.traces import Trace
 from contactlab.validation import check_count, check_number, check_samples
 from dem_check.campaign.synthetic import synthetic_record
 
-__all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record"]
+__all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record", "ringing_at_onsets"]
 
 DRIFT_BAND = (0.2, 5.0)
 """Frequencies of the drift's sines [Hz]: thermal and charge-amplifier wander."""
@@ -350,16 +350,8 @@ def realistic_record(
         velocities = np.concatenate([velocities, effects.bounce * velocities[inside]])
         order = np.argsort(onsets, kind="stable")
         onsets, velocities = onsets[order], velocities[order]
-    clean, truth = synthetic_record(
-        grain,
-        sensor,
-        law,
-        velocities,
-        onsets,
-        length=length,
-        sample_rate=sample_rate,
-        noise=0.0,
-    )
+    sampling = {"length": length, "sample_rate": sample_rate}
+    clean, truth = synthetic_record(grain, sensor, law, velocities, onsets, **sampling, noise=0.0)
     rng = np.random.default_rng(check_count("seed", seed, low=0))
     t = np.asarray(clean.t)
     values, rail, step_times = add_effects(t, np.asarray(clean.values), effects, truth, noise, rng)
@@ -378,3 +370,28 @@ def realistic_record(
     truth["onset [s]"] = truth["onset [s]"] - shift
     random_noise = math.sqrt(noise**2 + effects.pink**2 + lsb**2 / 12.0)
     return RealisticRecord(trace, truth, random_noise, step_times - shift)
+
+
+def ringing_at_onsets(truth, effects):
+    """Largest amplitude of the structure's ringing (the crosstalk of the impacts before)
+    at each true onset [N]: every plate mode at its largest initial weight, decayed
+    since; the scale, with the random noise, of how clear an impact is.
+
+    Parameters
+    ----------
+    truth : pandas.DataFrame
+        ``onset [s]`` and ``peak_sensor_force [N]`` of each impact, in time order.
+    effects : Effects
+
+    Returns
+    -------
+    numpy.ndarray
+    """
+    onsets, peaks = truth["onset [s]"].to_numpy(), truth["peak_sensor_force [N]"].to_numpy()
+    out = np.zeros(onsets.size)
+    for k, at in enumerate(onsets):
+        since = at - onsets[onsets < at]
+        for frequency, zeta in effects.plate_modes:
+            decay = np.exp(-zeta * 2.0 * np.pi * frequency * since)
+            out[k] += effects.crosstalk * float(np.sum(peaks[onsets < at] * decay))
+    return out

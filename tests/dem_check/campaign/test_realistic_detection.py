@@ -35,6 +35,7 @@ from hypothesis import strategies as st
 
 from contactlab.traces import Trace
 from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign.records import ringing_at_onsets
 
 NOISE = 0.03
 """White noise of the records [N], 1 % of the hard grain's 3 N peak at 2 m/s."""
@@ -107,35 +108,11 @@ def scenarios(draw):
     return _scenario(draw)
 
 
-def _ringing(truth, effects):
-    """Largest amplitude of the structure's ringing (crosstalk of the impacts before) at
-    each true onset [N]: every mode at its largest initial weight, decayed since."""
-    onsets, peaks = truth["onset [s]"].to_numpy(), truth["peak_sensor_force [N]"].to_numpy()
-    out = np.zeros(onsets.size)
-    for k, at in enumerate(onsets):
-        since = at - onsets[onsets < at]
-        for frequency, zeta in effects.plate_modes:
-            decay = np.exp(-zeta * 2.0 * np.pi * frequency * since)
-            out[k] += effects.crosstalk * float(np.sum(peaks[onsets < at] * decay))
-    return out
-
-
 def _record(hard_setup, velocities, onsets, *, length, seed, effects, sample_rate=2e6):
     """A realistic record of the hard grain's impacts at ``onsets`` [s] with ``velocities``
     [m/s], white noise NOISE [N] plus ``effects``."""
-    grain, sensor, law = hard_setup
-    return realistic_record(
-        grain,
-        sensor,
-        law,
-        velocities,
-        onsets,
-        length=length,
-        sample_rate=sample_rate,
-        noise=NOISE,
-        effects=effects,
-        seed=seed,
-    )
+    sampling = {"length": length, "sample_rate": sample_rate, "noise": NOISE, "seed": seed}
+    return realistic_record(*hard_setup, velocities, onsets, **sampling, effects=effects)
 
 
 def _check(record, sensor, effects):
@@ -151,7 +128,7 @@ def _check(record, sensor, effects):
     # the structure's ringing is local noise to the detector (it raises its own
     # threshold, by design): an impact must be CLEAR sigmas above the random noise and
     # that ringing's rms together
-    ringing = _ringing(record.truth, effects)
+    ringing = ringing_at_onsets(record.truth, effects)
     for (_, row), structure in zip(record.truth.iterrows(), ringing, strict=True):
         noise = np.hypot(record.noise, structure / np.sqrt(2.0))
         if row["peak_sensor_force [N]"] >= CLEAR * noise:
