@@ -115,6 +115,11 @@ def _record(hard_setup, velocities, onsets, *, length, seed, effects, sample_rat
     return realistic_record(*hard_setup, velocities, onsets, **sampling, effects=effects)
 
 
+def _pair(hard_setup, onsets, length, effects, seed):
+    """A 2 m/s and a 1 m/s impact at ``onsets`` [s] (:func:`_record` at 2 MHz)."""
+    return _record(hard_setup, [2.0, 1.0], onsets, length=length, effects=effects, seed=seed)
+
+
 def _check(record, sensor, effects):
     found = find_impacts(record.trace, sensor)
     for step in found.steps:  # a step row is a true step, placed to within MATCH
@@ -215,14 +220,7 @@ def test_an_offset_step_in_the_first_or_last_block_is_no_impact(hard_setup, at, 
     # blocks are 1.6 ms (64 periods of the 40 kHz sensor): the steps lie in the record's
     # first block (before and after its middle) and in its last block
     sensor = hard_setup[1]
-    record = _record(
-        hard_setup,
-        [2.0, 1.0],
-        [4e-3, 9e-3],
-        length=14.5e-3,
-        effects=Effects(pink=NOISE, hum=NOISE),
-        seed=5,
-    )
+    record = _pair(hard_setup, [4e-3, 9e-3], 14.5e-3, Effects(pink=NOISE, hum=NOISE), seed=5)
     trace = record.trace
     stepped = Trace(trace.t, trace.values + sign * 10 * NOISE * (trace.t >= at), "N", {})
     found = find_impacts(stepped, sensor)
@@ -239,7 +237,7 @@ def _stepped(hard_setup, offsets):
     """Impacts at 1 and 4 ms (2 and 1 m/s) with ``offsets`` on :data:`STEPPED`, and the
     same record with the true steps taken off."""
     effects = dataclasses.replace(STEPPED, offsets=offsets)
-    record = _record(hard_setup, [2.0, 1.0], [1e-3, 4e-3], length=10e-3, effects=effects, seed=6)
+    record = _pair(hard_setup, [1e-3, 4e-3], 10e-3, effects, seed=6)
     t, values = record.trace.t, np.array(record.trace.values)
     for at, height in offsets:
         values[t >= at] -= height
@@ -311,14 +309,7 @@ def test_an_impact_at_the_records_first_sample_is_analysed(hard_setup):
 
 def test_a_clipped_impact_is_flagged_with_its_peak_as_a_lower_bound(hard_setup):
     sensor = hard_setup[1]
-    record = _record(
-        hard_setup,
-        [2.0, 1.0],
-        [1e-3, 6e-3],
-        length=9e-3,
-        effects=Effects(full_scale=2.0, bits=16),
-        seed=2,
-    )
+    record = _pair(hard_setup, [1e-3, 6e-3], 9e-3, Effects(full_scale=2.0, bits=16), seed=2)
     first, second = find_impacts(record.trace, sensor).impacts
     assert first.status == "clipped" and "lower bound" in first.reason
     assert first.peak < record.truth["peak_sensor_force [N]"][0]  # the true peak is above the rail
