@@ -201,7 +201,11 @@ def _one_pass(values, period, masked):
     )
     found = []
     high = np.abs(changes["height"]) >= LEAST_HEIGHT * noise[1]
+    chosen = []  # medians tie: equal largest changes at neighbouring boundaries are one
     for k in np.flatnonzero((significance >= STEP_SIGMAS) & largest & high):
+        if not chosen or k - chosen[-1] > size:
+            chosen.append(k)
+    for k in chosen:
         # a step moves the medians for half a window either side of it
         lo, hi = max(k + 1 - size // 2, 0), min(k + 1 + size // 2, levels.size - 1)
         window = (int(firsts[lo]), int(stops[hi]))
