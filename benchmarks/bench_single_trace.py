@@ -22,7 +22,12 @@ Several noise seeds per line: the largest error over them is printed (``docs/cam
 ``contactlab.inverse.pulse.pulse_baseline``'s ``crosstalk`` option switched off for the
 run, which the public functions do not expose).
 
-Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N] [--no-crosstalk]``
+``--noise-model white`` measures the reconstruction with the white-noise model it had
+before the coloured-noise one (``contactlab.inverse.reconstruct.DEFAULT_NOISE_MODEL``);
+``--effect NAME`` (repeatable) runs those lines only.
+
+Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N] [--no-crosstalk]
+[--noise-model white] [--effect NAME]``
 """
 
 import argparse
@@ -33,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 import contactlab as cl
+import contactlab.inverse.reconstruct as reconstruct_module
 from contactlab.compare import compare_trace
 from contactlab.config import load_config
 from contactlab.errors import ParameterError
@@ -47,6 +53,7 @@ from test_realistic_single_trace import NOISE, _record  # noqa: E402
 
 EFFECTS = {
     "white noise": Effects(),
+    "1/f noise 0.3 sigma": Effects(pink=0.3 * NOISE),
     "1/f noise 1 sigma": Effects(pink=NOISE),
     "hum 1.5 sigma": Effects(hum=1.5 * NOISE),
     "drift 20 sigma": Effects(drift=20 * NOISE),
@@ -91,6 +98,7 @@ def reconstruct(config, law, rec):
     return (
         r.metrics.peak / truth["peak_contact_force [N]"] - 1.0,
         r.metrics.duration / truth["contact_time [s]"] - 1.0,
+        r.metrics.impulse / truth["impulse [N*s]"] - 1.0,
     ), getattr(r, "status", "")
 
 
@@ -129,17 +137,29 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=4, help="noise seeds per line")
     parser.add_argument("--no-crosstalk", action="store_true", help="keep the crosstalk")
+    parser.add_argument(
+        "--noise-model",
+        choices=["ar", "white"],
+        default=reconstruct_module.DEFAULT_NOISE_MODEL,
+        help="the reconstruction's noise model (white: before the coloured-noise model)",
+    )
+    parser.add_argument("--effect", action="append", choices=list(EFFECTS))
     args = parser.parse_args()
+    reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
     if args.no_crosstalk:
         pulse_baseline.__kwdefaults__["crosstalk"] = False
     config, law = setup()
     print(
-        "| effect, impact | identify-sensor: f1, zeta | reconstruct: peak, contact time "
+        f"noise model {args.noise_model}\n"
+        "| effect, impact | identify-sensor: f1, zeta | reconstruct: peak, contact time, "
+        "impulse "
         "| compare: peak signal |"
     )
     print("|---|---|---|---|")
     for onset_name, onset in ONSETS.items():
         for name, effects in EFFECTS.items():
+            if args.effect and name not in args.effect:
+                continue
             line(f"{name}, {onset_name}", config, law, effects, onset, args.seeds)
 
 
