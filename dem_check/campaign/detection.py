@@ -39,6 +39,7 @@ in newtons:
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -61,6 +62,7 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
+from dem_check.campaign.onsets import first_touches
 
 __all__ = [
     "ANALYSED",
@@ -187,7 +189,7 @@ def check_limits(min_force, min_separation):
     return min_force, min_separation
 
 
-def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
+def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onsets=True):
     """Every impact in a record, with its onset, local baseline, significance and status.
 
     Parameters
@@ -203,6 +205,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     min_separation : float, optional
         Shortest time between two impacts' onsets [s]; a candidate closer to the one
         before gets status ``"too close"``.
+    fit_onsets : bool, default True
+        Give each analysed impact the onset of a fit of the sensor's response to its
+        rise (:mod:`dem_check.campaign.onsets`); ``False`` keeps the smoothed signal's
+        crossing of :data:`ONSET_SIGMAS` (step 4), which lags the first touch.
 
     Returns
     -------
@@ -242,7 +248,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         windows += _classify(smoothed, ratio, candidate, scales, floor, flagged)
         previous_end = last + 1
     windows = _apply_limits(windows, min_force, min_separation)
-    return Detection(floor, windows, signal, smoothed, lowpassed, local, trace)
+    found = Detection(floor, windows, signal, smoothed, lowpassed, local, trace)
+    if not fit_onsets or scales["period"] < RESOLVED_PERIOD_SAMPLES:
+        return found  # a sensor period of a few samples holds no rise to fit
+    return dataclasses.replace(found, impacts=first_touches(found, sensor, ANALYSED))
 
 
 def _apply_limits(windows, min_force, min_separation):
