@@ -80,8 +80,6 @@ class Rise(NamedTuple):
     peak."""
     noise: float
     """The record's noise standard deviation [N] (scales the chi-squared)."""
-    earliest: float = -math.inf
-    """No onset before this time [s] (the end of the impact's quiet baseline)."""
 
 
 @dataclass(frozen=True)
@@ -157,7 +155,7 @@ def fit_onset(rise, sensor, exponent, bend=None):
     rough, end = rise.rough, rise.end
     dt = float(t[1] - t[0])
     period = sensor.period
-    lo = max(rough - SEARCH_PERIODS * period, rise.earliest)
+    lo = rough - SEARCH_PERIODS * period
     inside = (t >= lo - BEFORE_PERIODS * period) & (t <= end)
     if inside.sum() < 8 or not end > rough:
         raise ParameterError(f"the rise at {rough:.6g} s has too few samples to fit its onset")
@@ -177,7 +175,9 @@ def fit_onset(rise, sensor, exponent, bend=None):
     costs = np.array([cost(t0) for t0 in grid])
     k = int(np.argmin(costs))
     bracket = (grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)])
-    best = optimize.minimize_scalar(cost, bounds=bracket, method="bounded")
+    best = optimize.minimize_scalar(
+        cost, bounds=bracket, method="bounded", options={"xatol": 1e-3 * dt}
+    )
     onset = float(best.x) if best.fun <= costs[k] else float(grid[k])
     coefficients, rss = _solve(onset, tw, yw, centre, period, responses, bend)
     ratio = bend if bend is not None else coefficients[3] / coefficients[2]

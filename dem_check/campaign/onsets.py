@@ -34,8 +34,7 @@ def _rise(detection, window, sensor):
     reached = (t >= window.onset) & (smooth >= RISE_FRACTION * window.peak)
     if not reached.any():
         raise ParameterError(f"the impact at {window.onset:.6g} s does not rise to its peak")
-    earliest = window.start if window.start is not None else window.baseline_window[1]
-    return Rise(t, y, window.onset, float(t[int(np.argmax(reached))]), noise, earliest)
+    return Rise(t, y, window.onset, float(t[int(np.argmax(reached))]), noise)
 
 
 def record_onsets(detection, windows, sensor):
