@@ -28,7 +28,9 @@ in newtons:
    impact with fewer than :data:`BASELINE_MIN_SAMPLES` quiet samples before it (a
    record that starts at the hit, or an impact right after another's ringing) takes its
    baseline from the quiet samples after its ringing decayed: status
-   ``"short pre-trigger"``, analysed.
+   ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
+   (:mod:`dem_check.campaign.onsets`: the sensor's response to the force's start), which
+   the crossing lags.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
