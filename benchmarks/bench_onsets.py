@@ -15,50 +15,34 @@ Run: ``.venv/bin/python benchmarks/bench_onsets.py [--all] [--records N]``
 """
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 import contactlab as cl
-from contactlab.config import load_config
 from contactlab.inverse.onset import BENDS, EXPONENTS
-from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign import find_impacts
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.onsets import record_onsets
 
 ROOT = Path(__file__).resolve().parents[1]
-NOISE = 0.03  # [N] white noise, 1 % of the hard grain's 3 N peak at 2 m/s
+sys.path.insert(0, str(ROOT / "benchmarks"))
+import bench_realistic  # noqa: E402  (the records of bench_realistic.py --accuracy)
+
 MATCH = 60e-6  # [s] a detected onset this close to a true one is that impact
 
 
 def setup():
-    config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
-    laws = {
-        "linear": cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5),
-        "hertz": cl.laws.Hertz(k_hertz=1.5e6),
-    }
-    return config.grain, config.sensor, laws
+    _, sensor, linear = bench_realistic.hard()
+    return sensor, {"linear": linear, "hertz": cl.laws.Hertz(k_hertz=1.5e6)}
 
 
-def records(grain, sensor, law, rate, seeds, everything):
-    for seed in seeds:
-        rng = np.random.default_rng(seed)
-        onsets = 1e-3 + np.cumsum(rng.uniform(4e-3, 7e-3, 4)) - 4e-3
-        changes = {} if everything else {"crosstalk": 0.0, "full_scale": None, "steps": 0}
-        effects = Effects.everything(NOISE, 3.0, **changes)
-        yield realistic_record(
-            grain,
-            sensor,
-            law,
-            rng.uniform(0.5, 2.5, 4),
-            onsets,
-            length=onsets[-1] + 6e-3,
-            sample_rate=rate,
-            noise=NOISE,
-            effects=effects,
-            seed=seed,
-        )
+def records(law, rate, seeds, everything):
+    # Effects.everything's levels: a 16-bit ADC at 1.2 times the 3 N peak, two 8-sigma steps
+    changes = {"full_scale": 3.6, "steps": 2} if everything else {"crosstalk": 0.0}
+    return bench_realistic._records(rate, seeds, changes, law)
 
 
 def errors(record, sensor, rate):
@@ -89,11 +73,11 @@ def main():
     parser.add_argument("--all", action="store_true", help="crosstalk, clipping, steps on")
     parser.add_argument("--records", type=int, default=4)
     args = parser.parse_args()
-    grain, sensor, laws = setup()
+    sensor, laws = setup()
     rows = []
     for name, law in laws.items():
         for rate in (1e6, 2e6, 5e6):
-            for record in records(grain, sensor, law, rate, range(args.records), args.all):
+            for record in records(law, rate, range(args.records), args.all):
                 for row in errors(record, sensor, rate):
                     rows.append({"law": name, "rate [MHz]": rate / 1e6, **row})
     table = pd.DataFrame(rows)
@@ -102,12 +86,17 @@ def main():
     columns = ["crossing", "record"]
     grouped = table.groupby(keys, observed=True)[columns]
     print(f"exponents tried: {EXPONENTS}, bends {BENDS}")
-    print("largest |error| [samples]:")
     largest = grouped.agg(lambda v: np.nanmax(np.abs(v)))
-    largest["impacts"] = table.groupby(keys, observed=True).size()
-    print(largest.round(2).to_string())
-    print("95th percentile |error| [samples]:")
-    print(grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95)).round(2).to_string())
+    high = grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95))
+    megahertz = largest.index.get_level_values("rate [MHz]").to_numpy()[:, None]
+    for name, worst in (("largest", largest), ("95th percentile", high)):
+        print(f"{name} |error| [samples]:")
+        shown = worst.copy()
+        if name == "largest":
+            shown["impacts"] = table.groupby(keys, observed=True).size()
+        print(shown.round(2).to_string())
+        print(f"{name} |error| [us]:")
+        print((worst / megahertz).round(2).to_string())
     print("mean error [samples] (sign: late > 0):")
     print(grouped.mean().round(2).to_string())
     print("record exponents and bends chosen:")
