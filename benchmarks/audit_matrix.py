@@ -89,17 +89,26 @@ class Worst:
             print("   ", case, lines)
 
 
-def run_oblique(examples, seed_value):
-    worst, shortfall = Worst(), [0.0, None]
+def _sweep(worst, cases, simulate, key, then, examples, seed_value):
+    """Run ``examples`` hypothesis cases of the strategy ``cases`` through ``simulate``:
+    each audit goes into ``worst`` under ``key(case)``, then ``then(case, result)``."""
 
     @seed(seed_value)
     @settings(**SETTINGS, max_examples=examples)
-    @given(case=oblique_impacts())
+    @given(case=cases)
     def one(case):
-        res = worst.solve(cl.simulate_oblique, case)
-        if res is None:
-            return
-        worst.add(res.audit(), (_name(case["normal_law"]), _name(case["tangential_law"])), case)
+        res = worst.solve(simulate, case)
+        if res is not None:
+            worst.add(res.audit(), key(case), case)
+            then(case, res)
+
+    one()
+
+
+def run_oblique(examples, seed_value):
+    worst, shortfall = Worst(), [0.0, None]
+
+    def slide(case, res):
         mu = case["tangential_law"].friction
         slides = (
             mu >= MIN_FRICTION
@@ -119,7 +128,10 @@ def run_oblique(examples, seed_value):
             if gap > shortfall[0]:
                 shortfall[:] = [gap, case]
 
-    one()
+    def key(case):
+        return _name(case["normal_law"]), _name(case["tangential_law"])
+
+    _sweep(worst, oblique_impacts(), cl.simulate_oblique, key, slide, examples, seed_value)
     return worst, shortfall
 
 
@@ -172,21 +184,17 @@ class Rebounds:
 def run_impact(examples, seed_value):
     worst, rebounds = Worst(), Rebounds()
 
-    @seed(seed_value)
-    @settings(**SETTINGS, max_examples=examples)
-    @given(case=normal_impacts())
-    def one(case):
-        res = worst.solve(cl.simulate_impact, case)
-        if res is None:
-            return
-        worst.add(res.audit(), (type(case["law"]).__name__,), case)
+    def rebound(case, res):
         law = case["law"]
         # the exact method's laws through DOP853 too: the Python piece path with exits
         methods = ["auto"] if law.prescribed or not law.piecewise_linear else ["auto", "adaptive"]
         for method in methods:
             rebounds.add(case, method)
 
-    one()
+    def key(case):
+        return (type(case["law"]).__name__,)
+
+    _sweep(worst, normal_impacts(), cl.simulate_impact, key, rebound, examples, seed_value)
     return worst, rebounds
 
 

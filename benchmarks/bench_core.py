@@ -47,9 +47,8 @@ HEADLINE = (
 def _setup():
     import contactlab as cl
 
-    grain = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-    sensor = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
-    return cl, grain, sensor
+    paper = cl.study.StudySetup.paper()  # the paper's grain and 40 kHz disc sensor
+    return cl, paper.grain, paper.sensor
 
 
 def _read(res):

@@ -145,8 +145,8 @@ def _export(grain, laws):
 
 
 def main():
-    grain = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-    disc = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
+    paper = cl.study.StudySetup.paper()  # the paper's grain and 40 kHz disc sensor
+    grain, disc = paper.grain, paper.sensor
     sensors = {"rigid": cl.Sensor.rigid(), "40 kHz": disc}
     laws = _laws(grain)
     np.set_printoptions(precision=3)

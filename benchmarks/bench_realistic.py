@@ -16,9 +16,11 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   off (docs/campaign.md);
   the largest and 95th-percentile errors of the analysed impacts against the model's
   truth, by significance (peak over noise), and the count of impacts found, missed and
-  invented.
+  invented. ``--noise-model white``: the reconstruction with the white-noise model it had
+  before the coloured-noise one.
 
-Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]``
+Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
+[--configuration NAME] [--noise-model white]``
 """
 
 import argparse
@@ -30,6 +32,7 @@ import numpy as np
 import pandas as pd
 
 import contactlab as cl
+import contactlab.inverse.reconstruct as reconstruct_module
 from contactlab.config import load_config
 from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
@@ -200,7 +203,15 @@ def main():
     parser.add_argument(
         "--no-crosstalk", action="store_true", help="accuracy without the crosstalk removal"
     )
+    parser.add_argument(
+        "--noise-model",
+        choices=["ar", "white"],
+        default=reconstruct_module.DEFAULT_NOISE_MODEL,
+        help="the reconstruction's noise model (white: before the coloured-noise model)",
+    )
     args = parser.parse_args()
+    reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
+    print(f"noise model {args.noise_model}")
     if args.speed or not args.accuracy:
         speed()
     if args.accuracy or not args.speed:

@@ -22,27 +22,38 @@ Several noise seeds per line: the largest error over them is printed (``docs/cam
 ``contactlab.inverse.pulse.pulse_baseline``'s ``crosstalk`` option switched off for the
 run, which the public functions do not expose).
 
-Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N] [--no-crosstalk]``
+``--noise-model white`` measures the reconstruction with the white-noise model it had
+before the coloured-noise one (``contactlab.inverse.reconstruct.DEFAULT_NOISE_MODEL``);
+``--effect NAME`` (repeatable) runs those lines only.
+
+Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N] [--no-crosstalk]
+[--noise-model white] [--effect NAME]``
 """
 
 import argparse
+import sys
 from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 import contactlab as cl
+import contactlab.inverse.reconstruct as reconstruct_module
 from contactlab.compare import compare_trace
 from contactlab.config import load_config
 from contactlab.errors import ParameterError
 from contactlab.inverse import identify_sensor, reconstruct_force
 from contactlab.inverse.pulse import pulse_baseline
-from dem_check.campaign import Effects, realistic_record
+from dem_check.campaign import Effects
 
 ROOT = Path(__file__).resolve().parents[1]
-NOISE = 0.03  # [N] white noise, 1 % of the 3 N peak signal
+sys.path.insert(0, str(ROOT / "tests" / "dem_check" / "campaign"))
+# the tests' record (white noise NOISE [N]), so that the benchmark measures their case
+from test_realistic_single_trace import NOISE, _record  # noqa: E402
+
 EFFECTS = {
     "white noise": Effects(),
+    "1/f noise 0.3 sigma": Effects(pink=0.3 * NOISE),
     "1/f noise 1 sigma": Effects(pink=NOISE),
     "hum 1.5 sigma": Effects(hum=1.5 * NOISE),
     "drift 20 sigma": Effects(drift=20 * NOISE),
@@ -57,21 +68,6 @@ def setup():
     config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
     law = cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
     return config, law
-
-
-def record(config, law, effects, onset, seed):
-    return realistic_record(
-        config.grain,
-        config.sensor,
-        law,
-        [2.0],
-        [onset],
-        length=4e-3,
-        sample_rate=2e6,
-        noise=NOISE,
-        effects=effects,
-        seed=seed,
-    )
 
 
 def _largest(values):
@@ -102,6 +98,7 @@ def reconstruct(config, law, rec):
     return (
         r.metrics.peak / truth["peak_contact_force [N]"] - 1.0,
         r.metrics.duration / truth["contact_time [s]"] - 1.0,
+        r.metrics.impulse / truth["impulse [N*s]"] - 1.0,
     ), getattr(r, "status", "")
 
 
@@ -119,7 +116,9 @@ def line(name, config, law, effects, onset, seeds):
     for method in (identify, reconstruct, compare):
         errors, statuses = [], set()
         for seed in range(seeds):
-            value, status = method(config, law, record(config, law, effects, onset, seed))
+            value, status = method(
+                config, law, _record((config.grain, config.sensor, law), effects, onset, seed)
+            )
             statuses.add(status.split(":")[0] if value is not None else "refused")
             if value is not None:
                 errors.append(value)
@@ -138,17 +137,29 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--seeds", type=int, default=4, help="noise seeds per line")
     parser.add_argument("--no-crosstalk", action="store_true", help="keep the crosstalk")
+    parser.add_argument(
+        "--noise-model",
+        choices=["ar", "white"],
+        default=reconstruct_module.DEFAULT_NOISE_MODEL,
+        help="the reconstruction's noise model (white: before the coloured-noise model)",
+    )
+    parser.add_argument("--effect", action="append", choices=list(EFFECTS))
     args = parser.parse_args()
+    reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
     if args.no_crosstalk:
         pulse_baseline.__kwdefaults__["crosstalk"] = False
     config, law = setup()
     print(
-        "| effect, impact | identify-sensor: f1, zeta | reconstruct: peak, contact time "
+        f"noise model {args.noise_model}\n"
+        "| effect, impact | identify-sensor: f1, zeta | reconstruct: peak, contact time, "
+        "impulse "
         "| compare: peak signal |"
     )
     print("|---|---|---|---|")
     for onset_name, onset in ONSETS.items():
         for name, effects in EFFECTS.items():
+            if args.effect and name not in args.effect:
+                continue
             line(f"{name}, {onset_name}", config, law, effects, onset, args.seeds)
 
 

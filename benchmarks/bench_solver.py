@@ -130,8 +130,8 @@ def hertz_case(grain, sensor):
 
 
 def main():
-    grain = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-    sensor = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
+    paper = cl.study.StudySetup.paper()  # the paper's grain and 40 kHz disc sensor
+    grain, sensor = paper.grain, paper.sensor
     linear_case(grain, sensor)
     hertz_case(grain, sensor)
 

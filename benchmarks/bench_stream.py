@@ -119,9 +119,7 @@ def main():
     )
 
     with tempfile.TemporaryDirectory() as tmp:
-        one, steps, truth1, _ = _timed(SMALL, 1, tmp)
-        two, _, truth2, _ = _timed(SMALL, 2, tmp)
-        same = _agreement(truth1, truth2)
+        one, two, _, _, _, same = _on_one_and_two(SMALL, tmp)
         print("2. strong scaling (small stream, fresh processes)")
         print(
             f"   1 process {one:.1f} s, 2 processes {two:.1f} s: speed-up {one / two:.2f}; "
@@ -130,9 +128,7 @@ def main():
 
         if not args.skip_goal:
             _goal(args, tmp)
-        one, steps, truth1, moved = _timed(WIDE, 1, tmp)
-        two, _, truth2, _ = _timed(WIDE, 2, tmp)
-        same = _agreement(truth1, truth2)
+        one, two, steps, truth1, moved, same = _on_one_and_two(WIDE, tmp)
         print("4. a wide plate: 100 000 particles/s for 10 ms, 0.3 m square, 50 mm fall")
         print(
             f"   {moved / steps:.0f} particles in flight on average over {steps} steps "
@@ -143,6 +139,14 @@ def main():
             f"{two:.1f} s ({moved / two:.3g} particle-steps/s): speed-up {one / two:.2f}; "
             f"truth on 1 and 2 ranks: {same}"
         )
+
+
+def _on_one_and_two(case_code, tmp):
+    """A case run on 1 and on 2 ranks (:func:`_timed`): the two wall times [s], the
+    1-rank steps, truth and particle-steps, and how the two truths agree."""
+    one, steps, truth1, moved = _timed(case_code, 1, tmp)
+    two, _, truth2, _ = _timed(case_code, 2, tmp)
+    return one, two, steps, truth1, moved, _agreement(truth1, truth2)
 
 
 def _agreement(one, two):

@@ -8,6 +8,7 @@ import numpy as np
 
 from contactlab import metrics
 from contactlab.entry_checks import check_flag
+from contactlab.kernels.segments import segment_force
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 from contactlab.roots import ROOT_RTOL, locate_root
@@ -150,6 +151,12 @@ class ImpactResult(ImpactSignals):
     ``rebound_velocity`` [m/s], ``contact_intervals`` [(start, end) s] and
     ``energy_balance`` [J]. The solver may hand some of them over already read
     (``headline``, keys of :data:`SOLVER_READINGS`).
+
+    The dense solution is data: ``segments``, the solved pieces
+    (:class:`contactlab.kernels.segments.Segment`: modal rates and weights, affine loads,
+    DOP853 interpolants or Euler samples), evaluated by :mod:`contactlab.kernels.segments`;
+    a contact piece's force is the law's branch formula (``law.branch(seg.branch,
+    seg.overlap)``), clipped. Nothing of the solver is kept or called.
     """
 
     def __init__(
@@ -175,6 +182,11 @@ class ImpactResult(ImpactSignals):
         self.method, self.threshold, self.rtol = method, threshold, rtol
         self.time_step = time_step if method == "euler" else None
         self.segments = segments
+        # the contact pieces' force formulas, the law's (the branch each piece followed)
+        self._formulas = [
+            law.branch(seg.branch, seg.overlap).force if seg.kind == "contact" else None
+            for seg in segments
+        ]
         self.contact_intervals = list(contact_intervals)
         self.events = list(events)
         self.verification = None
@@ -226,7 +238,7 @@ class ImpactResult(ImpactSignals):
             tau = times[mask] - seg.t0
             st = seg.states(tau)
             states[mask] = st
-            force[mask] = seg.force(tau, st)
+            force[mask] = segment_force(seg, tau, st, self._formulas[i])
         return states, force
 
     def _evaluate_grid(self):
@@ -240,29 +252,31 @@ class ImpactResult(ImpactSignals):
         states, force = np.empty((4, n)).T, np.empty(n)
         edges = np.searchsorted(self.t, self._starts, side="left")
         edges[0] = 0
-        for seg, lo, hi in zip(self.segments, edges, [*edges[1:], n], strict=True):
+        bounds = zip(self.segments, self._formulas, edges, [*edges[1:], n], strict=True)
+        for seg, formula, lo, hi in bounds:
             if hi > lo:
                 tau = self.t[lo:hi] - seg.t0
                 st = seg.states_on_grid(tau, step, states[lo:hi])
-                force[lo:hi] = seg.force(tau, st)
+                force[lo:hi] = segment_force(seg, tau, st, formula)
         return states, force
 
     def _segment_at(self, t):
-        """The segment holding time ``t`` [s] (the later one on a boundary), as in
-        :meth:`_evaluate`."""
-        return self.segments[max(bisect.bisect_right(self._starts, t) - 1, 0)]
+        """The index of the segment holding time ``t`` [s] (the later one on a boundary),
+        as in :meth:`_evaluate`."""
+        return max(bisect.bisect_right(self._starts, t) - 1, 0)
 
     def _at(self, t):
         """State (1, 4) and contact force (1,) at one time [s]: the scalar fast path."""
-        seg = self._segment_at(t)
+        i = self._segment_at(t)
+        seg = self.segments[i]
         tau = np.array([t - seg.t0])
         states = seg.states(tau)
-        return states, seg.force(tau, states)
+        return states, segment_force(seg, tau, states, self._formulas[i])
 
     def _signal_at(self, t):
         if self.sensor.is_rigid:
             return self._force_at(t)
-        seg = self._segment_at(t)
+        seg = self.segments[self._segment_at(t)]
         return float(self.sensor.signal(seg.states(np.array([t - seg.t0])), None)[0])
 
     def _forces_on(self, times):
@@ -285,14 +299,14 @@ class ImpactResult(ImpactSignals):
         """
         total = 0.0
         period = self._system_period()
-        for seg in self.segments:
+        for seg, formula in zip(self.segments, self._formulas, strict=True):
             lo, hi = max(seg.t0, start), min(seg.t1, end)
             if hi <= lo:
                 continue
             nodes, weights = gauss_rule(lo, hi, period, graded=seg.kind == "contact")
             tau = nodes - seg.t0  # every panel's nodes in one evaluation of the piece
             st = seg.states(tau)
-            total += float(weights @ integrand(st, seg.force(tau, st)))
+            total += float(weights @ integrand(st, segment_force(seg, tau, st, formula)))
         return total
 
     def _system_period(self):

@@ -118,12 +118,10 @@ def dask_hertz_impacts(frame, client, *, rtol=DEFAULT_RTOL, partitions=None):
     ----------
     frame : pandas.DataFrame
         Input frame of :func:`~contactlab.batch.hertz_impacts`.
-    client : dask.distributed.Client or str
-        The cluster, or its scheduler's address (connected and closed here).
+    client, partitions
+        As for :func:`dask_linear_impacts`.
     rtol : float, default 1e-9
         Relative tolerance of the integrator.
-    partitions : int, optional
-        Number of row partitions; default two per worker thread (at most one per row).
 
     Returns
     -------

@@ -50,20 +50,16 @@ def hertz_impacts(frame, *, rtol=DEFAULT_RTOL, chunk=DEFAULT_CHUNK, threads=1):
     Parameters
     ----------
     frame : pandas.DataFrame
-        One row per impact with the columns ``m1 [kg]`` (sensor moving mass), ``k1 [N/m]``
-        (sensor stiffness; ``inf`` for an immovable wall, when ``m1`` may be ``inf`` too
-        and ``m1``, ``c1`` are not used), ``c1 [N*s/m]`` (sensor damping), ``m2 [kg]``
-        (grain mass), ``k_hertz [N/m**1.5]`` (Hertz stiffness ``kH``),
-        ``damping [N*s/m**1.25]`` (``eta`` of ``kH d**1.5 + eta d**0.25 d'``, 0 for
-        elastic Hertz) and ``v0 [m/s]`` (impact speed); other columns are kept.
+        One row per impact with the sensor, grain and speed columns of
+        :func:`contactlab.batch.linear_impacts` (``m1 [kg]``, ``k1 [N/m]``, ``c1 [N*s/m]``,
+        ``m2 [kg]``, ``v0 [m/s]``) and, for the contact, ``k_hertz [N/m**1.5]`` (Hertz
+        stiffness ``kH``) and ``damping [N*s/m**1.25]`` (``eta`` of
+        ``kH d**1.5 + eta d**0.25 d'``, 0 for elastic Hertz); other columns are kept.
     rtol : float, default 1e-9
         Relative tolerance of the integrator (:data:`DEFAULT_RTOL`: every number within
         1e-6 of the converged one).
-    chunk : int, default 100 000
-        Rows solved at a time (working memory is proportional to it).
-    threads : int or None, default 1
-        Threads solving chunks side by side; ``None`` uses every core. The numbers do
-        not depend on it.
+    chunk, threads
+        As for :func:`contactlab.batch.linear_impacts`.
 
     Returns
     -------

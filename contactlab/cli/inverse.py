@@ -73,6 +73,7 @@ def _reconstruct(args):
         baseline_window=args.baseline,
         regularization=args.regularization,
         cutoff=args.cutoff,
+        noise_model=args.noise_model,
     )
     if args.plot:
         _save_plot(rec.plot()[0], args.plot)
@@ -131,6 +132,7 @@ def add_inverse_parsers(sub):
     """The inverse-method commands: identify-sensor, reconstruct, fit, export-dem."""
     from contactlab.inverse.export import DEM_CODES
     from contactlab.inverse.fit_models import FIT_MODELS
+    from contactlab.inverse.noise_colour import NOISE_MODELS
     from contactlab.inverse.reconstruct import CRITERIA, METHODS
 
     window = {"nargs": 2, "type": float, "metavar": ("T0", "T1")}
@@ -151,6 +153,12 @@ def add_inverse_parsers(sub):
         "--method", choices=tuple(METHODS), default="tikhonov", help="(default tikhonov)"
     )
     p.add_argument("--regularization", choices=tuple(CRITERIA), help="tikhonov (default gcv)")
+    p.add_argument(
+        "--noise-model",
+        choices=NOISE_MODELS,
+        help="tikhonov: ar (default; the noise's AR model, read on the baseline, whitens "
+        "the problem) or white",
+    )
     p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
     add_outputs(p, _reconstruct, plot="write signal and reconstructed force")

@@ -7,7 +7,7 @@ overhead: twelve small numpy operations per stage on a four-component state. The
 method here (scipy's coefficient tables, error norm, step-size control and Hairer's
 initial step) costs about a microsecond per step. The dense output of each step
 (:func:`interpolant`) has the Python stepper's layout, so
-:class:`~contactlab.solver.dop853.DenseSteps` reads both; :func:`dense_states` is its
+:class:`~contactlab.kernels.segments.DenseSteps` reads both; :func:`dense_states` is its
 compiled evaluation on many times.
 
 References
@@ -176,7 +176,7 @@ def interpolant(K, h, y_old, y, f_new, par, warped, F):
 @njit(cache=True, error_model="numpy")
 def interpolate(F, y_old, x, out):
     """A step's interpolant at ``x = (t - t_old) / h`` into ``out``, as
-    :func:`contactlab.solver.dop853.interpolate`."""
+    :func:`contactlab.kernels.segments.interpolate`."""
     rows = F.shape[0]
     for c in range(y_old.size):
         acc = 0.0
@@ -190,7 +190,7 @@ def interpolate(F, y_old, x, out):
 def dense_states(t_old, h, y_old, F, times, out):
     """States at ``times`` [s] from per-step interpolants into ``out`` (len(times), n).
 
-    ``F`` has the layout of :class:`~contactlab.solver.dop853.DenseSteps` (7, steps, n);
+    ``F`` has the layout of :class:`~contactlab.kernels.segments.DenseSteps` (7, steps, n);
     a time before the first step or after the last is read on the nearest step, as the
     Python evaluation does.
     """

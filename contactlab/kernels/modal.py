@@ -5,7 +5,7 @@ coupled system under a linear contact) is ``y(tau) = base + slope tau +
 Re(V (coef * exp(lam tau)))`` (modes ``lam``, mode shapes ``V`` with the rows of the
 components the modes do not move set to zero, and ``coef = W (y0 - base)`` with
 ``W = V**-1``), and exactly ``y0`` at ``tau = 0`` as in
-:class:`contactlab.solver.propagators.Trajectory`. Its events are found by scanning
+:class:`contactlab.kernels.segments.Trajectory`. Its events are found by scanning
 their exact expressions on the points of
 :func:`contactlab.solver.propagators.first_event` (step
 :func:`contactlab.kernels.rules.scan_step`) and located by Brent's method to the solver's
@@ -377,7 +377,7 @@ def conjugates_once(lam, vec, inv, nm):
     number of modes kept (first in the arrays).
 
     The state is real, so a pair's two terms are complex conjugates and their sum is
-    twice the real part of one (as :class:`contactlab.solver.propagators.Trajectory`
+    twice the real part of one (as :class:`contactlab.kernels.segments.Trajectory`
     does): half the exponentials. A mode whose imaginary part is round-off of a real
     eigenvalue (below 1e-10 of its size) counts as real and stays.
     """

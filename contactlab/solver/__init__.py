@@ -4,13 +4,15 @@
 * :mod:`~contactlab.solver.system`: the two-mass system (matrices, right-hand side, signal);
 * :mod:`~contactlab.solver.exact`: linear contact branches and free flight, exactly;
 * :mod:`~contactlab.solver.adaptive`: nonlinear contact pieces with DOP853;
-* :mod:`~contactlab.solver.propagators`, :mod:`~contactlab.solver.pieces`: exact
-  propagation of linear time-invariant pieces and their states on a grid;
+* :mod:`~contactlab.solver.propagators`: the modes of linear time-invariant pieces and
+  their events;
 * :mod:`~contactlab.solver.dop853`: the lean DOP853 stepper;
 * :mod:`~contactlab.solver.euler`: the paper's explicit Euler (reference method);
-* :mod:`~contactlab.solver.segment`: one solved piece, as the results read it;
 * :mod:`~contactlab.solver.wall`: a law's impact on an immovable wall and its numbers;
 * :mod:`~contactlab.solver.oblique`: :func:`simulate_oblique`, friction and spin.
+
+The solved pieces are data (:mod:`contactlab.kernels.segments`), which
+:class:`~contactlab.ImpactResult` evaluates from the layer below it.
 """
 
 from contactlab.solver.impact import METHODS, simulate_impact

@@ -7,11 +7,10 @@ from scipy.optimize import minimize_scalar
 
 from contactlab.kernels import power_piece
 from contactlab.kernels.power import pack
+from contactlab.kernels.segments import DenseStates, DenseSteps, Segment, interpolate
 from contactlab.roots import crossed_side, departure_root, is_past, locate_root, waits
-from contactlab.solver.dop853 import DenseSteps, Stepper, interpolate
-from contactlab.solver.pieces import DenseStates
-from contactlab.solver.segment import Segment
-from contactlab.solver.system import clipped, event_directions
+from contactlab.solver.dop853 import Stepper
+from contactlab.solver.system import event_directions
 
 __all__ = ["adaptive_contact"]
 
@@ -66,7 +65,7 @@ def adaptive_contact(system, branch, t0, y0, tau_max, rtol, velocity):
     t_end = t0 + tau_max if hit is None else hit[0]
     event = None if hit is None else ("end" if hit[1] == 0 else branch.exits[hit[1] - 1].target)
     states = DenseStates(t0, steps, start, switch)
-    seg = Segment(t0, t_end, "contact", branch.name, states, clipped(force), states.grid)
+    seg = Segment(t0, t_end, "contact", branch.name, states)
     return seg, states(t_end - t0)[0], event
 
 

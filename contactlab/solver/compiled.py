@@ -5,12 +5,13 @@ Laws of one smooth branch without history whose force is linear (``k d + c d'``,
 :mod:`contactlab.kernels.impact_loop`, the loop the batch solvers run on every row. It
 returns the pieces (start, horizon and state of each contact and free flight) and the
 headline numbers, read while the pieces were solved. The pieces become
-:class:`~contactlab.solver.segment.Segment` objects, which give the signals on the
-output grid and the dense solution for the audit: exact ones
-(:mod:`contactlab.solver.exact`), and for a power-law contact the same compiled DOP853
-piece run again from its recorded start over its recorded horizon (the same steps) for
-its dense output. An impact the loop does not take (modes too close to defective, a
-first contact that does not end, too many contacts) is solved by the Python pieces.
+:class:`~contactlab.kernels.segments.Segment` data, from which the result reads the
+signals on the output grid and the dense solution for the audit: exact ones (modal
+rates and weights, :mod:`contactlab.solver.exact`), and for a power-law contact the
+interpolants of the same compiled DOP853 piece run again from its recorded start over
+its recorded horizon (the same steps). An impact the loop does not take (modes too close
+to defective, a first contact that does not end, too many contacts) is solved by the
+Python pieces.
 """
 
 import math

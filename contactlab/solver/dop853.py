@@ -6,7 +6,7 @@ machinery, not arithmetic. This module runs the same method with the same coeffi
 (taken from scipy's class), error norm and step-size control, without that machinery:
 the right-hand side is an autonomous ``f(y)``, events are checked by the caller after
 each step, and each step's 7th-order interpolant is kept as plain arrays so that a whole
-output grid is evaluated at once (:class:`DenseSteps`).
+output grid is evaluated at once (:class:`contactlab.kernels.segments.DenseSteps`).
 
 References
 ----------
@@ -15,16 +15,12 @@ Nonstiff Problems, 2nd ed., Springer, Sec. II.4-II.6 (DOP853, step-size control,
 step). scipy.integrate.DOP853 (the coefficient tables and error norm used here).
 """
 
-import bisect
 import math
 
 import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
-from contactlab.kernels.dop853 import dense_states
-from contactlab.kernels.dop853 import interpolate as interpolate_into
-
-__all__ = ["DenseSteps", "Stepper", "interpolate"]
+__all__ = ["Stepper"]
 
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 """Step-size control of scipy's Runge-Kutta solvers (Hairer's defaults)."""
@@ -151,61 +147,3 @@ class Stepper:
         F[2] = 2.0 * delta - h * (self._f + K[0])
         F[3:] = h * (_SCIPY.D @ K)
         return F
-
-
-def interpolate(F, y_old, x):
-    """One step's interpolant (:meth:`Stepper.interpolant`) at ``x = (t - t_old) / h``
-    (the compiled :func:`contactlab.kernels.dop853.interpolate`, into a new array)."""
-    out = np.empty(y_old.size)
-    interpolate_into(F, y_old, float(x), out)
-    return out
-
-
-class DenseSteps:
-    """The dense solution of an integration: each step's interpolant, as arrays.
-
-    Parameters
-    ----------
-    t_old, h : array_like
-        Start [s] and length [s] of each step (increasing, contiguous).
-    y_old : array_like
-        State at each step's start (steps, n).
-    F : array_like
-        Interpolant coefficients (steps, 7, n) from :meth:`Stepper.interpolant`.
-    """
-
-    def __init__(self, t_old, h, y_old, F):
-        self._t_old = np.asarray(t_old, dtype=float)
-        self._h = np.asarray(h, dtype=float)
-        self._y_old = np.ascontiguousarray(y_old, dtype=float)
-        self._F = np.ascontiguousarray(np.moveaxis(np.asarray(F, dtype=float), 1, 0))
-        self._starts = self._t_old.tolist()
-
-    @property
-    def size(self):
-        """Number of steps."""
-        return self._h.size
-
-    def arrays(self):
-        """``(t_old, h, y_old, F)``, ``F`` (steps, 7, n): the layout of the compiled
-        kernels' kept steps (:mod:`contactlab.kernels.oblique_kernel`)."""
-        return self._t_old, self._h, self._y_old, np.moveaxis(self._F, 0, 1)
-
-    @property
-    def boundaries(self):
-        """Step boundaries [s] (steps + 1)."""
-        return np.append(self._t_old, self._t_old[-1] + self._h[-1])
-
-    def at(self, t):
-        """State (n,) at one time [s]."""
-        i = min(max(bisect.bisect_right(self._starts, t) - 1, 0), self._h.size - 1)
-        return interpolate(self._F[:, i], self._y_old[i], (t - self._t_old[i]) / self._h[i])
-
-    def __call__(self, t, out=None):
-        """States (len(t), n) at times ``t`` [s] (any order), into ``out`` if given
-        (compiled: :func:`contactlab.kernels.dop853.dense_states`)."""
-        t = np.atleast_1d(np.asarray(t, dtype=float))
-        if out is None:
-            out = np.empty((t.size, self._y_old.shape[1]))
-        dense_states(self._t_old, self._h, self._y_old, self._F, t, out)
-        return out

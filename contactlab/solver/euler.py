@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from contactlab.solver.segment import Segment
+from contactlab.kernels.segments import SampledStates, Segment
 
 __all__ = ["solve_euler"]
 
@@ -114,16 +114,6 @@ def solve_euler(system, law, velocity, window, time_step):
         n += 1
     if in_contact:
         log.append((t, "window end in contact"))
-    rec_t = np.asarray(rec_t)
-    rec_y = np.asarray(rec_y)
-    rec_f = np.asarray(rec_f)
-
-    def states(tau):
-        tau = np.atleast_1d(tau)
-        return np.column_stack([np.interp(tau, rec_t, rec_y[:, j]) for j in range(4)])
-
-    def contact_force(tau, _states):
-        return np.interp(np.atleast_1d(tau), rec_t, rec_f)
-
-    end = rec_t[-1]
-    return [Segment(0.0, end, "euler", None, states, contact_force)], intervals, log, end
+    states = SampledStates(np.asarray(rec_t), np.asarray(rec_y), np.asarray(rec_f))
+    end = states.t[-1]
+    return [Segment(0.0, end, "euler", None, states)], intervals, log, end

@@ -1,20 +1,21 @@
 """Exactly solvable pieces: linear contact branches and free flight.
 
 Every piece here is linear time-invariant, so its state is the modal solution (or the
-matrix exponential) of :mod:`contactlab.solver.pieces`, and its events are roots of the
-exact expressions, scanned and located by :func:`~contactlab.solver.propagators.first_event`.
+matrix exponential), kept as data (:mod:`contactlab.kernels.segments`), and its events are
+roots of the exact expressions, scanned and located by
+:func:`~contactlab.solver.propagators.first_event`.
 """
 
 import numpy as np
 
 from contactlab.kernels.modal import recontact_horizon
 from contactlab.kernels.rules import scan_step
-from contactlab.solver.pieces import AffineForceStates, LinearContactStates
+from contactlab.kernels.segments import AffineStates, LinearStates, Segment
 from contactlab.solver.propagators import first_event
-from contactlab.solver.segment import Segment
-from contactlab.solver.system import clipped, event_directions, overlap_rate
+from contactlab.solver.system import event_directions, overlap_rate
 
 __all__ = [
+    "affine_states",
     "contact_segment",
     "contact_states",
     "exact_contact",
@@ -36,31 +37,50 @@ def _branch_events(branch, contact_force):
     return values, directions
 
 
+def affine_states(system, a, b, y0):
+    """Exact states under a prescribed contact force ``S2 = a + b tau`` [N] from the state
+    ``y0``: the sensor's free flow about the particular solution ``x1 = p + q tau`` of
+    ``m1 x1'' + c1 x1' + k1 x1 = a + b tau``, i.e. ``q = b / k1`` and
+    ``p = a / k1 - c1 b / k1**2`` (:class:`~contactlab.kernels.segments.AffineStates`)."""
+    y0 = tuple(float(v) for v in y0)
+    if system.rigid:
+        return AffineStates(y0, a, b, system.m2, None)
+    q = b / system.k1
+    p = a / system.k1 - system.c1 * b / system.k1**2
+    flow = system.sensor_flow
+    sensor = flow.trajectory([y0[0] - p, y0[1] - q])
+    return AffineStates(y0, a, b, system.m2, sensor, p, q, flow.fastest_rate)
+
+
 def contact_states(system, branch, y0):
-    """Exact states of a contact piece on a linear branch from the state ``y0``."""
+    """Exact states of a contact piece on a linear branch from the state ``y0``: the flow
+    of ``k d + c d' + f0`` about its equilibrium ``d = -f0 / k``
+    (:class:`~contactlab.kernels.segments.LinearStates`)."""
     k, c, f0 = branch.linear
     if k == 0.0 and c == 0.0:
-        return AffineForceStates(system, f0, 0.0, y0)
-    return LinearContactStates(system, k, c, f0, y0)
+        return affine_states(system, f0, 0.0, y0)
+    flow = system.contact_flow(k, c)
+    offset = np.array([0.0, 0.0, -f0 / k, 0.0])
+    z0 = np.asarray(y0, dtype=float) - offset
+    trajectory = flow.trajectory(z0[2:] if system.rigid else z0)
+    return LinearStates(trajectory, offset, system.rigid, flow.fastest_rate)
 
 
 def contact_segment(branch, t0, t1, states):
-    """The :class:`Segment` of a contact piece over [t0, t1] [s] with its ``states``."""
-    return Segment(t0, t1, "contact", branch.name, states, clipped(branch.force), states.grid)
-
-
-def _no_force(tau, states):
-    return np.zeros(len(states))
+    """The :class:`~contactlab.kernels.segments.Segment` of a contact piece over [t0, t1]
+    [s] with its ``states``."""
+    return Segment(t0, t1, "contact", branch.name, states)
 
 
 def free_states(system, y0):
     """Exact states of a free flight (no contact force) from the state ``y0``."""
-    return AffineForceStates(system, 0.0, 0.0, y0)
+    return affine_states(system, 0.0, 0.0, y0)
 
 
 def free_segment(t0, t1, states):
-    """The :class:`Segment` of a free flight over [t0, t1] [s] with its ``states``."""
-    return Segment(t0, t1, "free", None, states, _no_force, states.grid)
+    """The :class:`~contactlab.kernels.segments.Segment` of a free flight over [t0, t1] [s]
+    with its ``states``."""
+    return Segment(t0, t1, "free", None, states)
 
 
 def exact_contact(system, branch, t0, y0, tau_max):

@@ -24,6 +24,7 @@ strikes the grain again), each solved by the best method for it:
 * ``"auto"``: exact where the law allows it, else adaptive.
 """
 
+import dataclasses
 import math
 import warnings
 
@@ -34,15 +35,14 @@ from contactlab.bodies import Grain, Sensor
 from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, ResolutionWarning, WindowWarning
 from contactlab.kernels.rules import MAX_CONTACTS, contact_horizon, ringing_time, window_end
+from contactlab.kernels.segments import Segment
 from contactlab.laws import ContactLaw, PlasticTrapezoid
 from contactlab.plausibility import check_plausible
 from contactlab.result import ImpactResult
 from contactlab.solver.adaptive import adaptive_contact
 from contactlab.solver.compiled import core_law, solve_on_core
 from contactlab.solver.euler import solve_euler
-from contactlab.solver.exact import exact_contact, free_flight
-from contactlab.solver.pieces import AffineForceStates
-from contactlab.solver.segment import Segment
+from contactlab.solver.exact import affine_states, exact_contact, free_flight
 from contactlab.solver.system import System
 from contactlab.validation import check_choice, check_number, keyword_checked
 
@@ -92,7 +92,8 @@ def _solve_pieces(system, law, velocity, window, contact_solver):
         branch = law.branch(branch_name, max_overlap)
         horizon = (limit if intervals else contact_horizon(limit)) - t
         seg, y, event = contact_solver(system, branch, t, y, horizon)
-        segments.append(seg)
+        # the branch as built: the result asks the law for it again (laws hold forces)
+        segments.append(dataclasses.replace(seg, overlap=max_overlap) if max_overlap else seg)
         t = seg.t1
         if branch.loading:
             max_overlap = max(max_overlap, y[2] - y[0])
@@ -146,10 +147,8 @@ def _solve_pulse(system, law, velocity, window):
         slope = (fb - fa) / (tb - ta)
         if tb - ta < STEEP_RAMP * law.contact_time:  # a ramp this steep is a step
             fa, slope = 0.5 * (fa + fb), 0.0
-        states = AffineForceStates(system, fa, slope, y)
-        segments.append(
-            Segment(ta, tb, "pulse", None, states, _pulse_force(fa, slope), states.grid)
-        )
+        states = affine_states(system, fa, slope, y)
+        segments.append(Segment(ta, tb, "pulse", None, states, load=(fa, slope)))
         y = states(tb - ta)[0]
     end = law.contact_time
     log.append((end, "separation"))
@@ -157,10 +156,6 @@ def _solve_pulse(system, law, velocity, window):
     seg, _, _ = free_flight(system, law, 0.0, end, y, max(limit - end, 0.0))
     segments.append(seg)
     return segments, [(0.0, end)], log, limit
-
-
-def _pulse_force(a, b):
-    return lambda tau, states: np.maximum(a + b * np.asarray(tau), 0.0)
 
 
 def _check_inputs(grain, sensor, law, velocity, duration, sample_rate):

@@ -54,6 +54,7 @@ from contactlab.errors import ParameterError, WindowWarning
 from contactlab.kernels.oblique_kernel import tolerances
 from contactlab.kernels.oblique_rhs import pack
 from contactlab.kernels.power import pack as pack_normal
+from contactlab.kernels.segments import DenseStates
 from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.plausibility import check_plausible
 from contactlab.solver.adaptive import integrate_piece
@@ -69,7 +70,6 @@ from contactlab.solver.impact import (
     check_output_size,
 )
 from contactlab.solver.oblique_phases import compiled_contact, grid_signals, piece_phases
-from contactlab.solver.pieces import DenseStates
 from contactlab.solver.system import System
 from contactlab.validation import check_choice, check_inertia_factor, check_number, keyword_checked
 

@@ -69,7 +69,7 @@ def piece_phases(par, pieces):
         Packed parameters (:meth:`contactlab.solver.oblique.ObliqueModel.pack`).
     pieces : list
         Pieces with ``t0``, ``t1`` [s], ``phase`` (the sign of the force, 0 sticking) and
-        dense ``states`` (:class:`contactlab.solver.pieces.DenseStates` of 7 states).
+        dense ``states`` (:class:`contactlab.kernels.segments.DenseStates` of 7 states).
     """
     table, warp, steps = np.zeros((len(pieces), 8)), [], []
     counts = [0, 0]
@@ -101,7 +101,7 @@ def grid_signals(contact, free, final, slip_after, duration, sample_rate):
     ----------
     contact : contactlab.kernels.oblique_sample.ContactPhases
         The solved contact.
-    free : contactlab.solver.segment.Segment
+    free : contactlab.kernels.segments.Segment
         The free flight after it.
     final : numpy.ndarray
         State (7,) at the separation.

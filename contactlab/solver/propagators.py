@@ -3,8 +3,9 @@
 Between events the grain/sensor system is often linear time-invariant: the free sensor,
 the sensor driven by a force that is affine in time (the paper's trapezoid, a force cap,
 no force at all), and the coupled system under a linear contact branch. This module
-propagates those pieces exactly (modal decomposition, or the matrix exponential when
-the modes are defective) and finds event times as roots of the exact expressions.
+computes the modes of those pieces (:class:`LinearFlow`; their solutions are the data of
+:class:`contactlab.kernels.segments.Trajectory`, modal or, when the modes are defective,
+by the matrix exponential) and finds event times as roots of the exact expressions.
 
 State vector everywhere: ``y = [x1, v1, x2, v2]`` (sensor displacement [m] and velocity
 [m/s], grain displacement [m] and velocity [m/s]), axis along the grain's travel.
@@ -14,19 +15,14 @@ import functools
 import math
 
 import numpy as np
-from scipy.linalg import expm
 
 from contactlab.errors import ParameterError
 from contactlab.kernels import rules
 from contactlab.kernels.rules import too_fast_error
+from contactlab.kernels.segments import Trajectory
 from contactlab.roots import crosses, earliest_root
 
-__all__ = [
-    "LinearFlow",
-    "Trajectory",
-    "first_event",
-    "linear_flow",
-]
+__all__ = ["LinearFlow", "first_event", "linear_flow"]
 
 _COND_LIMIT = 1e8
 """Largest eigenvector condition number for which the modal solution is trusted
@@ -78,7 +74,7 @@ class LinearFlow:
         """Largest ``|lambda|`` [1/s]: sets the scan step for events."""
 
     def trajectory(self, z0):
-        """The solution from ``z0``, with its modal coefficients computed once.
+        """The solution from ``z0`` as data, with its modal coefficients computed once.
 
         Parameters
         ----------
@@ -87,9 +83,22 @@ class LinearFlow:
 
         Returns
         -------
-        Trajectory
+        contactlab.kernels.segments.Trajectory
+            Rates and real weights of the modes (one of each conjugate pair, weight 2; the
+            real ones, weight 1): ``u_k = c_k v_k``, modal coefficient times eigenvector;
+            ``A`` and ``z0`` alone where the modes are too close to defective.
         """
-        return Trajectory(self, z0)
+        z0 = np.asarray(z0, dtype=float)
+        if not self.modal:
+            return Trajectory(z0, self.matrix)
+        keep = self.eigvals.imag >= 0.0
+        rates = self.eigvals[keep].astype(complex)
+        weight = np.where(rates.imag > 0.0, 2.0, 1.0)
+        u = (self._vecs * (self._inv @ z0.astype(complex)))[:, keep] * weight
+        weights = np.empty((2 * rates.size, z0.size))
+        weights[0::2] = u.real.T
+        weights[1::2] = -u.imag.T
+        return Trajectory(z0, self.matrix, rates, weights)
 
 
 @functools.lru_cache(maxsize=1024)
@@ -107,106 +116,6 @@ def linear_flow(matrix, scale=None):
     matrix = np.asarray(matrix, dtype=float)
     scale = None if scale is None else tuple(np.asarray(scale, dtype=float).tolist())
     return _cached_flow(tuple(matrix.ravel().tolist()), matrix.shape[0], scale)
-
-
-class Trajectory:
-    """``z(tau) = exp(A tau) z0`` for one initial state: at any times, or on a uniform grid.
-
-    Parameters
-    ----------
-    flow : LinearFlow
-        The flow.
-    z0 : array_like
-        Initial state (dim,).
-
-    Notes
-    -----
-    ``A`` is real, so its complex eigenvalues come in conjugate pairs whose terms are
-    complex conjugates: ``z(tau) = sum_k w_k Re(exp(lambda_k tau) u_k)`` over one
-    eigenvalue of each pair (``w = 2``) and the real ones (``w = 1``), with
-    ``u_k = c_k v_k`` (modal coefficient times eigenvector). The real and imaginary parts
-    of the exponentials form a real basis, and one real matrix product gives the states.
-    """
-
-    def __init__(self, flow, z0):
-        self._flow = flow
-        self._z0 = np.asarray(z0, dtype=float)
-        if flow.modal:
-            keep = flow.eigvals.imag >= 0.0
-            self._rates = flow.eigvals[keep].astype(complex)
-            weight = np.where(self._rates.imag > 0.0, 2.0, 1.0)
-            u = (flow._vecs * (flow._inv @ self._z0.astype(complex)))[:, keep] * weight
-            self._weights = np.empty((2 * self._rates.size, self._z0.size))
-            self._weights[0::2] = u.real.T
-            self._weights[1::2] = -u.imag.T
-
-    def __call__(self, tau):
-        """States at local times ``tau`` [s] (array, shape (n,)) -> array (n, dim)."""
-        tau = np.atleast_1d(np.asarray(tau, dtype=float))
-        flow = self._flow
-        if flow.modal:
-            states = self._combine(np.exp(np.multiply.outer(tau, self._rates)))
-        else:
-            states = np.einsum("nij,j->ni", expm(np.multiply.outer(tau, flow.matrix)), self._z0)
-        # the start exactly, not its modal round-off: a contact starts at zero overlap, and
-        # a force read there (a damper's jump at the touch) must see exactly zero
-        states[tau == 0.0] = self._z0
-        return states
-
-    def grid(self, tau0, step, n, out=None):
-        """States at ``tau0 + j * step`` [s], ``j = 0 .. n-1`` -> array (n, dim).
-
-        Write ``j = q B + r`` with ``B`` about ``sqrt(n)``. Then
-        ``exp(lambda tau_j) = exp(lambda (tau0 + q B step)) * exp(lambda r step)``: two
-        tables of about ``sqrt(n)`` exponentials, each of an exact argument, so the grid
-        is as accurate as evaluating every sample directly. Each state component, seen as
-        a ``(q, r)`` matrix, is then one real matrix product of the two tables (the real
-        and imaginary parts of each mode), written straight into ``out``.
-
-        Parameters
-        ----------
-        tau0, step : float
-            First local time and spacing [s].
-        n : int
-            Number of samples.
-        out : numpy.ndarray, optional
-            Array (n, dim) to write into (any strides; contiguous columns are fastest).
-        """
-        out = np.empty((n, self._z0.size)) if out is None else out
-        block = math.isqrt(n)
-        rows = n // block
-        split = rows * block
-        if rows < 8:
-            out[...] = self(tau0 + step * np.arange(n))
-            return out
-        starts = tau0 + step * block * np.arange(rows)
-        if not self._flow.modal:  # the same two tables, of matrix exponentials
-            matrix = self._flow.matrix
-            heads = np.einsum("qij,j->qi", expm(np.multiply.outer(starts, matrix)), self._z0)
-            cells = expm(np.multiply.outer(step * np.arange(block), matrix))
-            out[:split] = np.einsum("rij,qj->qri", cells, heads).reshape(split, -1)
-            out[split:] = self(tau0 + step * np.arange(split, n))
-            return out
-        heads = np.exp(np.multiply.outer(starts, self._rates))
-        cells = np.exp(np.multiply.outer(step * np.arange(block), self._rates))
-        left = np.concatenate([heads.real, -heads.imag], axis=1)  # Re(a g) = ar gr - ai gi
-        for d in range(out.shape[1]):
-            g = cells * (self._weights[0::2, d] - 1j * self._weights[1::2, d])
-            right = np.concatenate([g.real.T, g.imag.T], axis=0)
-            column = out[:split, d]
-            if column.flags.c_contiguous:
-                np.matmul(left, right, out=column.reshape(rows, block))
-            else:
-                column[...] = (left @ right).ravel()
-        if split < n:
-            out[split:] = self(tau0 + step * np.arange(split, n))
-        if tau0 == 0.0:
-            out[0] = self._z0  # as in __call__
-        return out
-
-    def _combine(self, powers):
-        """States from the modal factors ``exp(lambda_k tau)`` (n, modes)."""
-        return powers.view(float) @ self._weights  # columns Re, Im of each mode, interleaved
 
 
 def first_event(values, tau_max, step, directions, chunk=256):

@@ -15,7 +15,6 @@ from contactlab.solver.propagators import linear_flow
 
 __all__ = [
     "System",
-    "clipped",
     "event_directions",
     "force_scales",
     "overlap_rate",
@@ -91,18 +90,3 @@ def event_directions(branch):
     """Crossing directions of a contact piece's events: contact end (the force falls to
     zero), then the branch's exits."""
     return [-1] + [e.direction for e in branch.exits]
-
-
-def clipped(force):
-    """Contact force S2 [N] of a contact piece: the branch formula, never tensile.
-
-    Zero overlap counts as contact (``d >= 0``): at the touch a damped law's force jumps
-    to ``c v0``, and the piece's force is the right-hand limit there, so its largest
-    value is attained, not only approached.
-    """
-
-    def contact_force(tau, states):
-        d, r = overlap_rate(states)
-        return np.where(d >= 0, np.maximum(force(d, r), 0.0), 0.0)
-
-    return contact_force

@@ -105,20 +105,14 @@ def plot_error_family(points, x, family, error="force", measure="rms", ax=None, 
 
     Parameters
     ----------
-    points : pandas.DataFrame
-        Per-point statistics.
-    x : {"resonance [Hz]", "diameter [m]"}
-        Horizontal axis.
+    points, x, ax, title
+        As for :func:`plot_errors`.
     family : str
         Column whose values get one line each (e.g. ``"resonance [Hz]"``).
     error : {"time", "force"}
         Which error.
     measure : {"std", "rms", "mean"}
         Which statistic (``mean`` is drawn as its absolute value).
-    ax : matplotlib.axes.Axes, optional
-        Axes to draw into.
-    title : str, optional
-        Axes title.
 
     Returns
     -------

@@ -259,8 +259,7 @@ def frequency_sweep(setup, resonances, diameters=None, **options):
     -------
     SweepResult
     """
-    grid = {} if diameters is None else {"grain.diameter": diameters}
-    return run_grid(setup, {**grid, "sensor.resonance": resonances}, **options)
+    return _along(setup, "sensor.resonance", resonances, "grain.diameter", diameters, options)
 
 
 def diameter_sweep(setup, diameters, resonances=None, **options):
@@ -276,11 +275,17 @@ def diameter_sweep(setup, diameters, resonances=None, **options):
     resonances : array_like, optional
         Sensor resonances [Hz] (``sensor.resonance``); default the set-up's sensor only.
     **options
-        Keyword arguments of :func:`run_grid` (``seed``, ``workers``, ...).
+        As for :func:`frequency_sweep`.
 
     Returns
     -------
     SweepResult
     """
-    grid = {} if resonances is None else {"sensor.resonance": resonances}
-    return run_grid(setup, {**grid, "grain.diameter": diameters}, **options)
+    return _along(setup, "grain.diameter", diameters, "sensor.resonance", resonances, options)
+
+
+def _along(setup, name, values, other, other_values, options):
+    """:func:`run_grid` over ``values`` of ``name`` (varying fastest), for each of
+    ``other_values`` of ``other`` when given (else the set-up's own)."""
+    grid = {} if other_values is None else {other: other_values}
+    return run_grid(setup, {**grid, name: values}, **options)

@@ -127,20 +127,12 @@ def assert_contact_time(
 
     Parameters
     ----------
-    law : ContactLaw or PlasticTrapezoid
-        The contact law.
-    grain : contactlab.Grain
-        The grain.
-    velocity : float
-        Impact speed [m/s].
+    law, grain, velocity, rtol, source
+        As for :func:`assert_restitution`.
     expected : float
         Expected contact time [s].
-    rtol : float, default :data:`CLOSED_FORM_RTOL`
-        Relative tolerance [-].
     atol : float, default 0
         Absolute tolerance [s].
-    source : str, default "value given"
-        Where ``expected`` comes from, shown on failure.
 
     Returns
     -------
@@ -163,12 +155,8 @@ def assert_matches_closed_form(law, grain, velocity, rtol=CLOSED_FORM_RTOL):
 
     Parameters
     ----------
-    law : ContactLaw or PlasticTrapezoid
-        The contact law.
-    grain : contactlab.Grain
-        The grain.
-    velocity : float
-        Impact speed [m/s].
+    law, grain, velocity
+        As for :func:`assert_restitution`.
     rtol : float, default :data:`CLOSED_FORM_RTOL`
         Relative tolerance [-] on every quantity.
 

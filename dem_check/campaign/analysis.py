@@ -16,8 +16,9 @@ noise are read on both sides of it:
   integral from there in closed form. The sensor returns to rest, so this is the impulse
   of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
-  by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV, a force value per
-  twentieth of a sensor period) on the segment;
+  by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV on the problem
+  whitened with the noise's AR model read on the baseline, a force value per twentieth
+  of a sensor period) on the segment;
 - with a grain, ``velocity_change [m/s]`` = impulse / grain mass (``(1 + e) v`` for an
   impact at speed ``v`` and restitution ``e``: the impulse alone cannot separate them);
 - with ``fit=`` a law name, :func:`contactlab.inverse.fit_contact` on the segment: each

@@ -73,6 +73,11 @@ def test_reconstruct_with_resonance_and_with_config(files, capsys):
     # reconstruction errors below 4 % (see test_inverse_reconstruct): 5 % is the spec
     assert data["metrics"]["peak [N]"] == pytest.approx(truth.peak_contact_force, rel=0.05)
     assert png.stat().st_size > 10_000
+    # the noise model is reported, and the white one can be asked for: this trace's
+    # noise is white, so both give the same force
+    assert data["parameters"]["noise_model"] == "white"
+    assert main([*common, *sensor, "--noise-model", "white"]) == 0
+    assert _json(capsys)["metrics"] == data["metrics"]
     assert main([*common, "--sensor-config", str(model), "--method", "inverse"]) == 0
     data = _json(capsys)
     assert data["method"] == "inverse"

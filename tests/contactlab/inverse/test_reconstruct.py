@@ -8,7 +8,8 @@ import pytest
 import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.inverse import reconstruct_force, reconstruction_demo, synthetic_trace
-from contactlab.inverse.reconstruct import CRITERIA, _StandardForm, _toeplitz
+from contactlab.inverse.reconstruct import _toeplitz
+from contactlab.inverse.regularization import CRITERIA, StandardForm
 
 SENSOR = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
 
@@ -62,7 +63,7 @@ def test_discrepancy_principle_matches_the_residual_to_the_noise():
     rng = np.random.default_rng(3)
     h = np.tril(rng.uniform(0.5, 1.0, (60, 40)))
     y = h @ np.sin(np.linspace(0, 3, 40)) + rng.normal(0.0, 0.05, 60)
-    problem = _StandardForm(h, y)
+    problem = StandardForm(h, y)
     lam = CRITERIA["discrepancy"](problem, 0.05)
     # the root is found to 1e-3 in log10(lambda); the residual follows to ~1e-3
     assert problem.residual2(lam) == pytest.approx(60 * 0.05**2, rel=5e-3)
@@ -120,6 +121,8 @@ def test_demo_figure_is_written(tmp_path):
         ({"method": "inverse", "cutoff": 3e6}, "cutoff"),
         ({"cutoff": 1e5}, "cutoff applies to method='inverse'"),
         ({"method": "inverse", "regularization": "gcv"}, "regularization applies"),
+        ({"noise_model": "pink"}, "noise_model must be one of"),
+        ({"method": "inverse", "noise_model": "ar"}, "noise_model applies"),
         ({"window": (1e-5,)}, "window must be"),
         ({"window": 1e-5}, "window must be"),
         ({"window": (-1.0, 1e-4)}, "window start must lie within the record"),

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 from scipy.integrate import DOP853
 
-from contactlab.solver.dop853 import DenseSteps, Stepper
+from contactlab.kernels.segments import DenseSteps
+from contactlab.solver.dop853 import Stepper
 
 OMEGA, ZETA = 2.5e5, 0.02  # the paper's 40 kHz sensor [rad/s], damping ratio [-]
 

@@ -146,9 +146,10 @@ def test_crosstalk_is_removed_to_the_issues_targets_from_thirty_sigma(with_cross
         assert errors["impulse"] <= 0.05, errors  # the issue's targets, not loosened
         assert errors["peak_force"] <= 0.05, errors
         assert errors["contact_time"] <= 0.05, errors
-    # without the removal the crosstalk holds the reconstructed force up: a contact time
-    # far off (the benchmark measured up to +100 %), so the test above is not trivial;
-    # since reconstruct_force fits its own local line (single-trace paths, issue 22) it
-    # absorbs part of it: 19.7 % here (above 20 % before); twice the 5 % target shows it
-    kept = [_errors(r, t)["contact_time"] for r, t in rows[False] if r["status"] == "ok"]
-    assert max(kept) > 0.1
+    # without the removal the targets are not all met, so the test above is not
+    # trivial: contact time up to 6.1 % and impulse 5.2 % here. The crosstalk holds the
+    # reconstructed force up after the contact (the benchmark measured contact times up
+    # to +100 %); the contact now ends at the force's first dip under 5 % of its peak
+    # (reconstruct.DIP_FRACTION), which cuts most of that (19.7 % here before)
+    kept = [_errors(r, t) for r, t in rows[False] if r["status"] == "ok"]
+    assert max(max(e["contact_time"], e["impulse"]) for e in kept) > 0.05

@@ -37,7 +37,7 @@ EFFECTS = {
 }
 """The levels of ``Effects.everything`` one at a time (and a drift five times larger);
 1/f noise at 0.3 of the white noise, the campaign's envelope of the targets (1/f noise
-as large as the white noise is pinned below)."""
+as large as the white noise is tested below)."""
 
 
 def _record(hard_setup, effects, onset=1e-3, seed=3):
@@ -146,14 +146,14 @@ def test_reconstruction_removes_the_structure_s_crosstalk(hard_setup, onset):
     assert len(removed) == 1 and " Hz (zeta " in removed[0]
     found = [float(part.split(" Hz")[0]) for part in removed[0].split(": ", 1)[1].split("; ")]
     assert any(abs(f / 1890.0 - 1.0) < 0.02 for f in found), found
-    # kept on request, the same record is flagged, with the numbers; 1 ms in its contact
-    # time is far off (+12 % to +25 % measured; above twice the 5 % target shows that
-    # the removal is what brought it within it; at the start this seed gave +2.2 %)
+    # kept on request, the same record is flagged, with the numbers. 1 ms in, the
+    # crosstalk held the reconstructed force above 2 % of its peak after the contact
+    # (contact time +12 % to +25 %); the contact now ends at the force's first dip under
+    # 5 % of its peak (reconstruct.DIP_FRACTION): +4.4 % measured, within the 5 % target
     kept = reconstruct_force(*_arrays(record), hard_setup[1], crosstalk=False)
     assert "not free ringing" in kept.status
     assert any("crosstalk" in note and "times" in note for note in kept.notes)
-    if onset > 0.0:
-        assert kept.metrics.duration > 1.1 * truth["contact_time [s]"]
+    assert kept.metrics.duration == pytest.approx(truth["contact_time [s]"], rel=0.05)
 
 
 def test_reconstruction_says_when_no_structure_mode_explains_the_ringing(hard_setup):
@@ -167,17 +167,24 @@ def test_reconstruction_says_when_no_structure_mode_explains_the_ringing(hard_se
     assert "nothing removed" in rec.notes[-1]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="1/f noise as large as the white noise (seed 3): reconstructed peak +7.0 % "
-    "(+0.9 to +7.0 % over four seeds; contact time within 1.1 %); GCV assumes white noise "
-    "and the 1/f noise under the pulse cannot be told from force (docs/campaign.md)",
-)
-def test_reconstruction_under_1_over_f_noise_as_large_as_the_white(hard_setup):
-    record = _record(hard_setup, Effects(pink=NOISE))
+@pytest.mark.parametrize("onset", ONSETS.values(), ids=ONSETS.keys())
+def test_reconstruction_under_1_over_f_noise_as_large_as_the_white(hard_setup, onset):
+    record = _record(hard_setup, Effects(pink=NOISE), onset)
+    truth = record.truth.iloc[0]
     rec = reconstruct_force(*_arrays(record), hard_setup[1])
-    # the issue's 5 % target
-    assert rec.metrics.peak == pytest.approx(record.truth["peak_contact_force [N]"][0], rel=0.05)
+    # the issue's 5 % target. 1 ms in, seed 3 was +7.0 % (a strict xfail) while GCV
+    # assumed white noise; the noise's AR model read on the baseline window whitens the
+    # problem: +0.6 % (contact time +3.2 %; seeds 3-6 at most +2.3 % and +3.2 %). At the
+    # start it is read after the contact, on what the free ringing leaves: +2.0 % (white
+    # model +3.0 %; seeds 0-6 at most 2.0 % and 1.6 %, docs/campaign.md)
+    assert rec.parameters["noise_model"].startswith("AR(")
+    assert rec.metrics.peak == pytest.approx(truth["peak_contact_force [N]"], rel=0.05)
+    assert rec.metrics.duration == pytest.approx(truth["contact_time [s]"], rel=0.05)
+    if onset > 0.0:
+        # with the white model the same record gives the old +7.0 %: what the whitening
+        # buys (over 5 % shows it)
+        white = reconstruct_force(*_arrays(record), hard_setup[1], noise_model="white")
+        assert white.metrics.peak > 1.05 * truth["peak_contact_force [N]"]
 
 
 def test_compare_removes_a_drifting_baseline(hard_setup):
