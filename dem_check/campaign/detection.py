@@ -48,6 +48,7 @@ import numpy as np
 
 from contactlab import signals
 from contactlab.bodies import Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
 from contactlab.traces.prepare import check_trace
@@ -225,6 +226,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     if not isinstance(sensor, Sensor):
         raise ParameterError(f"sensor must be a Sensor; got {type(sensor).__name__}")
     min_force, min_separation = check_limits(min_force, min_separation)
+    fit_onsets = check_flag("fit_onsets", fit_onsets)
     floor, signal, smoothed, lowpassed, local = noise_floor(trace, sensor)
     t, z = smoothed.t, np.asarray(smoothed.values)
     dt = float(t[1] - t[0])
