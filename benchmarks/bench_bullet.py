@@ -14,7 +14,7 @@ import time
 import pybullet as pb
 
 import contactlab as cl
-from contactlab.config import load_preset
+from contactlab.config import ImpactConfig, load_preset
 from dem_check.engines.bullet import drop_scene, drop_test
 
 REPEATS = 7
@@ -30,7 +30,7 @@ def _median(fn):
 def _impact(grain, sensor, law):
     """Wall time of one whole drop_test [s] and its engine-step wall time and step count."""
     clock = time.perf_counter()
-    res = drop_test(grain, sensor, law, 2.0, TIME_STEP)
+    res = drop_test(ImpactConfig(grain, sensor, law, {"velocity": 2.0}), time_step=TIME_STEP)
     total = time.perf_counter() - clock
     return total, res.metadata["wall_time [s]"], res.metadata["steps"]
 

@@ -30,6 +30,7 @@ from contactlab.benchmarks.chung_ooi.figures import save_attribution_figure
 from contactlab.benchmarks.chung_ooi.grading import grain, rebound
 from contactlab.benchmarks.chung_ooi.oblique import ANGLES
 from contactlab.cli import _benchmark_engines
+from contactlab.config import ImpactConfig
 from contactlab.solver import wall_impact
 from contactlab.solver.conventions import DEM_CONVENTIONS
 from dem_check.engines import kratos, lammps
@@ -58,10 +59,10 @@ def drop_tests():
     worst = 0.0
     for law_name, law in laws.items():
         for sensor_name, sensor in sensors.items():
-            case = (body, sensor, law, V0)
-            t_kratos = median_time(lambda case=case: kratos.drop_test(*case), REPEATS)
-            t_lammps = median_time(lambda case=case: lammps.drop_test(*case), REPEATS)
-            res = kratos.drop_test(body, sensor, law, V0)
+            case = ImpactConfig(body, sensor, law, {"velocity": V0})
+            t_kratos = median_time(lambda case=case: kratos.drop_test(case), REPEATS)
+            t_lammps = median_time(lambda case=case: lammps.drop_test(case), REPEATS)
+            res = kratos.drop_test(case)
             ref = cl.simulate_impact(body, sensor, law, V0)
             error = max(abs(getattr(res, q) / getattr(ref, q) - 1.0) for q in QUANTITIES)
             worst = max(worst, t_kratos)

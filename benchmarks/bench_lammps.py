@@ -21,6 +21,7 @@ from timing import median_time
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.config import ImpactConfig
 from contactlab.inverse import export_dem
 from contactlab.solver.wall import wall_contact_time, wall_impact
 from dem_check.engines import bullet
@@ -58,10 +59,13 @@ def _impacts(grain, sensors, laws):
     worst = 0.0
     for name, law in laws.items():
         for label, sensor in sensors.items():
-            res = drop_test(grain, sensor, law, V0)
+            res = drop_test(ImpactConfig(grain, sensor, law, {"velocity": V0}))
             ref = cl.simulate_impact(grain, sensor, law, V0)
             t_lammps = median_time(
-                lambda law=law, sensor=sensor: drop_test(grain, sensor, law, V0), REPEATS
+                lambda law=law, sensor=sensor: drop_test(
+                    ImpactConfig(grain, sensor, law, {"velocity": V0})
+                ),
+                REPEATS,
             )
             t_exact = median_time(
                 lambda law=law, sensor=sensor: cl.simulate_impact(grain, sensor, law, V0),
@@ -84,7 +88,9 @@ def _convergence(grain, sensor, laws):
         contact = wall_contact_time(law, grain.mass, V0)
         base = min(contact, sensor.period)
         steps = [base / n for n in (50, 100, 200, 400, 800)]
-        study = convergence_study(grain, sensor, law, V0, steps)
+        study = convergence_study(
+            ImpactConfig(grain, sensor, law, {"velocity": V0}), time_steps=steps
+        )
         columns = ["time_step [s]", *(f"{q} error [-]" for q in QUANTITIES), "wall_time [s]"]
         print(f"{name} on the 40 kHz sensor:")
         print(study[columns].to_string(index=False, float_format=lambda x: f"{x:.3e}"))
@@ -97,8 +103,8 @@ def _bullet(grain, sensor, laws):
     law = laws["linear"]
     ref = cl.simulate_impact(grain, sensor, law, V0)
     for engine, run in (
-        ("pybullet", lambda: bullet.drop_test(grain, sensor, law, V0)),
-        ("LAMMPS", lambda: drop_test(grain, sensor, law, V0)),
+        ("pybullet", lambda: bullet.drop_test(ImpactConfig(grain, sensor, law, {"velocity": V0}))),
+        ("LAMMPS", lambda: drop_test(ImpactConfig(grain, sensor, law, {"velocity": V0}))),
     ):
         res = run()
         seconds = median_time(run, REPEATS)

@@ -13,11 +13,13 @@ The interface
 -------------
 The entry point names a module (or any object) that provides::
 
-    drop_test(grain, sensor, law, velocity, time_step=None, **options) -> result
+    drop_test(config, *, time_step=None, **options) -> result
 
-with ``result`` read as :class:`contactlab.ImpactResult` is (``t``, ``contact_force``,
-``sensor_force`` [N], ``contact_time`` [s], ``peak_contact_force`` [N],
-``restitution``), and optionally::
+with ``config`` a :class:`contactlab.config.ImpactConfig` (grain, sensor, law and the
+impact speed ``config.velocity`` [m/s], the one set-up shape), ``time_step`` the engine
+step [s] (``None``: the engine's default) and ``result`` read as
+:class:`contactlab.ImpactResult` is (``t``, ``contact_force``, ``sensor_force`` [N],
+``contact_time`` [s], ``peak_contact_force`` [N], ``restitution``), and optionally::
 
     oblique_impact(grain, normal_law, tangential_law, velocity, angle, *, spin=0.0)
     base_case_check(out) -> list of pathlib.Path   # the paper's base case, files written

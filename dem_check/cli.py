@@ -44,11 +44,8 @@ def _bullet(args):
 
     config = load(args.config, args.preset)
     comparison = engine_check(
-        config.grain,
-        config.sensor,
-        config.law,
-        config.simulation["velocity"],
-        args.time_step,
+        config,
+        time_step=args.time_step,
         compensate_damping=args.compensate,
         tolerances=_tolerances(args.tolerance),
     )

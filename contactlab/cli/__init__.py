@@ -284,6 +284,7 @@ def _benchmark_engines(names):
     from contactlab.benchmarks.chung_ooi import EngineRunner
     from contactlab.benchmarks.chung_ooi.grading import ENGINES
     from contactlab.bodies import Sensor
+    from contactlab.config import ImpactConfig
     from contactlab.solver import wall_impact
     from contactlab.validation import check_choice
 
@@ -296,7 +297,8 @@ def _benchmark_engines(names):
             # a rigid plane: the impact is over when the contact ends; 1.5 wall contact
             # times spare the drop test's default 20 us tail (2 contacts in test 3)
             duration = 1.5 * wall_impact(law, grain.mass, speed).contact_time
-            return drop_test(grain, Sensor.rigid(), law, speed, duration=duration)
+            setup = ImpactConfig(grain, Sensor.rigid(), law, {"velocity": speed})
+            return drop_test(setup, duration=duration)
 
         # LAMMPS runs tests 4-6 graded, through run_chung_ooi's lammps; Kratos' test 4 under
         # its own tangential rules is reported

@@ -216,7 +216,9 @@ class ContactLaw(KeywordChecked, ABC):
       :class:`~contactlab.laws.closed_form.ClosedForm` (the testing plug-in, the audit
       matrix, the study's contact time);
     * optional: ``_batch_contact()`` (its batch solver and columns), ``_lammps_model(m*,
-      R*)`` or a ``lammps_refusal`` reason (:mod:`contactlab.laws.lammps`), ``dem_export``
+      R*)`` or a ``lammps_refusal`` reason (:mod:`contactlab.laws.lammps`),
+      ``_kratos_model(m*, R*, wall)`` or a ``kratos_refusal`` reason
+      (:mod:`contactlab.laws.kratos`), ``dem_export``
       (the DEM exporters' family), ``_damping_ratio(m*)`` (Kratos' tied tangential
       damping), ``from_material`` and ``_resized(mass, grain, velocity)`` (a study whose
       law follows the grain size).

@@ -4,8 +4,10 @@ the fields every engine's mapping of a law shares."""
 from dataclasses import dataclass
 
 from contactlab.errors import ParameterError
+from contactlab.laws.base import stated
+from contactlab.validation import check_positive
 
-__all__ = ["EngineContact", "refuse_unsupported"]
+__all__ = ["EngineContact", "engine_mapping", "refuse_unsupported", "stated_support"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -60,3 +62,56 @@ def refuse_unsupported(law, supported, refused, engine, models):
         f"law {kind.__name__} cannot be represented in {engine}: {reason}. "
         f"Supported exactly: {names}"
     )
+
+
+def stated_support(laws, mapping, refusal):
+    """Which of ``laws`` an engine holds, as each law's own class states it.
+
+    Parameters
+    ----------
+    laws : iterable of type
+        The registered law classes (``contactlab.laws.LAWS.values()``).
+    mapping, refusal : str
+        The class attributes naming the engine's mapping method (``"_lammps_model"``)
+        and its refusal reason (``"lammps_refusal"``).
+
+    Returns
+    -------
+    supported : tuple of type
+        The classes that state ``mapping`` (an engine's ``ENGINE_LAWS``).
+    refused : dict
+        Class -> the reason it states (an engine's ``REFUSED``).
+    """
+    laws = tuple(laws)
+    supported = tuple(cls for cls in laws if mapping in vars(cls))
+    refused = {cls: vars(cls)[refusal] for cls in laws if refusal in vars(cls)}
+    return supported, refused
+
+
+def engine_mapping(law, mapping, support, engine, models, effective_mass, effective_radius, *more):
+    """``law`` mapped onto an engine's contact model by the law's own ``mapping`` method.
+
+    Parameters
+    ----------
+    law : ContactLaw
+        The law (its own class must state ``mapping``: a subclass may change the force).
+    mapping : str
+        The mapping method's name, called as ``mapping(m*, R*, *more)``.
+    support : tuple
+        ``(supported, refused)`` of :func:`stated_support`.
+    engine, models : str
+        As for :func:`refuse_unsupported`.
+    effective_mass, effective_radius : float
+        ``m*`` [kg] and ``R*`` [m] the engine uses for the contact.
+    *more
+        Further arguments of the mapping (Kratos: whether the contact is with a wall).
+
+    Raises
+    ------
+    ParameterError
+        For ``m*`` or ``R*`` not > 0, or a law the engine does not hold (its reason quoted).
+    """
+    mass = check_positive("effective_mass", effective_mass, "kg")
+    radius = check_positive("effective_radius", effective_radius, "m")
+    refuse_unsupported(law, *support, engine, models)
+    return stated(law, mapping)(mass, radius, *more)

@@ -24,6 +24,8 @@ from contactlab.laws.closed_form import (
     closed_form,
 )
 from contactlab.laws.granular import DAMPING_FORMS, GranularModel
+from contactlab.laws.kratos_form import DAMPING_FORMS as KRATOS_DAMPING
+from contactlab.laws.kratos_form import kratos_hertz
 from contactlab.quantities import column
 from contactlab.validation import (
     check_non_negative,
@@ -223,6 +225,11 @@ class Hertz(SmoothLaw):
         """LAMMPS: ``hertz kH/sqrt(R*) 0``, ``damping velocity`` (:mod:`contactlab.laws.lammps`)."""
         return _lammps_hertz(self, "velocity", 0.0, effective_mass, effective_radius)
 
+    def _kratos_model(self, effective_mass, effective_radius, wall):
+        """Kratos: ``DEM_D_Hertz_viscous_Coulomb``, ``E* = 3 kH / (4 sqrt(R*))``,
+        ``gamma = 0`` (:mod:`contactlab.laws.kratos`)."""
+        return kratos_hertz(self, effective_mass, effective_radius)
+
     def _damping_ratio(self, mass):
         """Kratos' damping ratio [-]: 0 (:func:`contactlab.laws.damping_ratio`)."""
         return 0.0
@@ -344,6 +351,12 @@ class HertzDamped(SmoothLaw):
             self, "coeff_restitution", restitution, effective_mass, effective_radius
         )
 
+    def _kratos_model(self, effective_mass, effective_radius, wall):
+        """Kratos: ``DEM_D_Hertz_viscous_Coulomb``, ``E* = 3 kH / (4 sqrt(R*))``,
+        ``gamma = eta / (2 sqrt(1.5 m* kH))``, since ``2 gamma sqrt(m* Kn) = eta d**0.25``
+        with ``Kn = 1.5 kH d**0.5`` (:mod:`contactlab.laws.kratos`)."""
+        return kratos_hertz(self, effective_mass, effective_radius)
+
     def _damping_ratio(self, mass):
         """Kratos' damping ratio ``eta / (2 sqrt(1.5 m* kH))`` [-] on a grain of ``mass``
         [kg] (:func:`contactlab.laws.damping_ratio`; ``Kn = 1.5 kH sqrt(d)``)."""
@@ -381,6 +394,7 @@ class KuwabaraKono(SmoothLaw):
     stiffness_parameters = ("k_hertz",)
     typical = read_only(k_hertz=(1e6, 1e9, "log"), dissipation=(0.0, 1e-5, "linear"))
     """Dissipation constant A up to 10 us."""
+    kratos_refusal = f"its damping 1.5 A kH d**0.5 d' scales as d**0.5; {KRATOS_DAMPING}"
 
     def __init__(self, k_hertz, dissipation):
         self._keep(k_hertz=(check_positive, k_hertz), dissipation=(check_non_negative, dissipation))
@@ -439,6 +453,7 @@ class HuntCrossley(SmoothLaw):
 
     name = "hunt_crossley"
     lammps_refusal = f"its damping k chi d**n d' scales as d**n; {DAMPING_FORMS}"
+    kratos_refusal = f"its damping k chi d**n d' scales as d**n; {KRATOS_DAMPING}"
     units = read_only(stiffness="N/m**n", exponent="-", damping="s/m")
     stiffness_parameters = ("stiffness",)
     typical = read_only(

@@ -6,6 +6,7 @@ from contactlab import analytic
 from contactlab.laws.base import PowerForm, SmoothLaw, read_only, signed_power
 from contactlab.laws.closed_form import JOHNSON_1985, ClosedForm
 from contactlab.laws.hertz import _lammps_hertz
+from contactlab.laws.kratos_form import DAMPING_FORMS
 from contactlab.validation import check_non_negative, check_positive
 
 __all__ = ["HertzViscous"]
@@ -45,6 +46,11 @@ class HertzViscous(SmoothLaw):
     def _lammps_model(self, effective_mass, effective_radius):
         """LAMMPS: ``hertz kH/sqrt(R*) c``, ``damping velocity``."""
         return _lammps_hertz(self, "velocity", self.damping, effective_mass, effective_radius)
+
+    kratos_refusal = (
+        f"its dashpot c d' on a Hertz spring scales as d**0; {DAMPING_FORMS}, tied to the "
+        "law's own stiffness"
+    )
 
     def _closed_forms(self, mass, velocity):
         """Restitution to first order in ``y = c d_max / (m v)``: the dashpot's work along

@@ -70,6 +70,10 @@ class WaltonBraun(ContactLaw):
         "models (hooke, hertz, hertz/material, dmt, jkr) are elastic in the current overlap "
         "and its plastic one (mdr) is a different law"
     )
+    kratos_refusal = (
+        "its unloading stiffness differs from its loading one (history); Kratos' "
+        "DEM_D_Hertz/Linear laws are elastic in the current overlap"
+    )
     has_history = True
     piecewise_linear = True
     units = read_only(loading_stiffness="N/m", unloading_stiffness="N/m")

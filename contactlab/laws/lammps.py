@@ -52,19 +52,15 @@ this module reads them, so a new law adds neither a branch nor an entry here.
 """
 
 from contactlab.laws import LAWS
-from contactlab.laws.base import stated
-from contactlab.laws.engine_support import refuse_unsupported
+from contactlab.laws.engine_support import engine_mapping, stated_support
 from contactlab.laws.granular import TANGENTIAL, GranularModel
-from contactlab.validation import check_positive
 
 __all__ = ["ENGINE_LAWS", "REFUSED", "TANGENTIAL", "GranularModel", "granular_model"]
 
-ENGINE_LAWS = tuple(cls for cls in LAWS.values() if "_lammps_model" in vars(cls))
-"""Laws LAMMPS' granular models hold exactly: those that state a ``lammps_model``."""
-
-REFUSED = {cls: cls.lammps_refusal for cls in LAWS.values() if "lammps_refusal" in vars(cls)}
-"""Laws LAMMPS cannot hold exactly: law class -> the reason each states (quoted in the
-ParameterError)."""
+ENGINE_LAWS, REFUSED = stated_support(LAWS.values(), "_lammps_model", "lammps_refusal")
+"""Laws LAMMPS' granular models hold exactly: those that state a ``_lammps_model``
+(``ENGINE_LAWS``), and those LAMMPS cannot hold exactly: law class -> the reason each
+states, quoted in the ParameterError (``REFUSED``)."""
 
 
 def granular_model(law, effective_mass, effective_radius):
@@ -90,7 +86,12 @@ def granular_model(law, effective_mass, effective_radius):
         For a law LAMMPS cannot hold (naming it and why, :data:`REFUSED`), or a
         :class:`~contactlab.laws.HertzDamped` damping beyond LAMMPS' reach.
     """
-    mass = check_positive("effective_mass", effective_mass, "kg")
-    radius = check_positive("effective_radius", effective_radius, "m")
-    refuse_unsupported(law, ENGINE_LAWS, REFUSED, "LAMMPS", "LAMMPS' granular models")
-    return stated(law, "_lammps_model")(mass, radius)
+    return engine_mapping(
+        law,
+        "_lammps_model",
+        (ENGINE_LAWS, REFUSED),
+        "LAMMPS",
+        "LAMMPS' granular models",
+        effective_mass,
+        effective_radius,
+    )

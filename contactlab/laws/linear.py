@@ -9,6 +9,7 @@ from contactlab.laws.base import PowerForm, SmoothLaw, force_function, one_sided
 from contactlab.laws.closed_form import SCHWAGER_2007, closed_form
 from contactlab.laws.granular import GranularModel
 from contactlab.laws.hertz import Hertz
+from contactlab.laws.kratos_form import LINEAR_LAW, kratos_model, linear_kn_factor
 from contactlab.quantities import column
 from contactlab.validation import check_choice, check_non_negative, check_positive
 
@@ -141,6 +142,13 @@ class LinearViscoelastic(SmoothLaw):
             effective_mass=effective_mass,
             effective_radius=effective_radius,
         )
+
+    def _kratos_model(self, effective_mass, effective_radius, wall):
+        """Kratos: ``DEM_D_Linear_viscous_Coulomb``, ``E*`` from ``Kn = k``
+        (:func:`~contactlab.laws.kratos_form.linear_kn_factor`) and ``gamma = c / (2
+        sqrt(m* k))`` (:mod:`contactlab.laws.kratos`)."""
+        e_star = self.stiffness / (linear_kn_factor(wall) * effective_radius)
+        return kratos_model(self, LINEAR_LAW, e_star, effective_mass, effective_radius)
 
     def _damping_ratio(self, mass):
         """Kratos' damping ratio ``c / (2 sqrt(m* k))`` [-] on a grain of ``mass`` [kg]

@@ -122,6 +122,7 @@ class LinearPlastic(ContactLaw):
         "its force is capped at a yield force with a history of the largest overlap; no "
         "LAMMPS normal model has a force cap"
     )
+    kratos_refusal = "its force is capped at a yield force; Kratos' elastic laws have no cap"
     has_history = True
     piecewise_linear = True
     units = read_only(stiffness="N/m", yield_force="N")
@@ -209,6 +210,10 @@ class Thornton(ContactLaw):
     lammps_refusal = (
         "its Hertz loading turns to a limiting contact pressure and unloads along a "
         "history-dependent Hertz curve; LAMMPS' mdr model is a different plastic law"
+    )
+    kratos_refusal = (
+        "its Hertz loading turns to a limiting contact pressure; Kratos' plastic laws "
+        "(DEM_D_Conical_damage, ...) are different laws"
     )
     has_history = True
     units = read_only(effective_modulus="Pa", effective_radius="m", yield_pressure="Pa")

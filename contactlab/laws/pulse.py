@@ -59,6 +59,7 @@ class PlasticTrapezoid(KeywordChecked):
 
     name = "plastic_trapezoid"
     lammps_refusal = "it prescribes the force in time, not as a function of the overlap"
+    kratos_refusal = lammps_refusal
     prescribed = True
     has_history = False
     piecewise_linear = True

@@ -26,7 +26,6 @@ from contactlab.errors import ParameterError
 from contactlab.laws.base import stated
 from contactlab.laws.closed_form import closed_value
 from contactlab.quantities import columns
-from contactlab.solver import simulate_impact
 from contactlab.solver.wall import wall_contact_time
 from contactlab.study.execution import progress_bar
 from contactlab.study.setup import StudySetup
@@ -137,9 +136,9 @@ def simulate_point(setup, overrides, factors):
     varied = setup.varied_columns()
     out = {name: [] for name in (*varied, *_READINGS)}
     for factor in factors:
-        drawn = setup.scattered(law, float(factor))
-        res = simulate_impact(grain, sensor, drawn, velocity, sample_rate=sample_rate)
-        params = drawn.parameters()
+        drawn = replace(config, law=setup.scattered(law, float(factor)))
+        res = drawn.simulate(sample_rate=sample_rate)
+        params = drawn.law.parameters()
         for name, column in zip(setup.varied, varied, strict=True):
             out[column].append(params[name])
         for column, name in zip(_READINGS, _READING_NAMES, strict=True):

@@ -13,7 +13,6 @@ follows the grain's size. A grid point changes any of its parameters by name:
 * ``velocity`` [m/s].
 """
 
-import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 
@@ -300,18 +299,6 @@ class StudySetup:
         return [_law_column(p, units[p]) for p in self.varied]
 
     # -- building one grid point -----------------------------------------------
-    def at(self, overrides):
-        """Deprecated: the 4-tuple ``(grain, sensor, law, velocity)`` of
-        :meth:`config`, which returns the one set-up shape, an ImpactConfig."""
-        config = self.config(overrides)  # bad overrides are refused before the warning
-        warnings.warn(
-            "StudySetup.at is deprecated: StudySetup.config returns the set-up as an "
-            "ImpactConfig (.grain, .sensor, .law, .velocity)",
-            DeprecationWarning,
-            stacklevel=2,
-        )
-        return config.grain, config.sensor, config.law, config.velocity
-
     def config(self, overrides):
         """The set-up at a grid point: grain, sensor, mean law and impact speed.
 

@@ -14,13 +14,15 @@ The interface
 An engine is a module (or package) of this package, named in :data:`ENGINES`, that
 provides::
 
-    drop_test(grain, sensor, law, velocity, time_step=None, **options) -> EngineResult
+    drop_test(config, *, time_step=None, **options) -> EngineResult
 
-* ``grain`` (:class:`contactlab.Grain`), ``sensor`` (:class:`contactlab.Sensor`;
-  ``Sensor.rigid()`` is an immovable plate), ``law`` (a :mod:`contactlab.laws` law) and
+* ``config`` is a :class:`contactlab.config.ImpactConfig`, the one set-up shape: its
+  ``grain``, ``sensor`` (``Sensor.rigid()`` is an immovable plate), ``law`` and
   ``velocity`` (grain speed towards the sensor at release [m/s]) mean what they mean for
   :func:`contactlab.simulate_impact`; ``time_step`` is the engine step [s] (``None``: the
-  engine's own default);
+  engine's own default). The engines here still read the former positional form
+  ``drop_test(grain, sensor, law, velocity[, time_step])`` with a ``DeprecationWarning``
+  (:func:`dem_check.engines.config.engine_config`);
 * ``options`` are the engine's own keywords, each a keyword-only parameter of its
   ``drop_test`` (so an unknown one raises TypeError there);
 * a law the engine cannot represent, or a time step too coarse for the contact or the
@@ -40,9 +42,8 @@ an optional extra costs nothing until it is used.
 from importlib.metadata import entry_points
 
 from contactlab.audit import warn_if_broken
-from contactlab.config import ImpactConfig
 from contactlab.engines import GROUP, load_engine
-from contactlab.errors import ParameterError
+from dem_check.engines.config import engine_config
 from dem_check.engines.result import EngineResult
 
 __all__ = ["ENGINES", "EngineResult", "drop_test", "engine_module"]
@@ -71,9 +72,9 @@ def drop_test(config, *fields, time_step=None, engine="bullet", **options):
         simulation keys (duration, sample rate, method) are the reduced model's, not the
         engine's.
     *fields
-        The compatibility form ``drop_test(grain, sensor, law, velocity[, time_step])``:
-        the same set-up as separate arguments (an ImpactConfig's fields); the engines'
-        own ``drop_test`` functions (the plug-in interface) take them so.
+        Deprecated: ``drop_test(grain, sensor, law, velocity[, time_step])``, the same
+        set-up as separate arguments; read with a ``DeprecationWarning``
+        (:func:`dem_check.engines.config.engine_config`).
     time_step : float, optional
         Engine step [s]; default the engine's own.
     engine : str, default "bullet"
@@ -97,22 +98,8 @@ def drop_test(config, *fields, time_step=None, engine="bullet", **options):
     TypeError
         For arguments of neither form.
     """
-    if isinstance(config, ImpactConfig):
-        if fields:
-            raise TypeError("drop_test(config, ...) takes the time step as a keyword")
-        setup = (config.grain, config.sensor, config.law, config.velocity)
-    elif not fields:
-        raise ParameterError(
-            f"config must be a contactlab.config.ImpactConfig; got {type(config).__name__}"
-        )
-    elif len(fields) in (3, 4):
-        setup, time_step = (config, *fields[:3]), fields[3] if len(fields) == 4 else time_step
-    else:
-        raise TypeError(
-            "drop_test takes an ImpactConfig, or grain, sensor, law, velocity[, time_step]; "
-            f"got {1 + len(fields)} positional arguments"
-        )
+    config, time_step = engine_config(config, fields, time_step, "dem_check.drop_test")
     module = engine_module(engine)
-    result = module.drop_test(*setup, time_step, **options)
+    result = module.drop_test(config, time_step=time_step, **options)
     warn_if_broken(result.audit(), f"the {engine} engine's result")
     return result

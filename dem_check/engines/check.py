@@ -4,6 +4,7 @@ study, the paper's base case. Every engine's ``check`` module calls these with i
 """
 
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -11,6 +12,7 @@ import numpy as np
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.tables import spreadsheet_safe
+from dem_check.engines.config import engine_config
 
 __all__ = ["EngineChecks", "base_case_check", "convergence_study", "engine_check"]
 
@@ -18,17 +20,18 @@ _NOTES = ("time_step [s]", "numerical_damping [N*s/m]", "steps", "wall_time [s]"
 """Engine metadata every check copies into its comparison's notes."""
 
 
-def engine_check(
-    drop_test, grain, sensor, law, velocity, time_step=None, *, tolerances=None, notes=(), **options
-):
+def engine_check(drop_test, config, *, time_step=None, tolerances=None, notes=(), **options):
     """Run the impact in an engine and in the reduced model, and compare them.
 
     Parameters
     ----------
     drop_test : callable
         The engine's ``drop_test`` (the interface of :mod:`dem_check.engines`).
-    grain, sensor, law, velocity, time_step
-        As for ``drop_test`` (no gravity: the reduced model has none).
+    config : contactlab.config.ImpactConfig
+        The set-up, as for ``drop_test`` (no gravity: the reduced model has none); the
+        reduced model runs at its velocity over the engine's window.
+    time_step : float, optional
+        Engine step [s]; default the engine's.
     tolerances : dict, optional
         Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
     notes : sequence of str
@@ -47,22 +50,24 @@ def engine_check(
     from contactlab.compare import compare
     from contactlab.solver import simulate_impact
 
-    engine = drop_test(grain, sensor, law, velocity, time_step, **options)
-    model = simulate_impact(grain, sensor, law, velocity, duration=float(engine.t[-1]))
+    engine = drop_test(config, time_step=time_step, **options)
+    model = simulate_impact(
+        config.grain, config.sensor, config.law, config.velocity, duration=float(engine.t[-1])
+    )
     comparison = compare(engine, model, tolerances, align=None, labels=(engine.method, "model"))
     comparison.notes.update({key: engine.metadata[key] for key in (*_NOTES, *notes)})
     return comparison
 
 
-def convergence_study(drop_test, grain, sensor, law, velocity, time_steps, **options):
+def convergence_study(drop_test, config, time_steps, **options):
     """Errors of an engine against the reduced model as the time step shrinks.
 
     Parameters
     ----------
     drop_test : callable
         The engine's ``drop_test``.
-    grain, sensor, law, velocity
-        As for ``drop_test``.
+    config : contactlab.config.ImpactConfig
+        The set-up, as for ``drop_test``.
     time_steps : sequence of float
         Engine steps [s], at least two.
     **options
@@ -80,11 +85,11 @@ def convergence_study(drop_test, grain, sensor, law, velocity, time_steps, **opt
     """
     import pandas as pd
 
-    if len(time_steps) < 2:
+    if time_steps is None or len(time_steps) < 2:
         raise ParameterError(f"time_steps needs at least two steps [s]; got {time_steps!r}")
     rows = []
     for dt in time_steps:
-        comparison = engine_check(drop_test, grain, sensor, law, velocity, dt, **options)
+        comparison = engine_check(drop_test, config, time_step=dt, **options)
         row = {"time_step [s]": comparison.notes["time_step [s]"]}
         for item in comparison.table.itertuples():
             absolute = item.basis == "absolute"
@@ -138,18 +143,9 @@ def base_case_check(drop_test, name, out_dir, time_step=None, *, notes=(), **opt
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    base = load_preset("fig6")
     sensor = Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
-    comparison = engine_check(
-        drop_test,
-        base.grain,
-        sensor,
-        base.law,
-        base.simulation["velocity"],
-        time_step,
-        notes=notes,
-        **options,
-    )
+    setup = replace(load_preset("fig6"), sensor=sensor)
+    comparison = engine_check(drop_test, setup, time_step=time_step, notes=notes, **options)
     paths = [out / f"{name}_base_case.{ext}" for ext in ("png", "csv", "json")]
     fig, _ = comparison.plot(title=f"base case: {name} vs reduced model, 40 kHz sensor")
     fig.savefig(paths[0], dpi=150)
@@ -177,29 +173,36 @@ class EngineChecks:
     def __init__(self, drop_test, name, notes):
         self.drop_test, self.name, self.notes = drop_test, name, tuple(notes)
 
-    def engine_check(
-        self, grain, sensor, law, velocity, time_step=None, *, tolerances=None, **options
-    ):
+    def engine_check(self, config, *fields, time_step=None, tolerances=None, **options):
         """Run the impact in the engine and in the reduced model, and compare them
-        (:func:`engine_check`; ``options`` are the engine's ``drop_test`` keywords)."""
+        (:func:`engine_check`: ``config`` an ImpactConfig; ``options`` are the engine's
+        ``drop_test`` keywords; the deprecated ``grain, sensor, law, velocity[,
+        time_step]`` form warns)."""
+        config, time_step = engine_config(
+            config, fields, time_step, f"dem_check.{self.name}.engine_check"
+        )
         return engine_check(
             self.drop_test,
-            grain,
-            sensor,
-            law,
-            velocity,
-            time_step,
+            config,
+            time_step=time_step,
             tolerances=tolerances,
             notes=self.notes,
             **options,
         )
 
-    def convergence_study(self, grain, sensor, law, velocity, time_steps, **options):
+    def convergence_study(self, config, *fields, time_steps=None, **options):
         """Errors of the engine against the reduced model as the time step shrinks
-        (:func:`convergence_study`; ``attrs["order"]``: the observed orders)."""
-        return convergence_study(
-            self.drop_test, grain, sensor, law, velocity, time_steps, **options
+        (:func:`convergence_study`: ``config`` an ImpactConfig, ``time_steps`` [s];
+        ``attrs["order"]``: the observed orders; the deprecated ``grain, sensor, law,
+        velocity, time_steps`` form warns)."""
+        config, time_steps = engine_config(
+            config,
+            fields,
+            time_steps,
+            f"dem_check.{self.name}.convergence_study",
+            last="time_steps",
         )
+        return convergence_study(self.drop_test, config, time_steps, **options)
 
     def base_case_check(self, out_dir, time_step=None):
         """The engine's check of the paper's base case, written to a folder

@@ -144,9 +144,10 @@ class DropPlan:
     stop: int | None
 
 
-def drop_plan(grain, sensor, law, velocity, time_step, duration, threshold, default, min_steps):
+def drop_plan(config, time_step, duration, threshold, default, min_steps):
     """Check a drop test's inputs and plan its run.
 
+    ``config`` is the drop test's ImpactConfig (grain, sensor, law, ``velocity`` [m/s]);
     ``default(grain, sensor, law, velocity)`` gives the engine's default step [s];
     ``min_steps`` the fewest steps per contact and per sensor period
     (:func:`dem_check.engines.steps.check_time_step`). Without ``duration`` the run lasts
@@ -162,7 +163,8 @@ def drop_plan(grain, sensor, law, velocity, time_step, duration, threshold, defa
     ParameterError
         For a bad velocity, threshold, time step or duration (each named).
     """
-    velocity = check_positive("velocity", velocity, "m/s")
+    grain, sensor, law = config.grain, config.sensor, config.law
+    velocity = check_positive("velocity", config.velocity, "m/s")
     threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
     dt = engine_steps.check_time_step(time_step, grain, sensor, law, velocity, min_steps, default)
     if duration is None:

@@ -44,16 +44,10 @@ def test_a_law_without_a_batch_solver_is_refused_by_name():
         load_preset("fig9").batch_row()
 
 
-def test_study_points_are_impact_configs_and_at_is_deprecated():
+def test_study_points_are_impact_configs():
     setup = StudySetup.paper()
     config = setup.config({"grain.diameter": 4e-3})
     assert isinstance(config, cl.config.ImpactConfig)
     assert config.grain.diameter == 4e-3 and math.isfinite(config.velocity)
-    with pytest.warns(DeprecationWarning, match="StudySetup.config"):
-        grain, sensor, law, velocity = setup.at({"grain.diameter": 4e-3})
-    assert (grain.mass, sensor.stiffness, law, velocity) == (
-        config.grain.mass,
-        config.sensor.stiffness,
-        config.law,
-        config.velocity,
-    )
+    assert config.velocity == setup.velocity and config.law == setup.law
+    assert not hasattr(setup, "at")  # the 4-tuple shape is gone

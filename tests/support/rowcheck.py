@@ -13,12 +13,15 @@ BODY_COLUMNS = ("m1 [kg]", "k1 [N/m]", "c1 [N*s/m]", "m2 [kg]")
 """The sensor's and the grain's columns, before the contact's two and ``v0 [m/s]``."""
 
 
-def random_bodies(rng, n):
-    """Sensors 3 kHz - 300 kHz with damping ratios 1e-3 - 3 (under- and overdamped) and
+def random_bodies(rng, n, most_damping=None):
+    """Sensors 3 kHz - 300 kHz with damping ratios 1e-3 - ``most_damping`` (default
+    10**0.5 = 3.2: under- and overdamped, beyond real sensors, whose plausible range ends
+    at 1) and
     grains 0.01 - 30 times the sensor mass: ``(m1, k1, c1, m2)``, drawn in this order."""
     m1 = 10 ** rng.uniform(-4, -2, n)
     k1 = m1 * (2 * np.pi * 10 ** rng.uniform(3.5, 5.5, n)) ** 2
-    c1 = 2 * 10 ** rng.uniform(-3, 0.5, n) * np.sqrt(k1 * m1)
+    top = 0.5 if most_damping is None else np.log10(most_damping)
+    c1 = 2 * 10 ** rng.uniform(-3, top, n) * np.sqrt(k1 * m1)
     m2 = m1 * 10 ** rng.uniform(-2, 1.5, n)
     return m1, k1, c1, m2
 

@@ -7,7 +7,7 @@ with the contact law's name, restitution and friction, and which model part gets
 material. This writer gives that file for the grain (``SpheresPart``) and the sensor
 plate as a rigid wall (``RigidFacePart``), with the fitted law exactly where Kratos can
 hold it. Sources in ``applications/DEMApplication/`` of github.com/KratosMultiphysics/Kratos
-(formulas in :mod:`dem_check.engines.kratos.laws`):
+(formulas in :mod:`contactlab.laws.kratos`):
 
 * Hertz family ``(E*, e)``: ``DEM_D_Hertz_viscous_Coulomb``. At a wall Kratos mixes
   ``1/E* = (1 - nu**2)/E + (1 - nu_p**2)/E_p`` and takes ``R* = R``, ``m* = m``
@@ -49,6 +49,7 @@ from contactlab import analytic
 from contactlab.errors import ParameterError
 from contactlab.inverse.export.contact import STEEL_POISSON_RATIO, STEEL_YOUNGS_MODULUS
 from contactlab.inverse.export.rebound import realised_rebound
+from contactlab.laws.kratos_form import linear_kn_factor
 
 __all__ = [
     "KRATOS_STEPS_PER_CONTACT",
@@ -75,9 +76,6 @@ _THORNTON = (
     -1489.915,
 )
 """Coefficients h1 ... h10 of ``GammaForHertzThornton`` (Kratos ``sphere_strategy.py``)."""
-
-_LINEAR_STIFFNESS_FACTOR = math.pi * 0.31225
-"""``Kn / (E* R)`` of ``DEM_D_Linear_viscous_Coulomb`` at a wall."""
 
 _RESTITUTION_RANGE = (0.001, 0.999)
 """Kratos clamps the restitution below 0.001 and returns ``gamma = 0`` above 0.999."""
@@ -151,7 +149,7 @@ def material_relation(names, ids, law_name, restitution, friction):
 
 def _linear_materials(c):
     """Grain and plate Young's moduli and Poisson ratios for Kratos' linear law."""
-    e_star = c.stiffness / (_LINEAR_STIFFNESS_FACTOR * c.radius)
+    e_star = c.stiffness / (linear_kn_factor(wall=True) * c.radius)
     plate_e, plate_nu = STEEL_YOUNGS_MODULUS, STEEL_POISSON_RATIO  # a linear fit has none
     compliance = 1.0 / e_star - (1.0 - plate_nu**2) / plate_e
     if compliance <= 0.0:

@@ -4,6 +4,7 @@ paper's base case (:mod:`dem_check.engines.check` with pybullet's drop test)."""
 from dem_check.engines import check
 from dem_check.engines.bullet.drop import drop_test
 from dem_check.engines.check import EngineChecks
+from dem_check.engines.config import engine_config
 
 __all__ = ["base_case_check", "convergence_study", "engine_check"]
 
@@ -13,15 +14,16 @@ _NOTES = ("contact_damping_passed [N*s/m]", "compensate_damping")
 _CHECKS = EngineChecks(drop_test, "bullet", _NOTES)
 
 
-def engine_check(
-    grain, sensor, law, velocity, time_step=None, *, compensate_damping=False, tolerances=None
-):
+def engine_check(config, *fields, time_step=None, compensate_damping=False, tolerances=None):
     """Run the impact in pybullet and in the reduced model, and compare them.
 
     Parameters
     ----------
-    grain, sensor, law, velocity, time_step, compensate_damping
+    config, time_step, compensate_damping
         As for :func:`drop_test` (no gravity: the reduced model has none).
+    *fields
+        Deprecated: ``engine_check(grain, sensor, law, velocity[, time_step])``
+        (:func:`dem_check.engines.config.engine_config`).
     tolerances : dict, optional
         Tolerances by quantity name (:data:`contactlab.compare.DEFAULT_TOLERANCES`).
 
@@ -31,33 +33,30 @@ def engine_check(
         See :func:`dem_check.engines.check.engine_check`; ``notes`` also holds the damping
         passed to the engine and ``compensate_damping``.
     """
+    config, time_step = engine_config(config, fields, time_step, "dem_check.bullet.engine_check")
     return _CHECKS.engine_check(
-        grain,
-        sensor,
-        law,
-        velocity,
-        time_step,
+        config,
+        time_step=time_step,
         tolerances=tolerances,
         compensate_damping=compensate_damping,
     )
 
 
 def convergence_study(
-    grain,
-    sensor,
-    law,
-    velocity,
-    time_steps=(4e-7, 2e-7, 1e-7, 5e-8),
-    *,
-    compensate_damping=False,
+    config, *fields, time_steps=(4e-7, 2e-7, 1e-7, 5e-8), compensate_damping=False
 ):
     """Errors of pybullet against the reduced model as the time step shrinks.
 
-    See :func:`dem_check.engines.check.convergence_study`; ``attrs["compensate_damping"]``
+    ``config`` is an ImpactConfig and ``time_steps`` the engine steps [s] (the deprecated
+    ``grain, sensor, law, velocity[, time_steps]`` form warns). See
+    :func:`dem_check.engines.check.convergence_study`; ``attrs["compensate_damping"]``
     records the setting.
     """
+    config, time_steps = engine_config(
+        config, fields, time_steps, "dem_check.bullet.convergence_study", last="time_steps"
+    )
     frame = check.convergence_study(
-        drop_test, grain, sensor, law, velocity, time_steps, compensate_damping=compensate_damping
+        drop_test, config, time_steps, compensate_damping=compensate_damping
     )
     frame.attrs["compensate_damping"] = bool(compensate_damping)
     return frame

@@ -7,6 +7,7 @@ from contactlab.validation import check_number
 from dem_check.engines.bullet.limits import contact_time_estimate
 from dem_check.engines.bullet.run import read_steps, step_engine
 from dem_check.engines.bullet.scene import drop_scene
+from dem_check.engines.config import engine_config
 from dem_check.engines.record import step_limit
 
 __all__ = ["MAX_STEPS", "TAIL", "drop_test"]
@@ -21,13 +22,10 @@ TAIL = 20e-6
 
 
 def drop_test(
-    grain,
-    sensor,
-    law,
-    velocity,
+    config,
+    *fields,
     time_step=None,
     gravity=False,
-    *,
     compensate_damping=False,
     gap=None,
     duration=None,
@@ -37,16 +35,16 @@ def drop_test(
 
     Parameters
     ----------
-    grain : Grain
-        The grain (a sphere of its diameter and mass).
-    sensor : Sensor
-        The sensor: a plate of mass ``m1`` on a prismatic joint with the element ``k1, c1``
-        as a joint force; ``Sensor.rigid()`` is a fixed plate.
-    law : LinearViscoelastic
-        Grain-plate contact; other laws raise ParameterError (see the module docstring).
-    velocity : float
-        Grain speed towards the plate at release [m/s]; the impact speed without gravity.
-        May be 0 with ``gravity=True`` and a ``gap``.
+    config : contactlab.config.ImpactConfig
+        The set-up: ``grain`` (a sphere of its diameter and mass); ``sensor`` (a plate of
+        mass ``m1`` on a prismatic joint with the element ``k1, c1`` as a joint force;
+        ``Sensor.rigid()`` is a fixed plate); ``law``, a LinearViscoelastic (other laws
+        raise ParameterError, see the module docstring); ``velocity``, the grain speed
+        towards the plate at release [m/s], the impact speed without gravity (may be 0
+        with ``gravity=True`` and a ``gap``).
+    *fields
+        Deprecated: ``drop_test(grain, sensor, law, velocity[, time_step])``
+        (:func:`dem_check.engines.config.engine_config`).
     time_step : float, optional
         Engine step [s]; default :func:`default_time_step`. At most 1/20 of the contact
         (on an immovable wall) and of the sensor period.
@@ -86,17 +84,20 @@ def drop_test(
     >>> import contactlab as cl
     >>> grain = cl.Grain(diameter=5e-3, density=765.0)
     >>> law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
-    >>> res = drop_test(grain, cl.Sensor.rigid(), law, velocity=2.0)
+    >>> setup = cl.config.ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": 2.0})
+    >>> res = drop_test(setup)
     >>> round(res.contact_time * 1e6, 1)  # pi sqrt(m/k) = 70.3 us
     70.3
     """
     import pybullet as pb
 
+    config, time_step = engine_config(config, fields, time_step, "dem_check.bullet.drop_test")
+    grain, sensor, law = config.grain, config.sensor, config.law
     scene = drop_scene(
         grain,
         sensor,
         law,
-        velocity,
+        config.velocity,
         time_step,
         gravity,
         compensate_damping=compensate_damping,

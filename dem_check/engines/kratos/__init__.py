@@ -8,9 +8,9 @@ so :func:`contactlab.compare` takes it). Kratos is the ``kratos`` extra (``pip i
 
 * :mod:`~dem_check.engines.kratos.session`: importing Kratos without its banner, on one
   thread;
-* :mod:`~dem_check.engines.kratos.laws`: contactlab laws as Kratos DEM contact laws,
-  exactly (:data:`ENGINE_LAWS`: linear, Hertz, damped Hertz with ``DAMPING_GAMMA`` set
-  exactly), or a ParameterError saying why not;
+* :mod:`contactlab.laws.kratos`: contactlab laws as Kratos DEM contact laws, as each law
+  states it (:data:`ENGINE_LAWS`: linear, Hertz, damped Hertz with ``DAMPING_GAMMA`` set
+  exactly), or a ParameterError quoting the law's reason why not;
 * :mod:`~dem_check.engines.kratos.scene`: the case (model parts, materials, settings) in
   a temporary folder; the sensor a rigid wall or a sprung plate sphere;
 * :mod:`~dem_check.engines.kratos.drop`: stepping it from Python and reading the steps;
@@ -20,9 +20,9 @@ so :func:`contactlab.compare` takes it). Kratos is the ``kratos`` extra (``pip i
   wall under Kratos' own tangential rules (:func:`kratos_oblique`).
 """
 
+from contactlab.laws.kratos import ENGINE_LAWS, KratosContact, kratos_contact
 from dem_check.engines.kratos.check import convergence_study, engine_check
 from dem_check.engines.kratos.drop import default_time_step, drop_test
-from dem_check.engines.kratos.laws import ENGINE_LAWS, KratosContact, kratos_contact
 from dem_check.engines.kratos.oblique import kratos_oblique
 from dem_check.engines.kratos.session import EXTRA, kratos_version, load_kratos
 

@@ -8,6 +8,7 @@ import numpy as np
 
 from contactlab.errors import ParameterError
 from dem_check.engines import steps as engine_steps
+from dem_check.engines.config import engine_config
 from dem_check.engines.kratos.scene import drop_scene
 from dem_check.engines.kratos.session import kratos_version
 from dem_check.engines.kratos.stage import KratosRun
@@ -101,12 +102,9 @@ class _Stepper:
 
 
 def drop_test(
-    grain,
-    sensor,
-    law,
-    velocity,
+    config,
+    *fields,
     time_step=None,
-    *,
     gap=None,
     duration=None,
     threshold=0.0,
@@ -119,15 +117,18 @@ def drop_test(
 
     Parameters
     ----------
-    grain, velocity, gap, duration, threshold, plate_radius
-        As for :func:`dem_check.engines.lammps.drop.drop_test` (the plate a Kratos sphere).
-    sensor : Sensor
-        ``Sensor.rigid()`` is a rigid plane (a Kratos wall); a real sensor is a plate
-        sphere of mass ``m1`` on a spring ``k1`` and damper ``c1``
-        (:mod:`~dem_check.engines.kratos.scene`).
-    law : LinearViscoelastic, Hertz or HertzDamped
-        Grain-sensor contact, mapped exactly (:mod:`~dem_check.engines.kratos.laws`);
-        other laws raise ParameterError.
+    config : contactlab.config.ImpactConfig
+        The set-up, as for :func:`dem_check.engines.lammps.drop.drop_test` (the plate a
+        Kratos sphere): ``sensor`` ``Sensor.rigid()`` is a rigid plane (a Kratos wall), a
+        real sensor a plate sphere of mass ``m1`` on a spring ``k1`` and damper ``c1``
+        (:mod:`~dem_check.engines.kratos.scene`); ``law`` one whose class states its
+        Kratos mapping (LinearViscoelastic, Hertz, HertzDamped;
+        :mod:`contactlab.laws.kratos`), other laws raise ParameterError.
+    *fields
+        Deprecated: ``drop_test(grain, sensor, law, velocity[, time_step])``
+        (:func:`dem_check.engines.config.engine_config`).
+    gap, duration, threshold, plate_radius
+        As for :func:`dem_check.engines.lammps.drop.drop_test`.
     time_step : float, optional
         Kratos step [s]; default :func:`default_time_step`. At most 1/20 of the contact
         (on an immovable wall) and of the sensor period.
@@ -151,9 +152,9 @@ def drop_test(
     ImportError
         Without the ``kratos`` extra (``pip install 'contactlab[kratos]'``).
     """
-    plan = drop_plan(
-        grain, sensor, law, velocity, time_step, duration, threshold, default_time_step, MIN_STEPS
-    )
+    config, time_step = engine_config(config, fields, time_step, "dem_check.kratos.drop_test")
+    grain, sensor, law = config.grain, config.sensor, config.law
+    plan = drop_plan(config, time_step, duration, threshold, default_time_step, MIN_STEPS)
     velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     scene = drop_scene(grain, sensor, law, velocity, dt, gap, plate_radius)
     limit = step_limit(scene, after, MAX_STEPS, "Kratos", start_states=True)

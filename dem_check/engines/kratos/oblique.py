@@ -5,7 +5,7 @@ One sphere (z up) starts a few steps above a rigid triangle in ``z = 0`` with ve
 ``(vt, 0, -vn)`` and angular velocity ``(0, spin, 0)``: its contact point moves at ``vt -
 R spin`` along x, the sign convention of :func:`contactlab.simulate_oblique`. The contact
 law is Kratos' ``DEM_D_Hertz_viscous_Coulomb`` with the normal law mapped exactly
-(:mod:`~dem_check.engines.kratos.laws`) and the material's Poisson ratio chosen so that
+(:mod:`contactlab.laws.kratos`) and the material's Poisson ratio chosen so that
 Kratos' tangential stiffness ``Kt = 4 G* Kn / E* = 8 G* sqrt(R d)``
 (``InitializeContactWithFEM``) is the Mindlin law's ``k sqrt(d)``: with both bodies of
 the same ``E, nu``, Kratos' wall mixing gives ``G*/E* = (1 - nu) / (2 (2 - nu))``, so
@@ -26,7 +26,7 @@ from pathlib import Path
 
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin
-from dem_check.engines.kratos.laws import HERTZ_LAW, kratos_contact
+from contactlab.laws.kratos import HERTZ_LAW, kratos_contact
 from dem_check.engines.kratos.scene import (
     GRAIN_PART,
     MATERIALS,
@@ -79,7 +79,7 @@ def kratos_oblique(grain, normal_law, tangential_law, velocity, angle, *, spin=0
     grain : Grain
         The grain (mass, radius).
     normal_law : Hertz or HertzDamped
-        Mapped exactly (:func:`~dem_check.engines.kratos.laws.kratos_contact`); the damping
+        Mapped exactly (:func:`contactlab.laws.kratos.kratos_contact`); the damping
         ratio also sets Kratos' tangential damping (its rule).
     tangential_law : Mindlin
         Its stiffness and friction; Kratos applies its own history rules (module

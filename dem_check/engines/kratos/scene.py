@@ -17,7 +17,7 @@ Axis z up; the grain is sphere 1, released at ``z = R2 + gap`` with velocity ``-
   ``EXTERNAL_APPLIED_FORCE``, ``-k1 u - c1 u'`` from its displacement ``u`` and velocity
   at the start of each step, the state the contact force is computed from. The
   grain-plate contact has ``m* = m1 m2 / (m1 + m2)`` and ``R* = R2 Rp / (R2 + Rp)``, and
-  the law is mapped with these (:func:`~dem_check.engines.kratos.laws.kratos_contact`), as
+  the law is mapped with these (:func:`contactlab.laws.kratos.kratos_contact`), as
   in the LAMMPS scene (:mod:`dem_check.engines.lammps.scene`).
 """
 
@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from contactlab.inverse.export.kratos import material_relation
-from dem_check.engines.kratos.laws import kratos_contact
+from contactlab.laws.kratos import kratos_contact
 from dem_check.engines.record import DropCase, drop_geometry
 
 __all__ = [

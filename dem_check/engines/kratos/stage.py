@@ -20,7 +20,7 @@ def set_gamma(dem, model_part, gamma):
     """Write ``DAMPING_GAMMA`` into every material and material relation of a model part.
 
     Kratos' Hertz law reads it from the contact's sub-properties, its linear law from the
-    particles' properties (:mod:`~dem_check.engines.kratos.laws`); both are set.
+    particles' properties (:mod:`contactlab.laws.kratos`); both are set.
     """
     for properties in model_part.Properties:
         properties[dem.DAMPING_GAMMA] = gamma

@@ -3,6 +3,7 @@
 import time
 
 from dem_check.engines import steps as engine_steps
+from dem_check.engines.config import engine_config
 from dem_check.engines.lammps.read import read_steps, recorded_columns
 from dem_check.engines.lammps.scene import drop_deck
 from dem_check.engines.lammps.session import LammpsSession
@@ -47,12 +48,9 @@ def default_time_step(grain, sensor, law, velocity):
 
 
 def drop_test(
-    grain,
-    sensor,
-    law,
-    velocity,
+    config,
+    *fields,
     time_step=None,
-    *,
     gap=None,
     duration=None,
     threshold=0.0,
@@ -62,17 +60,18 @@ def drop_test(
 
     Parameters
     ----------
-    grain : Grain
-        The grain (a sphere of its diameter and mass).
-    sensor : Sensor
-        ``Sensor.rigid()`` is a plane (``fix wall/gran``); a real sensor is a plate
-        particle of mass ``m1`` on a spring ``k1`` and damper ``c1``
-        (:mod:`~dem_check.engines.lammps.scene`).
-    law : LinearViscoelastic, Hertz, HertzDamped or KuwabaraKono
-        Grain-sensor contact, mapped exactly (:mod:`~contactlab.laws.lammps`);
-        other laws raise ParameterError.
-    velocity : float
-        Grain speed towards the sensor at release [m/s] (no gravity: the impact speed).
+    config : contactlab.config.ImpactConfig
+        The set-up: ``grain`` (a sphere of its diameter and mass); ``sensor``
+        (``Sensor.rigid()`` is a plane, ``fix wall/gran``; a real sensor is a plate
+        particle of mass ``m1`` on a spring ``k1`` and damper ``c1``,
+        :mod:`~dem_check.engines.lammps.scene`); ``law``, one whose class states its
+        LAMMPS mapping (LinearViscoelastic, Hertz, HertzDamped, HertzViscous,
+        KuwabaraKono; :mod:`~contactlab.laws.lammps`; other laws raise ParameterError);
+        ``velocity``, the grain speed towards the sensor at release [m/s] (no gravity: the
+        impact speed).
+    *fields
+        Deprecated: ``drop_test(grain, sensor, law, velocity[, time_step])``
+        (:func:`dem_check.engines.config.engine_config`).
     time_step : float, optional
         LAMMPS step [s]; default :func:`default_time_step`. At most 1/20 of the contact
         (on an immovable wall) and of the sensor period.
@@ -110,13 +109,14 @@ def drop_test(
     >>> import contactlab as cl
     >>> grain = cl.Grain(diameter=5e-3, density=765.0)
     >>> law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
-    >>> res = drop_test(grain, cl.Sensor.rigid(), law, 2.0)  # doctest: +SKIP
+    >>> setup = cl.config.ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": 2.0})
+    >>> res = drop_test(setup)  # doctest: +SKIP
     >>> round(res.contact_time * 1e6, 2)  # pi sqrt(m/k) = 70.28 us  # doctest: +SKIP
     70.28
     """
-    plan = drop_plan(
-        grain, sensor, law, velocity, time_step, duration, threshold, default_time_step, MIN_STEPS
-    )
+    config, time_step = engine_config(config, fields, time_step, "dem_check.lammps.drop_test")
+    grain, sensor, law = config.grain, config.sensor, config.law
+    plan = drop_plan(config, time_step, duration, threshold, default_time_step, MIN_STEPS)
     velocity, dt, after, stop = plan.velocity, plan.time_step, plan.after, plan.stop
     deck = drop_deck(grain, sensor, law, velocity, dt, after, gap, plate_radius)
     limit = step_limit(deck, after, MAX_STEPS, "LAMMPS")

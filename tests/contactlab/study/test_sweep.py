@@ -276,12 +276,13 @@ def test_output_grid_follows_the_shortest_draw(setup, monkeypatch):
     from contactlab.study import points
 
     rates = []
+    simulate = cl.config.ImpactConfig.simulate
 
-    def recording(*args, sample_rate, **kwargs):
+    def recording(config, *, sample_rate, **kwargs):
         rates.append(sample_rate)
-        return cl.simulate_impact(*args, sample_rate=sample_rate, **kwargs)
+        return simulate(config, sample_rate=sample_rate, **kwargs)
 
-    monkeypatch.setattr(points, "simulate_impact", recording)
+    monkeypatch.setattr(cl.config.ImpactConfig, "simulate", recording)
     varied = replace(setup, law=PlasticTrapezoid(70e-6, 7e-6), vary="contact_time")
     # 20 kHz: a 50 us period, between the draws' contact times of 35 and 105 us
     points.simulate_point(varied, {"sensor.resonance": 20e3}, [0.5, 1.5])

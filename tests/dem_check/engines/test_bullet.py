@@ -6,6 +6,7 @@ then the paper's cases against :func:`contactlab.simulate_impact`, then converge
 
 import json
 import math
+from dataclasses import replace
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -13,7 +14,7 @@ import pytest
 
 import contactlab as cl
 from contactlab import analytic
-from contactlab.config import load_preset
+from contactlab.config import ImpactConfig, load_preset
 from contactlab.errors import ParameterError
 from dem_check import drop_test
 from dem_check.engines.bullet import (
@@ -37,7 +38,12 @@ def elastic():
 
 def test_free_fall_reaches_the_plate_at_sqrt_2h_over_g(grain, paper_sensor, elastic):
     height, dt = 1e-3, 1e-6  # [m], [s]
-    res = drop_test(grain, paper_sensor, elastic, 0.0, dt, gravity=True, gap=height)
+    res = drop_test(
+        ImpactConfig(grain, paper_sensor, elastic, {"velocity": 0.0}),
+        time_step=dt,
+        gravity=True,
+        gap=height,
+    )
     # semi-implicit Euler falls g dt**2 n (n + 1) / 2 in n steps, half a step ahead of
     # the parabola; the touch is interpolated within a step: one step bounds both
     assert res.metadata["touch_time [s]"] == pytest.approx(math.sqrt(2 * height / GRAVITY), abs=dt)
@@ -54,7 +60,7 @@ def test_free_fall_reaches_the_plate_at_sqrt_2h_over_g(grain, paper_sensor, elas
 
 
 def test_elastic_wall_impact_matches_closed_forms(grain, elastic):
-    res = drop_test(grain, cl.Sensor.rigid(), elastic, V0)
+    res = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), elastic, {"velocity": V0}))
     dt, m, k = res.time_step, grain.mass, elastic.stiffness
     assert dt == pytest.approx(1e-7)  # t_c / 500 = 1.4e-7 > 1e-7: the cap holds
     # contact time pi sqrt(m/k) and peak v0 sqrt(k m): first-order errors ~k dt / sqrt(k m)
@@ -73,7 +79,9 @@ def test_elastic_wall_impact_matches_closed_forms(grain, elastic):
 def test_engine_force_is_the_implicit_law(grain, paper_sensor):
     law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1.0)
     for compensate in (False, True):
-        res = drop_test(grain, paper_sensor, law, V0, compensate_damping=compensate)
+        res = drop_test(
+            ImpactConfig(grain, paper_sensor, law, {"velocity": V0}), compensate_damping=compensate
+        )
         passed = res.metadata["contact_damping_passed [N*s/m]"]
         model = np.where(
             res.overlap > 0, np.maximum(1e5 * res.overlap + passed * (res.v2 - res.v1), 0.0), 0.0
@@ -88,7 +96,7 @@ def test_engine_force_is_the_implicit_law(grain, paper_sensor):
 
 def test_impulse_equals_the_grain_momentum_change(grain, paper_sensor):
     law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1.0)
-    res = drop_test(grain, paper_sensor, law, V0)
+    res = drop_test(ImpactConfig(grain, paper_sensor, law, {"velocity": V0}))
     # only the contact acts on the grain: the sum of its impulses is m2 (v0 + v_rebound),
     # to rounding of ~800 summed steps
     change = grain.mass * (V0 + res.rebound_velocity)
@@ -100,10 +108,7 @@ def test_impulse_equals_the_grain_momentum_change(grain, paper_sensor):
 def test_paper_cases_agree_with_the_reduced_model(preset, compensate):
     config = load_preset(preset)
     comparison = engine_check(
-        config.grain,
-        config.sensor,
-        config.law,
-        config.simulation["velocity"],
+        config,
         compensate_damping=compensate,
     )
     rows = comparison.table.set_index("quantity")
@@ -128,8 +133,10 @@ def test_paper_cases_agree_with_the_reduced_model(preset, compensate):
 def test_compensation_removes_most_of_the_restitution_bias(grain, paper_sensor):
     law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1.0)
     model = cl.simulate_impact(grain, paper_sensor, law, V0)
-    plain = drop_test(grain, paper_sensor, law, V0)
-    compensated = drop_test(grain, paper_sensor, law, V0, compensate_damping=True)
+    plain = drop_test(ImpactConfig(grain, paper_sensor, law, {"velocity": V0}))
+    compensated = drop_test(
+        ImpactConfig(grain, paper_sensor, law, {"velocity": V0}), compensate_damping=True
+    )
     # measured: 3.3e-3 low without, 4e-4 with compensation; demand a factor 4
     assert abs(compensated.restitution - model.restitution) < (
         abs(plain.restitution - model.restitution) / 4
@@ -139,7 +146,8 @@ def test_compensation_removes_most_of_the_restitution_bias(grain, paper_sensor):
 def test_errors_fall_first_order_with_the_step(capsys):
     config = load_preset("fig6")
     study = convergence_study(
-        config.grain, config.sensor, config.law, V0, time_steps=(4e-7, 2e-7, 1e-7)
+        ImpactConfig(config.grain, config.sensor, config.law, {"velocity": V0}),
+        time_steps=(4e-7, 2e-7, 1e-7),
     )
     with capsys.disabled():
         print("\nengine vs model, preset fig6 (errors [-]):")
@@ -165,32 +173,32 @@ def test_default_time_step(grain, elastic, paper_sensor):
 
 
 def test_unsupported_laws_and_bad_settings_are_named(grain, paper_sensor, elastic):
-    hertz = cl.laws.Hertz(k_hertz=1e8)
+    setup = ImpactConfig(grain, paper_sensor, elastic, {"velocity": V0})
     with pytest.raises(ParameterError, match="law Hertz cannot be represented"):
-        drop_test(grain, paper_sensor, hertz, V0)
+        drop_test(replace(setup, law=cl.laws.Hertz(k_hertz=1e8)))
     with pytest.raises(ParameterError, match="time_step"):
-        drop_test(grain, paper_sensor, elastic, V0, time_step=2e-6)  # > T1 / 20
+        drop_test(setup, time_step=2e-6)  # > T1 / 20
     with pytest.raises(ParameterError, match="compensate_damping needs"):
-        drop_test(grain, paper_sensor, elastic, V0, compensate_damping=True)  # c2 = 0
+        drop_test(setup, compensate_damping=True)  # c2 = 0
     with pytest.raises(ParameterError, match="velocity"):
-        drop_test(grain, paper_sensor, elastic, -1.0)
+        drop_test(replace(setup, simulation={"velocity": -1.0}))
     with pytest.raises(ParameterError, match="gap"):
-        drop_test(grain, paper_sensor, elastic, 0.0, gravity=True)
+        drop_test(replace(setup, simulation={"velocity": 0.0}), gravity=True)
     with pytest.raises(ParameterError, match="grain must be"):
-        drop_test(grain.mass, paper_sensor, elastic, V0)
+        drop_test(replace(setup, grain=grain.mass))
     # flags, not values: gravity=9.81 must not silently mean standard gravity
     with pytest.raises(ParameterError, match=r"gravity must be True or False; got 9\.81"):
-        drop_test(grain, paper_sensor, elastic, V0, gravity=9.81)
+        drop_test(setup, gravity=9.81)
     with pytest.raises(ParameterError, match="compensate_damping must be True or False"):
-        drop_test(grain, paper_sensor, elastic, V0, compensate_damping="no")
+        drop_test(setup, compensate_damping="no")
     # a window that would need more steps than the bench records is refused up front
     with pytest.raises(ParameterError, match=r"needs \d+ engine steps.*shorten duration"):
-        drop_test(grain, paper_sensor, elastic, V0, duration=1.0)
+        drop_test(setup, duration=1.0)
 
 
 def test_result_outputs(grain, paper_sensor):
     law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=1.0)
-    res = drop_test(grain, paper_sensor, law, V0)
+    res = drop_test(ImpactConfig(grain, paper_sensor, law, {"velocity": V0}))
     model = cl.simulate_impact(grain, paper_sensor, law, V0)
     assert list(res.to_frame().columns) == list(model.to_frame().columns)
     summary = json.loads(json.dumps(res.summary(), allow_nan=False))
@@ -207,11 +215,13 @@ def test_result_outputs(grain, paper_sensor):
 def test_fixed_duration_and_no_client_left_connected(grain, paper_sensor, elastic):
     import pybullet
 
-    res = drop_test(grain, paper_sensor, elastic, V0, duration=150e-6)
+    res = drop_test(ImpactConfig(grain, paper_sensor, elastic, {"velocity": V0}), duration=150e-6)
     # the first step at or after 150 us from touch
     assert 150e-6 <= res.t[-1] < 150e-6 + res.time_step
     with pytest.warns(cl.WindowWarning, match="longer duration"):
-        drop_test(grain, paper_sensor, elastic, V0, duration=30e-6)  # inside the contact
+        drop_test(
+            ImpactConfig(grain, paper_sensor, elastic, {"velocity": V0}), duration=30e-6
+        )  # inside the contact
     assert not any(pybullet.isConnected(i) for i in range(64))  # every run disconnected
 
 

@@ -12,6 +12,7 @@ import pytest
 
 import contactlab as cl
 from contactlab import analytic
+from contactlab.config import ImpactConfig
 from dem_check.engines import engine_module
 
 V0 = 2.0  # impact speed [m/s]
@@ -26,12 +27,14 @@ DEM_ENGINES = [
 def test_elastic_contacts_match_closed_forms(grain, laws, engine):
     drop_test = engine_module(engine).drop_test
     k = laws["linear"].stiffness
-    linear = drop_test(grain, cl.Sensor.rigid(), cl.laws.LinearViscoelastic(k, 0.0), V0)
+    linear = drop_test(
+        ImpactConfig(grain, cl.Sensor.rigid(), cl.laws.LinearViscoelastic(k, 0.0), {"velocity": V0})
+    )
     # second order: 1000 steps per contact err ~1e-6 (measured 5e-7)
     assert linear.contact_time == pytest.approx(math.pi * math.sqrt(grain.mass / k), rel=1e-5)
     # the force's kinks at touch and separation cost O(dt**2) energy: measured 1.2e-6
     assert linear.restitution == pytest.approx(1.0, abs=1e-5)
-    hertz = drop_test(grain, cl.Sensor.rigid(), laws["hertz"], V0)
+    hertz = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), laws["hertz"], {"velocity": V0}))
     k_hertz = laws["hertz"].k_hertz
     # second order at 1000 steps per contact: measured 5e-7 (time), 1.4e-6 (sampled peak)
     assert hertz.contact_time == pytest.approx(
@@ -49,14 +52,14 @@ def test_damped_rebounds_match_closed_forms(grain, laws, engine):
     mapping writes DAMPING_GAMMA after Initialize)."""
     drop_test = engine_module(engine).drop_test
     linear = laws["linear"]
-    res = drop_test(grain, cl.Sensor.rigid(), linear, V0)
+    res = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), linear, {"velocity": V0}))
     expected = analytic.linear_restitution(
         linear.stiffness, linear.damping, grain.mass, convention="force"
     )
     # first order in the step: measured 1.7e-4 at the default step
     assert res.restitution == pytest.approx(expected, rel=5e-4)
     tsuji = laws["hertz_damped"]
-    res = drop_test(grain, cl.Sensor.rigid(), tsuji, V0)
+    res = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), tsuji, {"velocity": V0}))
     alpha = tsuji.damping / math.sqrt(grain.mass * tsuji.k_hertz)
     # first order in the step: measured 1.5e-4 off at the default step
     assert res.restitution == pytest.approx(analytic.tsuji_restitution(alpha, "force"), rel=5e-4)

@@ -9,6 +9,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.analytic import gross_sliding_rebound
+from contactlab.config import ImpactConfig
 from dem_check import drop_test
 from dem_check.engines.result import EngineResult
 
@@ -25,7 +26,7 @@ LAWS = {
 def _drop(engine, sensor, law):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", cl.errors.ContactlabWarning)
-        return drop_test(GRAIN, sensor, law, 2.0, engine=engine)
+        return drop_test(ImpactConfig(GRAIN, sensor, law, {"velocity": 2.0}), engine=engine)
 
 
 @pytest.mark.parametrize(

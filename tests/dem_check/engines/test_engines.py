@@ -1,13 +1,17 @@
 """The engine interface: one ``drop_test`` dispatching by name through ``ENGINES``."""
 
+import inspect
+
 import numpy as np
 import pytest
 
 import contactlab as cl
 import dem_check
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from dem_check import engines
 from dem_check.engines import ENGINES, bullet, drop_test, engine_module
+from dem_check.engines.config import engine_config
 from dem_check.engines.result import contact_crossings
 
 
@@ -15,7 +19,8 @@ from dem_check.engines.result import contact_crossings
 def case():
     """The paper's 5 mm grain on the rigid plate, undamped k2 = 1e5 N/m, 2 m/s."""
     grain = cl.Grain(diameter=5e-3, density=765.0)
-    return grain, cl.Sensor.rigid(), cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0), 2.0
+    law = cl.laws.LinearViscoelastic(stiffness=1e5, damping=0.0)
+    return ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": 2.0})
 
 
 def test_every_registered_engine_provides_drop_test():
@@ -28,23 +33,23 @@ def test_every_registered_engine_provides_drop_test():
 @pytest.mark.parametrize("name", ["bulet", "pybullet", "", None, 3])
 def test_unknown_engine_lists_the_valid_names(case, name):
     with pytest.raises(ParameterError, match=r"unknown engine .*valid names: bullet"):
-        drop_test(*case, engine=name)
+        drop_test(case, engine=name)
 
 
 def test_close_name_is_suggested(case):
     with pytest.raises(ParameterError, match=r"did you mean 'bullet'\?"):
-        drop_test(*case, engine="bulet")
+        drop_test(case, engine="bulet")
 
 
 def test_unknown_keyword_raises_type_error(case):
     with pytest.raises(TypeError, match="no_such_option"):
-        drop_test(*case, engine="bullet", no_such_option=1.0)
+        drop_test(case, engine="bullet", no_such_option=1.0)
 
 
 @pytest.mark.bullet
 def test_dispatch_gives_the_engine_module_result(case):
-    via_registry = drop_test(*case, 1e-7, engine="bullet", duration=100e-6)
-    direct = bullet.drop_test(*case, 1e-7, duration=100e-6)
+    via_registry = drop_test(case, time_step=1e-7, engine="bullet", duration=100e-6)
+    direct = bullet.drop_test(case, time_step=1e-7, duration=100e-6)
     assert via_registry.method == direct.method == "pybullet"
     # the engine is deterministic (deterministicOverlappingPairs=1): bit-identical runs
     np.testing.assert_array_equal(via_registry.contact_force, direct.contact_force)
@@ -52,13 +57,43 @@ def test_dispatch_gives_the_engine_module_result(case):
 
 
 @pytest.mark.bullet
-def test_an_impact_config_is_the_same_drop_test_as_its_fields(case):
-    grain, sensor, law, velocity = case
-    config = cl.config.ImpactConfig(grain, sensor, law, {"velocity": velocity})
-    from_config = drop_test(config, time_step=1e-7, duration=100e-6)
-    from_fields = drop_test(*case, 1e-7, duration=100e-6)
+@pytest.mark.parametrize("entry", [drop_test, bullet.drop_test], ids=["registry", "engine"])
+def test_the_positional_form_warns_and_runs_the_same_drop_test(case, entry):
+    fields = (case.grain, case.sensor, case.law, case.velocity)
+    from_config = entry(case, time_step=1e-7, duration=100e-6)
+    with pytest.warns(DeprecationWarning, match=r"drop_test\(ImpactConfig\(grain, sensor") as w:
+        from_fields = entry(*fields, 1e-7, duration=100e-6)
+    assert w[0].filename == __file__  # the warning points at the caller's line
     # the engine is deterministic (deterministicOverlappingPairs=1): bit-identical runs
     np.testing.assert_array_equal(from_config.contact_force, from_fields.contact_force)
+
+
+def test_the_checks_read_the_old_form_with_its_last_argument(case):
+    fields = (case.grain, case.sensor, case.law, case.velocity)
+    steps = (1e-7, 5e-8)
+    new_call = (
+        r"f\(ImpactConfig\(grain, sensor, law, \{'velocity': velocity\}\), time_steps=\.\.\.\)"
+    )
+    with pytest.warns(DeprecationWarning, match=new_call):
+        config, read = engine_config(fields[0], (*fields[1:], steps), None, "f", "time_steps")
+    assert (config.grain, config.sensor, config.law, config.velocity) == fields
+    assert read == steps
+    assert engine_config(case, (), steps, "f", "time_steps") == (case, steps)
+
+
+@pytest.mark.parametrize("name", sorted(ENGINES))
+def test_every_engine_takes_one_config(name):
+    """The plug-in interface (contactlab/engines.py): ``drop_test(config, *, time_step)``."""
+    parameters = inspect.signature(engine_module(name).drop_test).parameters
+    assert next(iter(parameters)) == "config"
+    assert parameters["time_step"].kind is inspect.Parameter.KEYWORD_ONLY
+
+
+def test_positional_fields_after_a_config_are_refused(case):
+    with pytest.raises(TypeError, match="takes time_step as a keyword"):
+        drop_test(case, 1e-7)
+    with pytest.raises(TypeError, match="got 3 positional arguments"):
+        drop_test(case.grain, case.sensor, case.law)
 
 
 @pytest.mark.parametrize("bad", [2.0, "fig6", [1, 2]])

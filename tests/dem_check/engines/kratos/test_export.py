@@ -16,6 +16,7 @@ from documents import E_STAR, GRAIN, VELOCITY, fit_document
 import contactlab as cl
 from contactlab import analytic
 from contactlab.cli import main
+from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from contactlab.inverse import export_dem
 from contactlab.solver import wall_impact
@@ -56,7 +57,11 @@ def _fits(restitution):
 def _realise(path, law):
     document = json.loads(path.read_text(encoding="utf-8"))
     step = document["contactlab_export"]["MaxTimeStep [s]"]
-    return drop_test(GRAIN, cl.Sensor.rigid(), law, VELOCITY, time_step=step, materials=path)
+    return drop_test(
+        ImpactConfig(GRAIN, cl.Sensor.rigid(), law, {"velocity": VELOCITY}),
+        time_step=step,
+        materials=path,
+    )
 
 
 CASES = [(name, e) for name in ("linear", "hertz_damped") for e in (0.2, 0.5, 0.9)]
@@ -111,6 +116,9 @@ def test_a_materials_file_needs_a_rigid_sensor_and_must_exist(tmp_path, paper_se
     path = tmp_path / "MaterialsDEM.json"
     path.write_text(export_dem(fit, "kratos"), encoding="utf-8")
     with pytest.raises(ParameterError, match="materials"):
-        drop_test(GRAIN, paper_sensor, law, VELOCITY, materials=path)
+        drop_test(ImpactConfig(GRAIN, paper_sensor, law, {"velocity": VELOCITY}), materials=path)
     with pytest.raises(ParameterError, match="materials: no such file"):
-        drop_test(GRAIN, cl.Sensor.rigid(), law, VELOCITY, materials=tmp_path / "none.json")
+        drop_test(
+            ImpactConfig(GRAIN, cl.Sensor.rigid(), law, {"velocity": VELOCITY}),
+            materials=tmp_path / "none.json",
+        )

@@ -5,6 +5,7 @@ import numpy as np
 import pytest
 
 import contactlab as cl
+from contactlab.config import ImpactConfig
 from contactlab.laws import HertzViscous
 from dem_check.engines.lammps import drop_test
 
@@ -15,7 +16,7 @@ V0 = 2.0  # impact speed [m/s]
 
 def test_hertz_viscous_runs_in_lammps(grain):
     law = HertzViscous(1.5e6, 0.01)
-    res = drop_test(grain, cl.Sensor.rigid(), law, V0)
+    res = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": V0}))
     half_step_rate = res.v2 + 0.5 * res.time_step * res.contact_force / grain.mass
     expected = law.force(res.overlap, half_step_rate)
     # rounding only, as for the other mapped laws (test_drop.py: measured 2e-16 to 4e-16)
