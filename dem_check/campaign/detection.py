@@ -34,7 +34,9 @@ in newtons:
    impact with fewer than :data:`BASELINE_MIN_SAMPLES` quiet samples before it (a
    record that starts at the hit, or an impact right after another's ringing) takes its
    baseline from the quiet samples after its ringing decayed: status
-   ``"short pre-trigger"``, analysed.
+   ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
+   (:mod:`dem_check.campaign.onsets`: the sensor's response to the force's start), which
+   the crossing lags.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
@@ -45,12 +47,14 @@ in newtons:
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from contactlab import signals
 from contactlab.bodies import Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
 from contactlab.traces.prepare import check_trace
@@ -67,6 +71,7 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
+from dem_check.campaign.onsets import first_touches
 from dem_check.campaign.steps import edge_steps, find_steps, remove_steps
 
 __all__ = [
@@ -200,7 +205,7 @@ def check_limits(min_force, min_separation):
     return min_force, min_separation
 
 
-def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
+def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onsets=True):
     """Every impact in a record, with its onset, local baseline, significance and status.
 
     Parameters
@@ -216,6 +221,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     min_separation : float, optional
         Shortest time between two impacts' onsets [s]; a candidate closer to the one
         before gets status ``"too close"``.
+    fit_onsets : bool, default True
+        Give each analysed impact the onset of a fit of the sensor's response to its
+        rise (:mod:`dem_check.campaign.onsets`); ``False`` keeps the smoothed signal's
+        crossing of :data:`ONSET_SIGMAS` (step 4), which lags the first touch.
 
     Returns
     -------
@@ -230,6 +239,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     if not isinstance(sensor, Sensor):
         raise ParameterError(f"sensor must be a Sensor; got {type(sensor).__name__}")
     min_force, min_separation = check_limits(min_force, min_separation)
+    fit_onsets = check_flag("fit_onsets", fit_onsets)
     stage = _candidates(trace, sensor)
     period = stage["scales"]["period"]
     mask = np.zeros(len(trace), dtype=bool)
@@ -264,7 +274,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         windows += _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
         previous_end = last + 1
     windows = _apply_limits(windows, min_force, min_separation)
-    return Detection(
+    found = Detection(
         floor,
         windows,
         stage["signal"],
@@ -274,6 +284,9 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         trace,
         [_step_row(step, t) for step in steps],
     )
+    if not fit_onsets or period < RESOLVED_PERIOD_SAMPLES:
+        return found  # a sensor period of a few samples holds no rise to fit
+    return dataclasses.replace(found, impacts=first_touches(found, sensor, ANALYSED))
 
 
 def _candidates(trace, sensor):
