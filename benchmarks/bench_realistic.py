@@ -109,12 +109,16 @@ large as the white noise, drift of 20 sigma, hum of 1.5 sigma, bounces at 40 % o
 velocity 2 ms later) with these changes."""
 
 
-def _records(rate, seeds, changes):
-    grain, sensor, law = hard()
+def _records(rate, seeds, changes, law=None):
+    """Records of 4 impacts of 0.5-2.5 m/s (and their bounces), one per seed: the hard
+    grain's, or ``law``'s on its grain and sensor (``bench_onsets.py``)."""
+    grain, sensor, hard_law = hard()
+    law = hard_law if law is None else law
     for seed in seeds:
         rng = np.random.default_rng(seed)
         onsets = 1e-3 + np.cumsum(rng.uniform(4e-3, 7e-3, 4)) - 4e-3
-        effects = Effects.everything(NOISE, 3.0, full_scale=None, steps=0, **changes)
+        # clipping and offset steps off unless ``changes`` turn them on
+        effects = Effects.everything(NOISE, 3.0, **{"full_scale": None, "steps": 0, **changes})
         yield realistic_record(
             grain,
             sensor,

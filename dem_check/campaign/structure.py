@@ -171,7 +171,9 @@ def impact_crosstalk(detection, window, sensor, contact_end, segment, modes):
     index = detection.impacts.index(window)
     previous = detection.impacts[index - 1].end if index > 0 else float(t[0])
     base = window.baseline_window
-    pre = (max(previous, window.onset - SPAN), base[1]) if base[1] <= window.onset else None
+    # a baseline before the impact (not after its ringing: a short pre-trigger); the
+    # fitted onset can lie before the baseline's end (dem_check.campaign.onsets)
+    pre = (max(previous, window.onset - SPAN), base[1]) if base[0] < window.onset else None
     post = (
         contact_end + sensor.period,
         min(_following(detection, index, sensor), contact_end + SPAN),
