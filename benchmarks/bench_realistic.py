@@ -24,6 +24,7 @@ Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 """
 
 import argparse
+import os
 import tempfile
 import time
 from pathlib import Path
@@ -77,10 +78,13 @@ def speed():
         started, cpu = time.perf_counter(), time.process_time()
         result = run_campaign([path], sensor, grain)
         total, cpu = time.perf_counter() - started, time.process_time() - cpu
+        load = os.getloadavg()[0]
+    print(f"load average before the run: {os.getloadavg()[0]:.1f} (1 min)")
     print(f"{len(record.trace)} samples, {len(record.truth)} true impacts (with bounces)")
     print(f"run_campaign: {total:.2f} s ({total / read:.0f} x reading the file, {read:.3f} s)")
     print(f"run_campaign CPU time of this process: {cpu:.2f} s (wall time on a loaded machine")
     print("  is larger; set OPENBLAS_NUM_THREADS=1 on a shared machine)")
+    print(f"load average after the run: {load:.1f} (1 min)")
     for stage, seconds in result.timings.items():
         print(f"  {stage}: {seconds:.2f} s")
     print(result.impacts["status"].value_counts().to_string())
@@ -105,12 +109,16 @@ large as the white noise, drift of 20 sigma, hum of 1.5 sigma, bounces at 40 % o
 velocity 2 ms later) with these changes."""
 
 
-def _records(rate, seeds, changes):
-    grain, sensor, law = hard()
+def _records(rate, seeds, changes, law=None):
+    """Records of 4 impacts of 0.5-2.5 m/s (and their bounces), one per seed: the hard
+    grain's, or ``law``'s on its grain and sensor (``bench_onsets.py``)."""
+    grain, sensor, hard_law = hard()
+    law = hard_law if law is None else law
     for seed in seeds:
         rng = np.random.default_rng(seed)
         onsets = 1e-3 + np.cumsum(rng.uniform(4e-3, 7e-3, 4)) - 4e-3
-        effects = Effects.everything(NOISE, 3.0, full_scale=None, steps=0, **changes)
+        # clipping and offset steps off unless ``changes`` turn them on
+        effects = Effects.everything(NOISE, 3.0, **{"full_scale": None, "steps": 0, **changes})
         yield realistic_record(
             grain,
             sensor,

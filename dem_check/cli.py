@@ -8,7 +8,7 @@ import json
 import sys
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import Parser, add_outputs, add_strict, run
+from contactlab.cli.running import Parser, add_crosstalk_flag, add_outputs, add_strict, run
 from contactlab.config import load
 from contactlab.errors import ParameterError
 
@@ -71,7 +71,12 @@ def _compare(args):
     trace = read_trace(args.trace, channel=args.channel, sensitivity=args.sensitivity)
     align = None if args.align == "none" else args.align
     comparison = compare_trace(
-        trace, config, _tolerances(args.tolerance), align, threshold=args.threshold
+        trace,
+        config,
+        _tolerances(args.tolerance),
+        align,
+        threshold=args.threshold,
+        crosstalk=not args.no_crosstalk,
     )
     return _report(comparison, args)
 
@@ -154,11 +159,7 @@ def _add_campaign_parser(sub):
     p.add_argument(
         "--min-separation", type=float, metavar="S", help="shortest time between onsets [s]"
     )
-    p.add_argument(
-        "--no-crosstalk",
-        action="store_true",
-        help="keep the structure's modes ringing after each hit (removed by default)",
-    )
+    add_crosstalk_flag(p)
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_outputs(p, _campaign, json="print the summary as JSON")
 
@@ -244,6 +245,7 @@ def _build_parser():
         metavar="N",
         help="level [N] at which both first lobes are read (default: 5 x the trace's noise)",
     )
+    add_crosstalk_flag(p)
     _common(p)
     p.set_defaults(func=_compare)
     _add_campaign_parser(sub)

@@ -4,7 +4,7 @@ import sys
 from pathlib import Path
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import add_outputs
+from contactlab.cli.running import add_crosstalk_flag, add_outputs
 from contactlab.errors import ParameterError
 
 __all__ = ["add_inverse_parsers"]
@@ -73,6 +73,7 @@ def _reconstruct(args):
         baseline_window=args.baseline,
         regularization=args.regularization,
         cutoff=args.cutoff,
+        crosstalk=not args.no_crosstalk,
         noise_model=args.noise_model,
     )
     if args.plot:
@@ -95,6 +96,7 @@ def _fit(args):
         None if args.law == "auto" else args.law,
         velocity=args.velocity,
         baseline_window=args.baseline,
+        crosstalk=not args.no_crosstalk,
     )
     fit = result.best if args.law == "auto" else result
     if args.out:
@@ -161,6 +163,7 @@ def add_inverse_parsers(sub):
     )
     p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
+    add_crosstalk_flag(p)
     add_outputs(p, _reconstruct, plot="write signal and reconstructed force")
 
     p = sub.add_parser("fit", help="fit a contact law to a trace through the two-mass model")
@@ -176,6 +179,7 @@ def add_inverse_parsers(sub):
     p.add_argument("--velocity", type=float, help="measured impact velocity [m/s] (fixed)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")
     p.add_argument("--out", metavar="FIT.json", help="write the fit as JSON")
+    add_crosstalk_flag(p)
     add_outputs(p, _fit, plot="write trace, fitted signal and force", json="print the fit as JSON")
 
     p = sub.add_parser(

@@ -24,7 +24,7 @@ import warnings
 from contactlab.cli.setup import announce_compile
 from contactlab.errors import ContactlabWarning, ParameterError, TraceFormatError
 
-__all__ = ["INPUT_ERRORS", "Parser", "add_outputs", "add_strict", "run"]
+__all__ = ["INPUT_ERRORS", "Parser", "add_crosstalk_flag", "add_outputs", "add_strict", "run"]
 
 INPUT_ERRORS = (ParameterError, TraceFormatError, OSError, ImportError)
 """What bad input raises: a parameter, a file's content, a missing file, an extra not
@@ -163,3 +163,13 @@ def run(prog, parser, argv=None):
             print(f"{prog}: error: {in_flags(str(exc), flags)}", file=sys.stderr)
             return 2
     return 0 if code is None else code
+
+
+def add_crosstalk_flag(parser):
+    """``--no-crosstalk``: keep the structure's crosstalk (its modes ringing after a hit,
+    found on the record and removed with the baseline by default)."""
+    parser.add_argument(
+        "--no-crosstalk",
+        action="store_true",
+        help="keep the structure's modes ringing after a hit (removed by default)",
+    )

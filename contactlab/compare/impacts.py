@@ -14,6 +14,7 @@ from contactlab.compare.waveform import (
     waveform_errors,
 )
 from contactlab.config import ImpactConfig
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
 from contactlab.inverse.pulse import describe_window, pulse_baseline
@@ -123,7 +124,7 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     return Comparison(rows, a, b, labels, align, shift, window, threshold)
 
 
-def _without_baseline(trace, sensor, k):
+def _without_baseline(trace, sensor, k, crosstalk):
     """The trace less its baseline, its noise [N] and the notes saying how.
 
     On a moving sensor the baseline is the pulse's local one
@@ -141,7 +142,7 @@ def _without_baseline(trace, sensor, k):
     status = "ok"
     if not sensor.is_rigid:
         try:
-            pulse = pulse_baseline(t, values, sensor, window, k)
+            pulse = pulse_baseline(t, values, sensor, window, k, crosstalk=crosstalk)
         except ParameterError as exc:  # e.g. a noise-free trace: no noise to fit against
             status = f"no local baseline ({exc})"
         else:
@@ -156,7 +157,9 @@ def _without_baseline(trace, sensor, k):
     return remove_baseline(trace, window), noise, {"baseline": text, "baseline status": status}
 
 
-def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshold=None):
+def compare_trace(
+    trace, config, tolerances=None, align="onset", k=5.0, threshold=None, *, crosstalk=True
+):
     """Compare a measured sensor trace with the model of an impact set-up.
 
     The trace's baseline is removed: a line fitted on its samples before the pulse (the
@@ -187,6 +190,11 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
         Lobe threshold in units of the baseline noise [-].
     threshold : float, optional
         Lobe threshold [N] instead of ``k`` times the noise.
+    crosstalk : bool, default True
+        Remove the structure's crosstalk with the baseline (modes found on the ringing
+        after the contact, :func:`contactlab.inverse.crosstalk.single_impact_crosstalk`;
+        ``baseline note N`` names the modes removed); False keeps it in the measured
+        signal (a rigid sensor's trace has no local baseline and is not affected).
 
     Returns
     -------
@@ -204,7 +212,8 @@ def compare_trace(trace, config, tolerances=None, align="onset", k=5.0, threshol
             f"load_preset); got {type(config).__name__}"
         )
     k = check_number("k", k, low=0.0, low_open=False)
-    trace, noise, notes = _without_baseline(trace, config.sensor, k)
+    crosstalk = check_flag("crosstalk", crosstalk)
+    trace, noise, notes = _without_baseline(trace, config.sensor, k, crosstalk)
     if threshold is None:
         threshold = k * noise
     model = config.simulate()

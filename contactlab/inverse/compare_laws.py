@@ -164,12 +164,13 @@ def compare_laws(
     baseline_window=None,
     window=None,
     max_nfev=200,
+    crosstalk=True,
 ):
     """Fit every candidate law to a trace and rank them by BIC.
 
     Parameters
     ----------
-    t, signal, grain, sensor, velocity, baseline_window, window, max_nfev
+    t, signal, grain, sensor, velocity, baseline_window, window, max_nfev, crosstalk
         As for :func:`~contactlab.inverse.fit.fit_contact`; the noise window and the
         fitted samples found for the first law are used for every law.
     laws : str or sequence of str, optional
@@ -192,7 +193,7 @@ def compare_laws(
     (each entry's ``verdict`` and ``reasons`` hold it).
     """
     laws = tuple(FIT_MODELS) if laws is None else check_names("laws", laws, tuple(FIT_MODELS))
-    options = {"velocity": velocity, "max_nfev": max_nfev}
+    options = {"velocity": velocity, "max_nfev": max_nfev, "crosstalk": crosstalk}
     first, notes = _fit_recording_warnings(
         t, signal, grain, sensor, laws[0], baseline_window=baseline_window, window=window, **options
     )

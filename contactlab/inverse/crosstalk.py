@@ -14,7 +14,9 @@ contact:
    the sensor resonance, decimated to :data:`DECIMATED_PER_CUTOFF` samples per cutoff
    period and given to the matrix pencil
    (:func:`contactlab.inverse.identify.matrix_pencil`); its oscillating poles in the band
-   with a damping ratio under :data:`MAX_DAMPING` are the candidate modes.
+   with a damping ratio under :data:`MAX_DAMPING` are the candidate modes. Several
+   impacts' windows, short ones included, are read together by
+   :func:`joint_structure_modes` (a multi-channel matrix pencil).
 2. **Fit** (:func:`fit_crosstalk`) on the samples before the impact and after its contact:
    a quadratic, the sensor's free ringing after the contact and, for each mode, its
    response to the pulse (the pulse's samples convolved with the mode's damped cosine
@@ -41,7 +43,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import signal
+from scipy import linalg, signal
 
 from contactlab.errors import ParameterError
 from contactlab.inverse.identify import matrix_pencil
@@ -55,6 +57,7 @@ __all__ = [
     "Crosstalk",
     "StructureMode",
     "fit_crosstalk",
+    "joint_structure_modes",
     "single_impact_crosstalk",
     "structure_modes",
 ]
@@ -72,6 +75,11 @@ MAX_MODES = 4
 
 SLOW_POLES = 8
 """Extra pencil order for what the quadratic left: wander, hum and 1/f noise [-]."""
+
+JOINT_PENCIL = 2
+"""Pencil parameter of :func:`joint_structure_modes` in pencil orders [-]: each window's
+Hankel rows span twice the order (32 decimated samples, 1.1 ms for a 40 kHz sensor), so
+windows from 1.1 ms on contribute."""
 
 MAX_DAMPING = 0.06
 """Largest damping ratio of a structure mode [-]: plates, frames and tables ring with
@@ -138,7 +146,7 @@ def _sensor_ringing(t, start, sensor):
     return np.stack([decay * np.cos(wd * s), decay * np.sin(wd * s)], axis=1)
 
 
-def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
+def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):
     """Candidate structure modes in a window of ringing after a contact.
 
     Parameters
@@ -150,6 +158,14 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
         The moving sensor (its mode is not a structure mode).
     max_modes : int, default 4
         Most modes sought.
+    noise : tuple of array_like, optional
+        ``(t [s], y)`` of a stretch of the same record without contact or ringing (a
+        pre-trigger), at the window's interval: each candidate's standard error is then
+        also computed under the noise this stretch shows in the band (its
+        autocovariance, the Fourier transform of its spectrum; :func:`_coloured`), and
+        the larger of that and the white-noise one is used. 1/f noise puts more power
+        near a low-frequency pole than the window's residual shows, and the pencil can
+        fit it as a mode.
 
     Returns
     -------
@@ -168,24 +184,118 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
     max_modes = check_count("max_modes", max_modes)
     if t.shape != y.shape or t.size < 16:
         raise ParameterError(f"t and y must be equal 1-D windows of >= 16 samples; got {t.size}")
+    order = 2 * max_modes + SLOW_POLES
+    tau, decimated, step = _band(t, y, sensor, degree=2)
+    if t.size // round(step / float(t[1] - t[0])) < 3 * order:
+        raise ParameterError(
+            f"the window of {np.ptp(t):.3g} s is too short to identify {max_modes} structure "
+            f"modes: it needs {3 * order * step:.3g} s (three decimated samples per "
+            "pencil order)"
+        )
+    poles = matrix_pencil(decimated, step, order)
+    candidates = _in_band(poles, 1.0 / float(np.ptp(t)), BAND_FRACTION * sensor.resonance)
+    autocovariance = None if noise is None else _autocovariance(noise, sensor, decimated.size)
+    keep = _significant(tau, decimated, candidates, degree=0, autocovariance=autocovariance)
+    return sorted((f, z) for (f, z, _), k in zip(candidates, keep, strict=True) if k)
+
+
+def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES):
+    """Candidate structure modes common to several windows of ringing, and where each is
+    significant: a multi-channel matrix pencil.
+
+    A structure rings at the same poles after every hit, with amplitudes that differ from
+    hit to hit. Each window (less a line and the sensor's free ringing, low-passed and
+    decimated as in :func:`structure_modes`) gives the rows of a Hankel matrix of
+    :data:`JOINT_PENCIL` orders' columns; the rows of every window are stacked and the
+    poles are those of the stacked matrix's dominant right singular vectors (the
+    multi-channel pencil: the windows share the poles, not the amplitudes). A window too
+    short for :func:`structure_modes` (three decimated samples per pencil order: 1.6 ms
+    for a 40 kHz sensor) still adds its rows, so impacts 1-2 ms apart contribute. Each
+    candidate's amplitude is then fitted with the others', a constant and a line on each
+    window, and tested as in :func:`structure_modes`.
+
+    Parameters
+    ----------
+    windows : sequence of (array_like, array_like)
+        ``(t [s], y)`` of each window of ringing after a contact, uniformly spaced at one
+        interval, each of at least 16 samples.
+    sensor : Sensor
+    max_modes : int, default 4
+
+    Returns
+    -------
+    candidates : list of (float, float)
+        ``(frequency [Hz], damping ratio [-])`` of each oscillating pole of the stacked
+        pencil between one period per longest window and :data:`BAND_FRACTION` of the
+        sensor resonance, damping ratio in ``(0, MAX_DAMPING)``, by frequency.
+    significant : numpy.ndarray of bool
+        ``(windows, candidates)``: where each candidate's amplitude is
+        :data:`SIGNIFICANCE` standard errors above zero.
+    """
+    max_modes = check_count("max_modes", max_modes)
+    bands = []
+    for window in windows:
+        try:
+            t, y = check_samples("t", window[0]), check_samples("y", window[1])
+        except (TypeError, IndexError, KeyError):
+            raise ParameterError(f"windows must hold (t, y) pairs; got {window!r:.60}") from None
+        if t.shape != y.shape or t.size < 16:
+            raise ParameterError(
+                f"each window must be equal t and y of >= 16 samples; got {t.size}"
+            )
+        bands.append(_band(t, y, sensor, degree=1, blocks=True))
+    order = 2 * max_modes + SLOW_POLES
+    pencil = JOINT_PENCIL * order
+    rows = [
+        np.lib.stride_tricks.sliding_window_view(samples, pencil + 1)
+        for _, samples, _ in bands
+        if samples.size > pencil + 1
+    ]
+    empty = np.zeros((len(bands), 0), dtype=bool)
+    if sum(r.shape[0] for r in rows) < 2 * order:
+        return [], empty
+    _, _, vh = np.linalg.svd(np.concatenate(rows), full_matrices=False)
+    v = vh[:order].T
+    z = np.linalg.eigvals(np.linalg.pinv(v[:-1]) @ v[1:]).astype(complex)
+    longest = max(float(tau[-1]) for tau, _, _ in bands)
+    candidates = sorted(
+        _in_band(np.log(z) / bands[0][2], 1.0 / longest, BAND_FRACTION * sensor.resonance)
+    )
+    if not candidates:
+        return [], empty
+    significant = np.array(
+        [_significant(tau, samples, candidates, degree=1) for tau, samples, _ in bands]
+    )
+    return [(f, z) for f, z, _ in candidates], significant
+
+
+def _band(t, y, sensor, degree, blocks=False):
+    """The window less a polynomial of ``degree`` and the sensor's free ringing (fitted
+    together by least squares), low-passed at :data:`BAND_FRACTION` of the sensor
+    resonance and decimated to :data:`DECIMATED_PER_CUTOFF` samples per cutoff period:
+    ``(tau [s] from the window's start, samples, decimated interval [s])``. With
+    ``blocks``, the decimated samples are the means of consecutive blocks instead (a
+    boxcar: a damped exponential stays one, with the same pole, to the window's edges,
+    where the zero-phase low-pass's end extension bends a window of a few periods)."""
     dt = float(t[1] - t[0])
-    columns = np.concatenate([_quadratic(t), _sensor_ringing(t, t[0], sensor)], axis=1)
+    polynomial = _quadratic(t)[:, : degree + 1]
+    columns = np.concatenate([polynomial, _sensor_ringing(t, t[0], sensor)], axis=1)
     coefficients, *_ = np.linalg.lstsq(columns, y, rcond=None)
     rest = y - columns @ coefficients
     cutoff = BAND_FRACTION * sensor.resonance
     step = max(1, int(1.0 / (DECIMATED_PER_CUTOFF * cutoff * dt)))
-    order = 2 * max_modes + SLOW_POLES
-    if rest.size // step < 3 * order:
-        raise ParameterError(
-            f"the window of {np.ptp(t):.3g} s is too short to identify {max_modes} structure "
-            f"modes: it needs {3 * order * step * dt:.3g} s (three decimated samples per "
-            "pencil order)"
-        )
+    if blocks:
+        count = rest.size // step
+        means = rest[: count * step].reshape(count, step).mean(axis=1)
+        return t[: count * step : step] - t[0] + 0.5 * (step - 1) * dt, means, dt * step
     if cutoff < 0.4 / dt and rest.size > 30:
         rest = lowpass(rest, dt, cutoff)
-    decimated, tau = rest[::step], t[::step] - t[0]
-    poles = matrix_pencil(decimated, dt * step, order)
-    low = 1.0 / float(np.ptp(t))
+    return t[::step] - t[0], rest[::step], dt * step
+
+
+def _in_band(poles, low, cutoff):
+    """``(frequency [Hz], damping ratio [-], pole)`` of the oscillating poles from ``low``
+    to ``cutoff`` [Hz] with a damping ratio in ``(0, MAX_DAMPING)``."""
     candidates = []
     for pole in poles[poles.imag > 0.0]:
         w = abs(pole)
@@ -193,22 +303,49 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES):
         frequency = pole.imag / (2.0 * math.pi)
         if low <= frequency <= cutoff and 0.0 < zeta < MAX_DAMPING:
             candidates.append((float(frequency), float(zeta), complex(pole)))
-    return sorted(_significant(tau, decimated, candidates))
+    return candidates
 
 
-def _significant(tau, y, candidates):
-    """The candidates whose amplitude, fitted with the others and a constant on the
-    decimated window, is :data:`SIGNIFICANCE` standard errors above zero (the decimated
-    samples' residual holds the noise of the band, 1/f noise included)."""
+def _autocovariance(noise, sensor, lags):
+    """Biased autocovariance of a noise stretch's band (:func:`_band` less its mean only:
+    a quadratic would take 1/f power near a low pole out of a short pre-trigger) at
+    ``lags`` decimated lags, zero beyond the stretch."""
+    t, y = check_samples("noise t", noise[0]), check_samples("noise y", noise[1])
+    if t.shape != y.shape or t.size < 16:
+        raise ParameterError(f"noise must be equal t and y of >= 16 samples; got {t.size}")
+    _, band, _ = _band(t, y, sensor, degree=0)
+    full = signal.correlate(band, band, mode="full", method="fft")[band.size - 1 :] / band.size
+    return np.concatenate([full, np.zeros(max(lags - full.size, 0))])[:lags]
+
+
+def _coloured(design, autocovariance):
+    """Covariance of least-squares coefficients under stationary noise of the given
+    autocovariance: ``(X'X)^-1 X' R X (X'X)^-1`` (``R`` Toeplitz)."""
+    inverse = np.linalg.pinv(design.T @ design)
+    noise_times_design = linalg.matmul_toeplitz(autocovariance, design)
+    return inverse @ (design.T @ noise_times_design) @ inverse
+
+
+def _significant(tau, y, candidates, degree, autocovariance=None):
+    """Whether each candidate's amplitude, fitted with the others and a polynomial of
+    ``degree`` on the decimated window, is :data:`SIGNIFICANCE` standard errors above
+    zero (the decimated samples' residual holds the noise of the band, 1/f noise
+    included; with ``autocovariance``, the larger of that and the coloured noise's
+    error), one bool per candidate."""
     if not candidates:
         return []
-    columns = [np.ones((tau.size, 1))] + [_free(tau, 0.0, pole) for *_, pole in candidates]
-    coefficients, covariance = _least_squares(np.concatenate(columns, axis=1), y)
-    return [
-        (frequency, zeta)
-        for k, (frequency, zeta, _) in enumerate(candidates)
-        if _pair(coefficients, covariance, 1 + 2 * k)[1]
-    ]
+    polynomial = np.vander(tau - tau.mean(), degree + 1, increasing=True)
+    columns = [polynomial] + [_free(tau, 0.0, pole) for *_, pole in candidates]
+    design = np.concatenate(columns, axis=1)
+    coefficients, covariance = _least_squares(design, y)
+    if autocovariance is not None:
+        coloured = _coloured(design, autocovariance)
+        return [
+            _pair(coefficients, covariance, degree + 1 + 2 * k)[1]
+            and _pair(coefficients, coloured, degree + 1 + 2 * k)[1]
+            for k in range(len(candidates))
+        ]
+    return [_pair(coefficients, covariance, degree + 1 + 2 * k)[1] for k in range(len(candidates))]
 
 
 def _least_squares(design, y):
@@ -311,8 +448,9 @@ def single_impact_crosstalk(t, y, sensor, onset, pre_end, contact_end):
     finds on the ringing after its contact (from ``contact_end`` to the record's end, at
     most :data:`SINGLE_IDENTIFICATION_SPAN`), kept by :func:`fit_crosstalk` when their
     response to this pulse is significant. The campaign instead keeps the modes found
-    after half of a record's impacts, which a single trace cannot do: a pole the pencil
-    fits to 1/f noise survives here when :func:`fit_crosstalk` finds it significant.
+    after half of a record's impacts, which a single trace cannot do; a candidate must
+    instead also be significant under the noise of the pre-trigger (``noise=`` of
+    :func:`structure_modes`), which drops the poles the pencil fits to 1/f noise.
 
     Parameters
     ----------
@@ -334,8 +472,12 @@ def single_impact_crosstalk(t, y, sensor, onset, pre_end, contact_end):
         ringing after the contact is too short to identify modes on.
     """
     after = (t >= contact_end) & (t <= contact_end + SINGLE_IDENTIFICATION_SPAN)
+    noise = None
+    if pre_end is not None:
+        quiet = (t < min(pre_end, onset)) & (t >= pre_end - SINGLE_IDENTIFICATION_SPAN)
+        noise = (t[quiet], y[quiet]) if quiet.sum() >= 16 else None
     try:
-        modes = structure_modes(t[after], y[after], sensor)
+        modes = structure_modes(t[after], y[after], sensor, noise=noise)
     except ParameterError:  # too short a window after the contact
         return None
     values = np.zeros(t.size)

@@ -10,9 +10,10 @@ import pandas as pd
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse import FIT_MODELS
+from contactlab.inverse import onset as onset_fit
 from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number, check_path
-from dem_check.campaign import detection, noise
+from dem_check.campaign import detection, noise, onsets
 from dem_check.campaign.analysis import analyse_impact, window_row
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.result import CampaignResult
@@ -136,6 +137,7 @@ def _impact_table(rows):
 def _file_row(path, status, reason, trace=None, floor=None, found=()):
     row = dict.fromkeys(_FILE_COLUMNS)
     row.update(file=path, status=status, reason=reason, impacts=len(found))
+    row["impacts"] = sum(r["status"] != "offset step" for r in found)
     row["impacts_ok"] = sum(r["status"] in detection.ANALYSED for r in found)
     if trace is not None:
         dt = float(trace.t[1] - trace.t[0]) if len(trace) > 1 else float("nan")
@@ -216,8 +218,12 @@ def _analyse_file(path, options, timings, progress):
             row = window_row(window)
             row["significance [-]"] = window.significance
         rows.append({"file": path, "impact": k, **row})
+    for k, step in enumerate(found.steps, start=len(found.impacts)):  # listed, not analysed
+        rows.append(
+            {"file": path, "impact": k, **window_row(step), "significance [-]": step.significance}
+        )
     timings["analyse"] += time.perf_counter() - started
-    if rows:
+    if any(r["status"] != "offset step" for r in rows):
         status, reason = "ok", ""
     else:
         status = "no impact"
@@ -250,6 +256,8 @@ def _settings(paths, options, metadata):
             "smoothing -3 dB [Hz]": detection.CUTOFF_FACTOR * sensor.resonance,
             "false alarms per record": detection.FALSE_ALARMS,
             "onset [sigma]": detection.ONSET_SIGMAS,
+            "onset fit window end [fraction of the peak]": onset_fit.RISE_FRACTION,
+            "onset fit shape read on [impacts]": onsets.SHAPE_IMPACTS,
             "running baseline block [sensor periods]": noise.BLOCK_PERIODS,
             "running baseline block, fewest [samples]": noise.BLOCK_MIN_SAMPLES,
             "min_force [N]": options["limits"]["min_force"],

@@ -3,6 +3,12 @@
 A record holds impacts separated by stretches without one. The steps, all on the record
 in newtons:
 
+0. **Offset steps** (:mod:`dem_check.campaign.steps`): after a first pass (steps 1-3),
+   level changes that persist are found on the record's period means outside the
+   impacts found, and on a run that lasts to the record's end; each is taken off the
+   record (the samples after it shifted back) and listed in :attr:`Detection.steps` with
+   status ``"offset step"``, and steps 1-6 run again on what is left. Not on records with
+   fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period.
 1. **Baseline and local noise** (:mod:`dem_check.campaign.noise`): a running baseline of
    block medians follows drift, wander, offset steps and slow hum; the local noise is
    the MAD of the residual per block (the largest of a block and its neighbours), so hum,
@@ -28,7 +34,9 @@ in newtons:
    impact with fewer than :data:`BASELINE_MIN_SAMPLES` quiet samples before it (a
    record that starts at the hit, or an impact right after another's ringing) takes its
    baseline from the quiet samples after its ringing decayed: status
-   ``"short pre-trigger"``, analysed.
+   ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
+   (:mod:`dem_check.campaign.onsets`: the sensor's response to the force's start), which
+   the crossing lags.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
@@ -39,12 +47,14 @@ in newtons:
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
 
 from contactlab import signals
 from contactlab.bodies import Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
 from contactlab.traces.prepare import check_trace
@@ -61,6 +71,8 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
+from dem_check.campaign.onsets import first_touches
+from dem_check.campaign.steps import edge_steps, find_steps, remove_steps
 
 __all__ = [
     "ANALYSED",
@@ -96,7 +108,8 @@ BASELINE_MIN_SAMPLES = 16
 
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the ringing envelope to be followed (overlap
-check, step 5) [-]; a coarser record cannot show the ringing grow."""
+check, step 5) and for offset steps to be looked for (step 0) [-]; a coarser record
+cannot show the ringing grow, nor average it out over a period."""
 
 GROWTH_FACTOR = 1.5
 """Largest growth of the ringing envelope from one sensor period to the next that is
@@ -124,7 +137,8 @@ class ImpactWindow:
     status: str
     """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``,
     ``"no baseline"``, ``"negative"``, ``"overrange"``, ``"clipped"``,
-    ``"below min_force"`` or ``"too close"``: those of :data:`ANALYSED` are analysed."""
+    ``"below min_force"``, ``"too close"`` or ``"offset step"`` (a row of
+    :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is)."""
     significance: float = float("nan")
@@ -152,7 +166,11 @@ class Detection:
     local_noise: np.ndarray = None
     """Local noise of the smoothed record at every sample [N]."""
     record: Trace = None
-    """The record as given [N] (each analysed impact fits its own baseline on it)."""
+    """The record as given [N], its offset steps taken off (each analysed impact fits
+    its own baseline on it)."""
+    steps: list = ()
+    """:class:`ImpactWindow` rows of the record's DC offset steps (status ``"offset
+    step"``, ``peak`` the height [N]), in time order."""
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -187,7 +205,7 @@ def check_limits(min_force, min_separation):
     return min_force, min_separation
 
 
-def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
+def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onsets=True):
     """Every impact in a record, with its onset, local baseline, significance and status.
 
     Parameters
@@ -203,6 +221,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     min_separation : float, optional
         Shortest time between two impacts' onsets [s]; a candidate closer to the one
         before gets status ``"too close"``.
+    fit_onsets : bool, default True
+        Give each analysed impact the onset of a fit of the sensor's response to its
+        rise (:mod:`dem_check.campaign.onsets`); ``False`` keeps the smoothed signal's
+        crossing of :data:`ONSET_SIGMAS` (step 4), which lags the first touch.
 
     Returns
     -------
@@ -217,9 +239,62 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
     if not isinstance(sensor, Sensor):
         raise ParameterError(f"sensor must be a Sensor; got {type(sensor).__name__}")
     min_force, min_separation = check_limits(min_force, min_separation)
+    fit_onsets = check_flag("fit_onsets", fit_onsets)
+    stage = _candidates(trace, sensor)
+    period = stage["scales"]["period"]
+    mask = np.zeros(len(trace), dtype=bool)
+    for first, last in stage["runs"]:
+        # a run to the record's end is left in: a step there that the running baseline
+        # missed reads as such a run, and the levels on both sides of it are needed
+        if last + stage["scales"]["hold"] < len(trace):  # with the lobe's rise before
+            mask[max(0, first - 2 * period) : last + stage["scales"]["hold"] + 1] = True
+    steps = []
+    if period >= RESOLVED_PERIOD_SAMPLES:  # a period's mean averages its ringing out
+        steps = find_steps(stage["finite"], period, mask)
+        edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
+        # an edge step's height is read on all the samples after it: it replaces a step
+        # found on the period means' shortened windows there
+        near = [e.window[0] - period for e in edges]
+        steps = [s for s in steps if all(s.index < at for at in near)] + edges
+        steps.sort(key=lambda step: step.index)
+    if steps:
+        removed = {
+            "step": "offset_steps_removed",
+            "steps": [(float(trace.t[s.index]), s.height) for s in steps],
+        }
+        trace = trace.derive(removed, values=remove_steps(trace.values, steps))
+        stage = _candidates(trace, sensor)
+    floor, smoothed, ratio, runs = (stage[k] for k in ("floor", "smoothed", "ratio", "runs"))
+    t = smoothed.t
+    windows, previous_end = [], 0
+    for k, (first, last) in enumerate(runs):
+        following = runs[k + 1][0] if k + 1 < len(runs) else t.size
+        stop = min(last + stage["scales"]["hold"] + stage["scales"]["tail"], following, t.size)
+        candidate = (previous_end, first, last, stop)
+        windows += _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
+        previous_end = last + 1
+    windows = _apply_limits(windows, min_force, min_separation)
+    found = Detection(
+        floor,
+        windows,
+        stage["signal"],
+        smoothed,
+        stage["lowpassed"],
+        stage["local"],
+        trace,
+        [_step_row(step, t) for step in steps],
+    )
+    if not fit_onsets or period < RESOLVED_PERIOD_SAMPLES:
+        return found  # a sensor period of a few samples holds no rise to fit
+    return dataclasses.replace(found, impacts=first_touches(found, sensor, ANALYSED))
+
+
+def _candidates(trace, sensor):
+    """Noise floor, smoothed residual, its ratio to the local noise, time scales,
+    flagged samples and candidate runs of a record (module steps 1-3)."""
     floor, signal, smoothed, lowpassed, local = noise_floor(trace, sensor)
-    t, z = smoothed.t, np.asarray(smoothed.values)
-    dt = float(t[1] - t[0])
+    z = np.asarray(smoothed.values)
+    dt = float(smoothed.t[1] - smoothed.t[0])
     scales = {
         "period": max(1, round(sensor.period / dt)),
         "hold": _samples(QUIET_PERIODS, sensor, dt, QUIET_MIN_SAMPLES),
@@ -233,16 +308,41 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None):
         "overrange": np.asarray(trace.metadata["overrange"], dtype=int),
         "clipped": clipped_samples(finite, floor.noise),
     }
-    runs = candidate_runs(ratio, scales["hold"], floor.sigmas)
-    windows, previous_end = [], 0
-    for k, (first, last) in enumerate(runs):
-        following = runs[k + 1][0] if k + 1 < len(runs) else t.size
-        stop = min(last + scales["hold"] + scales["tail"], following, t.size)
-        candidate = (previous_end, first, last, stop)
-        windows += _classify(smoothed, ratio, candidate, scales, floor, flagged)
-        previous_end = last + 1
-    windows = _apply_limits(windows, min_force, min_separation)
-    return Detection(floor, windows, signal, smoothed, lowpassed, local, trace)
+    return {
+        "floor": floor,
+        "signal": signal,
+        "smoothed": smoothed,
+        "lowpassed": lowpassed,
+        "local": local,
+        "ratio": ratio,
+        "scales": scales,
+        "finite": finite,
+        "flagged": flagged,
+        "runs": candidate_runs(ratio, scales["hold"], floor.sigmas),
+    }
+
+
+def _step_row(step, t):
+    """The candidates-table row of an offset step (status ``"offset step"``)."""
+    at = float(t[step.index])
+    reason = (
+        f"the level changed by {step.height:.4g} N at {at:.6g} s and stayed "
+        f"({step.significance:.3g} sigma of a level change): a DC offset step, not an "
+        "impact (an impact's signal returns to its level after the contact and the "
+        "sensor's ringing); the record after it was shifted back before impacts were "
+        "looked for"
+    )
+    return ImpactWindow(
+        at,
+        (np.nan, np.nan),
+        step.window[0],
+        step.window[1],
+        at,
+        "offset step",
+        reason,
+        significance=step.significance,
+        peak=step.height,
+    )
 
 
 def _apply_limits(windows, min_force, min_separation):

@@ -18,7 +18,8 @@ starts from the same impacts and adds, each one switched on alone by its field o
   ``bits`` bits: samples are quantised to its steps and clipped at its rails (the rail
   value is written, as most instruments do, not +-inf);
 - ``steps`` and ``step_size``: DC offset steps (a charge amplifier's range change or
-  reset) at random times, heights ``+-step_size`` [N];
+  reset) at random times, heights ``+-step_size`` [N]; ``offsets``: steps at given
+  times with given heights (near a record's edge or an impact, where they are hardest);
 - ``bounce`` and ``bounce_delay``: each impact followed by a second one at ``bounce``
   times its velocity, ``bounce_delay`` [s] later (a double hit or a grain's bounce).
 
@@ -40,7 +41,7 @@ from contactlab.traces import Trace
 from contactlab.validation import check_count, check_number, check_samples
 from dem_check.campaign.synthetic import synthetic_record
 
-__all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record"]
+__all__ = ["Effects", "RealisticRecord", "add_effects", "realistic_record", "ringing_at_onsets"]
 
 DRIFT_BAND = (0.2, 5.0)
 """Frequencies of the drift's sines [Hz]: thermal and charge-amplifier wander."""
@@ -76,6 +77,9 @@ class Effects:
     """Number of DC offset steps, at random times [-]."""
     step_size: float = 0.0
     """Height of each offset step, sign random [N]."""
+    offsets: tuple = ()
+    """Offset steps at given places: ``(time [s] from the record's first sample, height
+    [N], signed)`` pairs, added to the ``steps`` random ones."""
     bounce: float = 0.0
     """Velocity of the bounce or second hit after each impact, as a fraction of the
     impact's [-] (0: none)."""
@@ -175,11 +179,17 @@ def _crosstalk(rng, t, truth, effects):
 
 
 def _steps(rng, t, effects):
+    """The offset steps' levels at every sample [N] and their times [s], in time order:
+    ``steps`` at random times, then ``offsets``."""
     times = np.sort(rng.uniform(t[0], t[-1], effects.steps))
+    heights = effects.step_size * rng.choice((-1.0, 1.0), size=times.size)
+    placed = np.array(effects.offsets, dtype=float).reshape(-1, 2)
+    times = np.concatenate([times, t[0] + placed[:, 0]])
+    heights = np.concatenate([heights, placed[:, 1]])
     levels = np.zeros(t.size)
-    for at in times:
-        levels[t >= at] += effects.step_size * rng.choice((-1.0, 1.0))
-    return levels, times
+    for at, height in zip(times, heights, strict=True):
+        levels[t >= at] += height
+    return levels, np.sort(times)
 
 
 def _adc(values, effects):
@@ -267,8 +277,20 @@ def _check_fields(effects):
                 ),
             )
         )
+    offsets = []
+    for step in _sequence("offsets", effects.offsets):
+        pair = _sequence("offsets", step)
+        if len(pair) != 2:
+            raise ParameterError(f"offsets must hold (time [s], height [N]) pairs; got {pair!r}")
+        offsets.append(
+            (
+                check_number("offsets time", pair[0], low=0.0, low_open=False, unit="s"),
+                check_number("offsets height", pair[1], unit="N"),
+            )
+        )
     object.__setattr__(effects, "harmonics", harmonics)
     object.__setattr__(effects, "plate_modes", tuple(modes))
+    object.__setattr__(effects, "offsets", tuple(offsets))
 
 
 def _sequence(name, value):
@@ -328,16 +350,8 @@ def realistic_record(
         velocities = np.concatenate([velocities, effects.bounce * velocities[inside]])
         order = np.argsort(onsets, kind="stable")
         onsets, velocities = onsets[order], velocities[order]
-    clean, truth = synthetic_record(
-        grain,
-        sensor,
-        law,
-        velocities,
-        onsets,
-        length=length,
-        sample_rate=sample_rate,
-        noise=0.0,
-    )
+    sampling = {"length": length, "sample_rate": sample_rate}
+    clean, truth = synthetic_record(grain, sensor, law, velocities, onsets, **sampling, noise=0.0)
     rng = np.random.default_rng(check_count("seed", seed, low=0))
     t = np.asarray(clean.t)
     values, rail, step_times = add_effects(t, np.asarray(clean.values), effects, truth, noise, rng)
@@ -356,3 +370,28 @@ def realistic_record(
     truth["onset [s]"] = truth["onset [s]"] - shift
     random_noise = math.sqrt(noise**2 + effects.pink**2 + lsb**2 / 12.0)
     return RealisticRecord(trace, truth, random_noise, step_times - shift)
+
+
+def ringing_at_onsets(truth, effects):
+    """Largest amplitude of the structure's ringing (the crosstalk of the impacts before)
+    at each true onset [N]: every plate mode at its largest initial weight, decayed
+    since; the scale, with the random noise, of how clear an impact is.
+
+    Parameters
+    ----------
+    truth : pandas.DataFrame
+        ``onset [s]`` and ``peak_sensor_force [N]`` of each impact, in time order.
+    effects : Effects
+
+    Returns
+    -------
+    numpy.ndarray
+    """
+    onsets, peaks = truth["onset [s]"].to_numpy(), truth["peak_sensor_force [N]"].to_numpy()
+    out = np.zeros(onsets.size)
+    for k, at in enumerate(onsets):
+        since = at - onsets[onsets < at]
+        for frequency, zeta in effects.plate_modes:
+            decay = np.exp(-zeta * 2.0 * np.pi * frequency * since)
+            out[k] += effects.crosstalk * float(np.sum(peaks[onsets < at] * decay))
+    return out

@@ -16,7 +16,12 @@ import math
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.crosstalk import Crosstalk, fit_crosstalk, structure_modes
+from contactlab.inverse.crosstalk import (
+    Crosstalk,
+    fit_crosstalk,
+    joint_structure_modes,
+    structure_modes,
+)
 
 __all__ = ["NEXT_MARGIN_PERIODS", "SPAN", "impact_crosstalk", "record_modes"]
 
@@ -56,14 +61,25 @@ def _following(detection, index, sensor):
 
 
 def record_modes(detection, sensor):
-    """The structure's modes of a record: those found after half of its impacts (two at least)
-    (each impact's ringing, from its decay to the next impact, at most
-    :data:`IDENTIFICATION_SPAN`; impacts followed by too short a window do not count),
-    or all of them when only one impact could be read.
+    """The structure's modes of a record: those found after half of its impacts (two at
+    least; all of them when only one impact could be read), on each impact's ringing
+    alone and on all of them jointly.
 
-    A structure's modes are the same after every hit; a pole that the pencil fits to
-    noise, drift or hum after one impact is rarely found again within
-    :data:`FREQUENCY_TOLERANCE`.
+    Each impact's ringing (from its decay to the next impact, at most
+    :data:`IDENTIFICATION_SPAN`) is a window. A structure's modes are the same after
+    every hit; a pole that the pencil fits to noise, drift or hum after one impact is
+    rarely found again within :data:`FREQUENCY_TOLERANCE`. Two ways, pooled:
+
+    1. **window by window** (:func:`~contactlab.inverse.crosstalk.structure_modes`):
+       poles found after :data:`HALF` of the impacts whose window was long enough (1.6
+       ms for a 40 kHz sensor);
+    2. **jointly** (:func:`~contactlab.inverse.crosstalk.joint_structure_modes`, a
+       multi-channel matrix pencil on every window from 1.1 ms on): poles shared by the
+       windows, kept when significant after :data:`HALF` of them. Windows of 1-2 ms
+       between a hit and its bounce, under two periods of a 730 Hz plate mode, add to
+       its estimate; window by window the mode was found in none of eight records at 1
+       and 5 MHz (``docs/campaign.md``). A joint pole within twice
+       :data:`FREQUENCY_TOLERANCE` of a mode found window by window is that mode.
 
     Parameters
     ----------
@@ -73,23 +89,36 @@ def record_modes(detection, sensor):
     Returns
     -------
     list of (float, float)
-        ``(frequency [Hz], damping ratio [-])``, the medians of each group.
+        ``(frequency [Hz], damping ratio [-])`` by frequency: the medians of each group
+        found window by window, then the joint poles.
     """
     t = np.asarray(detection.record.t)
     dt = float(t[1] - t[0])
     if sensor.period < RESOLVED_PERIOD_SAMPLES * dt:
         return []
-    found = []
+    windows = []
     for index, window in enumerate(detection.impacts):
         stop = min(_following(detection, index, sensor), window.end + IDENTIFICATION_SPAN)
         first, last = np.searchsorted(t, [window.end, stop])
         values = np.asarray(detection.record.values[first:last], dtype=float)
         if last - first >= 16 and np.isfinite(values).all():
-            try:
-                found.append(structure_modes(t[first:last], values, sensor))
-            except ParameterError:  # too short a window: this impact does not count
-                continue
-    return _pooled(found)
+            windows.append((t[first:last], values))
+    found = []
+    for window in windows:
+        try:
+            found.append(structure_modes(*window, sensor))
+        except ParameterError:  # too short a window: this impact does not count alone
+            continue
+    modes = _pooled(found)
+    if not windows:
+        return modes
+    candidates, significant = joint_structure_modes(windows, sensor)
+    needed = max(2, math.ceil(HALF * len(windows))) if len(windows) > 1 else 1
+    for (frequency, zeta), hits in zip(candidates, significant.sum(axis=0), strict=True):
+        near = any(abs(frequency / f - 1.0) <= 2 * FREQUENCY_TOLERANCE for f, _ in modes)
+        if hits >= needed and not near:
+            modes.append((frequency, zeta))
+    return sorted(modes)
 
 
 def _pooled(found):
@@ -142,7 +171,9 @@ def impact_crosstalk(detection, window, sensor, contact_end, segment, modes):
     index = detection.impacts.index(window)
     previous = detection.impacts[index - 1].end if index > 0 else float(t[0])
     base = window.baseline_window
-    pre = (max(previous, window.onset - SPAN), base[1]) if base[1] <= window.onset else None
+    # a baseline before the impact (not after its ringing: a short pre-trigger); the
+    # fitted onset can lie before the baseline's end (dem_check.campaign.onsets)
+    pre = (max(previous, window.onset - SPAN), base[1]) if base[0] < window.onset else None
     post = (
         contact_end + sensor.period,
         min(_following(detection, index, sensor), contact_end + SPAN),

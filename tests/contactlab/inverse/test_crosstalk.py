@@ -8,7 +8,7 @@ import pytest
 
 import contactlab as cl
 from contactlab.errors import ParameterError
-from contactlab.inverse.crosstalk import fit_crosstalk, structure_modes
+from contactlab.inverse.crosstalk import fit_crosstalk, joint_structure_modes, structure_modes
 
 SENSOR = cl.Sensor.from_resonance(40e3, 0.01, damping_ratio=0.02)
 RATE = 2e6
@@ -76,3 +76,50 @@ def test_fit_crosstalk_recovers_the_response_to_the_pulse():
         spectrum = 3.0 * 2.0 / math.pi * duration * math.cos(math.pi * x) / (1 - (2 * x) ** 2)
         assert mode.amplitude == pytest.approx(weight * spectrum, rel=0.05)
     assert "1890 Hz" in found.describe() and "4100 Hz" in found.describe()
+
+
+def _short_windows(count, length, amplitudes, rng, noise=0.005):
+    """``count`` windows of ``length`` [s] after a contact: the sensor's ringing, a 730 Hz
+    plate mode (damping ratio 0.01) of each amplitude at a random phase, an offset and
+    white noise."""
+    t = np.arange(round(length * RATE)) / RATE
+    windows = []
+    for amplitude in amplitudes[:count]:
+        lag = rng.uniform(0.0, 1.4e-3)  # the mode's phase: it rang from before the window
+        ringing = 1.0 * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
+        mode = amplitude * _damped(t + lag, 730.0, 0.01)
+        windows.append((t, ringing + mode + rng.normal(0.1, noise, t.size)))
+    return windows
+
+
+def test_joint_pencil_finds_a_mode_on_windows_too_short_for_one():
+    rng = np.random.default_rng(4)
+    windows = _short_windows(8, 1.5e-3, [0.04, 0.06, 0.03, 0.05, 0.04, 0.07, 0.05, 0.03], rng)
+    # 1.5 ms, 1.1 periods of the 730 Hz mode (as between a hit and its bounce): no
+    # window is long enough for the pencil on its own (1.6 ms for a 40 kHz sensor)
+    with pytest.raises(ParameterError, match="too short"):
+        structure_modes(*windows[0], SENSOR)
+    candidates, significant = joint_structure_modes(windows, SENSOR)
+    near = [k for k, (f, _) in enumerate(candidates) if abs(f / 730.0 - 1.0) < 0.02]
+    # eight windows of 1.1 periods at 6-14 noise sigmas: the stacked pencil's frequency
+    # to 2 % (1 % measured), significant after every window (5 standard errors)
+    assert len(near) == 1, candidates
+    assert significant[:, near[0]].all()
+    assert significant.shape == (8, len(candidates))
+
+
+def test_joint_pencil_keeps_no_mode_on_noise():
+    rng = np.random.default_rng(5)
+    windows = _short_windows(8, 2e-3, [0.0] * 8, rng)
+    candidates, significant = joint_structure_modes(windows, SENSOR)
+    # white noise and the sensor's ringing only: whatever poles the pencil fits to the
+    # noise are not significant after half of the windows (the campaign's rule)
+    assert significant.shape == (8, len(candidates))
+    assert (significant.sum(axis=0) < 4).all(), (candidates, significant.sum(axis=0))
+
+
+def test_joint_pencil_refuses_what_is_not_windows():
+    with pytest.raises(ParameterError, match="windows must hold"):
+        joint_structure_modes([1.0, 2.0], SENSOR)
+    with pytest.raises(ParameterError, match=">= 16 samples"):
+        joint_structure_modes([(np.arange(4.0), np.zeros(4))], SENSOR)

