@@ -11,13 +11,11 @@ truth is the model's first touch, so this checks the fit's timing, not the model
 
 import numpy as np
 import pytest
+from four_impacts import NOISE, four_impact_record
 
 import contactlab as cl
-from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign import Effects, find_impacts
 from dem_check.campaign.detection import ANALYSED
-
-NOISE = 0.03
-"""White noise [N], 1 % of the linear grain's 3 N peak signal at 2 m/s."""
 
 MATCH = 60e-6
 """A detected onset this close to a true one is that impact [s]."""
@@ -29,17 +27,8 @@ def _errors(hard_setup, law, rate, fit):
     grain, sensor, linear = hard_setup
     law = linear if law == "linear" else cl.laws.Hertz(k_hertz=1.5e6)
     effects = Effects.everything(NOISE, 3.0, crosstalk=0.0, full_scale=None, steps=0)
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.4, 0.6, 1.8, 1.2],
-        [1e-3, 6e-3, 11e-3, 16e-3],
-        length=22e-3,
-        sample_rate=rate,
-        noise=NOISE,
-        effects=effects,
-        seed=5,
+    record = four_impact_record(
+        grain, sensor, law, [2.4, 0.6, 1.8, 1.2], effects, sample_rate=rate, seed=5
     )
     truth = record.truth
     onsets = truth["onset [s]"].to_numpy()

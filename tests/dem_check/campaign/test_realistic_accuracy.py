@@ -17,13 +17,11 @@ this checks that the analysis undoes the laboratory effects, not the model itsel
 
 import numpy as np
 import pytest
+from four_impacts import NOISE, four_impact_record
 
-from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign import Effects, find_impacts
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.structure import record_modes
-
-NOISE = 0.03
-"""White noise [N], 1 % of the hard grain's 3 N peak signal at 2 m/s."""
 
 RATE = 2e6
 """Sample rate [Hz]."""
@@ -43,17 +41,8 @@ def _record(hard_setup, crosstalk):
     effects = Effects.everything(
         NOISE, 3.0, pink=0.3 * NOISE, crosstalk=crosstalk, full_scale=None, steps=0
     )
-    return realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.5, 1.0, 2.2, 1.6],
-        [1e-3, 6e-3, 11e-3, 16e-3],
-        length=22e-3,
-        sample_rate=RATE,
-        noise=NOISE,
-        effects=effects,
-        seed=11,
+    return four_impact_record(
+        grain, sensor, law, [2.5, 1.0, 2.2, 1.6], effects, sample_rate=RATE, seed=11
     )
 
 
