@@ -90,22 +90,27 @@ def check_number(
     ParameterError
         If the value is not a real number, is NaN, infinite (unless allowed), or out of range.
     """
-    unit_text = f" [{unit}]" if unit else ""
-    rng = _describe(low, high, low_open, high_open)
-    rng = f" {rng}" if rng else ""
+    bounds = (low, high, low_open, high_open)
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ParameterError(
-            f"{name} must be a real number{rng}{unit_text}; got {value!r} "
-            f"of type {type(value).__name__}"
-        )
+        got = f"{value!r} of type {type(value).__name__}"
+        raise _out_of_range(name, "a real number", bounds, unit, got)
     x = float(value)
     if math.isnan(x) or (math.isinf(x) and not (allow_inf and x > 0)):
-        raise ParameterError(f"{name} must be a finite number{rng}{unit_text}; got {x!r}")
+        raise _out_of_range(name, "a finite number", bounds, unit, repr(x))
     bad_low = low is not None and (x <= low if low_open else x < low)
     bad_high = high is not None and (x >= high if high_open else x > high)
     if bad_low or bad_high:
-        raise ParameterError(f"{name} must be a finite number{rng}{unit_text}; got {x!r}")
+        raise _out_of_range(name, "a finite number", bounds, unit, repr(x))
     return x
+
+
+def _out_of_range(name, kind, bounds, unit, got):
+    """The :class:`ParameterError` of :func:`check_number`, its message built only when a
+    check fails (a passing check, a dozen per solver call, builds no text)."""
+    rng = _describe(*bounds)
+    rng = f" {rng}" if rng else ""
+    unit_text = f" [{unit}]" if unit else ""
+    return ParameterError(f"{name} must be {kind}{rng}{unit_text}; got {got}")
 
 
 def check_samples(name, value, *, ndim=1, min_size=0, unit="", finite=True, copy=True):
