@@ -47,6 +47,7 @@ from scipy import linalg, signal
 
 from contactlab.errors import ParameterError
 from contactlab.inverse.identify import matrix_pencil
+from contactlab.inverse.local_baseline import _ringing
 from contactlab.signals import lowpass
 from contactlab.validation import check_count, check_samples
 
@@ -139,11 +140,8 @@ def _quadratic(t):
 
 def _sensor_ringing(t, start, sensor):
     """The sensor's free ringing from ``start`` [s] (zero before it), two columns."""
-    w, zeta = sensor.angular_frequency, sensor.damping_ratio
-    s = np.maximum(t - start, 0.0)
-    decay = np.exp(-zeta * w * s) * (t >= start)
-    wd = w * math.sqrt(max(1.0 - zeta**2, 0.0))
-    return np.stack([decay * np.cos(wd * s), decay * np.sin(wd * s)], axis=1)
+    columns, _, _ = _ringing(np.maximum(t - start, 0.0), sensor)
+    return columns * (t >= start)[:, None]
 
 
 def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):

@@ -29,6 +29,7 @@ import numpy as np
 from scipy.stats import chi2
 
 from contactlab.errors import ParameterError
+from contactlab.inverse.local_baseline import _ringing
 from contactlab.validation import check_count
 
 __all__ = [
@@ -244,8 +245,6 @@ def ringing_residual(t, y, window, sensor):
     numpy.ndarray
         The residual on the window's samples [N].
     """
-    from contactlab.inverse.local_baseline import _ringing
-
     inside = (t >= window[0]) & (t <= window[1])
     ringing, _, _ = _ringing(t[inside] - window[0], sensor)
     s = t[inside] - window[0]
