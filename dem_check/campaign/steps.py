@@ -39,7 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.ndimage import maximum_filter1d, uniform_filter1d
 
-from contactlab.signals import MAD_TO_SIGMA
+from contactlab.signals import MAD_TO_SIGMA, robust_noise
 
 __all__ = [
     "STEP_SIGMAS",
@@ -278,7 +278,7 @@ def edge_steps(values, runs, period, reach):
         new, old = values[at:], values[max(0, at - size) : at]
         if new.size < 2 or old.size < period:
             continue
-        spread = [MAD_TO_SIGMA * np.median(np.abs(x - np.median(x))) for x in (new, old)]
+        spread = [robust_noise(x) for x in (new, old)]
         height = float(np.median(new) - np.median(old))
         significance = abs(height) / max(spread[1], np.finfo(float).tiny)
         flat = spread[0] <= FLAT_RATIO * spread[1]
