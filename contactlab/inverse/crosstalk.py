@@ -48,6 +48,7 @@ from scipy import linalg, signal
 from contactlab.errors import ParameterError
 from contactlab.inverse.identify import matrix_pencil
 from contactlab.inverse.local_baseline import _ringing
+from contactlab.inverse.ringdown import free_ringing_residual, refine_poles
 from contactlab.signals import lowpass
 from contactlab.validation import check_count, check_samples
 
@@ -87,6 +88,11 @@ MAX_DAMPING = 0.06
 damping ratios of 0.001-0.05; a more damped pole is the pencil's model of 1/f noise,
 drift or hum (on 2 MHz records with 1/f noise as large as the white noise, poles of
 damping 0.07-0.2 at 700-6600 Hz appeared without a mode there)."""
+
+MIN_DAMPING = 1e-4
+"""Smallest damping ratio a refined joint pole may take [-] (:func:`joint_structure_modes`):
+a window of one or two periods hardly tells a mode's decay, and without a bound the
+refinement let such a pole grow."""
 
 SIGNIFICANCE = 5.0
 """A mode is removed only when its response amplitude is this many standard errors
@@ -197,7 +203,7 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):
     return sorted((f, z) for (f, z, _), k in zip(candidates, keep, strict=True) if k)
 
 
-def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES):
+def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     """Candidate structure modes common to several windows of ringing, and where each is
     significant: a multi-channel matrix pencil.
 
@@ -256,9 +262,13 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES):
     v = vh[:order].T
     z = np.linalg.eigvals(np.linalg.pinv(v[:-1]) @ v[1:]).astype(complex)
     longest = max(float(tau[-1]) for tau, _, _ in bands)
-    candidates = sorted(
-        _in_band(np.log(z) / bands[0][2], 1.0 / longest, BAND_FRACTION * sensor.resonance)
-    )
+    band = (1.0 / longest, BAND_FRACTION * sensor.resonance)
+    candidates = _in_band(np.log(z) / bands[0][2], *band, growing=refine)
+    if refine and candidates:
+        poles = [pole for *_, pole in candidates]
+        refined = refine_poles([b[:2] for b in bands], poles, (MIN_DAMPING, MAX_DAMPING))
+        candidates = _in_band(refined, *band)
+    candidates = sorted(candidates)
     if not candidates:
         return [], empty
     significant = np.array(
@@ -276,10 +286,7 @@ def _band(t, y, sensor, degree, blocks=False):
     boxcar: a damped exponential stays one, with the same pole, to the window's edges,
     where the zero-phase low-pass's end extension bends a window of a few periods)."""
     dt = float(t[1] - t[0])
-    polynomial = _quadratic(t)[:, : degree + 1]
-    columns = np.concatenate([polynomial, _sensor_ringing(t, t[0], sensor)], axis=1)
-    coefficients, *_ = np.linalg.lstsq(columns, y, rcond=None)
-    rest = y - columns @ coefficients
+    rest = free_ringing_residual(t, y, sensor, degree)
     cutoff = BAND_FRACTION * sensor.resonance
     step = max(1, int(1.0 / (DECIMATED_PER_CUTOFF * cutoff * dt)))
     if blocks:
@@ -291,15 +298,16 @@ def _band(t, y, sensor, degree, blocks=False):
     return t[::step] - t[0], rest[::step], dt * step
 
 
-def _in_band(poles, low, cutoff):
+def _in_band(poles, low, cutoff, growing=False):
     """``(frequency [Hz], damping ratio [-], pole)`` of the oscillating poles from ``low``
-    to ``cutoff`` [Hz] with a damping ratio in ``(0, MAX_DAMPING)``."""
+    to ``cutoff`` [Hz] with a damping ratio in ``(0, MAX_DAMPING)`` (``growing``: in
+    ``(-MAX_DAMPING, MAX_DAMPING)``)."""
     candidates = []
     for pole in poles[poles.imag > 0.0]:
         w = abs(pole)
         zeta = -pole.real / w if w > 0.0 else 1.0
         frequency = pole.imag / (2.0 * math.pi)
-        if low <= frequency <= cutoff and 0.0 < zeta < MAX_DAMPING:
+        if low <= frequency <= cutoff and (-MAX_DAMPING if growing else 0.0) < zeta < MAX_DAMPING:
             candidates.append((float(frequency), float(zeta), complex(pole)))
     return candidates
 

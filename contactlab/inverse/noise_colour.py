@@ -29,7 +29,7 @@ import numpy as np
 from scipy.stats import chi2
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.local_baseline import _ringing
+from contactlab.inverse.ringdown import free_ringing_residual
 from contactlab.validation import check_count
 
 __all__ = [
@@ -246,8 +246,4 @@ def ringing_residual(t, y, window, sensor):
         The residual on the window's samples [N].
     """
     inside = (t >= window[0]) & (t <= window[1])
-    ringing, _, _ = _ringing(t[inside] - window[0], sensor)
-    s = t[inside] - window[0]
-    design = np.column_stack([np.ones(s.size), s / max(float(s[-1]), 1e-300), ringing])
-    coefficients, *_ = np.linalg.lstsq(design, y[inside], rcond=None)
-    return y[inside] - design @ coefficients
+    return free_ringing_residual(t[inside], y[inside], sensor, degree=1)

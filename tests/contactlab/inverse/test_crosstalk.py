@@ -5,6 +5,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy import signal
 
 import contactlab as cl
 from contactlab.errors import ParameterError
@@ -123,3 +124,76 @@ def test_joint_pencil_refuses_what_is_not_windows():
         joint_structure_modes([1.0, 2.0], SENSOR)
     with pytest.raises(ParameterError, match=">= 16 samples"):
         joint_structure_modes([(np.arange(4.0), np.zeros(4))], SENSOR)
+
+
+def _flicker(count, rng, dt):
+    """1/f noise of unit standard deviation: a sum of first-order (Ornstein-Uhlenbeck)
+    processes of equal variance with corners a decade apart, 10 Hz to 100 kHz (their sum's
+    spectrum falls as 1/f between the corners; Keshner 1982), not the record model's
+    spectral shaping."""
+    noise = np.zeros(count)
+    for corner in 10.0 ** np.arange(1, 6):
+        decay = math.exp(-2.0 * math.pi * corner * dt)
+        drive = rng.normal(0.0, math.sqrt(1.0 - decay**2), count)
+        noise += signal.lfilter([1.0], [1.0, -decay], drive)
+    return noise / noise.std()
+
+
+PLATE = [(730.0, 0.01), (1890.0, 0.02)]
+LENGTHS = [1.3e-3, 2.3e-3, 1.3e-3, 3.8e-3, 1.4e-3, 1.9e-3, 1.4e-3, 3.6e-3]
+"""Windows as between the benchmark's hits and bounces at 1 MHz (docs/campaign.md)."""
+
+
+def _plate_windows(seed, rate=1e6, white=0.03, flicker=0.01):
+    """Windows of ringing after eight hits: the sensor's ringing, the :data:`PLATE` modes
+    (0.015-0.03 each, ringing from 0-2 ms before the window) and white and 1/f noise cut
+    from one continuous record (the 1/f noise is slower than a window)."""
+    rng = np.random.default_rng(seed)
+    sizes = [round(length * rate) for length in LENGTHS]
+    noise = white * rng.normal(size=sum(sizes)) + flicker * _flicker(sum(sizes), rng, 1 / rate)
+    windows, first = [], 0
+    for size in sizes:
+        t = np.arange(size) / rate
+        y = 0.1 + SENSOR_RINGING * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
+        for frequency, zeta in PLATE:
+            lag = rng.uniform(0.0, 2e-3)
+            y += rng.uniform(0.015, 0.03) * _damped(t + lag, frequency, zeta)
+        windows.append((t, y + noise[first : first + size]))
+        first += size
+    return windows
+
+
+SENSOR_RINGING = 0.5
+
+
+def _error_at(candidates, significant, frequency):
+    """Relative error of the candidate nearest ``frequency`` significant after half of
+    the windows (nan when there is none within 30 %)."""
+    errors = [
+        abs(f / frequency - 1.0)
+        for (f, _), hits in zip(candidates, significant.sum(axis=0), strict=True)
+        if abs(f / frequency - 1.0) < 0.3 and hits >= significant.shape[0] / 2
+    ]
+    return min(errors, default=math.nan)
+
+
+def test_refined_joint_poles_under_1f_noise():
+    # damped sinusoids at known frequencies in white and 1/f noise (not the record
+    # model): the stacked pencil reads the 730 Hz mode growing (dropped) or biased, the
+    # variable projection on the windows finds it (docs/campaign.md, "Crosstalk")
+    pencil, refined = [], []
+    for seed in range(6):
+        windows = _plate_windows(seed)
+        for out, refine in ((pencil, False), (refined, True)):
+            candidates, significant = joint_structure_modes(windows, SENSOR, refine=refine)
+            out.append([_error_at(candidates, significant, f) for f, _ in PLATE])
+    pencil, refined = np.array(pencil), np.array(refined)
+    # measured on these six: the pencil found 730 Hz twice (errors 20 % and 1 %) and
+    # 1890 Hz four times (up to 2.7 %); refined, 730 Hz five times (up to 3.3 %), 1890
+    # Hz six times (up to 1.2 %)
+    assert np.isfinite(refined).sum(axis=0).tolist() >= [5, 6], refined
+    assert (np.isfinite(refined) >= np.isfinite(pencil)).all()
+    # 4 % and 1.5 %: the largest errors over 12 seeds were 3.6 % and 1.2 % (the
+    # pencil's 20 % and 7 %); ~30 decimated samples per period of 1/f noise the line
+    # of each window does not follow
+    assert np.nanmax(refined[:, 0]) < 0.04 and np.nanmax(refined[:, 1]) < 0.015

@@ -1,0 +1,164 @@
+"""Ringing after a contact: the sensor's free ringing taken out, and damped modes shared
+by several windows refined.
+
+- :func:`free_ringing_residual`: a window after a contact less a polynomial and the
+  sensor's free ringing fitted together (the noise floor of a record that starts at its
+  pulse, :mod:`contactlab.inverse.noise_colour`; the structure's modes,
+  :mod:`contactlab.inverse.crosstalk`).
+- :func:`refine_poles`: poles shared by several windows (a structure rings at the same
+  frequencies after every hit, with amplitudes that differ from hit to hit) refined by
+  nonlinear least squares on all windows at once, each window's amplitudes eliminated
+  (variable projection). A matrix pencil's poles are biased where the noise is coloured
+  or the windows are short (one or two periods); least squares on the samples is not.
+
+References
+----------
+Golub G., Pereyra V. (2003) Separable nonlinear least squares: the variable projection
+method and its applications. Inverse Problems 19, R1-R26. DOI 10.1088/0266-5611/19/2/201
+Kaufman L. (1975) A variable projection method for solving separable nonlinear least
+squares problems. BIT 15, 49-57. DOI 10.1007/BF01932995
+"""
+
+import numpy as np
+from scipy import optimize
+
+from contactlab.errors import ParameterError
+from contactlab.inverse.local_baseline import _ringing
+from contactlab.validation import check_number
+
+__all__ = ["free_ringing_residual", "refine_poles"]
+
+
+def free_ringing_residual(t, y, sensor, degree=1):
+    """The record less a polynomial and the sensor's free ringing, fitted together.
+
+    After a contact the sensor rings freely (its resonance and damping ratio known); what
+    its ringing and a polynomial of ``degree`` (drift, as the baseline window's line
+    before a pulse), fitted together by least squares, leave is the noise and whatever
+    else rings there (the structure's modes).
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        Times [s] after the contact and the record (any unit); the ringing is referred to
+        ``t[0]``.
+    sensor : Sensor
+        Its resonance and damping ratio give the ringing.
+    degree : int, default 1
+        Degree of the polynomial (0: a constant, 1: a line, 2: a quadratic) [-].
+
+    Returns
+    -------
+    numpy.ndarray
+        The residual on the samples (unit of ``y``).
+    """
+    s = t - t[0]
+    scaled = s / max(float(s[-1]), 1e-300) - 0.5
+    ringing, _, _ = _ringing(s, sensor)
+    design = np.concatenate([np.vander(scaled, degree + 1, increasing=True), ringing], axis=1)
+    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
+    return y - design @ coefficients
+
+
+def refine_poles(windows, poles, damping=(1e-4, 0.06), factor=2.0):
+    """Damped modes shared by several windows, refined by variable projection.
+
+    Each window ``(tau, y)`` is modelled as a line plus, for each pole ``s = -a + ib``,
+    ``exp(-a tau) (c cos(b tau) + d sin(b tau))``, its own amplitudes ``c, d`` for each
+    pole. For given poles the model is linear in the amplitudes; the residual of all
+    windows stacked, each window's amplitudes eliminated by least squares, is minimised
+    over the poles' damping ratios and frequencies (``scipy.optimize.least_squares``,
+    trust-region reflective, within the bounds; Kaufman's Jacobian of the projected
+    residual).
+
+    Parameters
+    ----------
+    windows : sequence of (numpy.ndarray, numpy.ndarray)
+        ``(tau [s], y)`` of each window, ``tau`` from any origin (the amplitudes absorb
+        it); windows with no more samples than the model's columns are not used.
+    poles : sequence of complex
+        Starting poles [1/s], oscillating (``b > 0``), e.g. a matrix pencil's.
+    damping : (float, float), default (1e-4, 0.06)
+        Bounds of each damping ratio ``a / |s|`` [-] (a start outside is moved inside).
+    factor : float, default 2
+        Each frequency stays within this factor of its start [-].
+
+    Returns
+    -------
+    numpy.ndarray of complex
+        The refined poles [1/s], in the order given; the starting ones when the windows
+        hold no more samples than unknowns or the minimisation fails.
+
+    Raises
+    ------
+    ParameterError
+        A pole that does not oscillate, or bad bounds.
+    """
+    poles = np.asarray(poles, dtype=complex).ravel()
+    if np.any(~np.isfinite(poles)) or np.any(poles.imag <= 0.0):
+        raise ParameterError(f"poles must be finite with a positive imaginary part; got {poles}")
+    factor = check_number("factor", factor, low=1.0, low_open=True)
+    low_zeta = check_number("damping low", damping[0], low=0.0, high=1.0)
+    high_zeta = check_number("damping high", damping[1], low=low_zeta, high=1.0, high_open=True)
+    columns = 2 + 2 * poles.size
+    used = [(np.asarray(tau, float), np.asarray(y, float)) for tau, y in windows]
+    used = [(tau - tau.mean(), y) for tau, y in used if y.size > columns]
+    if not poles.size or sum(y.size for _, y in used) <= columns * len(used) + 2 * poles.size:
+        return poles
+    scale = poles.imag
+    low = np.tile([low_zeta, 1.0 / factor], poles.size)
+    high = np.tile([high_zeta, factor], poles.size)
+    start = np.clip(np.ravel([(-p.real / abs(p), 1.0) for p in poles]), low, high)
+    problem = _Projection(used, scale)
+    fit = optimize.least_squares(
+        problem.residual, start, jac=problem.jacobian, bounds=(low, high), x_scale="jac"
+    )
+    return problem.poles(fit.x) if fit.success else poles
+
+
+class _Projection:
+    """The projected residual of :func:`refine_poles` and its Jacobian at ``x`` (damping
+    ratio and frequency over its start for each pole), computed once per ``x``."""
+
+    def __init__(self, windows, scale):
+        self.windows, self.scale, self.x, self.parts = windows, scale, None, None
+
+    def poles(self, x):
+        zeta, b = x[0::2], x[1::2] * self.scale
+        return b * (-zeta / np.sqrt(1.0 - zeta**2) + 1j)
+
+    def _update(self, x):
+        if self.x is not None and np.array_equal(x, self.x):
+            return
+        zeta, ratio = x[0::2], x[1::2]
+        root = np.sqrt(1.0 - zeta**2)
+        b = ratio * self.scale
+        sigma = -b * zeta / root
+        # d sigma / d zeta, d sigma / d ratio, d b / d ratio
+        dsigma = np.stack([-b / root**3, -self.scale * zeta / root], axis=1)
+        residuals, jacobians = [], []
+        for tau, y in self.windows:
+            decay = np.exp(np.outer(tau, sigma))
+            cos, sin = decay * np.cos(np.outer(tau, b)), decay * np.sin(np.outer(tau, b))
+            design = np.column_stack([np.ones(tau.size), tau, cos, sin])
+            q, r = np.linalg.qr(design)
+            coefficients = np.linalg.lstsq(r, q.T @ y, rcond=None)[0]
+            residual = y - design @ coefficients
+            c, d = coefficients[2 : 2 + b.size], coefficients[2 + b.size :]
+            model = cos * c + sin * d  # each pole's part of the model, one column each
+            turned = cos * d - sin * c  # its derivative along b over tau
+            derivative = np.empty((tau.size, x.size))
+            derivative[:, 0::2] = tau[:, None] * model * dsigma[:, 0]
+            derivative[:, 1::2] = tau[:, None] * (model * dsigma[:, 1] + turned * self.scale)
+            # Kaufman: the residual's Jacobian less the term of the amplitudes' change
+            jacobians.append(-(derivative - q @ (q.T @ derivative)))
+            residuals.append(residual)
+        self.x, self.parts = x.copy(), (np.concatenate(residuals), np.concatenate(jacobians))
+
+    def residual(self, x):
+        self._update(x)
+        return self.parts[0]
+
+    def jacobian(self, x):
+        self._update(x)
+        return self.parts[1]
