@@ -17,10 +17,13 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   the largest and 95th-percentile errors of the analysed impacts against the model's
   truth, by significance (peak over noise), and the count of impacts found, missed and
   invented. ``--noise-model white``: the reconstruction with the white-noise model it had
-  before the coloured-noise one.
+  before the coloured-noise one. ``--crosstalk-only``: the configurations with crosstalk
+  only; ``--no-refine``: the joint pencil's structure poles without their
+  variable-projection refinement (as before it).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
-[--configuration NAME] [--noise-model white]``
+[--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
+[--noise-model white]``
 """
 
 import argparse
@@ -150,11 +153,11 @@ def _errors(row, true, rate, noise):
     }
 
 
-def _analyse(record, sensor, grain, rate, counts, crosstalk=True):
+def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
     """Detection and analysis of one record in memory (what ``run_campaign`` does for
     each impact, without the files and the report); the errors of its impacts."""
     found = find_impacts(record.trace, sensor)
-    modes = record_modes(found, sensor) if crosstalk else []
+    modes = record_modes(found, sensor, refine=refine) if crosstalk else []
     truth, rows = record.truth, []
     for window in found.impacts:
         gap = np.abs(truth["onset [s]"] - window.onset)
@@ -174,14 +177,14 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True):
     return rows
 
 
-def accuracy(names=None, crosstalk=True):
+def accuracy(names=None, crosstalk=True, refine=True):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
-    print(f"crosstalk removal {'on' if crosstalk else 'off'}")
+    print(f"crosstalk removal {'on' if crosstalk else 'off'}, joint poles refined: {refine}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
         for record in _records(rate, range(RECORDS), changes):
-            for row in _analyse(record, sensor, grain, rate, counts, crosstalk):
+            for row in _analyse(record, sensor, grain, rate, counts, crosstalk, refine):
                 rows.append({"configuration": name, **row})
     table = pd.DataFrame(rows)
     print(counts)
@@ -205,7 +208,17 @@ def main():
     parser.add_argument("--accuracy", action="store_true")
     parser.add_argument("--configuration", action="append", choices=list(CONFIGURATIONS))
     parser.add_argument(
+        "--crosstalk-only",
+        action="store_true",
+        help="accuracy on the configurations with crosstalk only",
+    )
+    parser.add_argument(
         "--no-crosstalk", action="store_true", help="accuracy without the crosstalk removal"
+    )
+    parser.add_argument(
+        "--no-refine",
+        action="store_true",
+        help="the joint pencil's poles as they are, without the variable projection",
     )
     parser.add_argument(
         "--noise-model",
@@ -219,7 +232,10 @@ def main():
     if args.speed or not args.accuracy:
         speed()
     if args.accuracy or not args.speed:
-        accuracy(args.configuration, crosstalk=not args.no_crosstalk)
+        names = args.configuration
+        if args.crosstalk_only:
+            names = [n for n in names or CONFIGURATIONS if CONFIGURATIONS[n][1]["crosstalk"]]
+        accuracy(names, crosstalk=not args.no_crosstalk, refine=not args.no_refine)
 
 
 if __name__ == "__main__":

@@ -16,7 +16,8 @@ contact:
    (:func:`contactlab.inverse.identify.matrix_pencil`); its oscillating poles in the band
    with a damping ratio under :data:`MAX_DAMPING` are the candidate modes. Several
    impacts' windows, short ones included, are read together by
-   :func:`joint_structure_modes` (a multi-channel matrix pencil).
+   :func:`joint_structure_modes` (a multi-channel matrix pencil, its poles refined by
+   variable projection on all the windows).
 2. **Fit** (:func:`fit_crosstalk`) on the samples before the impact and after its contact:
    a quadratic, the sensor's free ringing after the contact and, for each mode, its
    response to the pulse (the pulse's samples convolved with the mode's damped cosine
@@ -214,9 +215,17 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     poles are those of the stacked matrix's dominant right singular vectors (the
     multi-channel pencil: the windows share the poles, not the amplitudes). A window too
     short for :func:`structure_modes` (three decimated samples per pencil order: 1.6 ms
-    for a 40 kHz sensor) still adds its rows, so impacts 1-2 ms apart contribute. Each
-    candidate's amplitude is then fitted with the others', a constant and a line on each
-    window, and tested as in :func:`structure_modes`.
+    for a 40 kHz sensor) still adds its rows, so impacts 1-2 ms apart contribute.
+
+    The pencil's poles are biased on windows of one to three periods under noise (a 730
+    Hz mode read at 564 Hz or growing, and so dropped, on 1 MHz records with 1/f noise;
+    ``docs/campaign.md``, "Crosstalk"). With ``refine`` its oscillating poles in the band
+    with a damping ratio under :data:`MAX_DAMPING` in size, growing ones included, are
+    refined by variable projection on the block means of every window
+    (:func:`contactlab.inverse.ringdown.refine_poles`, damping ratio within
+    ``[MIN_DAMPING, MAX_DAMPING]``), and those left at :data:`MAX_DAMPING` are dropped.
+    Each candidate's amplitude is then fitted with the others', a constant and a line on
+    each window, and tested as in :func:`structure_modes`.
 
     Parameters
     ----------
@@ -225,13 +234,15 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
         interval, each of at least 16 samples.
     sensor : Sensor
     max_modes : int, default 4
+    refine : bool, default True
+        Refine the pencil's poles (above); False: the pencil's decaying poles as they are.
 
     Returns
     -------
     candidates : list of (float, float)
-        ``(frequency [Hz], damping ratio [-])`` of each oscillating pole of the stacked
-        pencil between one period per longest window and :data:`BAND_FRACTION` of the
-        sensor resonance, damping ratio in ``(0, MAX_DAMPING)``, by frequency.
+        ``(frequency [Hz], damping ratio [-])`` of each oscillating pole (refined) between
+        one period per longest window and :data:`BAND_FRACTION` of the sensor resonance,
+        damping ratio in ``(0, MAX_DAMPING)``, by frequency.
     significant : numpy.ndarray of bool
         ``(windows, candidates)``: where each candidate's amplitude is
         :data:`SIGNIFICANCE` standard errors above zero.
@@ -267,7 +278,9 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     if refine and candidates:
         poles = [pole for *_, pole in candidates]
         refined = refine_poles([b[:2] for b in bands], poles, (MIN_DAMPING, MAX_DAMPING))
-        candidates = _in_band(refined, *band)
+        # a pole held at the largest damping ratio wanted more: noise, not a mode
+        held = np.isclose(-refined.real / np.abs(refined), MAX_DAMPING, rtol=1e-6, atol=0.0)
+        candidates = _in_band(refined[~held], *band)
     candidates = sorted(candidates)
     if not candidates:
         return [], empty

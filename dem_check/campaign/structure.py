@@ -60,7 +60,7 @@ def _following(detection, index, sensor):
     return float(detection.record.t[-1])
 
 
-def record_modes(detection, sensor):
+def record_modes(detection, sensor, *, refine=True):
     """The structure's modes of a record: those found after half of its impacts (two at
     least; all of them when only one impact could be read), on each impact's ringing
     alone and on all of them jointly.
@@ -85,6 +85,10 @@ def record_modes(detection, sensor):
     ----------
     detection : Detection
     sensor : Sensor
+    refine : bool, default True
+        Refine the joint poles by variable projection on the windows
+        (``joint_structure_modes(..., refine=True)``); False: the pencil's poles, as
+        before (``benchmarks/bench_realistic.py --no-refine``).
 
     Returns
     -------
@@ -112,7 +116,7 @@ def record_modes(detection, sensor):
     modes = _pooled(found)
     if not windows:
         return modes
-    candidates, significant = joint_structure_modes(windows, sensor)
+    candidates, significant = joint_structure_modes(windows, sensor, refine=refine)
     needed = max(2, math.ceil(HALF * len(windows))) if len(windows) > 1 else 1
     for (frequency, zeta), hits in zip(candidates, significant.sum(axis=0), strict=True):
         near = any(abs(frequency / f - 1.0) <= 2 * FREQUENCY_TOLERANCE for f, _ in modes)
