@@ -49,7 +49,7 @@ from scipy import linalg, signal
 from contactlab.errors import ParameterError
 from contactlab.inverse.identify import matrix_pencil
 from contactlab.inverse.local_baseline import _ringing
-from contactlab.inverse.ringdown import free_ringing_residual, refine_poles
+from contactlab.inverse.ringdown import MIN_DAMPING, free_ringing_residual, refine_poles
 from contactlab.signals import lowpass
 from contactlab.validation import check_count, check_samples
 
@@ -89,11 +89,6 @@ MAX_DAMPING = 0.06
 damping ratios of 0.001-0.05; a more damped pole is the pencil's model of 1/f noise,
 drift or hum (on 2 MHz records with 1/f noise as large as the white noise, poles of
 damping 0.07-0.2 at 700-6600 Hz appeared without a mode there)."""
-
-MIN_DAMPING = 1e-4
-"""Smallest damping ratio a refined joint pole may take [-] (:func:`joint_structure_modes`):
-a window of one or two periods hardly tells a mode's decay, and without a bound the
-refinement let such a pole grow."""
 
 SIGNIFICANCE = 5.0
 """A mode is removed only when its response amplitude is this many standard errors
@@ -217,15 +212,12 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     short for :func:`structure_modes` (three decimated samples per pencil order: 1.6 ms
     for a 40 kHz sensor) still adds its rows, so impacts 1-2 ms apart contribute.
 
-    The pencil's poles are biased on windows of one to three periods under noise (a 730
-    Hz mode read at 564 Hz or growing, and so dropped, on 1 MHz records with 1/f noise;
-    ``docs/campaign.md``, "Crosstalk"). With ``refine`` its oscillating poles in the band
-    with a damping ratio under :data:`MAX_DAMPING` in size, growing ones included, are
-    refined by variable projection on the block means of every window
-    (:func:`contactlab.inverse.ringdown.refine_poles`, damping ratio within
-    ``[MIN_DAMPING, MAX_DAMPING]``), and those left at :data:`MAX_DAMPING` are dropped.
-    Each candidate's amplitude is then fitted with the others', a constant and a line on
-    each window, and tested as in :func:`structure_modes`.
+    With ``refine`` the pencil's poles in the band, growing ones included (noise on
+    windows of one to three periods biases them: ``docs/campaign.md``, "Crosstalk"), are
+    refined on every window (:func:`contactlab.inverse.ringdown.refine_poles`); those
+    left at :data:`MAX_DAMPING` are dropped. Each candidate's amplitude is then fitted
+    with the others', a constant and a line on each window, and tested as in
+    :func:`structure_modes`.
 
     Parameters
     ----------
@@ -261,11 +253,8 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
         bands.append(_band(t, y, sensor, degree=1, blocks=True))
     order = 2 * max_modes + SLOW_POLES
     pencil = JOINT_PENCIL * order
-    rows = [
-        np.lib.stride_tricks.sliding_window_view(samples, pencil + 1)
-        for _, samples, _ in bands
-        if samples.size > pencil + 1
-    ]
+    views = np.lib.stride_tricks.sliding_window_view
+    rows = [views(samples, pencil + 1) for _, samples, _ in bands if samples.size > pencil + 1]
     empty = np.zeros((len(bands), 0), dtype=bool)
     if sum(r.shape[0] for r in rows) < 2 * order:
         return [], empty
@@ -284,9 +273,7 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     candidates = sorted(candidates)
     if not candidates:
         return [], empty
-    significant = np.array(
-        [_significant(tau, samples, candidates, degree=1) for tau, samples, _ in bands]
-    )
+    significant = np.array([_significant(tau, x, candidates, degree=1) for tau, x, _ in bands])
     return [(f, z) for f, z, _ in candidates], significant
 
 
@@ -312,9 +299,8 @@ def _band(t, y, sensor, degree, blocks=False):
 
 
 def _in_band(poles, low, cutoff, growing=False):
-    """``(frequency [Hz], damping ratio [-], pole)`` of the oscillating poles from ``low``
-    to ``cutoff`` [Hz] with a damping ratio in ``(0, MAX_DAMPING)`` (``growing``: in
-    ``(-MAX_DAMPING, MAX_DAMPING)``)."""
+    """``(frequency [Hz], damping ratio [-], pole)`` of the oscillating poles from ``low`` to
+    ``cutoff`` [Hz], damping ratio in ``(0, MAX_DAMPING)`` (``growing``: from -MAX_DAMPING)."""
     candidates = []
     for pole in poles[poles.imag > 0.0]:
         w = abs(pole)

@@ -26,7 +26,12 @@ from contactlab.errors import ParameterError
 from contactlab.inverse.local_baseline import _ringing
 from contactlab.validation import check_number
 
-__all__ = ["free_ringing_residual", "refine_poles"]
+__all__ = ["MIN_DAMPING", "free_ringing_residual", "refine_poles"]
+
+MIN_DAMPING = 1e-4
+"""Smallest damping ratio a refined pole takes by default [-]: a window of one or two
+periods hardly tells a mode's decay, and without a bound the refinement let such a pole
+grow (``contactlab.inverse.crosstalk.joint_structure_modes``)."""
 
 
 def free_ringing_residual(t, y, sensor, degree=1):
@@ -60,7 +65,7 @@ def free_ringing_residual(t, y, sensor, degree=1):
     return y - design @ coefficients
 
 
-def refine_poles(windows, poles, damping=(1e-4, 0.06), factor=2.0):
+def refine_poles(windows, poles, damping=(MIN_DAMPING, 0.06), factor=2.0):
     """Damped modes shared by several windows, refined by variable projection.
 
     Each window ``(tau, y)`` is modelled as a line plus, for each pole ``s = -a + ib``,
@@ -78,7 +83,7 @@ def refine_poles(windows, poles, damping=(1e-4, 0.06), factor=2.0):
         it); windows with no more samples than the model's columns are not used.
     poles : sequence of complex
         Starting poles [1/s], oscillating (``b > 0``), e.g. a matrix pencil's.
-    damping : (float, float), default (1e-4, 0.06)
+    damping : (float, float), default (:data:`MIN_DAMPING`, 0.06)
         Bounds of each damping ratio ``a / |s|`` [-] (a start outside is moved inside).
     factor : float, default 2
         Each frequency stays within this factor of its start [-].
