@@ -17,9 +17,10 @@ import numpy as np
 from contactlab.compiled import njit
 from contactlab.errors import ParameterError
 from contactlab.kernels.oblique_rhs import FRICTION, STICK, arm, trial_force
+from contactlab.kernels.oblique_rhs import slip as slip_of
 from contactlab.kernels.power import RIGID, force
 
-__all__ = ["ContactPhases", "grid_worst", "peak_forces", "sample"]
+__all__ = ["ContactPhases", "grid", "grid_worst", "peak_forces", "sample"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -147,6 +148,59 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
 
 
 @njit(cache=True, error_model="numpy")
+def grid(par, table, warp, steps, final, sample_rate, block):
+    """An oblique impact's output grid, in one pass: times, the sampled contact, and after
+    it the free flight.
+
+    The times are ``arange(n) / sample_rate``; inside the contact (times before its end
+    ``t1``) the states and forces come from :func:`sample`; after it the grain keeps its
+    end velocities ``final[3:6]`` and no force acts. On a wall the grain's normal flight
+    ``x2 = x2(t1) + v2(t1) (t - t1)`` is written here too; a sensor's plate rings, and the
+    caller writes its four normal rows after the contact
+    (:func:`contactlab.solver.oblique_phases.grid_signals`).
+
+    Parameters
+    ----------
+    par, table, warp, steps
+        The solved contact, as in :func:`sample`.
+    final : numpy.ndarray
+        State (7,) at the separation.
+    sample_rate : float
+        Output sample rate [Hz].
+    block : numpy.ndarray
+        Out (12, n): the states (rows 0-6), the normal law's unclipped formula, normal and
+        tangential force [N], contact-point slip [m/s] and times [s] (rows 7-11).
+
+    Returns
+    -------
+    int
+        The number of samples inside the contact (the first after it).
+    """
+    n = block.shape[1]
+    times = block[11]
+    for i in range(n):
+        times[i] = i / sample_rate
+    end = table[table.shape[0] - 1, 1]
+    inside = 0
+    while inside < n and times[inside] < end:
+        inside += 1
+    if inside:
+        raw, normal, tangential, slip = block[7], block[8], block[9], block[10]
+        sample(par, table, warp, steps, times[:inside], block[:7], raw, normal, tangential, slip)
+    after = slip_of(final, par)
+    x2, v2, vt, w = final[2], final[3], final[4], final[5]
+    rigid = par[RIGID] > 0.0
+    for m in range(inside, n):
+        if rigid:
+            block[0, m], block[1, m] = 0.0, 0.0
+            block[2, m] = (times[m] - end) * v2 + x2
+            block[3, m] = v2
+        block[4, m], block[5, m], block[6, m] = vt, w, 0.0
+        block[7, m], block[8, m], block[9, m], block[10, m] = 0.0, 0.0, 0.0, after
+    return inside
+
+
+@njit(cache=True, error_model="numpy")
 def peak_forces(par, table, warp, steps, nodes):
     """Largest normal force and largest magnitude of the tangential force [N] on
     ``nodes`` times per phase, ``numpy.linspace(t0, t1, nodes, endpoint=False)`` of each
@@ -248,6 +302,11 @@ class ContactPhases:
         if not sample(self._par, self._table, self._warp, self._steps, times, *out):
             raise ParameterError("times must be non-decreasing [s]")
         return (out[0][:, :n].T, *(a[:n] for a in out[1:]))
+
+    def grid(self, final, sample_rate, block):
+        """The output grid into ``block`` (12, n) (:func:`grid`); returns the number of
+        samples inside the contact."""
+        return grid(self._par, self._table, self._warp, self._steps, final, sample_rate, block)
 
     def peaks(self, nodes):
         """Largest normal force and largest magnitude of the tangential force [N] on
