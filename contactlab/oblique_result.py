@@ -158,7 +158,9 @@ class ObliqueResult:
         self.t, states, self._raw, self.normal_force, self.tangential_force, self.slip = signals
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
-        self.sensor_force = self.sensor.signal(states[:, :2], self.normal_force)
+        # a wall's signal is the contact force itself; the solver's states need no checks
+        rigid, force = self.sensor.is_rigid, self.normal_force
+        self.sensor_force = force if rigid else self.sensor.signal(states[:, :2], None)
 
     # -- rebound ---------------------------------------------------------------------------
     @property

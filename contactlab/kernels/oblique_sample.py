@@ -13,14 +13,18 @@ whose pieces :func:`contactlab.solver.oblique_phases.piece_phases` packs the sam
 import math
 
 import numpy as np
+from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from contactlab.compiled import njit
 from contactlab.errors import ParameterError
-from contactlab.kernels.oblique_rhs import FRICTION, STICK, arm, trial_force
+from contactlab.kernels.oblique_rhs import FRICTION, OBLIQUE_PARAMETERS, STICK, arm, trial_force
 from contactlab.kernels.oblique_rhs import slip as slip_of
 from contactlab.kernels.power import RIGID, force
 
 __all__ = ["ContactPhases", "grid", "grid_worst", "peak_forces", "sample"]
+
+PARAMETER_COUNT = len(OBLIQUE_PARAMETERS)
+"""Fields of the packed parameters (:func:`contactlab.kernels.oblique_rhs.pack`)."""
 
 
 @njit(cache=True, error_model="numpy")
@@ -30,6 +34,18 @@ def _before(times, i, stop, t0, bound):
     while i < stop and times[i] - t0 < bound:
         i += 1
     return i
+
+
+@njit(cache=True, error_model="numpy")
+def _held(f0, f1, f2, f3, f4, f5, f6, y):
+    """Whether a component's interpolant is its start value ``y`` to the last bit: all its
+    coefficients zero (the history while sliding) and ``y`` not ``-0.0``.
+
+    The interpolant then adds a sum of signed zeros (finite ``x``: a step's length is
+    positive) to ``y``, which leaves a nonzero ``y`` and ``+0.0`` as they are; only for
+    ``-0.0`` would the sign of the sum decide."""
+    zero = f0 == 0.0 and f1 == 0.0 and f2 == 0.0 and f3 == 0.0 and f4 == 0.0
+    return zero and f5 == 0.0 and f6 == 0.0 and (y != 0.0 or math.copysign(1.0, y) > 0.0)
 
 
 @njit(cache=True, error_model="numpy")
@@ -52,6 +68,9 @@ def _interpolate(F, y_old, j, span, times, warped_from, first, states, xs):
     for c in range(first, 7):
         f0, f1, f2, f3 = F[j, 0, c], F[j, 1, c], F[j, 2, c], F[j, 3, c]
         f4, f5, f6, y = F[j, 4, c], F[j, 5, c], F[j, 6, c], y_old[j, c]
+        if _held(f0, f1, f2, f3, f4, f5, f6, y):
+            states[c, lo:hi] = y
+            continue
         for m in range(lo, hi):
             x = xs[m]
             u = 1.0 - x
@@ -68,6 +87,7 @@ def _interpolate(F, y_old, j, span, times, warped_from, first, states, xs):
 @njit(cache=True, error_model="numpy")
 def _forces(par, phase, lo, hi, states, raw, normal, tangential, slip):
     """Normal and tangential forces and slip of ``states[:, lo:hi]`` in ``phase``."""
+    par = to_fixed_tuple(par, PARAMETER_COUNT)  # in registers: no reload after each store
     mu = par[FRICTION]
     for m in range(lo, hi):
         d = states[2, m] - states[0, m]
