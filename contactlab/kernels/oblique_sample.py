@@ -199,7 +199,9 @@ def grid(par, table, warp, steps, final, sample_rate, block):
     n = block.shape[1]
     times = block[11]
     for i in range(n):
-        times[i] = i / sample_rate
+        times[i] = i
+    for i in range(n):  # apart: a loop the compiler vectorises
+        times[i] /= sample_rate
     end = table[table.shape[0] - 1, 1]
     inside = 0
     while inside < n and times[inside] < end:
@@ -210,13 +212,15 @@ def grid(par, table, warp, steps, final, sample_rate, block):
     after = slip_of(final, par)
     x2, v2, vt, w = final[2], final[3], final[4], final[5]
     rigid = par[RIGID] > 0.0
-    for m in range(inside, n):
-        if rigid:
-            block[0, m], block[1, m] = 0.0, 0.0
+    if rigid:
+        block[:2, inside:] = 0.0
+        for m in range(inside, n):
             block[2, m] = (times[m] - end) * v2 + x2
-            block[3, m] = v2
-        block[4, m], block[5, m], block[6, m] = vt, w, 0.0
-        block[7, m], block[8, m], block[9, m], block[10, m] = 0.0, 0.0, 0.0, after
+        block[3, inside:] = v2
+    block[4, inside:] = vt
+    block[5, inside:] = w
+    block[6:10, inside:] = 0.0
+    block[10, inside:] = after
     return inside
 
 
