@@ -73,7 +73,9 @@ def bounds(rate, pink):
     band_functionals = np.column_stack([signal[top], signal[inside].sum(axis=0) * dt + tail])
     band_sd = np.sqrt(blue_variance(autocovariance, band, band_functionals))
     baseline = band[:, terms:]  # the ringing and the line: the signal is free inside
-    free_impulse = free_variance(autocovariance, ~inside, inside, baseline, inside * dt, tail[terms:])
+    free_impulse = free_variance(
+        autocovariance, ~inside, inside, baseline, inside * dt, tail[terms:]
+    )
     single = np.zeros(t.size)
     single[top] = 1.0
     free_peak = free_variance(autocovariance, ~inside, inside, baseline, single, 0.0 * tail[terms:])
