@@ -135,7 +135,9 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     # (contactlab.inverse.reconstruct_force's window)
     contact_end = 2.0 * lobe[1] - lobe[0]
     local = _local(t, record, window, contact_end, sensor)
-    detrended = record - local.values
+    # the reconstruction reads its noise model on the detection's baseline window: it
+    # gets the record less the line fitted there
+    detrended = record - _local(t, record, window, contact_end, sensor, near_onset=False).values
     # the low-passed record less the local baseline: ``flat`` is the low-passed record
     # less the running baseline (record - raw), which the low-pass leaves unchanged
     lowpassed = flat + (record - raw) - local.values
@@ -149,12 +151,13 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     return numbers, detrended, contact_end
 
 
-def _local(t, record, window, contact_end, sensor):
+def _local(t, record, window, contact_end, sensor, near_onset=True):
     """The impact's local baseline (:func:`dem_check.campaign.local.local_baseline`),
     its ringing fitted from ``contact_end`` [s]; a baseline before the impact is read up
-    to :data:`ONSET_MARGIN` periods before the onset, where the impulse integral starts."""
+    to :data:`ONSET_MARGIN` periods before the onset, where the impulse integral starts
+    (``near_onset=False``: to the detection's baseline window's end)."""
     base = window.baseline_window
-    if base[1] <= window.onset:
+    if near_onset and base[1] <= window.onset:
         end = max(base[1], window.onset - ONSET_MARGIN * sensor.period)
         return local_baseline(t, record, (base[0], end), end, contact_end, window.end, sensor)
     start = base[1] if window.start is None else window.start
