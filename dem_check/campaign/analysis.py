@@ -11,8 +11,9 @@ noise are read on both sides of it:
   noise), with the same hysteresis so that only a return to zero ends it;
 - ``peak_sensor_force [N]``: the largest value of the low-passed signal (flat pass band) in
   that lobe;
-- ``impulse [N*s]``: the integral of the signal from the end of the baseline window to a
-  sensor period after the reconstructed contact's end, plus the fitted free ringing's
+- ``impulse [N*s]``: the integral of the signal from the local baseline's end (a tenth
+  of a sensor period before the onset) to a sensor period after the reconstructed
+  contact's end, plus the fitted free ringing's
   integral from there in closed form. The sensor returns to rest, so this is the impulse
   of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
