@@ -92,11 +92,12 @@ def test_peak_and_impulse_of_a_half_sine_under_coloured_noise(hard_setup):
     _, sensor, _ = hard_setup
     errors = np.array([_errors(sensor, seed) for seed in range(6)])
     peak, impulse = errors[:, 0], errors[:, 1]
-    # bench_realistic at 2 MHz, 1/f as large as the white noise: rms 2.07 % (peak) and
-    # 3.1 % (impulse) at 30 sigma, i.e. 0.62 % and 0.93 % at 100; 4 of those
+    # bench_realistic at 2 MHz, 1/f as large as the white noise: rms 2.06 % (peak) and
+    # 2.86 % (impulse) at 30 sigma, i.e. 0.62 % and 0.86 % at 100; 4 of those (measured
+    # here: at most 1.1 % and 0.9 %)
     assert np.abs(peak).max() < 0.025
-    assert np.abs(impulse).max() < 0.037
+    assert np.abs(impulse).max() < 0.034
     # a bias (e.g. the peak read on a noise maximum, or a tail lost) beyond 3 standard
-    # errors of the mean of six
+    # errors of the mean of six (measured +0.34 % and +0.33 %)
     assert abs(peak.mean()) < 3.0 * 0.0062 / math.sqrt(6.0)
-    assert abs(impulse.mean()) < 3.0 * 0.0093 / math.sqrt(6.0)
+    assert abs(impulse.mean()) < 3.0 * 0.0086 / math.sqrt(6.0)
