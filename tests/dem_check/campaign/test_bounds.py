@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from pink_noise import pink_by_phases
 from scipy.linalg import toeplitz
 
 from dem_check.campaign import Effects
@@ -19,16 +20,6 @@ from dem_check.campaign.bounds import (
     noise_autocovariance,
 )
 from dem_check.campaign.local import local_baseline
-
-
-def _pink_by_phases(rng, count, sigma):
-    """1/f noise written independently of ``records._pink``: amplitudes ``k**-1/2``
-    exactly, phases uniform (``records`` draws Gaussian real and imaginary parts)."""
-    k = np.arange(1, count // 2 + 1)
-    spectrum = np.zeros(count // 2 + 1, dtype=complex)
-    spectrum[1:] = np.exp(2j * math.pi * rng.uniform(size=k.size)) / np.sqrt(k)
-    noise = np.fft.irfft(spectrum, count)
-    return sigma * noise / noise.std()
 
 
 def test_autocovariance_is_the_sum_of_its_parts_in_closed_form():
@@ -60,7 +51,7 @@ def test_pink_autocovariance_is_what_the_records_draw():
     count, lags = 4000, np.array([0, 1, 10, 50, 200])
     sample = np.zeros(lags.size)
     for _ in range(300):
-        x = _pink_by_phases(rng, count, 1.0)
+        x = pink_by_phases(rng, count, 1.0)
         sample += [np.mean(x[: count - m] * x[m:]) for m in lags]
     sample /= 300
     expected = noise_autocovariance(201, 1.0, 0.0, Effects(pink=1.0), count * 1.0)[lags]
@@ -159,7 +150,7 @@ def test_the_campaign_impulse_is_no_better_than_its_bound(hard_setup):
     rng = np.random.default_rng(11)
     readings = []
     for _ in range(400):
-        noise = rng.normal(0.0, 0.03, count) + _pink_by_phases(rng, count, 0.03)
+        noise = rng.normal(0.0, 0.03, count) + pink_by_phases(rng, count, 0.03)
         start = rng.integers(0, count - t.size)
         y = noise[start : start + t.size]
         base = (onset - 8 * period, onset)

@@ -9,6 +9,7 @@ import math
 
 import numpy as np
 import pytest
+from pink_noise import pink_by_phases
 from scipy.signal import lsim
 
 from contactlab.traces import Trace
@@ -37,16 +38,6 @@ def _sensor_signal(sensor, dt, count):
     return lsim(system, force, t)[1]
 
 
-def _pink(rng, count, sigma):
-    """1/f noise: amplitudes ``k**-1/2`` at frequencies ``k / (count dt)``, uniform
-    random phases."""
-    k = np.arange(1, count // 2 + 1)
-    spectrum = np.zeros(count // 2 + 1, dtype=complex)
-    spectrum[1:] = np.exp(2j * math.pi * rng.uniform(size=k.size)) / np.sqrt(k)
-    noise = np.fft.irfft(spectrum, count)
-    return sigma * noise / noise.std()
-
-
 def _errors(sensor, seed):
     """Relative errors of the peak signal and impulse read on one record."""
     fine = 16
@@ -62,7 +53,7 @@ def _errors(sensor, seed):
     shift = round((first * dt - onset) / (dt / fine))
     clean[first : first + unit[shift::fine].size] = amplitude * unit[shift::fine]
     baseline = 0.3 + 60.0 * NOISE * t / t[-1] + 1.5 * NOISE * np.sin(2 * math.pi * 50.0 * t + 1.0)
-    noise = rng.normal(0.0, NOISE, count) + _pink(rng, count, NOISE)
+    noise = rng.normal(0.0, NOISE, count) + pink_by_phases(rng, count, NOISE)
     trace = Trace(t, clean + baseline + noise, "N", {"format": "synthetic"})
     detection = find_impacts(trace, sensor)
     ok = [w for w in detection.impacts if w.status == "ok"]
