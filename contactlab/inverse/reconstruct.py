@@ -29,6 +29,11 @@ from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
+from contactlab.inverse.contact_edges import (
+    SIGNIFICANCE_SIGMAS,
+    significant_edges,
+    tikhonov_std,
+)
 from contactlab.inverse.noise_colour import (
     NOISE_MODELS,
     block_noise_model,
@@ -42,7 +47,7 @@ from contactlab.inverse.regularization import CRITERIA, StandardForm
 from contactlab.metrics import pulse_metrics
 from contactlab.validation import check_choice, check_count, check_number
 
-__all__ = ["CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
+__all__ = ["CONTACT_EDGES", "CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
 
 DEFAULT_CUTOFF_FACTOR = 2.0
 """Default cutoff of the inverse filter in units of the resonance. The inverse's gain
@@ -153,7 +158,7 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
     ta, tb = window
     ia = int(np.searchsorted(t, ta))
     span = (tb - t[ia]) / dt
-    q = max(1, math.ceil(span / (max_unknowns - 1)))
+    q = options.get("step") or max(1, math.ceil(span / (max_unknowns - 1)))
     columns = int(span // q) + 1
     last = min(t[-1], tb + ROWS_AFTER_WINDOW * sensor.period)
     rows = int((last - t[ia]) / dt + 1) // q
@@ -172,6 +177,8 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
     values, _ = nnls(np.vstack([h, penalty]), np.concatenate([data, np.zeros(columns - 1)]))
     knots = t[ia] + np.arange(-1, columns + 1) * q * dt
     force = np.interp(t, knots, np.concatenate([[0.0], values, [0.0]]))
+    # the unconstrained solution's spread, between the knots as the force is
+    std = np.interp(t, knots, np.concatenate([[0.0], tikhonov_std(h, penalty, block_noise), [0.0]]))
     params = {
         "regularization": criterion,
         "lambda": float(lam),
@@ -180,7 +187,7 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
         "data_blocks": rows,
         **describe_model(model),
     }
-    return force, params
+    return force, params, std
 
 
 def _inverse(t, y, dt, sensor, noise, window, options):
@@ -208,11 +215,20 @@ def _inverse(t, y, dt, sensor, noise, window, options):
     # the 3-point stencil needs both neighbours: the end samples take their neighbour's
     curvature[0], curvature[-1] = curvature[1], curvature[-2]
     force = smooth + curvature / sensor.angular_frequency**2
-    return force, {"cutoff [Hz]": float(cutoff), "filter": "Butterworth order 4, zero-phase"}
+    params = {"cutoff [Hz]": float(cutoff), "filter": "Butterworth order 4, zero-phase"}
+    return force, params, None  # a stationary filter: its spread is read on the baseline
 
 
 METHODS = {"tikhonov": _tikhonov, "inverse": _inverse}
 """Reconstruction methods: name -> implementation."""
+
+CONTACT_EDGES = ("significance", "level")
+"""How the contact's start and end are read (``contact_edges`` of
+:func:`reconstruct_force`)."""
+
+DEFAULT_CONTACT_EDGES = "significance"
+"""Default of ``contact_edges``: where the force is significantly above zero, the edges
+extrapolated along the flanks (:mod:`contactlab.inverse.contact_edges`)."""
 
 
 def _contact_metrics(t, force, threshold):
@@ -245,6 +261,32 @@ def _cut_at_dip(force, peak, threshold):
     return np.concatenate([force[: peak + dips[0] + 2], np.zeros(after.size - dips[0] - 2)])
 
 
+def _widened(t, y, dt, sensor, noise, window, options, solved):
+    """The Tikhonov solution on a window started earlier, when the force is significant
+    at the default window's first knot (its contact started before the window).
+
+    The default window starts a quarter sensor period before the onset, the first
+    crossing of 5 baseline standard deviations; at a peak of 20 standard deviations that
+    is a quarter of the way up a smooth pulse, and the contact's start was cut (a
+    half-sine of 100 us at 1 MHz, 5 % noise: the window started 3 us late and the
+    contact came out 3 % short). The window is started once more, as far before its
+    first knot as the peak is after it (not before the record), on the same grid step.
+    ``solved`` is the first solution's ``(force, parameters, spread)``; returns the
+    window start [s] and the solution on the window used.
+    """
+    force, params, std = solved
+    ta, tb = window
+    ia = int(np.searchsorted(t, ta))
+    q = max(1, round(params["grid_step [s]"] / dt))
+    head = slice(ia, ia + q + 1)  # the window's first grid step
+    if ia == 0 or not np.any(force[head] > SIGNIFICANCE_SIGMAS * std[head]):
+        return ta, solved  # the noise, not the window, ends the contact on the left
+    top = int(np.argmax(force))
+    earlier = max(float(t[0]), float(2.0 * t[ia] - t[top]))
+    wider = {**options, "step": q}
+    return earlier, METHODS["tikhonov"](t, y, dt, sensor, noise, (earlier, tb), wider)
+
+
 def _check_sensor(sensor):
     if not isinstance(sensor, Sensor):
         raise ParameterError(f"sensor must be a contactlab.Sensor; got {type(sensor).__name__}")
@@ -267,6 +309,7 @@ def reconstruct_force(
     threshold=None,
     crosstalk=True,
     noise_model=None,
+    contact_edges=None,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -312,9 +355,9 @@ def reconstruct_force(
         :data:`DEFAULT_MAX_UNKNOWNS` = 400); the signal is averaged over blocks of ``q``
         samples and the force grid step is ``q`` samples.
     threshold : float, optional
-        Level [N] at which the metrics read the pulse. Default: 2 % of the
-        reconstructed peak, or five standard deviations of the reconstruction over the
-        baseline window if that is larger.
+        Level [N] at which the metrics read the pulse (``contact_edges="level"``).
+        Default: 2 % of the reconstructed peak, or five standard deviations of the
+        reconstruction over the baseline window if that is larger.
     crosstalk : bool, default True
         Remove the structure's crosstalk with the baseline (modes found on the ringing
         after the contact; :func:`contactlab.inverse.pulse.pulse_baseline`), the modes
@@ -332,6 +375,17 @@ def reconstruct_force(
         ``parameters["noise_model"]`` says which was used (``"AR(p)"`` with its
         coefficients and innovation, or ``"white"``). ``"white"``: ordinary least
         squares, as before coloured noise was modelled.
+    contact_edges : {"significance", "level"}, optional
+        How the contact's start and end are read from the reconstructed force.
+        ``"significance"``: the run of samples around the peak where the force is more
+        than 3 of its own standard deviations above zero (the noise propagated through
+        the Tikhonov solution, ``noise**2 G G^T``; the inverse filter's spread over the
+        baseline), each edge where a line fitted to its flank between 10 % and 50 % of
+        the peak reaches zero (:func:`contactlab.inverse.contact_edges.significant_edges`).
+        ``"level"``: the first lobe above ``threshold``, ended at a dip under 5 % of the
+        peak (as before; taken whenever ``threshold`` is given).
+        ``parameters["contact_edges"]`` says which was used. Default
+        :data:`DEFAULT_CONTACT_EDGES`, ``"significance"``.
 
     Returns
     -------
@@ -395,8 +449,12 @@ def reconstruct_force(
             "max_unknowns", DEFAULT_MAX_UNKNOWNS if max_unknowns is None else max_unknowns, 2
         ),
     }
+    contact_edges = check_choice(
+        "contact_edges", contact_edges or DEFAULT_CONTACT_EDGES, CONTACT_EDGES
+    )
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, unit="N")
+        contact_edges = "level"  # a level the user gave is read as given
     pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk)
     y = y - pulse.values
     noise, onset, base = pulse.noise, pulse.onset, pulse.window
@@ -409,16 +467,24 @@ def reconstruct_force(
         raise ParameterError(
             f"window start must lie within the record [{t[0]:.6g}, {t[-1]:.6g}) s; got {ta!r}"
         )
-    force, params = METHODS[method](t, y, dt, sensor, noise, (ta, tb), options)
-    if threshold is None:
-        # the reconstruction's own noise, over the baseline before the contact window
-        in_base = (t >= base[0]) & (t < min(base[1], ta))
-        floor = (
-            THRESHOLD_SIGMAS * float(np.std(force[in_base], ddof=1)) if in_base.sum() > 1 else 0.0
-        )
-        threshold = max(THRESHOLD_FRACTION * float(force.max()), floor)
-        if threshold <= 0.0:
-            raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
+    force, params, std = METHODS[method](t, y, dt, sensor, noise, (ta, tb), options)
+    if std is not None and window is None and contact_edges == "significance":
+        solved = (force, params, std)
+        ta, (force, params, std) = _widened(t, y, dt, sensor, noise, (ta, tb), options, solved)
+    # the reconstruction's own noise, over the baseline before the contact window
+    in_base = (t >= base[0]) & (t < min(base[1], ta))
+    spread = float(np.std(force[in_base], ddof=1)) if in_base.sum() > 1 else 0.0
+    if float(force.max()) <= 0.0:
+        raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
+    if contact_edges == "significance":
+        std = np.full(t.size, spread) if std is None else std
+        metrics = significant_edges(t, force, std)
+        # the level the force's peak had to pass; the edges are the flanks' lines at zero
+        threshold = SIGNIFICANCE_SIGMAS * float(std[np.argmax(force)])
+    else:
+        if threshold is None:
+            threshold = max(THRESHOLD_FRACTION * float(force.max()), THRESHOLD_SIGMAS * spread)
+        metrics = _contact_metrics(t, force, threshold)
     params.update(
         {
             "window [s]": [ta, tb],
@@ -428,6 +494,7 @@ def reconstruct_force(
             "post_window [s]": list(pulse.post),
             "noise [N]": noise,
             "onset [s]": onset,
+            "contact_edges": contact_edges,
             "threshold [N]": threshold,
             "sensor_resonance [Hz]": sensor.resonance,
             "sensor_damping_ratio [-]": sensor.damping_ratio,
@@ -439,7 +506,7 @@ def reconstruct_force(
         force=force,
         method=method,
         parameters=params,
-        metrics=_contact_metrics(t, force, threshold),
+        metrics=metrics,
         status=pulse.status,
         notes=pulse.notes,
     )
