@@ -31,6 +31,9 @@ from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
 from contactlab.inverse.contact_edges import (
     SIGNIFICANCE_SIGMAS,
+    THRESHOLD_FRACTION,
+    THRESHOLD_SIGMAS,
+    level_edges,
     significant_edges,
     tikhonov_std,
 )
@@ -44,7 +47,6 @@ from contactlab.inverse.noise_colour import (
 from contactlab.inverse.pulse import pulse_baseline
 from contactlab.inverse.reconstruction import ForceReconstruction
 from contactlab.inverse.regularization import CRITERIA, StandardForm
-from contactlab.metrics import pulse_metrics
 from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = ["CONTACT_EDGES", "CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
@@ -70,18 +72,6 @@ information; more only enlarge the matrix."""
 ONSET_SIGMAS = 5.0
 """Onset threshold in baseline standard deviations (a baseline sample exceeds 5 sigma
 with probability 6e-7)."""
-
-THRESHOLD_FRACTION = 0.02
-"""Default level of the contact-time reading, as a fraction of the reconstructed peak."""
-
-DIP_FRACTION = 0.05
-"""A reconstructed force that dips under this fraction of its peak after it, without
-reaching the threshold, ends its contact at the dip [-]: what follows is noise read as
-force (1/f noise leaves bumps of 2-8 % of the peak after the contact at 20-30 sigma,
-which held the contact open to +55 %; measured in ``docs/campaign.md``)."""
-
-THRESHOLD_SIGMAS = 5.0
-"""...raised to this many standard deviations of the reconstruction's own baseline."""
 
 
 # ---------------------------------------------------------------------------
@@ -229,36 +219,6 @@ CONTACT_EDGES = ("significance", "level")
 DEFAULT_CONTACT_EDGES = "significance"
 """Default of ``contact_edges``: where the force is significantly above zero, the edges
 extrapolated along the flanks (:mod:`contactlab.inverse.contact_edges`)."""
-
-
-def _contact_metrics(t, force, threshold):
-    """Pulse metrics of the lobe of the reconstructed force that holds its peak.
-
-    A lobe above the threshold before it is the window edge fitting noise as force: on
-    a realistic record with 1/f noise as large as the white noise the force rose to
-    2.3 % of its peak at the contact window's first knot, and the first lobe read there
-    gave a contact of 0.15 us instead of 100 us (``docs/campaign.md``).
-    """
-    peak = int(np.argmax(force))
-    before = np.flatnonzero(force[:peak] <= threshold)
-    first = int(before[-1]) if before.size else 0
-    return pulse_metrics(t[first:], _cut_at_dip(force, peak, threshold)[first:], threshold)
-
-
-def _cut_at_dip(force, peak, threshold):
-    """``force`` zeroed after its first dip after the peak that is under
-    :data:`DIP_FRACTION` of the peak but stays above ``threshold`` (unchanged when the
-    force falls to the threshold first)."""
-    after = force[peak:]
-    under = np.flatnonzero(after <= threshold)
-    end = int(under[0]) if under.size else after.size
-    inner = after[1 : end - 1]
-    dips = np.flatnonzero(
-        (inner < after[: end - 2]) & (inner <= after[2:end]) & (inner < DIP_FRACTION * after[0])
-    )
-    if not dips.size:
-        return force
-    return np.concatenate([force[: peak + dips[0] + 2], np.zeros(after.size - dips[0] - 2)])
 
 
 def _widened(t, y, dt, sensor, noise, window, options, solved):
@@ -484,7 +444,7 @@ def reconstruct_force(
     else:
         if threshold is None:
             threshold = max(THRESHOLD_FRACTION * float(force.max()), THRESHOLD_SIGMAS * spread)
-        metrics = _contact_metrics(t, force, threshold)
+        metrics = level_edges(t, force, threshold)
     params.update(
         {
             "window [s]": [ta, tb],

@@ -149,7 +149,7 @@ def test_reconstruction_removes_the_structure_s_crosstalk(hard_setup, onset):
     # kept on request, the same record is flagged, with the numbers. 1 ms in, the
     # crosstalk held the reconstructed force above 2 % of its peak after the contact
     # (contact time +12 % to +25 %); the contact now ends at the force's first dip under
-    # 5 % of its peak (reconstruct.DIP_FRACTION): +4.4 % measured, within the 5 % target
+    # 5 % of its peak (contact_edges.DIP_FRACTION): +4.4 % measured, within the 5 % target
     kept = reconstruct_force(*_arrays(record), hard_setup[1], crosstalk=False)
     assert "not free ringing" in kept.status
     assert any("crosstalk" in note and "times" in note for note in kept.notes)
