@@ -93,21 +93,22 @@ def tikhonov_std(h, penalty, noise):
     return noise * np.sqrt(np.einsum("ij,ij->i", gain, gain))
 
 
-def _flank_zero(t, force, levels, rising):
+def _flank_zero(t, force, levels, rising, exponent):
     """Time where a line fitted by least squares to the flank samples ``force`` between
-    ``levels`` crosses zero [s], or ``None`` when fewer than three samples lie there or
-    the line does not rise (``rising``) or fall towards the peak."""
+    ``levels``, raised to ``1 / exponent``, crosses zero [s], or ``None`` when fewer than
+    three samples lie there or the line does not rise (``rising``) or fall towards the
+    peak."""
     low, high = levels
     inside = (force >= low) & (force <= high)
     if inside.sum() < 3:
         return None
-    slope, intercept = np.polyfit(t[inside], force[inside], 1)
+    slope, intercept = np.polyfit(t[inside], force[inside] ** (1.0 / exponent), 1)
     if slope == 0.0 or (slope > 0.0) != rising:
         return None
     return -intercept / slope
 
 
-def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS):
+def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS, exponent=1.0):
     """Pulse metrics of a reconstructed force, its edges read from its uncertainty.
 
     Parameters
@@ -121,6 +122,11 @@ def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS):
         construction).
     sigmas : float, default :data:`SIGNIFICANCE_SIGMAS`
         Significance level [-].
+    exponent : float, default 1.0
+        The flanks' power law near the edges [-], ``F ~ |t - t_edge|**exponent``: the
+        line is fitted to ``F**(1 / exponent)``. 1 for a force linear in the overlap
+        (or with a viscous step), 1.5 for Hertz (the overlap is linear in time at the
+        edges); a line on a Hertz flank reads its contact 6-8 % short.
 
     Returns
     -------
@@ -150,7 +156,7 @@ def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS):
     for part, rising in ((slice(first, top + 1), True), (slice(top, last + 1), False)):
         floor = max(FLANK_LOW * peak, float(np.max(sigmas * std[part])))
         levels = (floor, max(FLANK_HIGH * peak, floor))
-        zero = _flank_zero(t[part], force[part], levels, rising)
+        zero = _flank_zero(t[part], force[part], levels, rising, exponent)
         edges.append(zero)
     # an extrapolation is kept only between the run's bounds and the peak: a flank too
     # short or too curved to fit keeps the significance crossing

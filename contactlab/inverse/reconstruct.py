@@ -270,6 +270,7 @@ def reconstruct_force(
     crosstalk=True,
     noise_model=None,
     contact_edges=None,
+    flank_exponent=1.0,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -346,6 +347,11 @@ def reconstruct_force(
         peak (as before; taken whenever ``threshold`` is given).
         ``parameters["contact_edges"]`` says which was used. Default
         :data:`DEFAULT_CONTACT_EDGES`, ``"significance"``.
+    flank_exponent : float, default 1.0
+        Power law of the force at the contact's edges, ``F ~ |t - t_edge|**p`` [-], in
+        [1, 3] (``"significance"`` only): the flanks' lines are fitted to ``F**(1/p)``.
+        1 for a linear or viscoelastic law, 1.5 for Hertz (with 1 a Hertz contact comes
+        out 6-8 % short).
 
     Returns
     -------
@@ -409,6 +415,9 @@ def reconstruct_force(
             "max_unknowns", DEFAULT_MAX_UNKNOWNS if max_unknowns is None else max_unknowns, 2
         ),
     }
+    flank_exponent = check_number(
+        "flank_exponent", flank_exponent, low=1.0, high=3.0, low_open=False
+    )
     contact_edges = check_choice(
         "contact_edges", contact_edges or DEFAULT_CONTACT_EDGES, CONTACT_EDGES
     )
@@ -438,7 +447,7 @@ def reconstruct_force(
         raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
     if contact_edges == "significance":
         std = np.full(t.size, spread) if std is None else std
-        metrics = significant_edges(t, force, std)
+        metrics = significant_edges(t, force, std, exponent=flank_exponent)
         # the level the force's peak had to pass; the edges are the flanks' lines at zero
         threshold = SIGNIFICANCE_SIGMAS * float(std[np.argmax(force)])
     else:

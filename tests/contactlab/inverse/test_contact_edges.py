@@ -69,6 +69,21 @@ def test_straight_flanks_extrapolate_to_their_zeros(start, rise, fall):
     assert metrics.peak == pytest.approx(force.max(), rel=1e-15)
 
 
+def test_hertz_flanks_extrapolate_with_their_power_law():
+    # a Hertz-like pulse (the triangle to the power 1.5: F**(2/3) is linear at the
+    # edges): with exponent 1.5 the edges are exact; a line on F itself, from 10 % to
+    # 50 %, meets zero inside the contact (the flank is convex)
+    t = np.arange(-100e-6, 300e-6, 0.5e-6)
+    force = _triangle(t, 0.0, 50e-6, 100e-6) ** 1.5
+    std = np.full(t.size, 0.01)
+    hertz = significant_edges(t, force, std, exponent=1.5)
+    # exact line in F**(2/3): only rounding (1e-12 s on 1e-4 s)
+    assert hertz.duration == pytest.approx(100e-6, abs=1e-12)
+    # the line through x**1.5 between 10 % and 50 % meets zero at x = 0.065 (87.0 us
+    # measured): short by more than the 5 % target, which is why Hertz needs 1.5
+    assert significant_edges(t, force, std).duration < 0.95 * 100e-6
+
+
 def test_a_noise_bump_after_the_contact_does_not_hold_it_open():
     # a bump of 4 % of the peak after the contact, joined to it by a shelf at 3 %
     # (what 1/f noise left at 20-30 sigma): not significant at a spread of 2 % of the
@@ -146,3 +161,5 @@ def test_a_given_threshold_reads_the_level(half_sine_1mhz):
     assert rec.metrics.duration == pytest.approx(lobe, rel=0.01)
     with pytest.raises(ParameterError, match="contact_edges"):
         reconstruct_force(t, y, SENSOR, contact_edges="fixed")
+    with pytest.raises(ParameterError, match="flank_exponent"):
+        reconstruct_force(t, y, SENSOR, flank_exponent=0.5)
