@@ -118,11 +118,15 @@ class ObliqueModel:
 
     def pack(self):
         """Packed parameters of the compiled solver (:func:`kernels.oblique_rhs.pack`, with
-        Kratos' cap :func:`kernels.elastic_cap_rhs.pack`)."""
+        Kratos' cap :func:`kernels.elastic_cap_rhs.pack`; without tangential damping
+        Kratos' cap is LAMMPS' rule, the elastic force being the total, and LAMMPS' loop
+        takes it)."""
         sys_ = self.system
         normal = pack_normal(self._form, sys_.m1, sys_.k1, sys_.c1, sys_.m2, sys_.rigid)
-        par = pack(normal, self.law.form(), self.radius, self.inertia, self.contact_arm)
-        return pack_elastic_cap(par) if self.law.coulomb_cap == "elastic" else par
+        form = self.law.form()
+        par = pack(normal, form, self.radius, self.inertia, self.contact_arm)
+        kratos = self.law.coulomb_cap == "elastic" and form.damping > 0.0
+        return pack_elastic_cap(par) if kratos else par
 
 
 def _solve_contact(model, y0, rtol, scale):

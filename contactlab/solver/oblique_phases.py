@@ -14,6 +14,7 @@ import numpy as np
 
 from contactlab.errors import ParameterError
 from contactlab.kernels import elastic_cap
+from contactlab.kernels.elastic_cap_rhs import ELASTIC_CAP_MODEL
 from contactlab.kernels.oblique_kernel import (
     MAX_PHASES,
     STATUS_CHATTER,
@@ -22,6 +23,7 @@ from contactlab.kernels.oblique_kernel import (
     solve_contact,
 )
 from contactlab.kernels.oblique_sample import ContactPhases
+from contactlab.kernels.power import MODEL
 from contactlab.solver.adaptive import underflow_message
 
 __all__ = ["compiled_contact", "grid_signals"]
@@ -45,7 +47,8 @@ def compiled_contact(model, y0, rtol, atol, velocity):
         Impact speed [m/s] (for the messages).
     """
     par = model.pack()
-    solve = elastic_cap.solve_contact if model.law.coulomb_cap == "elastic" else solve_contact
+    kratos = par[MODEL] == ELASTIC_CAP_MODEL
+    solve = elastic_cap.solve_contact if kratos else solve_contact
     status, failed, y_end, table, count, warp, steps = solve(
         par, np.asarray(y0, dtype=float), rtol, atol, True
     )
