@@ -76,7 +76,7 @@ def test_the_checks_read_the_old_form_with_its_last_argument(case):
         r"f\(ImpactConfig\(grain, sensor, law, \{'velocity': velocity\}\), time_steps=\.\.\.\)"
     )
     with pytest.warns(DeprecationWarning, match=new_call):
-        config, read = engine_config(fields[0], (*fields[1:], steps), None, "f", "time_steps")
+        config, read = engine_config(fields[0], (*fields[1:], steps), UNSET, "f", "time_steps")
     assert (config.grain, config.sensor, config.law, config.velocity) == fields
     assert read == steps
     assert engine_config(case, (), steps, "f", "time_steps") == (case, steps)
