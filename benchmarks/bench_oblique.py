@@ -187,8 +187,27 @@ def _lammps_cap(law):
     return cl.laws.Mindlin(law.k_mindlin, law.friction, law.history, law.damping_form, "total")
 
 
+def _contact_alone(args, kwargs):
+    """:func:`contactlab.simulate_oblique`'s contact integration alone (``_solve_contact``,
+    no output grid and no audit) for its arguments."""
+    grain, sensor, normal, tangential, speed, angle = args
+    radius = grain.radius
+    model = ObliqueModel(
+        System(grain, sensor),
+        normal,
+        tangential,
+        radius,
+        0.4 * grain.mass * radius**2,
+        kwargs.get("lever_arm", "radius"),
+    )
+    vn, vt = speed * math.cos(angle), speed * math.sin(angle)
+    y0 = np.array([0.0, 0.0, 0.0, vn, vt, kwargs.get("spin", 0.0), 0.0])
+    return _solve_contact(model, y0, RTOL, (speed, grain.mass * speed / 1e-6))
+
+
 def elastic_cap(caps=("elastic", "total")):
-    """``{case: {cap: (median, fastest) [s], "phases": n}}`` of the full call."""
+    """``{case: {cap: (median, fastest) [s], cap + " contact": the same of the contact
+    alone, "phases": n}}`` of the full call (with its default audit)."""
     out = {}
     for name, (args, kwargs) in kratos_cases().items():
         out[name] = {"phases": len(cl.simulate_oblique(*args, **kwargs).phases)}
@@ -196,6 +215,8 @@ def elastic_cap(caps=("elastic", "total")):
             laws = args if cap == "elastic" else (*args[:3], _lammps_cap(args[3]), *args[4:])
             call = lambda laws=laws, kwargs=kwargs: cl.simulate_oblique(*laws, **kwargs)  # noqa: E731
             out[name][cap] = median_time(call, ELASTIC_REPEATS)
+            alone = lambda laws=laws, kwargs=kwargs: _contact_alone(laws, kwargs)  # noqa: E731
+            out[name][f"{cap} contact"] = median_time(alone, ELASTIC_REPEATS)
     return out
 
 
@@ -216,21 +237,26 @@ def _before(directory):
 def print_elastic_cap(before=None):
     """Print :func:`elastic_cap` (and the code in ``before``'s, after / before)."""
     then = None if before is None else _before(before)
-    print("Kratos' elastic Coulomb cap, full call with 20 001 samples, median (fastest) [ms]:")
+    print(
+        "Kratos' elastic Coulomb cap: the full call with 20 001 samples and its default "
+        "audit, and the contact alone, median (fastest) [ms]:"
+    )
     for name, row in elastic_cap().items():
-        (t_e, m_e), (t_t, m_t) = row["elastic"], row["total"]
-        line = (
-            f"  {name:14s} {row['phases']:4d} phases: elastic cap {t_e * 1e3:7.3f} "
-            f"({m_e * 1e3:7.3f}), LAMMPS' cap {t_t * 1e3:6.3f} ({m_t * 1e3:6.3f}), "
-            f"elastic / LAMMPS' {t_e / t_t:5.2f}"
-        )
-        if then is not None:
-            t_b, m_b = then[name]["elastic"]
-            line += (
-                f"; before {t_b * 1e3:7.2f} ({m_b * 1e3:7.2f}, {then[name]['phases']} phases), "
-                f"after / before {t_e / t_b:6.4f} ({m_e / m_b:6.4f})"
+        print(f"  {name} ({row['phases']} phases):")
+        for part in ("", " contact"):
+            (t_e, m_e), (t_t, m_t) = row["elastic" + part], row["total" + part]
+            line = (
+                f"    {part.strip() or 'full call':9s} elastic cap {t_e * 1e3:8.3f} "
+                f"({m_e * 1e3:8.3f}), LAMMPS' cap {t_t * 1e3:6.3f} ({m_t * 1e3:6.3f}), "
+                f"elastic / LAMMPS' {t_e / t_t:6.2f}"
             )
-        print(line)
+            if then is not None:
+                t_b, m_b = then[name]["elastic" + part]
+                line += (
+                    f"; before {t_b * 1e3:8.2f} ({m_b * 1e3:8.2f}), after / before "
+                    f"{t_e / t_b:6.4f} ({m_e / m_b:6.4f})"
+                )
+            print(line)
 
 
 def main():
