@@ -97,7 +97,7 @@ def test_the_old_forms_fifth_argument_beside_the_keyword_is_refused(case, last):
 
 def test_the_entries_refuse_both_before_running_an_engine(case):
     fields = (case.grain, case.sensor, case.law, case.velocity, 1e-7)
-    with pytest.raises(ParameterError, match="time_step is given twice to dem_check.drop_test"):
+    with pytest.raises(ParameterError, match=r"time_step is given twice to dem_check\.drop_test"):
         drop_test(*fields, time_step=2e-7)
     with pytest.raises(ParameterError, match="time_step is given twice"):
         bullet.drop_test(*fields, time_step=2e-7)
