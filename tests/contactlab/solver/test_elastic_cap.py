@@ -68,8 +68,9 @@ def test_the_compiled_loop_gives_the_python_loops_phases_and_rebound(solved, nam
     Python DOP853 stepper (the same scipy tables): the same phases, and the rebound and
     forces within the integration's tolerance. Measured: the same phase codes in every
     case (170 in the 30 deg one), phase ends within 2.1e-11 of the contact time, rebounds
-    within 2.4e-13 of vt, grid forces within 7.6e-14 of the peak normal force; a changed rule moves them by 1e-3 of vt or more
-    (``test_conventions.py``: the cap's own effect is 1.5e-3 to 2.5e-3 at 5 deg)."""
+    within 2.4e-13 of vt, grid forces within 7.6e-14 of the peak normal force; a changed
+    rule moves them by 1e-3 of vt or more (``test_conventions.py``: the cap's own effect
+    is 1.5e-3 to 2.5e-3 at 5 deg)."""
     res, old = solved[name], GOLDEN[name]
     assert [code for _, _, code in res.phases] == [code for _, _, code in old["phases"]]
     # a phase's end is an event located to Brent's xtol on an interpolant of rtol 1e-9
