@@ -9,8 +9,7 @@ import pandas as pd
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
-from contactlab.inverse import FIT_MODELS
-from contactlab.inverse import onset as onset_fit
+from contactlab.inverse import FIT_MODELS, lobe_onset
 from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise, onsets
@@ -256,8 +255,8 @@ def _settings(paths, options, metadata):
             "smoothing -3 dB [Hz]": detection.CUTOFF_FACTOR * sensor.resonance,
             "false alarms per record": detection.FALSE_ALARMS,
             "onset [sigma]": detection.ONSET_SIGMAS,
-            "onset fit window end [fraction of the peak]": onset_fit.RISE_FRACTION,
-            "onset fit shape read on [impacts]": onsets.SHAPE_IMPACTS,
+            "onset fit: contact family read on [impacts]": onsets.FAMILY_IMPACTS,
+            "onset fit: families [-]": sorted(lobe_onset.FAMILIES),
             "running baseline block [sensor periods]": noise.BLOCK_PERIODS,
             "running baseline block, fewest [samples]": noise.BLOCK_MIN_SAMPLES,
             "min_force [N]": options["limits"]["min_force"],
