@@ -1,6 +1,6 @@
 """The first touch from the whole first lobe: a contact family's force through the sensor.
 
-A fit of the rise alone (:mod:`contactlab.inverse.onset`) extrapolates the first
+A fit of the rise alone (this module's predecessor, issue 22) extrapolates the first
 microseconds, which for a Hertz contact (signal ``~ s**3.5``) lie under the noise. The
 whole contact carries the onset when the force's shape is known up to its size and its
 duration: a single-degree-of-freedom contact on a rigid wall, nondimensional,
@@ -23,6 +23,7 @@ record's standard deviation with ``A``, ``tau`` and the line unknown:
 
 import functools
 import math
+import sys
 from dataclasses import dataclass
 
 import numpy as np
@@ -67,7 +68,12 @@ BEFORE_PERIODS = 1.0
 """Sensor periods of record fitted before the earliest onset sought [-] (the line)."""
 
 SEARCH_PERIODS = 1.0
-"""The onset is sought from this many sensor periods before the first guess [-]."""
+"""The onset is sought from this many sensor periods before the first guess [-], or
+:data:`SEARCH_DURATION` of the contact's guessed duration if that is longer."""
+
+SEARCH_DURATION = 0.5
+"""... [-]: a weak Hertz impact (10 sigma) crosses five sigmas at half its peak, a third
+of its duration after the touch."""
 
 SCAN_PERIODS = 1.0 / 32.0
 """Step of the first scan of onsets, in sensor periods [-] (the sensor's step response
@@ -282,7 +288,8 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0):
     period = sensor.period
     if not length > 0.0:
         raise ParameterError(f"guess: the contact duration must be > 0, not {length!r} s")
-    lo = max(rough - SEARCH_PERIODS * period, float(t[0]))
+    span = max(SEARCH_PERIODS * period, SEARCH_DURATION * length)
+    lo = max(rough - span, float(t[0]))
     inside = (t >= lo - BEFORE_PERIODS * period) & (t <= rough + length + AFTER_PERIODS * period)
     if inside.sum() < 16 or not rough > lo or t[-1] < rough + length:
         raise ParameterError(
@@ -310,7 +317,7 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0):
     coefficients, rss = model.solve(t0, tau)
     if not (tau > 0.0 and coefficients[2] > 0.0):
         raise ParameterError(f"no contact fitted at {rough:.6g} s (duration {tau:.3g} s)")
-    if not lo - SEARCH_PERIODS * period <= t0 <= rough:
+    if not lo - span <= t0 <= rough:
         raise ParameterError(
             f"the onset fitted at {t0:.6g} s lies outside the span searched, {lo:.6g} to "
             f"{rough:.6g} s (the crossing)"
@@ -371,8 +378,9 @@ def lobe_family(lobes, sensor):
     k = DAMPINGS.index(damping)
     low, high = DAMPINGS[max(k - 1, 0)], DAMPINGS[min(k + 1, len(DAMPINGS) - 1)]
 
-    def total(z):
-        return sum(chi_squared(lobe, family, float(z)) for lobe in fitted)
+    def total(z):  # finite where a lobe fails (Brent's parabola takes differences)
+        chi = sum(chi_squared(lobe, family, float(z)) for lobe in fitted)
+        return chi if math.isfinite(chi) else sys.float_info.max
 
     refined = optimize.minimize_scalar(
         total, bounds=(low, high), method="bounded", options={"xatol": DAMPING_TOLERANCE}

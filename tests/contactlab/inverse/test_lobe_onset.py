@@ -2,7 +2,8 @@
 without it: the contact families' force shapes in closed form (half-sine, damped
 oscillator) and by quadrature (Hertz: time as the integral of 1/velocity over the
 overlap), pushed through scipy.signal.lsim of the sensor's transfer function on a fine
-grid (not the fit's first-order-hold filter)."""
+grid (not the fit's first-order-hold filter); and the single-trace path
+(contactlab.inverse.pulse) that reports it."""
 
 import math
 
@@ -14,7 +15,9 @@ from scipy import integrate, signal
 
 import contactlab as cl
 from contactlab.errors import ParameterError
-from contactlab.inverse.lobe_onset import fit_lobe, force_shape, lobe_family
+from contactlab.inverse import lobe_onset
+from contactlab.inverse.lobe_onset import fit_lobe, force_shape, lobe_family, single_onset
+from contactlab.inverse.pulse import pulse_baseline
 
 SENSOR = cl.Sensor.from_disc(10e-3, 2e-3, 40e3, damping_ratio=0.02)
 W, ZETA = SENSOR.angular_frequency, SENSOR.damping_ratio
@@ -104,24 +107,24 @@ def test_onsets_without_noise_are_exact(shape, family, damping):
 
 
 def test_the_bound_is_the_spread_of_the_onsets():
-    """Under white noise at 30 sigma, 40 noisy Hertz records: the onsets' spread is the
+    """Under white noise at 30 sigma, 30 noisy Hertz records: the onsets' spread is the
     Cramér-Rao bound (the fit is efficient there) and their mean is unbiased."""
     rate, t0, noise = 2e6, 100.2e-6, 2.0 / 30.0
     errors, bounds = [], []
-    for seed in range(40):
+    for seed in range(30):
         t, y = _record(_hertz_shape, t0, 100e-6, 2.0, rate, noise, seed)
         fit = fit_lobe(t, y, SENSOR, (t0 + 15e-6, 90e-6), noise, "hertz", 0.0)
         errors.append((fit.onset - t0) * rate)
         bounds.append(fit.bound * rate)
     spread, bound = float(np.std(errors, ddof=1)), float(np.median(bounds))
-    # 40 draws: the sample standard deviation is within 25 % of the truth with 95 %
-    # probability (chi-squared with 39 degrees of freedom)
-    assert spread == pytest.approx(bound, rel=0.25), (spread, bound)
-    # the mean of 40 within 3 standard errors
-    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(40), np.mean(errors)
+    # 30 draws: the sample standard deviation is within 30 % of the truth with 97 %
+    # probability (chi-squared with 29 degrees of freedom)
+    assert spread == pytest.approx(bound, rel=0.3), (spread, bound)
+    # the mean of 30 within 3 standard errors
+    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(30), np.mean(errors)
 
 
-@settings(max_examples=12, deadline=None)
+@settings(max_examples=8, deadline=None)
 @given(
     rate=st.sampled_from([1e6, 2e6, 5e6]),
     kind=st.sampled_from(["half-sine", "damped", "hertz"]),
@@ -146,7 +149,7 @@ def test_the_family_and_onset_are_read_from_one_lobe(
     lobe = (t, y, (t0 + 10e-6, 0.9 * duration), noise)
     found, damping = lobe_family([lobe], SENSOR)
     assert found == family
-    fit = fit_lobe(*lobe[:3], noise, found, damping)
+    fit = fit_lobe(t, y, SENSOR, lobe[2], noise, found, damping)
     # a Gaussian error beyond 4 standard deviations: probability 6e-5 per example;
     # the damping grid's step (0.05) adds a bias below the bound from 30 sigma (measured)
     assert abs(fit.onset - t0) <= 4.0 * fit.bound, ((fit.onset - t0) * rate, fit.bound * rate)
@@ -164,3 +167,41 @@ def test_bad_input():
         force_shape("cubic", 0.0)
     with pytest.raises(ParameterError, match="no impact"):
         lobe_family([(t, y, (20e-6, 90e-6), 0.01)], SENSOR)
+
+
+def test_a_single_trace_gets_its_first_touch_fitted():
+    """One Hertz impact at 40 sigma, 2 MHz, with 200 us of pre-trigger (the oscilloscope's
+    time axis: the trigger at t = 0): the single-trace baseline reports the crossing as
+    ``onset`` and the first touch fitted on the lobe, with its family read alone."""
+    rate, t0, noise = 2e6, 230.3e-6, 2.0 / 40.0
+    t, y = _record(_hertz_shape, t0, 110e-6, 2.0, rate, noise, 11, length=1.5e-3)
+    t = t - 200e-6
+    touch = t0 - 200e-6
+    pulse = pulse_baseline(t, y, SENSOR)
+    first = pulse.first_touch
+    assert first.fit is not None and first.fit.family == "hertz"
+    assert pulse.status == "ok"
+    # the crossing lags: a Hertz signal grows as s**3.5 (measured 14 samples late)
+    assert (pulse.onset - touch) * rate > 5.0
+    # a Gaussian error beyond 4 standard deviations: probability 6e-5
+    assert abs(first.onset - touch) <= 4.0 * first.fit.bound, (first.onset - touch) * rate
+
+
+def test_where_the_fit_fails_the_crossing_is_kept_and_said(monkeypatch):
+    """A record with no pulse (a line): no lobe fits, the crossing is kept with the
+    reason; and where every lobe fit fails on a real pulse, the single-trace status says
+    ``onset not fitted``."""
+    t = np.arange(0.0, 300e-6, 0.5e-6)
+    touch = single_onset(t, 0.02 + 30.0 * t, SENSOR, 150e-6, 90e-6, 0.01)
+    assert touch.onset == 150e-6 and touch.fit is None
+    assert "lobe fit failed" in touch.note
+    t, y = _record(_hertz_shape, 230e-6, 110e-6, 2.0, 2e6, 0.05, 2, length=1.5e-3)
+
+    def fails(*args, **kwargs):
+        raise ParameterError("no contact fitted (forced by the test)")
+
+    monkeypatch.setattr(lobe_onset, "fit_lobe", fails)
+    pulse = pulse_baseline(t - 200e-6, y, SENSOR)
+    assert pulse.first_touch.onset == pulse.onset
+    assert "onset not fitted" in pulse.status
+    assert any("forced by the test" in note for note in pulse.notes)
