@@ -60,7 +60,7 @@ def errors(record, sensor, rate):
         true = truth.iloc[int(gap.argmin())]
         bound = np.nan
         if not note:  # the bound at the fit (the white noise of the record)
-            t, y, guess, _ = _lobe(found, window)
+            t, y, guess, _ = _lobe(found, window, sensor)
             bound = fit_lobe(t, y, sensor, guess, record.noise, family, damping).bound * rate
         rows.append(
             {

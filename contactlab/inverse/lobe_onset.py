@@ -106,7 +106,8 @@ class LobeFit:
     samples: int
     """Samples fitted [-]."""
     bound: float
-    """Cramér-Rao bound of ``onset`` under white noise of the given sigma [s]."""
+    """Cramér-Rao bound of ``onset`` under white noise of the given sigma [s], with the
+    damping known or (``damping_free``) unknown."""
 
 
 @functools.lru_cache(maxsize=64)
@@ -169,6 +170,7 @@ class _Model:
         self.t, self.y = t, y
         self.dt = float(t[1] - t[0])
         self.u, self.h = force_shape(family, damping)
+        self.family, self.damping = family, damping
         self.fine = math.ceil(max(2.0, self.dt / (FINE_PERIODS * sensor.period)))
         self.filter = _sensor_filter(
             sensor.angular_frequency, sensor.damping_ratio, self.dt / self.fine
@@ -180,13 +182,15 @@ class _Model:
         self.y_off = y - self.basis @ (self.basis.T @ y)
         self.y_rss = float(self.y_off @ self.y_off)
 
-    def unit(self, tau):
+    def unit(self, tau, shape=None):
         """The unit-peak signal against the time since the force's start: time [s] and
         signal [-]. The force starts half a fine step after a fine sample, so that the
-        hold's ramp over that step centres a damped contact's force step on it."""
+        hold's ramp over that step centres a damped contact's force step on it.
+        ``shape``: another ``(u, h)`` than the model's."""
         step = self.dt / self.fine
         s = np.arange(-1, self.fine * (self.t.size + 2)) * step
-        force = np.interp((s - 0.5 * step) / tau, self.u, self.h, left=0.0, right=0.0)
+        u, h = (self.u, self.h) if shape is None else shape
+        force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
         return s - 0.5 * step, signal.lfilter(*self.filter, force)
 
     def response(self, t0, tau, unit=None):
@@ -232,14 +236,21 @@ class _Model:
                     best = (rss, t0, tau)
         return best[1], best[2]
 
-    def bound(self, t0, tau, noise):
-        """Cramér-Rao bound of ``t0`` [s] (central differences of a tenth of a sample)."""
+    def bound(self, t0, tau, noise, damping_free):
+        """Cramér-Rao bound of ``t0`` [s] (central differences of a tenth of a sample;
+        with ``damping_free`` the damping ratio is a nuisance parameter too, its
+        derivative one-sided over 0.01)."""
         coefficients, _ = self.solve(t0, tau)
         ht, htau = 0.1 * self.dt, 1e-3 * tau
         d_t0 = (self.response(t0 + ht, tau) - self.response(t0 - ht, tau)) / (2.0 * ht)
         d_tau = (self.response(t0, tau + htau) - self.response(t0, tau - htau)) / (2.0 * htau)
         a = coefficients[2]
-        jacobian = np.column_stack([a * d_t0 * self.dt, a * d_tau * tau, self.design(t0, tau)])
+        columns = [a * d_t0 * self.dt, a * d_tau * tau, self.design(t0, tau)]
+        if damping_free:
+            other = self.unit(tau, force_shape(self.family, self.damping + 0.01))
+            d_zeta = (self.response(t0, tau, other) - self.response(t0, tau)) / 0.01
+            columns.insert(2, a * d_zeta)
+        jacobian = np.column_stack(columns)
         try:
             covariance = np.linalg.inv(jacobian.T @ jacobian)
         except np.linalg.LinAlgError:  # no rise in the window: no information on t0
@@ -247,7 +258,7 @@ class _Model:
         return float(math.sqrt(max(covariance[0, 0], 0.0)) * noise * self.dt)
 
 
-def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0):
+def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, damping_free=False):
     """The onset of one impact: a contact family's force through the sensor, fitted on
     the impact's first lobe.
 
@@ -269,6 +280,8 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0):
         A name of :data:`FAMILIES`.
     damping : float, default 0
         The family's damping ratio [-].
+    damping_free : bool, default False
+        The bound counts the damping as unknown (it was read on this lobe alone).
 
     Returns
     -------
@@ -330,7 +343,7 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0):
         damping=float(damping),
         chi_squared=rss / noise**2,
         samples=int(model.t.size),
-        bound=model.bound(t0, tau, noise),
+        bound=model.bound(t0, tau, noise, damping_free),
     )
 
 
@@ -434,7 +447,9 @@ def single_onset(t, y, sensor, crossing, duration, noise):
     lobe = (t, y, (crossing, duration), noise)
     try:
         family, damping = lobe_family([lobe], sensor)
-        fit = fit_lobe(t, y, sensor, (crossing, duration), noise, family, damping)
+        fit = fit_lobe(
+            t, y, sensor, (crossing, duration), noise, family, damping, damping_free=True
+        )
     except ParameterError as error:
         return FirstTouch(
             crossing, None, f"onset: the threshold crossing (lobe fit failed: {error})"

@@ -31,7 +31,7 @@ LOBE_SPAN = 0.8
 peak [-] (a half-sine: ``1 - 2 asin(0.3) / pi = 0.81``; the fit refines it)."""
 
 
-def _lobe(detection, window):
+def _lobe(detection, window, sensor):
     """One impact as :func:`contactlab.inverse.lobe_onset.fit_lobe` takes it:
     ``(t, y, (crossing, duration guess), noise)``."""
     part = slice(window.first, window.stop)
@@ -45,8 +45,10 @@ def _lobe(detection, window):
     above = np.flatnonzero((t >= window.onset) & (smooth >= LOBE_LEVEL * window.peak))
     if above.size < 2:
         raise ParameterError(f"the impact at {window.onset:.6g} s does not rise to its peak")
-    # the first run above the level: the first lobe
-    gaps = np.flatnonzero(np.diff(above) > 1)
+    # the first run above the level, gaps shorter than a sensor period bridged (a damped
+    # contact's force step rings the sensor down through the level): the first lobe
+    period = round(sensor.period / float(t[1] - t[0]))
+    gaps = np.flatnonzero(np.diff(above) > period)
     run = above[: gaps[0] + 1] if gaps.size else above
     length = float(t[run[-1]] - t[run[0]]) / LOBE_SPAN
     return t, y, (window.onset, length), noise
@@ -70,7 +72,7 @@ def record_onsets(detection, windows, sensor):
     lobes, failed = [], {}
     for k, window in enumerate(windows):
         try:
-            lobes.append(_lobe(detection, window))
+            lobes.append(_lobe(detection, window, sensor))
         except ParameterError as error:
             lobes.append(None)
             failed[k] = str(error)

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import Phase, given, settings
 from hypothesis import strategies as st
 from scipy import integrate, signal
 
@@ -124,7 +124,8 @@ def test_the_bound_is_the_spread_of_the_onsets():
     assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(30), np.mean(errors)
 
 
-@settings(max_examples=8, deadline=None)
+# no shrinking: each example fits 30 lobes (seconds); a failure is reported as drawn
+@settings(max_examples=8, deadline=None, phases=(Phase.explicit, Phase.reuse, Phase.generate))
 @given(
     rate=st.sampled_from([1e6, 2e6, 5e6]),
     kind=st.sampled_from(["half-sine", "damped", "hertz"]),
@@ -149,9 +150,10 @@ def test_the_family_and_onset_are_read_from_one_lobe(
     lobe = (t, y, (t0 + 10e-6, 0.9 * duration), noise)
     found, damping = lobe_family([lobe], SENSOR)
     assert found == family
-    fit = fit_lobe(t, y, SENSOR, lobe[2], noise, found, damping)
-    # a Gaussian error beyond 4 standard deviations: probability 6e-5 per example;
-    # the damping grid's step (0.05) adds a bias below the bound from 30 sigma (measured)
+    fit = fit_lobe(t, y, SENSOR, lobe[2], noise, found, damping, damping_free=True)
+    # a Gaussian error beyond 4 standard deviations: probability 6e-5 per example (the
+    # bound counts the damping read on this lobe: a half-sine read with 0.002 at 170
+    # sigma was 0.31 samples late, 7.6 times the bound with the damping known)
     assert abs(fit.onset - t0) <= 4.0 * fit.bound, ((fit.onset - t0) * rate, fit.bound * rate)
 
 
