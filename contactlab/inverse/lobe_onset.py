@@ -54,6 +54,12 @@ DAMPING_TOLERANCE = 0.005
 """The shared damping ratio is refined to this [-] (a linear contact's bias in the onset:
 about 0.2 us at the grid's step of 0.05, measured on the 40 kHz sensor)."""
 
+UNDAMPED_CHI_SQUARED = 4.0
+"""A family's damping is kept only where it lowers the summed chi-squared by more than
+this against none [-] (a likelihood-ratio test of one parameter at about 2 sigma): a
+damping fitted to the noise, 0.002-0.005 on undamped contacts, moved Hertz onsets by
+1-2 samples at 5 MHz (the force ``2 zeta d**0.25 d'`` starts as ``s**0.25``)."""
+
 SHAPE_POINTS = 4096
 """Samples of the unit force shape on its unit duration [-] (interpolated linearly: a
 relative error below 1e-6 of the peak where the shape is smooth)."""
@@ -406,6 +412,8 @@ def lobe_family(lobes, sensor):
         )
         grid = (totals[(family, DAMPINGS[k])], DAMPINGS[k])
         best[family] = (refined.fun, round(float(refined.x), 4)) if refined.fun < grid[0] else grid
+        if totals[(family, 0.0)] - best[family][0] < UNDAMPED_CHI_SQUARED:
+            best[family] = (totals[(family, 0.0)], 0.0)  # damping not resolved: none
     family = min(best, key=lambda f: best[f][0])
     return family, best[family][1]
 
