@@ -60,6 +60,10 @@ this against none [-] (a likelihood-ratio test of one parameter at about 2 sigma
 damping fitted to the noise, 0.002-0.005 on undamped contacts, moved Hertz onsets by
 1-2 samples at 5 MHz (the force ``2 zeta d**0.25 d'`` starts as ``s**0.25``)."""
 
+PEAK_SIGMAS = 3.0
+"""A fitted force whose peak is below this many noise sigmas is no contact [-] (the
+detector finds impacts from five)."""
+
 SHAPE_POINTS = 4096
 """Samples of the unit force shape on its unit duration [-] (interpolated linearly: a
 relative error below 1e-6 of the peak where the shape is smooth)."""
@@ -297,7 +301,8 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     ------
     ParameterError
         A rigid sensor, a guess outside the record, fewer than 16 samples in the lobe,
-        a fit that found no contact (duration or amplitude not positive), or an onset
+        a fit that found no contact (duration not positive, peak below
+        :data:`PEAK_SIGMAS` noise sigmas), or an onset
         more than a search span before it or after the crossing.
     """
     if not isinstance(sensor, Sensor) or sensor.is_rigid:
@@ -334,8 +339,11 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     )
     t0, tau = (float(v) for v in best.x)
     coefficients, rss = model.solve(t0, tau)
-    if not (tau > 0.0 and coefficients[2] > 0.0):
-        raise ParameterError(f"no contact fitted at {rough:.6g} s (duration {tau:.3g} s)")
+    if not (tau > 0.0 and coefficients[2] > PEAK_SIGMAS * noise):
+        raise ParameterError(
+            f"no contact fitted at {rough:.6g} s (duration {tau:.3g} s, peak "
+            f"{coefficients[2]:.3g} N, noise {noise:.3g} N)"
+        )
     if not lo - span <= t0 <= rough:
         raise ParameterError(
             f"the onset fitted at {t0:.6g} s lies outside the span searched, {lo:.6g} to "

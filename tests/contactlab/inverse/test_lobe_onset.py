@@ -107,21 +107,21 @@ def test_onsets_without_noise_are_exact(shape, family, damping):
 
 
 def test_the_bound_is_the_spread_of_the_onsets():
-    """Under white noise at 30 sigma, 30 noisy Hertz records: the onsets' spread is the
+    """Under white noise at 30 sigma, 20 noisy Hertz records: the onsets' spread is the
     Cramér-Rao bound (the fit is efficient there) and their mean is unbiased."""
     rate, t0, noise = 2e6, 100.2e-6, 2.0 / 30.0
     errors, bounds = [], []
-    for seed in range(30):
+    for seed in range(20):
         t, y = _record(_hertz_shape, t0, 100e-6, 2.0, rate, noise, seed)
         fit = fit_lobe(t, y, SENSOR, (t0 + 15e-6, 90e-6), noise, "hertz", 0.0)
         errors.append((fit.onset - t0) * rate)
         bounds.append(fit.bound * rate)
     spread, bound = float(np.std(errors, ddof=1)), float(np.median(bounds))
-    # 30 draws: the sample standard deviation is within 30 % of the truth with 97 %
-    # probability (chi-squared with 29 degrees of freedom)
-    assert spread == pytest.approx(bound, rel=0.3), (spread, bound)
-    # the mean of 30 within 3 standard errors
-    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(30), np.mean(errors)
+    # 20 draws: the sample standard deviation is within 35 % of the truth with 98 %
+    # probability (chi-squared with 19 degrees of freedom)
+    assert spread == pytest.approx(bound, rel=0.35), (spread, bound)
+    # the mean of 20 within 3 standard errors
+    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(20), np.mean(errors)
 
 
 # no shrinking: each example fits 30 lobes (seconds); a failure is reported as drawn
@@ -164,11 +164,11 @@ def test_bad_input():
     with pytest.raises(ParameterError, match="duration"):
         fit_lobe(t, y, SENSOR, (105e-6, 0.0), 0.01)
     with pytest.raises(ParameterError, match="too few samples"):
-        fit_lobe(t, y, SENSOR, (20e-6, 90e-6), 0.01)
+        fit_lobe(t, y, SENSOR, (0.0, 90e-6), 0.01)  # a crossing at the record's start
     with pytest.raises(ParameterError, match="family"):
         force_shape("cubic", 0.0)
     with pytest.raises(ParameterError, match="no impact"):
-        lobe_family([(t, y, (20e-6, 90e-6), 0.01)], SENSOR)
+        lobe_family([(t, y, (0.0, 90e-6), 0.01)], SENSOR)
 
 
 def test_a_single_trace_gets_its_first_touch_fitted():
@@ -206,4 +206,4 @@ def test_where_the_fit_fails_the_crossing_is_kept_and_said(monkeypatch):
     pulse = pulse_baseline(t - 200e-6, y, SENSOR)
     assert pulse.first_touch.onset == pulse.onset
     assert "onset not fitted" in pulse.status
-    assert any("forced by the test" in note for note in pulse.notes)
+    assert any("lobe fit failed" in note for note in pulse.notes)
