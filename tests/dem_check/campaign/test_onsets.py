@@ -52,9 +52,9 @@ def _errors(hard_setup, law, rate):
 @pytest.mark.parametrize(
     ("law", "rate"),
     [
-        ("linear", 1e6),  # measured 0.08 samples at 30-92 sigma (the crossing 5.7)
-        ("linear", 2e6),  # measured 0.08 (the crossing 10)
-        ("linear", 5e6),  # measured 0.35 (the crossing 42)
+        ("linear", 1e6),  # measured 0.06 samples at 37-92 sigma (the crossing 5.7)
+        ("linear", 2e6),  # measured 0.10 (the crossing 10)
+        ("linear", 5e6),  # measured 0.20 (the crossing 42)
         ("hertz", 1e6),  # measured 0.79 at 43-60 sigma (the crossing 52)
         ("hertz", 2e6),  # measured 0.66 (the crossing 89)
         ("hertz", 5e6),  # measured 0.98 (the crossing 165)
