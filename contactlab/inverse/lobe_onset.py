@@ -438,6 +438,16 @@ class FirstTouch:
     note: str
     """Empty when fitted; why the crossing was kept otherwise."""
 
+    def parameters(self):
+        """As a result's parameters (``reconstruct_force``): onset [s], bound [s] (None
+        where not fitted), and the family read or why the crossing was kept."""
+        fit = self.fit
+        return {
+            "first_touch [s]": self.onset,
+            "first_touch_bound [s]": None if fit is None else fit.bound,
+            "first_touch_shape": self.note or f"{fit.family}, damping ratio {fit.damping:g}",
+        }
+
 
 def single_onset(t, y, sensor, crossing, duration, noise):
     """The first touch of one impact with nothing to share its shape with: the family

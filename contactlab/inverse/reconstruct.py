@@ -255,19 +255,6 @@ def _check_sensor(sensor):
     return sensor
 
 
-def _first_touch(touch):
-    """The pulse's fitted first touch as result parameters
-    (:func:`contactlab.inverse.lobe_onset.single_onset`; none when not fitted)."""
-    if touch is None:
-        return {}
-    fit = touch.fit
-    return {
-        "first_touch [s]": touch.onset,
-        "first_touch_bound [s]": None if fit is None else fit.bound,
-        "first_touch_shape": touch.note or f"{fit.family}, damping ratio {fit.damping:g}",
-    }
-
-
 def reconstruct_force(
     t,
     signal,
@@ -484,7 +471,7 @@ def reconstruct_force(
             "post_window [s]": list(pulse.post),
             "noise [N]": noise,
             "onset [s]": onset,
-            **_first_touch(pulse.first_touch),
+            **(pulse.first_touch.parameters() if first_touch else {}),
             "contact_edges": contact_edges,
             "threshold [N]": threshold,
             "sensor_resonance [Hz]": sensor.resonance,

@@ -15,7 +15,7 @@ from scipy import integrate, signal
 
 import contactlab as cl
 from contactlab.errors import ParameterError
-from contactlab.inverse import lobe_onset
+from contactlab.inverse import lobe_onset, reconstruct_force
 from contactlab.inverse.lobe_onset import fit_lobe, force_shape, lobe_family, single_onset
 from contactlab.inverse.pulse import pulse_baseline
 
@@ -187,6 +187,9 @@ def test_a_single_trace_gets_its_first_touch_fitted():
     assert (pulse.onset - touch) * rate > 5.0
     # a Gaussian error beyond 4 standard deviations: probability 6e-5
     assert abs(first.onset - touch) <= 4.0 * first.fit.bound, (first.onset - touch) * rate
+    params = reconstruct_force(t, y, SENSOR).parameters  # the single-trace path reports it
+    assert params["first_touch [s]"] == first.onset
+    assert params["first_touch_shape"].startswith("hertz")
 
 
 def test_where_the_fit_fails_the_crossing_is_kept_and_said(monkeypatch):
