@@ -6,6 +6,7 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
+from threadpoolctl import threadpool_limits
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
@@ -377,6 +378,10 @@ def run_campaign(
     file_rows = [_file_row(p.file, p.status, p.reason) for p in problems]
     impact_rows, gallery_traces, records = [], {}, {}
     bar = _Progress(len(files), progress)
+    # One BLAS thread: each impact's linear algebra is small (a few hundred unknowns), where
+    # threads cost more than they give (1.5 M-sample record, 2 cores, load 1: 7.0 s with
+    # one thread, 10-14 s with OpenBLAS' default; docs/campaign.md, Speed).
+    blas = threadpool_limits(limits=1, user_api="blas")
     try:
         for path in files:
             try:
@@ -392,6 +397,7 @@ def run_campaign(
             bar.file_done()
     finally:
         bar.close()
+        blas.restore_original_limits()
     _check_channel_found(channel, file_rows[len(problems) :])
     started = time.perf_counter()
     impacts = _impact_table(impact_rows)
