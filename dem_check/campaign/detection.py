@@ -72,7 +72,8 @@ from dem_check.campaign.noise import (
     noise_floor,
 )
 from dem_check.campaign.onsets import first_touches
-from dem_check.campaign.steps import edge_steps, find_steps, remove_steps
+from dem_check.campaign.step_runs import search_steps
+from dem_check.campaign.steps import PASSES, remove_steps
 
 __all__ = [
     "ANALYSED",
@@ -242,27 +243,19 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     fit_onsets = check_flag("fit_onsets", fit_onsets)
     stage = _candidates(trace, sensor)
     period = stage["scales"]["period"]
-    mask = np.zeros(len(trace), dtype=bool)
-    for first, last in stage["runs"]:
-        # a run to the record's end is left in: a step there that the running baseline
-        # missed reads as such a run, and the levels on both sides of it are needed
-        if last + stage["scales"]["hold"] < len(trace):  # with the lobe's rise before
-            mask[max(0, first - 2 * period) : last + stage["scales"]["hold"] + 1] = True
-    steps = []
-    if period >= RESOLVED_PERIOD_SAMPLES:  # a period's mean averages its ringing out
-        steps = find_steps(stage["finite"], period, mask)
-        edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
-        # an edge step's height is read on all the samples after it: it replaces a step
-        # found on the period means' shortened windows there
-        near = [e.window[0] - period for e in edges]
-        steps = [s for s in steps if all(s.index < at for at in near)] + edges
-        steps.sort(key=lambda step: step.index)
-    if steps:
+    steps, given = [], trace
+    for _ in range(PASSES if period >= RESOLVED_PERIOD_SAMPLES else 0):
+        # a period's mean averages its ringing out; a step taken off can leave the
+        # next pass a run that shows another (one near the record's start)
+        more = search_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
+        if not more:
+            break
+        steps = sorted(steps + more, key=lambda step: step.index)
         removed = {
             "step": "offset_steps_removed",
-            "steps": [(float(trace.t[s.index]), s.height) for s in steps],
+            "steps": [(float(given.t[s.index]), s.height) for s in steps],
         }
-        trace = trace.derive(removed, values=remove_steps(trace.values, steps))
+        trace = given.derive(removed, values=remove_steps(given.values, steps))
         stage = _candidates(trace, sensor)
     floor, smoothed, ratio, runs = (stage[k] for k in ("floor", "smoothed", "ratio", "runs"))
     t = smoothed.t
