@@ -244,10 +244,11 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     stage = _candidates(trace, sensor)
     period = stage["scales"]["period"]
     steps, given = [], trace
+    ring = (sensor, float(trace.t[1] - trace.t[0]))  # a step across an impact: its ringing
     for _ in range(PASSES if period >= RESOLVED_PERIOD_SAMPLES else 0):
         # a period's mean averages its ringing out; a step taken off can leave the
         # next pass a run that shows another (one near the record's start)
-        more = search_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
+        more = search_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"], ring)
         if not more:
             break
         steps = sorted(steps + more, key=lambda step: step.index)
@@ -325,6 +326,13 @@ def _step_row(step, t):
         "sensor's ringing); the record after it was shifted back before impacts were "
         "looked for"
     )
+    if step.lobe is not None:
+        reason += (
+            f"; it lies somewhere inside the impact's main lobe from {at:.6g} to "
+            f"{float(t[step.lobe[1] - 1]):.6g} s and cannot be told from the impact there: "
+            "placed at the lobe's start, that impact's samples before the step read its "
+            "height off"
+        )
     return ImpactWindow(
         at,
         (np.nan, np.nan),

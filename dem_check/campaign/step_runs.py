@@ -76,12 +76,13 @@ the white noise) by up to 5 of them over 0.5 ms; an impact's main lobe leaves 16
 DECIMATION = 8
 """Means per sensor period the change points are searched on [-]."""
 
-BOX_PERIODS = 8
-"""Shortest box (two steps of opposite sign that return to the level, within
-:data:`~dem_check.campaign.steps.STEP_SIGMAS` standard errors) read as steps, in sensor
-periods [-]: a shorter one is an impact's main lobe as well (a 0.32 N bounce of the
-hard grain, whose damped contact steps its force on at the touch, fits a box of 65 us
-with edges as sharp as a step's and a top flat to the noise)."""
+BOX_PERIODS = 6
+"""Shortest time between two steps read on one run, in sensor periods [-] (0.15 ms at
+40 kHz): a shorter pair is an impact's main lobe as well. A 0.32 N bounce of the hard
+grain (whose damped contact steps its force on at the touch) fits a box of 65 us with
+edges as sharp as a step's and a top flat to the noise; a weak impact 0.25 ms after a
+true step fits a pair 64 us apart that does not return to its level (both measured,
+the second on the hard mix of ``benchmarks/bench_steps.py``)."""
 
 
 def _context(masked, lo, hi, size):
@@ -138,10 +139,7 @@ def _steps_of(x, start, period, fit, quiet):
         return None
     found = []
     if len(pieces) == 3 and pieces[1].size < BOX_PERIODS * period:
-        net = np.median(pieces[2]) - np.median(pieces[0])
-        error = np.hypot(*(level_error(quiet["noise"], period, pieces[k].size) for k in (0, 2)))
-        if abs(net) < STEP_SIGMAS * error:  # a short box: an impact's lobe as well
-            return None
+        return None  # an impact's main lobe as well
     for k in range(1, len(cuts) - 1):
         old, new = pieces[k - 1], pieces[k]
         height = float(np.median(new) - np.median(old))
@@ -209,7 +207,7 @@ def run_steps(values, runs, period, masked, slopes):
     return out
 
 
-def search_steps(values, runs, period, hold):
+def search_steps(values, runs, period, hold, ring=None):
     """Every offset step of a record, from its first pass's candidate runs: runs that
     are steps (:func:`run_steps`), steps on the period means outside the other runs
     (:func:`dem_check.campaign.steps.find_steps`) and at the record's edges
@@ -225,6 +223,9 @@ def search_steps(values, runs, period, hold):
         The sensor's period [samples].
     hold : int
         Samples past a run's last one that still belong to it (its quiet hold).
+    ring : tuple, optional
+        ``(sensor, dt)``, for steps found across an impact
+        (:func:`dem_check.campaign.steps.find_steps`).
 
     Returns
     -------
@@ -253,6 +254,6 @@ def search_steps(values, runs, period, hold):
     # an edge step's height is read on all the samples on its edge's side: it replaces
     # a step found on the period means' shortened windows there
     near = [(e.window[0] - period, e.window[1] + period) for e in edges]
-    means = find_steps(rest, period, masked)
+    means = find_steps(rest, period, masked, ring)
     means = [s for s in means if not any(lo <= s.index < hi for lo, hi in near)]
     return sorted(found + means + edges, key=lambda step: step.index)

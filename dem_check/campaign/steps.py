@@ -40,6 +40,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.step_ringing import place_across
 
 __all__ = [
     "STEP_SIGMAS",
@@ -98,6 +99,10 @@ class OffsetStep:
     window: tuple
     """``(first, stop)`` sample indices searched for it (the two windows' inner
     ends)."""
+    lobe: tuple = None
+    """``(first, stop)`` sample indices of the impact's main lobe it lies in, somewhere,
+    when it cannot be told from the impact there (placed at the lobe's start); else
+    None (:mod:`dem_check.campaign.step_ringing`)."""
 
 
 def _window_medians(levels, size):
@@ -192,7 +197,7 @@ def _place(values, period, window, boundary, change, noise):
     return lo + fine if 2 * far < hi - lo else coarse
 
 
-def _one_pass(values, period, masked):
+def _one_pass(values, period, masked, ring):
     levels, firsts, stops = block_levels(values, period, masked)
     if levels.size < 2:
         return []
@@ -216,11 +221,20 @@ def _one_pass(values, period, masked):
         window = (int(firsts[lo]), int(stops[hi]))
         change = (changes["level"][k], changes["slope"][k], changes["height"][k])
         index = _place(values, period, window, int(firsts[k + 1]), change, noise)
-        found.append(OffsetStep(index, float(changes["height"][k]), float(significance[k]), window))
+        lobe = None
+        if ring is not None and masked[window[0] : window[1]].any():  # across an impact
+            first, stop = window
+            x = values[first:stop] - change[1] * (np.arange(first, stop) - firsts[k + 1])
+            placed = place_across(x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring)
+            if placed is not None:
+                index = first + placed[0]
+                lobe = None if placed[1] is None else tuple(first + i for i in placed[1])
+        height, sigmas = float(changes["height"][k]), float(significance[k])
+        found.append(OffsetStep(index, height, sigmas, window, lobe))
     return found
 
 
-def find_steps(values, period, masked):
+def find_steps(values, period, masked, ring=None):
     """The DC offset steps of a record (module docstring).
 
     Parameters
@@ -231,6 +245,10 @@ def find_steps(values, period, masked):
         The sensor's period [samples], >= 1.
     masked : numpy.ndarray of bool
         Samples of the impacts found on a first pass, with their ringing.
+    ring : tuple, optional
+        ``(sensor, dt)``: the sensor and the sampling interval [s]; a step found across
+        an impact is then placed with the sensor's free ringing fitted
+        (:func:`dem_check.campaign.step_ringing.place_across`).
 
     Returns
     -------
@@ -241,7 +259,7 @@ def find_steps(values, period, masked):
     """
     found, rest = [], np.asarray(values, dtype=float)
     for _ in range(PASSES):
-        more = _one_pass(rest, period, masked)
+        more = _one_pass(rest, period, masked, ring)
         if not more:
             break
         found += more
