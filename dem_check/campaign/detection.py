@@ -73,7 +73,7 @@ from dem_check.campaign.noise import (
 )
 from dem_check.campaign.onsets import first_touches
 from dem_check.campaign.step_runs import search_steps
-from dem_check.campaign.steps import PASSES, remove_steps
+from dem_check.campaign.steps import PASSES, merge_steps, remove_steps
 
 __all__ = [
     "ANALYSED",
@@ -251,7 +251,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         more = search_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"], ring)
         if not more:
             break
-        steps = sorted(steps + more, key=lambda step: step.index)
+        steps = merge_steps(steps + more, max(1, period // 8))
         removed = {
             "step": "offset_steps_removed",
             "steps": [(float(given.t[s.index]), s.height) for s in steps],
@@ -328,10 +328,10 @@ def _step_row(step, t):
     )
     if step.lobe is not None:
         reason += (
-            f"; it lies somewhere inside the impact's main lobe from {at:.6g} to "
-            f"{float(t[step.lobe[1] - 1]):.6g} s and cannot be told from the impact there: "
-            "placed at the lobe's start, that impact's samples before the step read its "
-            "height off"
+            f"; it lies somewhere inside the impact's main lobe from "
+            f"{float(t[step.lobe[0]]):.6g} to {float(t[step.lobe[1] - 1]):.6g} s and cannot "
+            "be told from the impact there: placed at the lobe's middle, the impact's "
+            "samples between it and the true step read its height off"
         )
     return ImpactWindow(
         at,

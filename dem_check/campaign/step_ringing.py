@@ -17,9 +17,11 @@ and the ringing, larger than the step, counts for both levels at random. So:
    cumulative sums: the reduction of the residual sum of squares is
    ``(r . u)**2 / (u . u - u' M (M' M)^-1 M' u)`` for the step column ``u`` and the
    residual ``r`` without it).
-3. **Inside the lobe.** A step placed at the lobe's end, the first sample after it, may
-   lie anywhere inside the lobe: it cannot be told from the impact there. It is placed
-   at the lobe's start and flagged (the row's reason says so).
+3. **Inside the lobe.** A step at the lobe's end, the first sample after it, stands for
+   a step anywhere inside the lobe. When it fits not worse than the best place by more
+   than :data:`SEPARABLE_SIGMAS` (of the residual's noise), the step cannot be told from
+   the impact: it is placed at the lobe's middle (at most half the lobe off) and
+   flagged (the row's reason says so).
 """
 
 import numpy as np
@@ -27,7 +29,12 @@ from scipy.ndimage import uniform_filter1d
 
 from contactlab.inverse.local_baseline import _ringing
 
-__all__ = ["place_across"]
+__all__ = ["SEPARABLE_SIGMAS", "place_across"]
+
+SEPARABLE_SIGMAS = 4.0
+"""A step fits better where it is placed than anywhere inside the main lobe when the
+residual sum of squares is less by more than this many noise sigmas squared [-] (a
+chi-squared change of one degree of freedom, at 4 sigma)."""
 
 
 def _lobe(x, level, height, period, far_noise):
@@ -92,7 +99,10 @@ def place_across(x, level, height, period, far_noise, ring):
         return None
     gain[valid] = r_u[valid] ** 2 / u_u[valid]
     j = int(np.argmax(gain))
-    index = int(kept[j])
-    if index == stop and start > 0:  # at the lobe's end: anywhere inside it
-        return start, lobe
-    return index, None
+    at_end = int(np.searchsorted(kept, stop))  # a step anywhere in the lobe
+    if start > 0 and at_end < kept.size and valid[at_end]:
+        rss = max(float(residual @ residual) - gain[j], 0.0)
+        variance = rss / max(kept.size - m.shape[1] - 1, 1)
+        if j == at_end or gain[j] - gain[at_end] <= SEPARABLE_SIGMAS**2 * variance:
+            return (start + stop) // 2, lobe
+    return int(kept[j]), None

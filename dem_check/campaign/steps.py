@@ -51,6 +51,7 @@ __all__ = [
     "edge_steps",
     "find_steps",
     "level_error",
+    "merge_steps",
     "period_noise",
     "remove_steps",
     "split",
@@ -101,7 +102,7 @@ class OffsetStep:
     ends)."""
     lobe: tuple = None
     """``(first, stop)`` sample indices of the impact's main lobe it lies in, somewhere,
-    when it cannot be told from the impact there (placed at the lobe's start); else
+    when it cannot be told from the impact there (placed at the lobe's middle); else
     None (:mod:`dem_check.campaign.step_ringing`)."""
 
 
@@ -264,7 +265,7 @@ def find_steps(values, period, masked, ring=None):
             break
         found += more
         rest = remove_steps(rest, more)
-    return sorted(found, key=lambda step: step.index)
+    return merge_steps(found, max(1, period // 8))
 
 
 def drift_slopes(values, period, masked):
@@ -357,6 +358,30 @@ def _end_steps(values, runs, period, reach, noise):
         if flat and significance >= STEP_SIGMAS:
             found.append(OffsetStep(at, height, significance, (first, values.size)))
     return found
+
+
+def merge_steps(steps, reach):
+    """Steps found again at one place on a later pass (a remainder of a step first read
+    with a neighbour's height) made one: heights added, the larger significance kept;
+    in time order.
+
+    Parameters
+    ----------
+    steps : list of OffsetStep
+    reach : int
+        Largest distance [samples] between two indices that are one place.
+    """
+    out = []
+    for step in sorted(steps, key=lambda step: step.index):
+        if out and step.index - out[-1].index <= reach:
+            last = out[-1]
+            significance = max(last.significance, step.significance)
+            out[-1] = OffsetStep(
+                last.index, last.height + step.height, significance, last.window, last.lobe
+            )
+        else:
+            out.append(step)
+    return out
 
 
 def remove_steps(values, steps):
