@@ -99,6 +99,12 @@ def _impact_inputs(normal_velocity, tangential_velocity, spin, radius, restituti
     return vn, vt, w, r, e, mu
 
 
+def _slip_and_reach(vn, vt, w, r, e, mu, kappa):
+    """The initial slip ``vt - R spin`` [m/s] and how far Coulomb friction moves it over
+    the impact, ``(1 + 1/kappa) mu (1 + e) vn`` [m/s], of checked inputs."""
+    return vt - r * w, _slip_gain(kappa) * mu * (1.0 + e) * vn
+
+
 def slides_throughout(
     normal_velocity,
     tangential_velocity,
@@ -133,11 +139,11 @@ def slides_throughout(
     inertia_factor : float, default 0.4
         ``kappa = I / (m R**2)`` [-].
     """
-    vn, vt, w, r, e, mu = _impact_inputs(
+    inputs = _impact_inputs(
         normal_velocity, tangential_velocity, spin, radius, restitution, friction
     )
-    slip = vt - r * w
-    return abs(slip) >= _slip_gain(inertia_factor) * mu * (1.0 + e) * vn
+    slip, reach = _slip_and_reach(*inputs, inertia_factor)
+    return abs(slip) >= reach
 
 
 def gross_sliding_rebound(
@@ -181,11 +187,11 @@ def gross_sliding_rebound(
         normal_velocity, tangential_velocity, spin, radius, restitution, friction
     )
     kappa = check_inertia_factor("inertia_factor", inertia_factor)
-    if not slides_throughout(vn, vt, w, r, e, mu, kappa):
+    slip, reach = _slip_and_reach(vn, vt, w, r, e, mu, kappa)
+    if abs(slip) < reach:
         raise ParameterError(
-            f"the contact does not slide throughout: |vt - R spin| = {abs(vt - r * w):.6g} m/s "
-            f"< (1 + 1/kappa) mu (1 + e) vn = {_slip_gain(kappa) * mu * (1 + e) * vn:.6g} m/s"
+            f"the contact does not slide throughout: |vt - R spin| = {abs(slip):.6g} m/s "
+            f"< (1 + 1/kappa) mu (1 + e) vn = {reach:.6g} m/s"
         )
-    direction = math.copysign(1.0, vt - r * w)
-    change = mu * (1.0 + e) * vn * direction
+    change = mu * (1.0 + e) * vn * math.copysign(1.0, slip)
     return vt - change, w + change / (kappa * r)

@@ -68,14 +68,14 @@ def _map(args):
     from contactlab.laws import LinearViscoelastic
     from contactlab.study import StudySetup, design_map
     from contactlab.study.plots import save_figure
-    from contactlab.tables import spreadsheet_safe
+    from contactlab.tables import write_csv
 
     law = LinearViscoelastic(stiffness=args.stiffness, damping=args.damping)
     result = design_map(StudySetup.paper(law=law))
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     csv = out / "design_map.csv"
-    spreadsheet_safe(result.table).to_csv(csv, index=False)
+    write_csv(result.table, csv)
     fig, _ = result.plot(tolerance=args.tolerance)
     files = [csv, *save_figure(fig, out / "design_map")]
     if args.json:

@@ -5,7 +5,6 @@ The table's columns are the batch solver's, named with their units (``m1 [kg]``,
 file, line (the header is line 1) and column; a blank line is a bad row, not skipped.
 """
 
-import csv
 import sys
 import time
 from pathlib import Path
@@ -14,7 +13,7 @@ import pandas as pd
 
 from contactlab.batch.rows import ERROR_COLUMN
 from contactlab.errors import ParameterError
-from contactlab.tables import spreadsheet_safe
+from contactlab.tables import write_csv
 
 __all__ = ["BATCH_LAWS", "add_batch_parser", "read_table"]
 
@@ -91,11 +90,8 @@ def _batch(args):
     except ParameterError as exc:
         raise ParameterError(f"{args.table}: {exc}") from None
     seconds = time.perf_counter() - start
-    # The user's own text columns are copied through: formula cells are neutralised, and
-    # text is quoted (pandas leaves a carriage return in a cell unquoted: a broken row).
-    spreadsheet_safe(solved).to_csv(
-        args.out if args.out else sys.stdout, index=False, quoting=csv.QUOTE_NONNUMERIC
-    )
+    # The user's own text columns are copied through: formula cells neutralised, text quoted.
+    write_csv(solved, args.out if args.out else sys.stdout)
     where = f"wrote {args.out}: " if args.out else ""
     failed = int(solved[ERROR_COLUMN].ne("").sum()) if ERROR_COLUMN in solved else 0
     print(

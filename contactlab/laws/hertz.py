@@ -249,7 +249,17 @@ class Hertz(SmoothLaw):
         )
 
 
-class HertzDamped(SmoothLaw):
+class _HertzDashpot(SmoothLaw):
+    """A Hertz spring ``kH`` > 0 [N/m**1.5] with a dashpot ``damping`` >= 0 (its form and
+    unit the subclass's): :class:`HertzDamped`, :class:`HertzViscous`."""
+
+    stiffness_parameters = ("k_hertz",)
+
+    def __init__(self, k_hertz, damping):
+        self._keep(k_hertz=(check_positive, k_hertz), damping=(check_non_negative, damping))
+
+
+class HertzDamped(_HertzDashpot):
     """Damped Hertz contact of Tsuji et al. (EDEM, LIGGGHTS): ``kH d**1.5 + eta d**0.25 d'``.
 
     Parameters
@@ -269,12 +279,8 @@ class HertzDamped(SmoothLaw):
     dem_export = "hertz"
     """DEM exporters write it as E* and the Tsuji restitution (:mod:`contactlab.inverse.export`)."""
     units = read_only(k_hertz="N/m**1.5", damping="N*s/m**1.25")
-    stiffness_parameters = ("k_hertz",)
     typical = read_only(k_hertz=(1e6, 1e9, "log"), damping=(0.0, 2.0, "linear"))
     """Damping factor alpha up to about 0.3 for the paper's grain."""
-
-    def __init__(self, k_hertz, damping):
-        self._keep(k_hertz=(check_positive, k_hertz), damping=(check_non_negative, damping))
 
     @classmethod
     def from_material(

@@ -3,16 +3,15 @@
 from scipy.special import beta
 
 from contactlab import analytic
-from contactlab.laws.base import PowerForm, SmoothLaw, read_only, signed_power
+from contactlab.laws.base import PowerForm, read_only, signed_power
 from contactlab.laws.closed_form import JOHNSON_1985, ClosedForm
-from contactlab.laws.hertz import _lammps_hertz
+from contactlab.laws.hertz import _HertzDashpot, _lammps_hertz
 from contactlab.laws.kratos_form import DAMPING_FORMS
-from contactlab.validation import check_non_negative, check_positive
 
 __all__ = ["HertzViscous"]
 
 
-class HertzViscous(SmoothLaw):
+class HertzViscous(_HertzDashpot):
     """Hertz contact with a linear dashpot, ``kH d**1.5 + c d'``.
 
     Parameters
@@ -30,12 +29,8 @@ class HertzViscous(SmoothLaw):
 
     name = "hertz_viscous"
     units = read_only(k_hertz="N/m**1.5", damping="N*s/m")
-    stiffness_parameters = ("k_hertz",)
     typical = read_only(k_hertz=(1e6, 1e9, "log"), damping=(0.0, 0.05, "linear"))
     """Dashpots up to y = 0.06 for the paper's grain (restitution down to about 0.9)."""
-
-    def __init__(self, k_hertz, damping):
-        self._keep(k_hertz=(check_positive, k_hertz), damping=(check_non_negative, damping))
 
     def _raw(self, overlap, rate):
         return self.k_hertz * signed_power(overlap, 1.5) + self.damping * rate

@@ -26,7 +26,7 @@ from contactlab.errors import ParameterError
 from contactlab.study.execution import run_tasks
 from contactlab.study.points import batched, error_percent, simulate_point, simulate_points
 from contactlab.study.setup import StudySetup
-from contactlab.tables import spreadsheet_safe
+from contactlab.tables import write_csv
 from contactlab.validation import check_count, make_folder
 
 __all__ = [
@@ -128,8 +128,8 @@ class SweepResult:
         """
         directory = make_folder("directory", directory)
         paths = [directory / f"{name}.csv", directory / f"{name}_impacts.csv"]
-        spreadsheet_safe(self.points).to_csv(paths[0], index=False)
-        spreadsheet_safe(self.impacts).to_csv(paths[1], index=False)
+        write_csv(self.points, paths[0])
+        write_csv(self.impacts, paths[1])
         return paths
 
 

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-from contactlab.tables import spreadsheet_safe
+from contactlab.tables import write_csv
 from contactlab.validation import make_folder
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import SKIPPED_STATUSES
@@ -113,7 +113,7 @@ class CampaignResult:
         }
         written = []
         for name, table in tables.items():
-            spreadsheet_safe(table).to_csv(out / name, index=False)
+            write_csv(table, out / name)
             written.append(out / name)
         settings = {**_json_ready(self.settings), "timings [s]": self.timings}
         (out / "settings.json").write_text(json.dumps(settings, indent=2) + "\n", "utf-8")

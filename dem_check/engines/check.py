@@ -11,7 +11,7 @@ import numpy as np
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
-from contactlab.tables import spreadsheet_safe
+from contactlab.tables import write_csv
 from dem_check.engines.config import engine_config
 
 __all__ = ["EngineChecks", "base_case_check", "convergence_study", "engine_check"]
@@ -150,7 +150,7 @@ def base_case_check(drop_test, name, out_dir, time_step=None, *, notes=(), **opt
     fig, _ = comparison.plot(title=f"base case: {name} vs reduced model, 40 kHz sensor")
     fig.savefig(paths[0], dpi=150)
     plt.close(fig)
-    spreadsheet_safe(comparison.table).to_csv(paths[1], index=False)
+    write_csv(comparison.table, paths[1])
     paths[2].write_text(json.dumps(comparison.to_dict(), indent=2), encoding="utf-8")
     return paths
 

@@ -3,11 +3,12 @@ the recorded columns and their reading as an :class:`EngineResult`.
 
 LAMMPS (:mod:`dem_check.engines.lammps`) and Kratos (:mod:`dem_check.engines.kratos`) drop
 the grain from a gap of a few steps onto a plane or onto a plate sphere of
-:data:`PLATE_RADIUS_FACTOR` grain radii (:func:`drop_geometry`), run until :data:`TAIL`
-after the contact and the sensor signal's first lobe (:func:`drop_plan`,
-:func:`impact_over`), record :data:`COLUMNS` per step (z up) and read them in the model's
-axis (:func:`model_coordinates`, :func:`engine_result`). A ``deck`` below is the engine's
-scene, a :class:`DropCase` (the plate sphere's centre at ``z = -plate_radius`` at rest).
+:data:`PLATE_RADIUS_FACTOR` grain radii (:func:`drop_geometry`), run in chunks until
+:data:`TAIL` after the contact and the sensor signal's first lobe (:func:`drop_plan`,
+:func:`run_until_over`, :func:`impact_over`), record :data:`COLUMNS` per step (z up) and
+read them in the model's axis (:func:`model_coordinates`, :func:`engine_result`). A
+``deck`` below is the engine's scene, a :class:`DropCase` (the plate sphere's centre at
+``z = -plate_radius`` at rest).
 """
 
 import math
@@ -35,6 +36,7 @@ __all__ = [
     "engine_result",
     "impact_over",
     "model_coordinates",
+    "run_until_over",
     "sensor_signal",
     "step_limit",
     "warn_short_window",
@@ -255,6 +257,46 @@ def impact_over(deck, columns, stop):
         return False
     lobe_end = touching[0] + rising[0] + falls[0]
     return force.size - 1 >= max(touching[-1], lobe_end) + stop
+
+
+def run_until_over(deck, limit, chunk, run, recorded, stop):
+    """Step an engine in chunks until the impact is over or ``limit`` steps have run.
+
+    Parameters
+    ----------
+    deck
+        The engine's scene (module docstring).
+    limit : int
+        Most steps (:func:`step_limit`).
+    chunk : int
+        Steps between two looks for the end of the impact.
+    run : callable
+        ``run(count)`` steps the engine ``count`` steps further.
+    recorded : callable
+        ``recorded()`` returns the :data:`COLUMNS` recorded so far, ``(len(COLUMNS),
+        steps)``.
+    stop : int or None
+        Steps to run after the last contact and the sensor signal's first lobe
+        (:attr:`DropPlan.stop`, :func:`impact_over`); None runs all ``limit`` steps (a
+        duration given).
+
+    Returns
+    -------
+    columns : numpy.ndarray
+        The recorded columns.
+    complete : bool
+        Whether the impact was seen to its end, or the duration given was run.
+    """
+    steps = 0
+    while steps < limit:
+        count = min(chunk, limit - steps)
+        run(count)
+        steps += count
+        if stop is not None:
+            columns = recorded()
+            if impact_over(deck, columns, stop):
+                return columns, True
+    return recorded(), stop is None
 
 
 def engine_result(method, label, deck, columns, threshold, complete, metadata):

@@ -6,14 +6,40 @@ depends on it) and a sensor of period ``T1``. Its default step resolves both
 (:func:`default_time_step`), and a given step must leave at least ``min_steps`` steps
 per contact and per sensor period (:func:`check_time_step`). LAMMPS
 (:mod:`dem_check.engines.lammps.drop`) and Kratos (:mod:`dem_check.engines.kratos.drop`)
-use these with their own step counts; pybullet (:mod:`dem_check.engines.bullet.limits`)
-checks its step with :func:`check_steps` against its own contact time.
+step their drop tests with the counts defined here (:data:`DROP_STEP_NAMES`, which both
+modules re-export); pybullet (:mod:`dem_check.engines.bullet.limits`) has its own counts
+and checks its step with :func:`check_steps` against its own contact time.
 """
 
 from contactlab.solver import wall_impact
 from contactlab.validation import check_number
 
-__all__ = ["check_steps", "check_time_step", "default_time_step", "wall_contact_time"]
+__all__ = [
+    "DROP_STEP_NAMES",
+    "MIN_STEPS",
+    "STEPS_PER_CONTACT",
+    "STEPS_PER_PERIOD",
+    "check_steps",
+    "check_time_step",
+    "default_time_step",
+    "wall_contact_time",
+]
+
+STEPS_PER_CONTACT = 1000
+"""Default steps per contact (the grain on an immovable wall) of the LAMMPS and Kratos drop
+tests: restitution, contact time and peaks then err below 1e-4 for every mapped law
+(``docs/dem_check.md``)."""
+
+STEPS_PER_PERIOD = 200
+"""Default steps per sensor period of the LAMMPS and Kratos drop tests (sensor peak within
+1e-4, ``docs/dem_check.md``)."""
+
+MIN_STEPS = 20
+"""Fewest steps per contact and per sensor period accepted for a drop test's
+``time_step``."""
+
+DROP_STEP_NAMES = ("MIN_STEPS", "STEPS_PER_CONTACT", "STEPS_PER_PERIOD", "default_time_step")
+"""The names above that the LAMMPS and Kratos drop modules hand on as theirs."""
 
 
 def wall_contact_time(grain, law, velocity):
@@ -21,8 +47,19 @@ def wall_contact_time(grain, law, velocity):
     return wall_impact(law, grain.mass, velocity).contact_time
 
 
-def default_time_step(grain, sensor, law, velocity, steps_per_contact, steps_per_period):
+def default_time_step(
+    grain,
+    sensor,
+    law,
+    velocity,
+    steps_per_contact=STEPS_PER_CONTACT,
+    steps_per_period=STEPS_PER_PERIOD,
+):
     """``min(t_c / steps_per_contact, T1 / steps_per_period)`` [s] (no ``T1`` if rigid).
+
+    With the default counts, the LAMMPS and Kratos drop tests' default step
+    ``min(t_c / 1000, T1 / 200)``: ``t_c`` is the contact time of the law on an immovable
+    wall at ``velocity`` and ``T1`` the sensor period.
 
     Parameters
     ----------
@@ -31,8 +68,10 @@ def default_time_step(grain, sensor, law, velocity, steps_per_contact, steps_per
     law : ContactLaw
     velocity : float
         Impact speed [m/s].
-    steps_per_contact, steps_per_period : int
-        Steps per wall contact time and per sensor period.
+    steps_per_contact : int, default :data:`STEPS_PER_CONTACT`
+        Steps per wall contact time.
+    steps_per_period : int, default :data:`STEPS_PER_PERIOD`
+        Steps per sensor period.
 
     Returns
     -------

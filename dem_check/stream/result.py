@@ -23,7 +23,7 @@ import pandas as pd
 
 from contactlab.entry_checks import check_flag, check_instance
 from contactlab.errors import ParameterError
-from contactlab.tables import spreadsheet_safe
+from contactlab.tables import write_csv
 from contactlab.traces.api import write_trace
 from contactlab.validation import check_count, check_number, check_path
 from dem_check.campaign.records import add_effects
@@ -148,10 +148,10 @@ class StreamResult:
             name="S1",
             comments={"source": "dem_check.stream", "time_step [s]": repr(self.time_step)},
         )
-        spreadsheet_safe(self.steps).to_csv(out / "steps.csv.gz", index=False)
+        write_csv(self.steps, out / "steps.csv.gz")
         # particle kinds are named in the user's case: no cell may run as a formula
-        spreadsheet_safe(self.truth).to_csv(out / "truth.csv", index=False)
-        spreadsheet_safe(self.particles).to_csv(out / "particles.csv")
+        write_csv(self.truth, out / "truth.csv")
+        write_csv(self.particles, out / "particles.csv", index=True)
         (out / "deck.lammps").write_text(self.script, encoding="utf-8")
         return out
 

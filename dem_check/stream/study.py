@@ -11,7 +11,7 @@ import json
 from pathlib import Path
 
 from contactlab.entry_checks import check_callable, check_flag, check_instance
-from contactlab.tables import spreadsheet_safe
+from contactlab.tables import write_csv
 from contactlab.validation import check_number, check_path, check_values
 from dem_check.stream.calibration import calibration_curve
 from dem_check.stream.case import StreamCase
@@ -60,13 +60,13 @@ def stream_study(case, out, *, detector=None, pileup_rates=None, capacity=None, 
     trace = result.trace()
     result.write(out, trace)
     scored = score(result, detector, trace)
-    spreadsheet_safe(scored.matches).to_csv(out / "matches.csv", index=False)
+    write_csv(scored.matches, out / "matches.csv")
     features = hit_features(result, scored, trace)
     confusion = discrimination(features) if features["kind"].nunique() > 1 else None
     if curve is not None:
-        spreadsheet_safe(curve).to_csv(out / "pileup.csv", index=False)
+        write_csv(curve, out / "pileup.csv")
     if calibration is not None:
-        spreadsheet_safe(calibration.table).to_csv(out / "calibration.csv", index=False)
+        write_csv(calibration.table, out / "calibration.csv")
     write_report(out, result, scored, features, confusion, curve, calibration)
     summary = {
         "impacts": len(result.truth),

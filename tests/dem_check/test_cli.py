@@ -1,5 +1,6 @@
 """The dem-check command line: exit codes 0 (agree), 1 (disagree), 2 (bad input)."""
 
+import csv
 import json
 from pathlib import Path
 
@@ -162,7 +163,8 @@ def test_compare_passes_on_every_sample_trace(sidecar, capsys):
 def test_lammps_check_writes_overlay_and_table(tmp_path, capsys):
     assert main(["lammps-check", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert out.startswith("quantity,unit,a,b")  # the comparison table
+    header = next(csv.reader([out.splitlines()[0]]))
+    assert header[:4] == ["quantity", "unit", "a", "b"]  # the comparison table, text quoted
     for ext in ("png", "csv", "json"):
         assert (tmp_path / f"lammps_base_case.{ext}").stat().st_size > 0
     result = json.loads((tmp_path / "lammps_base_case.json").read_text())

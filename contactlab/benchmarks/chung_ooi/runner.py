@@ -136,13 +136,13 @@ def _write_tables(out, rows, found):
     ``chung_ooi_attribution.csv`` (every variant at every angle)."""
     import pandas as pd
 
-    from contactlab.tables import spreadsheet_safe
+    from contactlab.tables import write_csv
 
-    spreadsheet_safe(pd.DataFrame(rows)).to_csv(Path(out) / "chung_ooi.csv", index=False)
+    write_csv(pd.DataFrame(rows), Path(out) / "chung_ooi.csv")
     if found:
         table = [r for item in found for r in item.table()]
         attribution_csv = Path(out) / "chung_ooi_attribution.csv"
-        spreadsheet_safe(pd.DataFrame(table)).to_csv(attribution_csv, index=False)
+        write_csv(pd.DataFrame(table), attribution_csv)
 
 
 def _number(value, missing="not run"):

@@ -7,47 +7,26 @@ from pathlib import Path
 import numpy as np
 
 from contactlab.errors import ParameterError
-from dem_check.engines import steps as engine_steps
 from dem_check.engines.config import engine_config
 from dem_check.engines.kratos.scene import drop_scene
 from dem_check.engines.kratos.session import kratos_version
 from dem_check.engines.kratos.stage import KratosRun
-from dem_check.engines.record import drop_plan, engine_result, impact_over, step_limit
+from dem_check.engines.record import drop_plan, engine_result, run_until_over, step_limit
+from dem_check.engines.steps import (  # noqa: F401 (handed on)
+    DROP_STEP_NAMES,
+    MIN_STEPS,
+    STEPS_PER_CONTACT,
+    STEPS_PER_PERIOD,
+    default_time_step,
+)
 
-__all__ = [
-    "CHUNK_STEPS",
-    "MAX_STEPS",
-    "MIN_STEPS",
-    "STEPS_PER_CONTACT",
-    "STEPS_PER_PERIOD",
-    "default_time_step",
-    "drop_test",
-]
-
-STEPS_PER_CONTACT = 1000
-"""Default steps per contact (the grain on an immovable wall), as for LAMMPS."""
-
-STEPS_PER_PERIOD = 200
-"""Default steps per sensor period, as for LAMMPS."""
-
-MIN_STEPS = 20
-"""Fewest steps per contact and per sensor period accepted for ``time_step``."""
+__all__ = ["CHUNK_STEPS", "MAX_STEPS", "drop_test", *DROP_STEP_NAMES]
 
 MAX_STEPS = 200_000
 """Most steps one drop test runs (Kratos steps from Python, ~0.1 ms each: 20 s)."""
 
 CHUNK_STEPS = 500
 """Steps between two looks for the end of the impact."""
-
-
-def default_time_step(grain, sensor, law, velocity):
-    """Default Kratos step [s]: ``min(t_c / 1000, T1 / 200)``, as LAMMPS'.
-
-    See :func:`dem_check.engines.steps.default_time_step`.
-    """
-    return engine_steps.default_time_step(
-        grain, sensor, law, velocity, STEPS_PER_CONTACT, STEPS_PER_PERIOD
-    )
 
 
 class _Stepper:
@@ -161,17 +140,14 @@ def drop_test(
     with tempfile.TemporaryDirectory(prefix="contactlab-kratos-") as folder:
         clock = time.perf_counter()
         stepper = _Stepper(scene, folder, materials)
-        complete = False
         try:
-            while len(stepper.rows) < limit:
-                stepper.run(min(CHUNK_STEPS, limit - len(stepper.rows)))
-                if stop is not None and impact_over(scene, stepper.columns(), stop):
-                    complete = True
-                    break
+            columns, complete = run_until_over(
+                scene, limit, CHUNK_STEPS, stepper.run, stepper.columns, stop
+            )
         finally:
             stepper.close()
         wall = time.perf_counter() - clock
-    return _result(scene, stepper.columns(), plan.threshold, complete or stop is None, wall)
+    return _result(scene, columns, plan.threshold, complete, wall)
 
 
 def _result(scene, columns, threshold, complete, wall):

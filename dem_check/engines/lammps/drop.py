@@ -2,49 +2,26 @@
 
 import time
 
-from dem_check.engines import steps as engine_steps
 from dem_check.engines.config import engine_config
 from dem_check.engines.lammps.read import read_steps, recorded_columns
 from dem_check.engines.lammps.scene import drop_deck
 from dem_check.engines.lammps.session import LammpsSession
-from dem_check.engines.record import drop_plan, impact_over, step_limit
+from dem_check.engines.record import drop_plan, run_until_over, step_limit
+from dem_check.engines.steps import (  # noqa: F401 (handed on)
+    DROP_STEP_NAMES,
+    MIN_STEPS,
+    STEPS_PER_CONTACT,
+    STEPS_PER_PERIOD,
+    default_time_step,
+)
 
-__all__ = [
-    "CHUNK_STEPS",
-    "MAX_STEPS",
-    "MIN_STEPS",
-    "STEPS_PER_CONTACT",
-    "STEPS_PER_PERIOD",
-    "default_time_step",
-    "drop_test",
-]
-
-STEPS_PER_CONTACT = 1000
-"""Default steps per contact (the grain on an immovable wall): restitution, contact time
-and peaks then err below 1e-4 for every mapped law (``docs/dem_check.md``)."""
-
-STEPS_PER_PERIOD = 200
-"""Default steps per sensor period (sensor peak within 1e-4, ``docs/dem_check.md``)."""
-
-MIN_STEPS = 20
-"""Fewest steps per contact and per sensor period accepted for ``time_step``."""
+__all__ = ["CHUNK_STEPS", "MAX_STEPS", "drop_test", *DROP_STEP_NAMES]
 
 MAX_STEPS = 2_000_000
 """Most steps one drop test records (six columns: about 100 MB); more is refused."""
 
 CHUNK_STEPS = 2000
 """Steps per LAMMPS ``run`` while the end of the impact is looked for."""
-
-
-def default_time_step(grain, sensor, law, velocity):
-    """Default LAMMPS step [s]: ``min(t_c / 1000, T1 / 200)``.
-
-    ``t_c`` is the contact time of the law on an immovable wall at ``velocity`` [m/s] and
-    ``T1`` the sensor period (:func:`dem_check.engines.steps.default_time_step`).
-    """
-    return engine_steps.default_time_step(
-        grain, sensor, law, velocity, STEPS_PER_CONTACT, STEPS_PER_PERIOD
-    )
 
 
 def drop_test(
@@ -124,17 +101,14 @@ def drop_test(
         for line, what in deck.lines():
             session.command(line, what)
         clock = time.perf_counter()
-        steps = 0
-        complete = False
-        while steps < limit:
-            chunk = min(CHUNK_STEPS, limit - steps)
-            session.command(f"run {chunk} post no", "the run")
-            steps += chunk
-            columns = recorded_columns(session)
-            if stop is not None and impact_over(deck, columns, stop):
-                complete = True
-                break
+        columns, complete = run_until_over(
+            deck,
+            limit,
+            CHUNK_STEPS,
+            lambda count: session.command(f"run {count} post no", "the run"),
+            lambda: recorded_columns(session),
+            stop,
+        )
         wall = time.perf_counter() - clock
         version = session.lmp.version()
-    complete = complete or stop is None
     return read_steps(deck, columns, plan.threshold, complete, wall, version)

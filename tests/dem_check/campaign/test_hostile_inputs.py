@@ -78,7 +78,7 @@ def test_a_damaged_file_costs_no_other_file_its_rows(tmp_path, monkeypatch):
     shutil.copy(TRACES / "generic.csv", hostile)
     whole = (TRACES / "daq.h5").read_bytes()
     (records / "daq.h5").write_bytes(whole[: len(whole) // 2])  # cut short in a copy
-    (records / "notes.md").write_text("# notes\n", encoding="utf-8")
+    (records / "no\rtes.md").write_text("# notes\n", encoding="utf-8")  # a line break in a name
     setup = load_config(TRACES / "model_hard.toml")
     out = tmp_path / "out"
     monkeypatch.chdir(records)  # file names as given: relative, starting with "="
@@ -88,10 +88,11 @@ def test_a_damaged_file_costs_no_other_file_its_rows(tmp_path, monkeypatch):
     status = dict(
         zip(result.files["file"].map(lambda f: Path(f).name), result.files["status"], strict=True)
     )
-    assert status == {"=HYPERLINK(1).csv": "ok", "daq.h5": "unreadable", "notes.md": "skipped"}
+    assert status == {"=HYPERLINK(1).csv": "ok", "daq.h5": "unreadable", "no\rtes.md": "skipped"}
     assert result.summary()["files_skipped"] == 1
     written = pd.read_csv(out / "files.csv")
-    assert len(written) == 3  # every row written, the good file's among them
+    assert len(written) == 3  # every row written, the good file's among them, none split
+    assert written["file"].map(lambda f: Path(f).name).tolist().count("no\rtes.md") == 1
     assert not written["file"].str.startswith("=").any()
     assert written["file"].str.startswith("'=").sum() == 1
     assert (pd.read_csv(out / "impacts.csv")["file"].str.startswith("'=")).all()
