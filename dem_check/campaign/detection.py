@@ -3,12 +3,13 @@
 A record holds impacts separated by stretches without one. The steps, all on the record
 in newtons:
 
-0. **Offset steps** (:mod:`dem_check.campaign.steps`): after a first pass (steps 1-3),
-   level changes that persist are found on the record's period means outside the
-   impacts found, and on a run that lasts to the record's end; each is taken off the
-   record (the samples after it shifted back) and listed in :attr:`Detection.steps` with
-   status ``"offset step"``, and steps 1-6 run again on what is left. Not on records with
-   fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period.
+0. **Offset steps** (:func:`dem_check.campaign.step_runs.search_steps`): after a first
+   pass (steps 1-3), level changes that persist are found on runs that are one or two
+   steps, on the period means outside the impacts, and on runs from the record's start
+   or to its end; each is taken off the record and listed in :attr:`Detection.steps`
+   with status ``"offset step"``; searched again on what is left (up to ``PASSES``),
+   then steps 1-6 run on it. Not with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples
+   per sensor period.
 1. **Baseline and local noise** (:mod:`dem_check.campaign.noise`): a running baseline of
    block medians follows drift, wander, offset steps and slow hum; the local noise is
    the MAD of the residual per block (the largest of a block and its neighbours), so hum,

@@ -29,9 +29,12 @@ explicitly:
    sensor period (samples far from both levels, an impact's main lobe, count for
    neither).
 
-Each step is taken off the record (the later samples shifted by its height) and the
-impacts are then found on what is left; each is listed as a row with status
-``"offset step"`` (:func:`dem_check.campaign.detection.find_impacts`).
+A step found across an impact is placed with the sensor's free ringing fitted
+(:mod:`dem_check.campaign.step_ringing`). Runs of the first pass that are steps are
+:mod:`dem_check.campaign.step_runs`'s; runs from the record's start or to its end are
+:func:`edge_steps`'. Each step is taken off the record (the later samples shifted by its
+height) and the impacts are then found on what is left; each is listed as a row with
+status ``"offset step"`` (:func:`dem_check.campaign.detection.find_impacts`).
 """
 
 from dataclasses import dataclass
