@@ -2,6 +2,7 @@
 
 import math
 from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 
@@ -13,12 +14,14 @@ from contactlab.audit import (
     energy_check,
     worst_of,
 )
+from contactlab.bodies import Grain, Sensor
 from contactlab.entry_checks import check_flag
 from contactlab.kernels.oblique_sample import grid_worst
+from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.quadrature import gauss_rule
 from contactlab.quantities import column
 
-__all__ = ["HEADLINE", "SIGNALS", "ObliqueResult"]
+__all__ = ["HEADLINE", "SIGNALS", "ObliqueResult", "ObliqueSetup"]
 
 HEADLINE = (
     "velocity",
@@ -89,6 +92,21 @@ MINDLIN_ENERGY = (
 )
 
 
+class ObliqueSetup(NamedTuple):
+    """The checked arguments of one oblique impact, as :func:`contactlab.simulate_oblique`
+    passes them to its :class:`ObliqueResult` (units there)."""
+
+    grain: Grain
+    sensor: Sensor
+    normal_law: SmoothLaw
+    tangential_law: TangentialLaw
+    velocity: float
+    angle: float
+    spin: float
+    lever_arm: str
+    rtol: float
+
+
 class ObliqueResult:
     """One oblique impact: rebound numbers from the exact events, signals on a grid.
 
@@ -103,6 +121,22 @@ class ObliqueResult:
     the incoming tangential velocity; ``spin`` is signed so that the contact point slips
     at ``vt - R spin``. All rebound quantities use the same axes.
 
+    Parameters
+    ----------
+    setup : ObliqueSetup
+        The impact's checked arguments (its fields are attributes of the result).
+    inertia : float
+        Grain moment of inertia [kg*m**2].
+    contact : contactlab.kernels.oblique_sample.ContactPhases
+        The solved contact.
+    signals : tuple
+        Times, states, the normal law's unclipped formula, normal and tangential force and
+        slip on the output grid (:func:`contactlab.solver.oblique_phases.grid_signals`).
+    final_state : numpy.ndarray
+        State (7,) at the separation.
+    duration, sample_rate : float
+        Output window [s] and sample rate [Hz].
+
     Attributes
     ----------
     t : numpy.ndarray
@@ -115,36 +149,18 @@ class ObliqueResult:
         Grain tangential velocity [m/s], spin [rad/s], contact-point slip [m/s].
     """
 
-    def __init__(
-        self,
-        *,
-        grain,
-        sensor,
-        normal_law,
-        tangential_law,
-        velocity,
-        angle,
-        spin,
-        inertia,
-        lever_arm,
-        contact,
-        signals,
-        final_state,
-        duration,
-        sample_rate,
-        rtol=1e-9,
-    ):
-        self.grain, self.sensor, self.rtol = grain, sensor, rtol
-        self.normal_law, self.tangential_law = normal_law, tangential_law
-        self.velocity, self.angle, self.spin = velocity, angle, spin
-        self.duration, self.sample_rate = duration, sample_rate
-        self.inertia, self.lever_arm = inertia, lever_arm
+    def __init__(self, setup, *, inertia, contact, signals, final_state, duration, sample_rate):
+        self.grain, self.sensor, self.normal_law, self.tangential_law = setup[:4]
+        self.velocity, self.angle, self.spin, self.lever_arm, self.rtol = setup[4:]
+        self.duration, self.sample_rate, self.inertia = duration, sample_rate, inertia
         self._contact = contact
         self._final = np.asarray(final_state, dtype=float)
         self.t, states, self._raw, self.normal_force, self.tangential_force, self.slip = signals
         self.x1, self.v1, self.x2, self.v2 = states[:, :4].T
         self.tangential_velocity_signal, self.angular_velocity_signal = states[:, 4], states[:, 5]
-        self.sensor_force = sensor.signal(states[:, :2], self.normal_force)
+        # a wall's signal is the contact force itself; the solver's states need no checks
+        rigid, force = self.sensor.is_rigid, self.normal_force
+        self.sensor_force = force if rigid else self.sensor.signal(states[:, :2], None)
 
     # -- rebound ---------------------------------------------------------------------------
     @property

@@ -13,13 +13,18 @@ whose pieces :func:`contactlab.solver.oblique_phases.piece_phases` packs the sam
 import math
 
 import numpy as np
+from numba.np.unsafe.ndarray import to_fixed_tuple
 
 from contactlab.compiled import njit
 from contactlab.errors import ParameterError
-from contactlab.kernels.oblique_rhs import FRICTION, STICK, arm, trial_force
+from contactlab.kernels.oblique_rhs import FRICTION, OBLIQUE_PARAMETERS, STICK, arm, trial_force
+from contactlab.kernels.oblique_rhs import slip as slip_of
 from contactlab.kernels.power import RIGID, force
 
-__all__ = ["ContactPhases", "grid_worst", "peak_forces", "sample"]
+__all__ = ["ContactPhases", "grid", "grid_worst", "peak_forces", "sample"]
+
+PARAMETER_COUNT = len(OBLIQUE_PARAMETERS)
+"""Fields of the packed parameters (:func:`contactlab.kernels.oblique_rhs.pack`)."""
 
 
 @njit(cache=True, error_model="numpy")
@@ -29,6 +34,18 @@ def _before(times, i, stop, t0, bound):
     while i < stop and times[i] - t0 < bound:
         i += 1
     return i
+
+
+@njit(cache=True, error_model="numpy")
+def _held(f0, f1, f2, f3, f4, f5, f6, y):
+    """Whether a component's interpolant is its start value ``y`` to the last bit: all its
+    coefficients zero (the history while sliding) and ``y`` not ``-0.0``.
+
+    The interpolant then adds a sum of signed zeros (finite ``x``: a step's length is
+    positive) to ``y``, which leaves a nonzero ``y`` and ``+0.0`` as they are; only for
+    ``-0.0`` would the sign of the sum decide."""
+    zero = f0 == 0.0 and f1 == 0.0 and f2 == 0.0 and f3 == 0.0 and f4 == 0.0
+    return zero and f5 == 0.0 and f6 == 0.0 and (y != 0.0 or math.copysign(1.0, y) > 0.0)
 
 
 @njit(cache=True, error_model="numpy")
@@ -51,6 +68,9 @@ def _interpolate(F, y_old, j, span, times, warped_from, first, states, xs):
     for c in range(first, 7):
         f0, f1, f2, f3 = F[j, 0, c], F[j, 1, c], F[j, 2, c], F[j, 3, c]
         f4, f5, f6, y = F[j, 4, c], F[j, 5, c], F[j, 6, c], y_old[j, c]
+        if _held(f0, f1, f2, f3, f4, f5, f6, y):
+            states[c, lo:hi] = y
+            continue
         for m in range(lo, hi):
             x = xs[m]
             u = 1.0 - x
@@ -67,6 +87,7 @@ def _interpolate(F, y_old, j, span, times, warped_from, first, states, xs):
 @njit(cache=True, error_model="numpy")
 def _forces(par, phase, lo, hi, states, raw, normal, tangential, slip):
     """Normal and tangential forces and slip of ``states[:, lo:hi]`` in ``phase``."""
+    par = to_fixed_tuple(par, PARAMETER_COUNT)  # in registers: no reload after each store
     mu = par[FRICTION]
     for m in range(lo, hi):
         d = states[2, m] - states[0, m]
@@ -144,6 +165,63 @@ def sample(par, table, warp, steps, times, states, raw, normal, tangential, slip
             i = end
         _forces(par, phase, start, stop, states, raw, normal, tangential, slip)
     return True
+
+
+@njit(cache=True, error_model="numpy")
+def grid(par, table, warp, steps, final, sample_rate, block):
+    """An oblique impact's output grid, in one pass: times, the sampled contact, and after
+    it the free flight.
+
+    The times are ``arange(n) / sample_rate``; inside the contact (times before its end
+    ``t1``) the states and forces come from :func:`sample`; after it the grain keeps its
+    end velocities ``final[3:6]`` and no force acts. On a wall the grain's normal flight
+    ``x2 = x2(t1) + v2(t1) (t - t1)`` is written here too; a sensor's plate rings, and the
+    caller writes its four normal rows after the contact
+    (:func:`contactlab.solver.oblique_phases.grid_signals`).
+
+    Parameters
+    ----------
+    par, table, warp, steps
+        The solved contact, as in :func:`sample`.
+    final : numpy.ndarray
+        State (7,) at the separation.
+    sample_rate : float
+        Output sample rate [Hz].
+    block : numpy.ndarray
+        Out (12, n): the states (rows 0-6), the normal law's unclipped formula, normal and
+        tangential force [N], contact-point slip [m/s] and times [s] (rows 7-11).
+
+    Returns
+    -------
+    int
+        The number of samples inside the contact (the first after it).
+    """
+    n = block.shape[1]
+    times = block[11]
+    for i in range(n):
+        times[i] = i
+    for i in range(n):  # apart: a loop the compiler vectorises
+        times[i] /= sample_rate
+    end = table[table.shape[0] - 1, 1]
+    inside = 0
+    while inside < n and times[inside] < end:
+        inside += 1
+    if inside:
+        raw, normal, tangential, slip = block[7], block[8], block[9], block[10]
+        sample(par, table, warp, steps, times[:inside], block[:7], raw, normal, tangential, slip)
+    after = slip_of(final, par)
+    x2, v2, vt, w = final[2], final[3], final[4], final[5]
+    rigid = par[RIGID] > 0.0
+    if rigid:
+        block[:2, inside:] = 0.0
+        for m in range(inside, n):
+            block[2, m] = (times[m] - end) * v2 + x2
+        block[3, inside:] = v2
+    block[4, inside:] = vt
+    block[5, inside:] = w
+    block[6:10, inside:] = 0.0
+    block[10, inside:] = after
+    return inside
 
 
 @njit(cache=True, error_model="numpy")
@@ -248,6 +326,11 @@ class ContactPhases:
         if not sample(self._par, self._table, self._warp, self._steps, times, *out):
             raise ParameterError("times must be non-decreasing [s]")
         return (out[0][:, :n].T, *(a[:n] for a in out[1:]))
+
+    def grid(self, final, sample_rate, block):
+        """The output grid into ``block`` (12, n) (:func:`grid`); returns the number of
+        samples inside the contact."""
+        return grid(self._par, self._table, self._warp, self._steps, final, sample_rate, block)
 
     def peaks(self, nodes):
         """Largest normal force and largest magnitude of the tangential force [N] on

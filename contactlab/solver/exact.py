@@ -113,8 +113,10 @@ def free_flight(system, law, max_overlap, t0, y0, tau_max):
     horizon = recontact_horizon(
         np.asarray(y0, float), system.m1, system.k1, system.rigid, threshold
     )
-    search = min(tau_max, horizon)
-    hit = first_event(values, search, scan_step(states.rate, search), [+1])
+    search = min(tau_max, horizon)  # 0: receding from a wall, nothing to scan
+    hit = (
+        None if search <= 0.0 else first_event(values, search, scan_step(states.rate, search), [+1])
+    )
     tau_end = tau_max if hit is None else hit[0]
     seg = free_segment(t0, t0 + tau_end, states)
     return seg, states(tau_end)[0], None if hit is None else entry

@@ -373,6 +373,11 @@ def simulate_oblique(
 ):
     """Simulate a spinning sphere striking a flat or a force sensor at an angle.
 
+    The normal motion is :func:`contactlab.simulate_impact`'s two-mass model; the grain's
+    tangential velocity, spin and the tangential law's history ride on it, phase by phase
+    (stick, slide), solved compiled (:mod:`contactlab.kernels.oblique_kernel`) and read on
+    the output grid in one compiled pass (:mod:`contactlab.kernels.oblique_sample`).
+
     Parameters
     ----------
     grain : Grain
@@ -424,7 +429,7 @@ def simulate_oblique(
     within the window a :class:`~contactlab.errors.WindowWarning` says when.
     See :mod:`contactlab.solver.oblique` for the equations and events.
     """
-    from contactlab.oblique_result import ObliqueResult
+    from contactlab.oblique_result import ObliqueResult, ObliqueSetup
 
     velocity, angle, spin = _check_inputs(
         grain, sensor, normal_law, tangential_law, velocity, angle, spin
@@ -467,22 +472,17 @@ def simulate_oblique(
     if sample_rate is None:
         sample_rate = (DEFAULT_SAMPLES - 1) / window
     check_output_size(window, sample_rate)
+    setup = ObliqueSetup(
+        grain, sensor, normal_law, tangential_law, velocity, angle, spin, lever_arm, rtol
+    )
     result = ObliqueResult(
-        grain=grain,
-        sensor=sensor,
-        normal_law=normal_law,
-        tangential_law=tangential_law,
-        velocity=velocity,
-        angle=angle,
-        spin=spin,
+        setup,
         inertia=inertia,
-        lever_arm=lever_arm,
         contact=contact,
-        signals=grid_signals(contact, free, y_end, float(model.slip(y_end)), window, sample_rate),
+        signals=grid_signals(contact, None if system.rigid else free, y_end, window, sample_rate),
         final_state=y_end,
         duration=window,
         sample_rate=sample_rate,
-        rtol=rtol,
     )
     if audit:
         warn_if_broken(result.audit(full=False), "simulate_oblique's result")

@@ -93,20 +93,21 @@ def _stacked(parts, width):
     return t_old.size, t_old, h, np.ascontiguousarray(y_old), np.ascontiguousarray(F)
 
 
-def grid_signals(contact, free, final, slip_after, duration, sample_rate):
+def grid_signals(contact, free, final, duration, sample_rate):
     """The signals of an oblique impact on its output grid, for
-    :class:`~contactlab.ObliqueResult`.
+    :class:`~contactlab.ObliqueResult`: compiled in one pass
+    (:meth:`ContactPhases.grid <contactlab.kernels.oblique_sample.ContactPhases.grid>`),
+    but a sensor plate's free ringing after the contact.
 
     Parameters
     ----------
     contact : contactlab.kernels.oblique_sample.ContactPhases
         The solved contact.
-    free : contactlab.kernels.segments.Segment
-        The free flight after it.
+    free : contactlab.kernels.segments.Segment or None
+        The free flight after it on a sensor; None on a wall (the grain's flight is
+        written by the compiled pass).
     final : numpy.ndarray
         State (7,) at the separation.
-    slip_after : float
-        Contact-point slip after the contact [m/s].
     duration, sample_rate : float
         Window [s] and sample rate [Hz].
 
@@ -117,15 +118,8 @@ def grid_signals(contact, free, final, slip_after, duration, sample_rate):
         contact), normal and tangential force [N] and slip [m/s] (n,).
     """
     n = math.floor(duration * sample_rate * (1 + 1e-12)) + 1
-    times = np.arange(n, dtype=float)
-    times /= sample_rate
-    block = np.empty((11, n))  # one allocation: states (7 rows), raw, N, T, slip
-    split = int(np.searchsorted(times, contact.end, side="left"))
-    if split:
-        contact(times[:split], (block[:7], *block[7:]))
-    if split < n:
-        block[:4, split:] = free.states(times[split:] - free.t0).T
-        block[4:7, split:] = np.array([final[4], final[5], 0.0])[:, None]
-        block[7:10, split:] = 0.0
-        block[10, split:] = slip_after
-    return (times, block[:7].T, *block[7:])
+    block = np.empty((12, n))  # one allocation: states (7 rows), raw, N, T, slip, times
+    inside = contact.grid(final, sample_rate, block)
+    if free is not None and inside < n:
+        block[:4, inside:] = free.states(block[11, inside:] - free.t0).T
+    return (block[11], block[:7].T, *block[7:11])

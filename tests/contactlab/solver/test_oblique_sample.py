@@ -105,3 +105,36 @@ def test_decreasing_times_and_short_outputs_are_refused():
     short = (np.empty((7, 1)), *np.empty((4, 1)))
     with pytest.raises(ParameterError, match="out"):
         contact(np.array([1e-6, 2e-6]), short)
+
+
+def test_grid_after_the_contact_is_free_flight():
+    """After the separation no force acts: the grain keeps its end velocities, on a wall it
+    flies at ``x2(t1) + v2(t1) (t - t1)`` and the plate rests; a sensor's plate rings as
+    the free flight's exact states (:func:`contactlab.solver.exact.free_flight`)."""
+    from contactlab.solver.exact import free_flight
+    from contactlab.solver.system import System
+
+    for kind, res in RESULTS.items():
+        after = res.t >= res.contact_time
+        end, final = res.contact_time, res._final
+        assert after.sum() > 1000  # the window holds free flight (ringing or the wall's 1.5x)
+        # the grid's times are arange(n) / sample_rate, as they were written in numpy
+        np.testing.assert_array_equal(res.t, np.arange(res.t.size) / res.sample_rate)
+        for signal in (res.normal_force, res.tangential_force, res._raw):
+            assert not signal[after].any()
+        # the end values themselves, copied: equal bits
+        assert (res.tangential_velocity_signal[after] == final[4]).all()
+        assert (res.angular_velocity_signal[after] == final[5]).all()
+        assert (res.slip[after] == final[4] - GRAIN.radius * final[5]).all()
+        if kind == "flat":
+            # the same operations as the closed form written here: equal bits
+            x2 = (res.t[after] - end) * final[3] + final[2]
+            np.testing.assert_array_equal(res.x2[after], x2)
+            assert (res.v2[after] == final[3]).all() and not res.x1[after].any()
+        else:
+            system = System(GRAIN, res.sensor)
+            free = free_flight(system, HERTZ, 0.0, end, final[:4], res.duration - end)[0]
+            states = free.states(res.t[after] - end)
+            # the plate's rows are these exact states, written by the same numpy code
+            np.testing.assert_array_equal(np.column_stack([res.x1, res.v1])[after], states[:, :2])
+            np.testing.assert_array_equal(res.x2[after], states[:, 2])
