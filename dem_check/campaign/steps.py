@@ -315,7 +315,7 @@ def edge_steps(values, runs, period, reach):
     # a step near the start is one near the end of the record read backwards: its index
     # there is where the old level ends, and its height changes sign
     mirrored = [(n - 1 - last, n - 1 - first) for first, last in runs]
-    for step in _end_steps(values[::-1], mirrored, period, reach, noise):
+    for step in _end_steps(values[::-1], mirrored, period, reach, noise, start_side=True):
         window = (0, n - step.window[0])
         found.append(OffsetStep(n - step.index, -step.height, step.significance, window))
     return sorted(found, key=lambda step: step.index)
@@ -337,7 +337,7 @@ def level_error(noise, period, samples):
     return noise * np.sqrt(period / samples)
 
 
-def _end_steps(values, runs, period, reach, noise):
+def _end_steps(values, runs, period, reach, noise, start_side=False):
     """:func:`edge_steps` at the record's end: runs to its last sample."""
     size = WINDOW_PERIODS * period
     found = []
@@ -353,7 +353,10 @@ def _end_steps(values, runs, period, reach, noise):
         new, old = values[at:], values[max(0, at - size) : at]
         if new.size < 2 or old.size < period:
             continue
-        spread = [robust_noise(x) for x in (new, old)]
+        # before a step at the start, the few samples are a level, not a main lobe (an
+        # impact at the first sample returns to the level): their standard deviation,
+        # which a lobe raises and a median absolute deviation may not, is flat too
+        spread = [(np.std if start_side else robust_noise)(new), robust_noise(old)]
         height = float(np.median(new) - np.median(old))
         error = np.hypot(*(level_error(noise, period, x.size) for x in (new, old)))
         significance = abs(height) / max(error, np.finfo(float).tiny)
