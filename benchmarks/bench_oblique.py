@@ -14,10 +14,21 @@ rebound is printed beside ours. ``contactlab`` is timed twice: the full call and
 contact integration alone (``_solve_contact``, the same work as the reference).
 Medians of repeated runs, and the fastest run (the machine is shared: the fastest is the
 best estimate of the cost on a quiet one); ratios are of medians and of minima.
+
+Kratos' elastic Coulomb cap (``Mindlin(coulomb_cap="elastic")``, :func:`elastic_cap`) is
+timed on three damped cases (a Kratos-like impact on a sensor, 10 phases; Chung & Ooi's
+grain with all of Kratos' rules at e = 0.98, 5 deg, 25 phases, and 30 deg, 170 phases)
+against LAMMPS' cap on the same impacts in the same run; ``--before DIR`` times the same
+cases on the code in ``DIR`` too (a checkout, e.g. ``git archive main | tar -x -C DIR``),
+in a fresh process, and prints after / before. ``--elastic-only`` runs this part alone.
 """
 
+import argparse
+import json
 import math
+import os
 import statistics
+import subprocess
 import sys
 from pathlib import Path
 
@@ -25,6 +36,8 @@ import numpy as np
 import pandas as pd
 
 import contactlab as cl
+from contactlab import analytic
+from contactlab.solver.conventions import DEM_CONVENTIONS
 from contactlab.solver.oblique import ObliqueModel, _solve_contact
 from contactlab.solver.oblique_phases import grid_signals
 from contactlab.solver.system import System
@@ -138,6 +151,110 @@ def batch_sweep(law):
     return len(frame) / elapsed, worst
 
 
+ELASTIC_REPEATS = 11
+"""Calls per figure of :func:`elastic_cap` (the Python loop it replaced took 40-400 ms)."""
+
+
+def kratos_cases():
+    """``{name: (arguments, keywords)}`` of :func:`contactlab.simulate_oblique` with
+    Kratos' elastic cap (the cases of ``tests/contactlab/solver/test_elastic_cap.py``)."""
+    grain = cl.Grain(diameter=5e-3, density=2500.0, youngs_modulus=7e10, poisson_ratio=0.25)
+    sensor = cl.Sensor(mass=2e-3, stiffness=5e7, damping=2.0)
+    normal = cl.laws.HertzDamped.from_material(*grain.material(), 0.6, grain.mass)
+    tangential = cl.laws.Mindlin.from_material(
+        *grain.material(), 0.3, history="incremental", damping="tied", coulomb_cap="elastic"
+    )
+    cases = {"sensor 20 deg": ((grain, sensor, normal, tangential, 1.0, math.radians(20)), {})}
+    damped = cl.laws.HertzDamped(
+        NORMAL.k_hertz,
+        analytic.tsuji_damping_coefficient(NORMAL.k_hertz, GRAIN.mass, 0.98, "force"),
+    )
+    kratos = DEM_CONVENTIONS["kratos"].mindlin(
+        cl.laws.Mindlin.from_material(*GRAIN.material(), 0.092)
+    )
+    for degrees in (5, 30):
+        laws = (GRAIN, cl.Sensor.rigid(), damped, kratos, SPEED, math.radians(degrees))
+        cases[f"test 4 {degrees} deg"] = (laws, {"lever_arm": "contact"})
+    return cases
+
+
+def _lammps_cap(law):
+    """``law`` with LAMMPS' cap instead of Kratos'."""
+    return cl.laws.Mindlin(law.k_mindlin, law.friction, law.history, law.damping_form, "total")
+
+
+def _contact_alone(args, kwargs):
+    """:func:`contactlab.simulate_oblique`'s contact integration alone (``_solve_contact``,
+    no output grid and no audit) for its arguments."""
+    grain, sensor, normal, tangential, speed, angle = args
+    radius = grain.radius
+    model = ObliqueModel(
+        System(grain, sensor),
+        normal,
+        tangential,
+        radius,
+        0.4 * grain.mass * radius**2,
+        kwargs.get("lever_arm", "radius"),
+    )
+    vn, vt = speed * math.cos(angle), speed * math.sin(angle)
+    y0 = np.array([0.0, 0.0, 0.0, vn, vt, kwargs.get("spin", 0.0), 0.0])
+    return _solve_contact(model, y0, RTOL, (speed, grain.mass * speed / 1e-6))
+
+
+def elastic_cap(caps=("elastic", "total")):
+    """``{case: {cap: (median, fastest) [s], cap + " contact": the same of the contact
+    alone, "phases": n}}`` of the full call (with its default audit)."""
+    out = {}
+    for name, (args, kwargs) in kratos_cases().items():
+        out[name] = {"phases": len(cl.simulate_oblique(*args, **kwargs).phases)}
+        for cap in caps:
+            laws = args if cap == "elastic" else (*args[:3], _lammps_cap(args[3]), *args[4:])
+            call = lambda laws=laws, kwargs=kwargs: cl.simulate_oblique(*laws, **kwargs)  # noqa: E731
+            out[name][cap] = median_time(call, ELASTIC_REPEATS)
+            alone = lambda laws=laws, kwargs=kwargs: _contact_alone(laws, kwargs)  # noqa: E731
+            out[name][f"{cap} contact"] = median_time(alone, ELASTIC_REPEATS)
+    return out
+
+
+def _before(directory):
+    """:func:`elastic_cap`'s Kratos figures of the code in ``directory``, in a fresh
+    process."""
+    env = dict(os.environ, PYTHONPATH=str(Path(directory).resolve()))
+    done = subprocess.run(
+        [sys.executable, __file__, "--elastic-only", "--json"],
+        env=env,
+        check=True,
+        capture_output=True,
+        text=True,
+    )
+    return json.loads(done.stdout.splitlines()[-1])
+
+
+def print_elastic_cap(before=None):
+    """Print :func:`elastic_cap` (and the code in ``before``'s, after / before)."""
+    then = None if before is None else _before(before)
+    print(
+        "Kratos' elastic Coulomb cap: the full call with 20 001 samples and its default "
+        "audit, and the contact alone, median (fastest) [ms]:"
+    )
+    for name, row in elastic_cap().items():
+        print(f"  {name} ({row['phases']} phases):")
+        for part in ("", " contact"):
+            (t_e, m_e), (t_t, m_t) = row["elastic" + part], row["total" + part]
+            line = (
+                f"    {part.strip() or 'full call':9s} elastic cap {t_e * 1e3:8.3f} "
+                f"({m_e * 1e3:8.3f}), LAMMPS' cap {t_t * 1e3:6.3f} ({m_t * 1e3:6.3f}), "
+                f"elastic / LAMMPS' {t_e / t_t:6.2f}"
+            )
+            if then is not None:
+                t_b, m_b = then[name]["elastic" + part]
+                line += (
+                    f"; before {t_b * 1e3:8.2f} ({m_b * 1e3:8.2f}), after / before "
+                    f"{t_e / t_b:6.4f} ({m_e / m_b:6.4f})"
+                )
+            print(line)
+
+
 def main():
     print(f"oblique Hertz-Mindlin impact, R = {GRAIN.radius * 1e3} mm, {SPEED} m/s, rtol {RTOL}")
     for history in ("total", "incremental"):
@@ -178,4 +295,15 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--before", help="a checkout of the code before a change")
+    parser.add_argument("--elastic-only", action="store_true", help="Kratos' cap only")
+    parser.add_argument("--json", action="store_true", help=argparse.SUPPRESS)
+    args = parser.parse_args()
+    if args.json:
+        print(json.dumps(elastic_cap(("elastic",))))
+    else:
+        print(f"load average {os.getloadavg()[0]:.1f}")
+        if not args.elastic_only:
+            main()
+        print_elastic_cap(args.before)

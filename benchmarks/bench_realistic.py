@@ -17,10 +17,11 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   the largest and 95th-percentile errors of the analysed impacts against the model's
   truth, by significance (peak over noise), and the count of impacts found, missed and
   invented. ``--noise-model white``: the reconstruction with the white-noise model it had
-  before the coloured-noise one.
+  before the coloured-noise one. ``--contact-edges level``: the contact read at 2 % of
+  the reconstructed peak (and the dip rule), as before the significance rule.
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
-[--configuration NAME] [--noise-model white]``
+[--configuration NAME] [--noise-model white] [--contact-edges level]``
 """
 
 import argparse
@@ -213,9 +214,16 @@ def main():
         default=reconstruct_module.DEFAULT_NOISE_MODEL,
         help="the reconstruction's noise model (white: before the coloured-noise model)",
     )
+    parser.add_argument(
+        "--contact-edges",
+        choices=list(reconstruct_module.CONTACT_EDGES),
+        default=reconstruct_module.DEFAULT_CONTACT_EDGES,
+        help="how the reconstructed contact's edges are read (level: 2 %% of the peak, before)",
+    )
     args = parser.parse_args()
     reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
-    print(f"noise model {args.noise_model}")
+    reconstruct_module.DEFAULT_CONTACT_EDGES = args.contact_edges
+    print(f"noise model {args.noise_model}, contact edges {args.contact_edges}")
     if args.speed or not args.accuracy:
         speed()
     if args.accuracy or not args.speed:

@@ -97,6 +97,8 @@ def warm_up():
     linear_impacts(_one_row_frame(**{"k2 [N/m]": 1e5, "c2 [N*s/m]": 1.0}))
     hertz_impacts(_one_row_frame(**{"k_hertz [N/m**1.5]": 3.0e6, "damping [N*s/m**1.25]": 2.0}))
     simulate_oblique(grain, sensor, law, Mindlin(1e6, 0.3, "incremental"), 2.0, 0.5, spin=10.0)
+    kratos = Mindlin(1e6, 0.3, "incremental", "tied", "elastic")  # Kratos' cap: its own loop
+    simulate_oblique(grain, sensor, law, kratos, 2.0, 0.5, spin=10.0)
     oblique = _one_row_frame(
         **{
             "k_hertz [N/m**1.5]": 3.0e6,

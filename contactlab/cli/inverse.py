@@ -75,6 +75,8 @@ def _reconstruct(args):
         cutoff=args.cutoff,
         crosstalk=not args.no_crosstalk,
         noise_model=args.noise_model,
+        contact_edges=args.contact_edges,
+        flank_exponent=args.flank_exponent,
     )
     if args.plot:
         _save_plot(rec.plot()[0], args.plot)
@@ -135,7 +137,7 @@ def add_inverse_parsers(sub):
     from contactlab.inverse.export import DEM_CODES
     from contactlab.inverse.fit_models import FIT_MODELS
     from contactlab.inverse.noise_colour import NOISE_MODELS
-    from contactlab.inverse.reconstruct import CRITERIA, METHODS
+    from contactlab.inverse.reconstruct import CONTACT_EDGES, CRITERIA, METHODS
 
     window = {"nargs": 2, "type": float, "metavar": ("T0", "T1")}
     p = sub.add_parser(
@@ -160,6 +162,18 @@ def add_inverse_parsers(sub):
         choices=NOISE_MODELS,
         help="tikhonov: ar (default; the noise's AR model, read on the baseline, whitens "
         "the problem) or white",
+    )
+    p.add_argument(
+        "--contact-edges",
+        choices=CONTACT_EDGES,
+        help="significance (default; where the force is significantly above its noise, "
+        "the edges extrapolated along the flanks) or level (2 %% of the peak)",
+    )
+    p.add_argument(
+        "--flank-exponent",
+        type=float,
+        default=1.0,
+        help="power law of the force at the contact's edges [-] (default 1; 1.5 for Hertz)",
     )
     p.add_argument("--cutoff", type=float, help="inverse filter cutoff [Hz] (default 2 f1)")
     p.add_argument("--baseline", **window, help="pre-trigger window [s] (default t < 0)")

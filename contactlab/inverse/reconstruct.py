@@ -29,6 +29,14 @@ from contactlab import signals
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
+from contactlab.inverse.contact_edges import (
+    SIGNIFICANCE_SIGMAS,
+    THRESHOLD_FRACTION,
+    THRESHOLD_SIGMAS,
+    level_edges,
+    significant_edges,
+    tikhonov_std,
+)
 from contactlab.inverse.noise_colour import (
     NOISE_MODELS,
     block_noise_model,
@@ -39,10 +47,9 @@ from contactlab.inverse.noise_colour import (
 from contactlab.inverse.pulse import pulse_baseline
 from contactlab.inverse.reconstruction import ForceReconstruction
 from contactlab.inverse.regularization import CRITERIA, StandardForm
-from contactlab.metrics import pulse_metrics
 from contactlab.validation import check_choice, check_count, check_number
 
-__all__ = ["CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
+__all__ = ["CONTACT_EDGES", "CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
 
 DEFAULT_CUTOFF_FACTOR = 2.0
 """Default cutoff of the inverse filter in units of the resonance. The inverse's gain
@@ -65,18 +72,6 @@ information; more only enlarge the matrix."""
 ONSET_SIGMAS = 5.0
 """Onset threshold in baseline standard deviations (a baseline sample exceeds 5 sigma
 with probability 6e-7)."""
-
-THRESHOLD_FRACTION = 0.02
-"""Default level of the contact-time reading, as a fraction of the reconstructed peak."""
-
-DIP_FRACTION = 0.05
-"""A reconstructed force that dips under this fraction of its peak after it, without
-reaching the threshold, ends its contact at the dip [-]: what follows is noise read as
-force (1/f noise leaves bumps of 2-8 % of the peak after the contact at 20-30 sigma,
-which held the contact open to +55 %; measured in ``docs/campaign.md``)."""
-
-THRESHOLD_SIGMAS = 5.0
-"""...raised to this many standard deviations of the reconstruction's own baseline."""
 
 
 # ---------------------------------------------------------------------------
@@ -153,7 +148,7 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
     ta, tb = window
     ia = int(np.searchsorted(t, ta))
     span = (tb - t[ia]) / dt
-    q = max(1, math.ceil(span / (max_unknowns - 1)))
+    q = options.get("step") or max(1, math.ceil(span / (max_unknowns - 1)))
     columns = int(span // q) + 1
     last = min(t[-1], tb + ROWS_AFTER_WINDOW * sensor.period)
     rows = int((last - t[ia]) / dt + 1) // q
@@ -172,6 +167,8 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
     values, _ = nnls(np.vstack([h, penalty]), np.concatenate([data, np.zeros(columns - 1)]))
     knots = t[ia] + np.arange(-1, columns + 1) * q * dt
     force = np.interp(t, knots, np.concatenate([[0.0], values, [0.0]]))
+    # the unconstrained solution's spread, between the knots as the force is
+    std = np.interp(t, knots, np.concatenate([[0.0], tikhonov_std(h, penalty, block_noise), [0.0]]))
     params = {
         "regularization": criterion,
         "lambda": float(lam),
@@ -180,7 +177,7 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
         "data_blocks": rows,
         **describe_model(model),
     }
-    return force, params
+    return force, params, std
 
 
 def _inverse(t, y, dt, sensor, noise, window, options):
@@ -208,41 +205,46 @@ def _inverse(t, y, dt, sensor, noise, window, options):
     # the 3-point stencil needs both neighbours: the end samples take their neighbour's
     curvature[0], curvature[-1] = curvature[1], curvature[-2]
     force = smooth + curvature / sensor.angular_frequency**2
-    return force, {"cutoff [Hz]": float(cutoff), "filter": "Butterworth order 4, zero-phase"}
+    params = {"cutoff [Hz]": float(cutoff), "filter": "Butterworth order 4, zero-phase"}
+    return force, params, None  # a stationary filter: its spread is read on the baseline
 
 
 METHODS = {"tikhonov": _tikhonov, "inverse": _inverse}
 """Reconstruction methods: name -> implementation."""
 
+CONTACT_EDGES = ("significance", "level")
+"""How the contact's start and end are read (``contact_edges`` of
+:func:`reconstruct_force`)."""
 
-def _contact_metrics(t, force, threshold):
-    """Pulse metrics of the lobe of the reconstructed force that holds its peak.
+DEFAULT_CONTACT_EDGES = "significance"
+"""Default of ``contact_edges``: where the force is significantly above zero, the edges
+extrapolated along the flanks (:mod:`contactlab.inverse.contact_edges`)."""
 
-    A lobe above the threshold before it is the window edge fitting noise as force: on
-    a realistic record with 1/f noise as large as the white noise the force rose to
-    2.3 % of its peak at the contact window's first knot, and the first lobe read there
-    gave a contact of 0.15 us instead of 100 us (``docs/campaign.md``).
+
+def _widened(t, y, dt, sensor, noise, window, options, solved):
+    """The Tikhonov solution on a window started earlier, when the force is significant
+    at the default window's first knot (its contact started before the window).
+
+    The default window starts a quarter sensor period before the onset, the first
+    crossing of 5 baseline standard deviations; at a peak of 20 standard deviations that
+    is a quarter of the way up a smooth pulse, and the contact's start was cut (a
+    half-sine of 100 us at 1 MHz, 5 % noise: the window started 3 us late and the
+    contact came out 3 % short). The window is started once more, as far before its
+    first knot as the peak is after it (not before the record), on the same grid step.
+    ``solved`` is the first solution's ``(force, parameters, spread)``; returns the
+    window start [s] and the solution on the window used.
     """
-    peak = int(np.argmax(force))
-    before = np.flatnonzero(force[:peak] <= threshold)
-    first = int(before[-1]) if before.size else 0
-    return pulse_metrics(t[first:], _cut_at_dip(force, peak, threshold)[first:], threshold)
-
-
-def _cut_at_dip(force, peak, threshold):
-    """``force`` zeroed after its first dip after the peak that is under
-    :data:`DIP_FRACTION` of the peak but stays above ``threshold`` (unchanged when the
-    force falls to the threshold first)."""
-    after = force[peak:]
-    under = np.flatnonzero(after <= threshold)
-    end = int(under[0]) if under.size else after.size
-    inner = after[1 : end - 1]
-    dips = np.flatnonzero(
-        (inner < after[: end - 2]) & (inner <= after[2:end]) & (inner < DIP_FRACTION * after[0])
-    )
-    if not dips.size:
-        return force
-    return np.concatenate([force[: peak + dips[0] + 2], np.zeros(after.size - dips[0] - 2)])
+    force, params, std = solved
+    ta, tb = window
+    ia = int(np.searchsorted(t, ta))
+    q = max(1, round(params["grid_step [s]"] / dt))
+    head = slice(ia, ia + q + 1)  # the window's first grid step
+    if ia == 0 or not np.any(force[head] > SIGNIFICANCE_SIGMAS * std[head]):
+        return ta, solved  # the noise, not the window, ends the contact on the left
+    top = int(np.argmax(force))
+    earlier = max(float(t[0]), float(2.0 * t[ia] - t[top]))
+    wider = {**options, "step": q}
+    return earlier, METHODS["tikhonov"](t, y, dt, sensor, noise, (earlier, tb), wider)
 
 
 def _check_sensor(sensor):
@@ -267,6 +269,8 @@ def reconstruct_force(
     threshold=None,
     crosstalk=True,
     noise_model=None,
+    contact_edges=None,
+    flank_exponent=1.0,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -312,9 +316,9 @@ def reconstruct_force(
         :data:`DEFAULT_MAX_UNKNOWNS` = 400); the signal is averaged over blocks of ``q``
         samples and the force grid step is ``q`` samples.
     threshold : float, optional
-        Level [N] at which the metrics read the pulse. Default: 2 % of the
-        reconstructed peak, or five standard deviations of the reconstruction over the
-        baseline window if that is larger.
+        Level [N] at which the metrics read the pulse (``contact_edges="level"``).
+        Default: 2 % of the reconstructed peak, or five standard deviations of the
+        reconstruction over the baseline window if that is larger.
     crosstalk : bool, default True
         Remove the structure's crosstalk with the baseline (modes found on the ringing
         after the contact; :func:`contactlab.inverse.pulse.pulse_baseline`), the modes
@@ -332,6 +336,22 @@ def reconstruct_force(
         ``parameters["noise_model"]`` says which was used (``"AR(p)"`` with its
         coefficients and innovation, or ``"white"``). ``"white"``: ordinary least
         squares, as before coloured noise was modelled.
+    contact_edges : {"significance", "level"}, optional
+        How the contact's start and end are read from the reconstructed force.
+        ``"significance"``: the run of samples around the peak where the force is more
+        than 3 of its own standard deviations above zero (the noise propagated through
+        the Tikhonov solution, ``noise**2 G G^T``; the inverse filter's spread over the
+        baseline), each edge where a line fitted to its flank between 10 % and 50 % of
+        the peak reaches zero (:func:`contactlab.inverse.contact_edges.significant_edges`).
+        ``"level"``: the first lobe above ``threshold``, ended at a dip under 5 % of the
+        peak (as before; taken whenever ``threshold`` is given).
+        ``parameters["contact_edges"]`` says which was used. Default
+        :data:`DEFAULT_CONTACT_EDGES`, ``"significance"``.
+    flank_exponent : float, default 1.0
+        Power law of the force at the contact's edges, ``F ~ |t - t_edge|**p`` [-], in
+        [1, 3] (``"significance"`` only): the flanks' lines are fitted to ``F**(1/p)``.
+        1 for a linear or viscoelastic law, 1.5 for Hertz (with 1 a Hertz contact comes
+        out 6-8 % short).
 
     Returns
     -------
@@ -395,8 +415,15 @@ def reconstruct_force(
             "max_unknowns", DEFAULT_MAX_UNKNOWNS if max_unknowns is None else max_unknowns, 2
         ),
     }
+    flank_exponent = check_number(
+        "flank_exponent", flank_exponent, low=1.0, high=3.0, low_open=False
+    )
+    contact_edges = check_choice(
+        "contact_edges", contact_edges or DEFAULT_CONTACT_EDGES, CONTACT_EDGES
+    )
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, unit="N")
+        contact_edges = "level"  # a level the user gave is read as given
     pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk)
     y = y - pulse.values
     noise, onset, base = pulse.noise, pulse.onset, pulse.window
@@ -409,16 +436,24 @@ def reconstruct_force(
         raise ParameterError(
             f"window start must lie within the record [{t[0]:.6g}, {t[-1]:.6g}) s; got {ta!r}"
         )
-    force, params = METHODS[method](t, y, dt, sensor, noise, (ta, tb), options)
-    if threshold is None:
-        # the reconstruction's own noise, over the baseline before the contact window
-        in_base = (t >= base[0]) & (t < min(base[1], ta))
-        floor = (
-            THRESHOLD_SIGMAS * float(np.std(force[in_base], ddof=1)) if in_base.sum() > 1 else 0.0
-        )
-        threshold = max(THRESHOLD_FRACTION * float(force.max()), floor)
-        if threshold <= 0.0:
-            raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
+    force, params, std = METHODS[method](t, y, dt, sensor, noise, (ta, tb), options)
+    if std is not None and window is None and contact_edges == "significance":
+        solved = (force, params, std)
+        ta, (force, params, std) = _widened(t, y, dt, sensor, noise, (ta, tb), options, solved)
+    # the reconstruction's own noise, over the baseline before the contact window
+    in_base = (t >= base[0]) & (t < min(base[1], ta))
+    spread = float(np.std(force[in_base], ddof=1)) if in_base.sum() > 1 else 0.0
+    if float(force.max()) <= 0.0:
+        raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
+    if contact_edges == "significance":
+        std = np.full(t.size, spread) if std is None else std
+        metrics = significant_edges(t, force, std, exponent=flank_exponent)
+        # the level the force's peak had to pass; the edges are the flanks' lines at zero
+        threshold = SIGNIFICANCE_SIGMAS * float(std[np.argmax(force)])
+    else:
+        if threshold is None:
+            threshold = max(THRESHOLD_FRACTION * float(force.max()), THRESHOLD_SIGMAS * spread)
+        metrics = level_edges(t, force, threshold)
     params.update(
         {
             "window [s]": [ta, tb],
@@ -428,6 +463,7 @@ def reconstruct_force(
             "post_window [s]": list(pulse.post),
             "noise [N]": noise,
             "onset [s]": onset,
+            "contact_edges": contact_edges,
             "threshold [N]": threshold,
             "sensor_resonance [Hz]": sensor.resonance,
             "sensor_damping_ratio [-]": sensor.damping_ratio,
@@ -439,7 +475,7 @@ def reconstruct_force(
         force=force,
         method=method,
         parameters=params,
-        metrics=_contact_metrics(t, force, threshold),
+        metrics=metrics,
         status=pulse.status,
         notes=pulse.notes,
     )

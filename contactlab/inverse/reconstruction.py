@@ -15,8 +15,9 @@ class ForceReconstruction:
     ``t`` [s] is the input time axis, ``signal`` [N] the input with its local baseline
     removed, ``force`` [N] the reconstructed contact force on ``t``. ``parameters``
     holds what was chosen (regularisation, cutoff, windows, noise, the baseline's drift
-    across the pulse), ``metrics`` the pulse metrics of ``force`` read at
-    ``parameters["threshold [N]"]``. ``status`` is ``"ok"`` or what makes the baseline
+    across the pulse), ``metrics`` the pulse metrics of ``force``, its edges read by
+    the rule ``parameters["contact_edges"]`` names (where the force is significant, or
+    at ``parameters["threshold [N]"]``). ``status`` is ``"ok"`` or what makes the baseline
     doubtful (``short pre-trigger``, ``drifting baseline``, ``not free ringing``), and
     ``notes`` says it with the numbers (:func:`contactlab.inverse.pulse.pulse_baseline`).
     """

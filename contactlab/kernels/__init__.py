@@ -10,5 +10,10 @@
 * :mod:`~contactlab.kernels.modal`: modal pieces, event scans, free flight;
 * :mod:`~contactlab.kernels.power`, :mod:`~contactlab.kernels.dop853`,
   :mod:`~contactlab.kernels.power_piece`: the power-law right-hand side, the DOP853
-  stepper and the contact piece; :mod:`~contactlab.kernels.brent`: Brent's method.
+  stepper and the contact piece; :mod:`~contactlab.kernels.brent`: Brent's method;
+* :mod:`~contactlab.kernels.oblique_rhs`, :mod:`~contactlab.kernels.oblique_events`,
+  :mod:`~contactlab.kernels.oblique_kernel`: the oblique impact's equations, events and
+  phase loop (LAMMPS' Coulomb cap); :mod:`~contactlab.kernels.elastic_cap_rhs`,
+  :mod:`~contactlab.kernels.elastic_cap`: Kratos' elastic cap's slides and phase loop;
+  :mod:`~contactlab.kernels.oblique_sample`: the solved contact's sampler.
 """

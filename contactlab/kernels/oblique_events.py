@@ -22,7 +22,8 @@ import numpy as np
 from contactlab.compiled import njit
 from contactlab.kernels.brent import brent_next, brent_start
 from contactlab.kernels.dop853 import interpolate
-from contactlab.kernels.oblique_rhs import direction, events
+from contactlab.kernels.elastic_cap_rhs import events
+from contactlab.kernels.oblique_rhs import direction
 from contactlab.roots import DEPARTURE_SAMPLES, SIDE_STEPS
 
 __all__ = ["GRAZE_XTOL", "SUBSTEPS", "first_crossing", "waits"]

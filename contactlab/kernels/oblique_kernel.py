@@ -18,6 +18,7 @@ import numpy as np
 from contactlab.compiled import njit
 from contactlab.kernels.brent import WORK_SIZE
 from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, interpolate, step
+from contactlab.kernels.elastic_cap_rhs import EVENTS, events
 from contactlab.kernels.model_rhs import rhs
 from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, waits
 from contactlab.kernels.oblique_rhs import (
@@ -25,7 +26,6 @@ from contactlab.kernels.oblique_rhs import (
     PHASE,
     STICK,
     direction,
-    events,
     history_on_cap,
     slip,
     trial_force,
@@ -122,9 +122,9 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
     phase = par[PHASE]
     K, f, y_new, f_new = np.empty((WORK_ROWS, n)), np.empty(n), np.empty(n), np.empty(n)
     F, y, y_old, tmp = np.empty((_DENSE, n)), y0.copy(), y0.copy(), np.empty(n)
-    row, work, rising = np.empty(3), np.empty(WORK_SIZE), np.empty(SUBSTEPS + 1)
-    times, rows = np.empty(SUBSTEPS + 1), np.zeros((SUBSTEPS + 1, 3))
-    armed = np.zeros(3, dtype=np.bool_)
+    row, work, rising = np.empty(EVENTS), np.empty(WORK_SIZE), np.empty(SUBSTEPS + 1)
+    times, rows = np.empty(SUBSTEPS + 1), np.zeros((SUBSTEPS + 1, EVENTS))
+    armed = np.zeros(EVENTS, dtype=np.bool_)
     rhs(y, par, warped, f)
     count = events(y, par, phase, rows[SUBSTEPS])
     for j in range(count):
@@ -232,15 +232,17 @@ def _touch_phase(y0, rtol, atol, par):
     the first step); the ratio of an elastic trial force to the cap is a power of time
     near the touch, so the probe's length does not matter. (Reading a damped spring at the
     probe instead chose sticking wherever the cap had outgrown ``eta s`` by then, and broke
-    Coulomb before it: issue 21's matrix.)
+    Coulomb before it: issue 21's matrix.) Returns the phase (0, +1 or -1) and the state
+    it was read at (``y0`` or the probe's; Kratos' cap reads its kind of slide there,
+    :mod:`contactlab.kernels.elastic_cap`).
     """
     s0 = slip(y0, par)
     if s0 == 0.0:
-        return STICK
+        return STICK, y0
     d0 = y0[2] - y0[0]
     tangential = trial_force(y0[6], d0, s0, par)
     if abs(tangential) > _cap(y0, par, 1.0):
-        return 1 if tangential > 0.0 else -1
+        return (1 if tangential > 0.0 else -1), y0
     n = y0.size
     f0, y_new, f_new = np.empty(n), np.empty(n), np.empty(n)
     rhs(y0, par, False, f0)
@@ -250,8 +252,8 @@ def _touch_phase(y0, rtol, atol, par):
     z = y_new if ok else y0
     tangential = trial_force(z[6], z[2] - z[0], slip(z, par), par)
     if abs(tangential) <= _cap(z, par, 1.0):
-        return STICK
-    return 1 if tangential > 0.0 else -1
+        return STICK, z
+    return (1 if tangential > 0.0 else -1), z
 
 
 @njit(cache=True, error_model="numpy")
@@ -285,7 +287,7 @@ def solve_contact(par, y0, rtol, atol, keep):
     capacity = _FIRST_CAPACITY if keep else 1
     warp, steps = _empty_store(n + 1, capacity), _empty_store(n, capacity)
     pieces = np.zeros((MAX_PHASES, 8))
-    phase = _touch_phase(y0, rtol, atol, par)
+    phase = _touch_phase(y0, rtol, atol, par)[0]
     t, y, touch = 0.0, y0.copy(), True
     for k in range(MAX_PHASES):
         par[PHASE] = phase

@@ -25,6 +25,7 @@ __all__ = [
     "STICK",
     "contact_value",
     "direction",
+    "elastic_force_rate",
     "events",
     "history_on_cap",
     "pack",
@@ -164,13 +165,19 @@ def history_rate(h, d, r, s, par):
 
 
 @njit(cache=True, error_model="numpy")
+def elastic_force_rate(h, d, r, s, par):
+    """Time derivative of the elastic part of :func:`trial_force` along a sticking path
+    [N/s] (:meth:`~contactlab.laws.TangentialLaw.elastic_force_rate`)."""
+    if par[FORCE_HISTORY] > 0.0:
+        return history_rate(h, d, r, s, par)
+    elastic = -_graded(d, par[KT], par[KT_EXPONENT]) * s
+    return elastic - _graded_slope(d, par[KT], par[KT_EXPONENT]) * r * h
+
+
+@njit(cache=True, error_model="numpy")
 def _trial_force_rate(h, d, r, s, s_rate, par):
     """Time derivative of :func:`trial_force` along a sticking path [N/s]."""
-    if par[FORCE_HISTORY] > 0.0:
-        elastic = history_rate(h, d, r, s, par)
-    else:
-        elastic = -_graded(d, par[KT], par[KT_EXPONENT]) * s
-        elastic -= _graded_slope(d, par[KT], par[KT_EXPONENT]) * r * h
+    elastic = elastic_force_rate(h, d, r, s, par)
     damping = _graded(d, par[ETA], par[ETA_EXPONENT]) * s_rate
     damping += _graded_slope(d, par[ETA], par[ETA_EXPONENT]) * r * s
     return elastic - damping

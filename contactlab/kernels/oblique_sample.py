@@ -5,9 +5,9 @@ and forces at any time.
 every step's interpolant, the packed parameters: arrays only) and evaluates states and
 forces at many times in one compiled pass (:func:`sample`): the output grid of
 :class:`~contactlab.ObliqueResult`, its peaks and its audit's quadrature nodes. Both
-phase loops fill it: the compiled one (:func:`contactlab.kernels.oblique_kernel.solve_contact`,
-LAMMPS' cap) and the Python one of :mod:`contactlab.solver.oblique` (Kratos' elastic cap),
-whose pieces :func:`contactlab.solver.oblique_phases.piece_phases` packs the same way.
+compiled phase loops fill it: LAMMPS' cap's (:func:`contactlab.kernels.oblique_kernel.
+solve_contact`) and Kratos' elastic cap's (:func:`contactlab.kernels.elastic_cap.
+solve_contact`, whose phase codes are the slides' signs).
 """
 
 import math

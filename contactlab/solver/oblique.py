@@ -17,8 +17,8 @@ F``.
 Coulomb friction makes the right-hand side switch between *sticking* (``h`` follows the
 law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigma mu N``,
 ``h`` slaved to the cap). Each phase is a smooth piece integrated with DOP853
-(:func:`contactlab.solver.adaptive.integrate_piece`, the adaptive solver's stepper, started in
-``s = t**(1/4)`` at the touch), ended by events located on the step interpolant:
+(the adaptive solver's stepper, started in ``s = t**(1/4)`` at the touch), ended by events
+located on the step interpolant:
 
 * the normal force falls to zero (contact end);
 * sticking: the trial force reaches ``+mu N`` or ``-mu N``;
@@ -27,18 +27,17 @@ law's rate, ``F`` the trial force) and *sliding* with sign ``sigma`` (``F = sigm
   step vanishes). ``dN/dt`` comes from central differences of the normal law (relative step
   1e-7: about 1e-13 relative error on smooth laws), the rest is exact. Kratos' cap of the
   elastic force alone (``coulomb_cap="elastic"``) has slides of its own
-  (:mod:`contactlab.solver.coulomb_cap`).
+  (:mod:`contactlab.kernels.elastic_cap_rhs`).
 
 At the touch (``N = 0``) the phase is that of LAMMPS' rule in the limit ``t -> 0+``: the
 history starts from zero and the contact slides only if the trial force along a sticking
-path exceeds ``mu N`` already (:meth:`ObliqueModel.touch_phase`).
+path exceeds ``mu N`` already (:func:`contactlab.kernels.oblique_kernel._touch_phase`).
 
-With LAMMPS' cap (``coulomb_cap="total"``, the default) the same phase loop, equations,
-events and touch rule run compiled on the normal solver's DOP853 kernel
-(:mod:`contactlab.kernels.oblique_kernel`, :mod:`contactlab.kernels.oblique_rhs`,
-:mod:`contactlab.kernels.oblique_events`; issue 25), shared with the batch
-(:func:`contactlab.batch.oblique_impacts`); Kratos' elastic cap still runs the Python loop
-of this module.
+The phase loop, equations, events and touch rule run compiled on the normal solver's
+DOP853 kernel (:mod:`contactlab.kernels.oblique_kernel`,
+:mod:`contactlab.kernels.oblique_rhs`, :mod:`contactlab.kernels.oblique_events`; issue 25),
+shared with the batch (:func:`contactlab.batch.oblique_impacts`); Kratos' elastic cap has
+its own phase loop on the same pieces (:mod:`contactlab.kernels.elastic_cap`).
 """
 
 import math
@@ -51,17 +50,13 @@ from contactlab.audit import warn_if_broken
 from contactlab.bodies import Grain, Sensor
 from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError, WindowWarning
+from contactlab.kernels.elastic_cap_rhs import pack as pack_elastic_cap
 from contactlab.kernels.oblique_kernel import tolerances
 from contactlab.kernels.oblique_rhs import pack
 from contactlab.kernels.power import pack as pack_normal
-from contactlab.kernels.segments import DenseStates
 from contactlab.laws import SmoothLaw, TangentialLaw
 from contactlab.plausibility import check_plausible
-from contactlab.solver.adaptive import integrate_piece
 from contactlab.solver.conventions import LEVER_ARMS
-from contactlab.solver.coulomb_cap import ELASTIC_SLIDE, FREE_SLIDE, cap_rules
-from contactlab.solver.coulomb_cap import sign as _sign
-from contactlab.solver.dop853 import Stepper
 from contactlab.solver.exact import free_flight
 from contactlab.solver.impact import (
     DEFAULT_SAMPLES,
@@ -69,27 +64,15 @@ from contactlab.solver.impact import (
     auto_window,
     check_output_size,
 )
-from contactlab.solver.oblique_phases import compiled_contact, grid_signals, piece_phases
+from contactlab.solver.oblique_phases import compiled_contact, grid_signals
 from contactlab.solver.system import System
 from contactlab.validation import check_choice, check_inertia_factor, check_number, keyword_checked
 
 __all__ = ["ObliqueModel", "simulate_oblique"]
 
-STICK = 0
-"""Phase code of a sticking contact (sliding phases are +1 and -1, the sign of F)."""
-
-MAX_PHASES = 1000
-"""Stick/slide switches after which the solver gives up (a chattering contact)."""
-
-_PROBE = 1e-6
-"""Fraction of the first step at which the phase at a touch is read."""
-
-_DIFF_STEP = 1e-7
-"""Relative step of the central differences of the normal law."""
-
 
 class ObliqueModel:
-    """Right-hand sides and event functions of the oblique impact, phase by phase.
+    """The oblique impact's bodies and laws, packed for the compiled phase loops.
 
     State ``y = [x1, v1, x2, v2, vt, w, h]``: sensor displacement and velocity, grain
     normal position and velocity, grain tangential velocity [m/s], spin [rad/s], and the
@@ -114,180 +97,26 @@ class ObliqueModel:
 
     def __init__(self, system, normal_law, tangential_law, radius, inertia, lever_arm="radius"):
         self.system, self.law = system, tangential_law.for_contact(normal_law, system.m2)
-        branch = normal_law.branch("load")
-        self.normal, self._form = branch.force, branch.power
+        self._form = normal_law.branch("load").power
         self.radius, self.inertia = radius, inertia
         self.contact_arm = lever_arm == "contact"
-        self.cap_rules = cap_rules(self)  # the slides of the law's Coulomb cap
 
-    def arm(self, overlap):
-        """Lever arm [m] at overlap ``d`` [m] (float or array): ``R`` or ``R - max(d, 0)``."""
-        if not self.contact_arm:
-            return self.radius
-        if isinstance(overlap, float):
-            return self.radius - max(overlap, 0.0)
-        return self.radius - np.maximum(overlap, 0.0)
-
-    def slip(self, states):
-        """Contact-point slip ``vt - arm w`` [m/s] of states ``[x1, v1, x2, v2, vt, w, ...]``
-        (a list of floats, or an array with the states along its last axis)."""
-        if isinstance(states, list):
-            return states[4] - self.arm(states[2] - states[0]) * states[5]
-        return states[..., 4] - self.arm(states[..., 2] - states[..., 0]) * states[..., 5]
-
-    # -- pieces of the right-hand side ----------------------------------------------------
     def pack(self):
-        """Packed parameters of the compiled solver (:func:`kernels.oblique_rhs.pack`)."""
+        """Packed parameters of the compiled solver (:func:`kernels.oblique_rhs.pack`, with
+        Kratos' cap :func:`kernels.elastic_cap_rhs.pack`; without tangential damping
+        Kratos' cap is LAMMPS' rule, the elastic force being the total, and LAMMPS' loop
+        takes it)."""
         sys_ = self.system
         normal = pack_normal(self._form, sys_.m1, sys_.k1, sys_.c1, sys_.m2, sys_.rigid)
-        return pack(normal, self.law.form(), self.radius, self.inertia, self.contact_arm)
-
-    def _normal_accelerations(self, x1, v1, n):
-        """(a1, a2): sensor and grain normal accelerations [m/s**2] under force ``n``."""
-        sys_ = self.system
-        a2 = -n / sys_.m2
-        if sys_.rigid:
-            return 0.0, a2
-        return (n - sys_.k1 * x1 - sys_.c1 * v1) / sys_.m1, a2
-
-    def tangential_force(self, phase, y):
-        """Tangential force F [N] on the grain in ``phase`` at state ``y`` (floats)."""
-        x1, _, x2, _, vt, w, h = y
-        d = x2 - x1
-        if phase == STICK:
-            return self.law.trial_force(h, d, vt - self.arm(d) * w)
-        return _sign(phase) * self.law.friction * max(self.normal(d, y[3] - y[1]), 0.0)
-
-    def rhs(self, phase):
-        """``y' = f(y)`` in ``phase`` (STICK, +1 or -1)."""
-        normal, law, arm, inertia = self.normal, self.law, self.arm, self.inertia
-        m2, mu = self.system.m2, law.friction
-        free = abs(phase) == FREE_SLIDE  # Kratos' cap: the history goes on while sliding
-
-        def f(y):
-            x1, v1, x2, v2, vt, w, h = y.tolist()
-            d, r = x2 - x1, v2 - v1
-            n = normal(d, r)
-            lever = arm(d)
-            slip = vt - lever * w
-            if phase == STICK:
-                force, dh = law.trial_force(h, d, slip), law.history_rate(h, d, r, slip)
-            else:
-                force = _sign(phase) * mu * max(n, 0.0)
-                dh = law.history_rate(h, d, r, slip) if free else 0.0
-            a1, a2 = self._normal_accelerations(x1, v1, n)
-            return np.array([v1, a1, v2, a2, force / m2, -lever * force / inertia, dh])
-
-        return f
-
-    def _normal_force_rate(self, d, r, r_rate):
-        """dN/dt [N/s] from central differences of the normal law in overlap and rate."""
-        normal = self.normal
-        hd = _DIFF_STEP * abs(d) if d != 0.0 else 1e-300
-        hr = _DIFF_STEP * max(abs(r), 1e-12)
-        n_d = (normal(d + hd, r) - normal(d - hd, r)) / (2.0 * hd)
-        n_r = (normal(d, r + hr) - normal(d, r - hr)) / (2.0 * hr)
-        return n_d * r + n_r * r_rate
-
-    def slide_exit(self, phase, y):
-        """``sigma dF_trial/dt - mu dN/dt`` [N/s]: sliding goes on while >= 0 (in an
-        elastic slide, the elastic force's rate instead of the trial force's)."""
-        x1, v1, x2, v2, vt, w, _ = y[:7]
-        d, r = x2 - x1, v2 - v1
-        n = self.normal(d, r)
-        cap = _sign(phase) * self.law.friction * max(n, 0.0)
-        lever = self.arm(d)
-        slip = vt - lever * w
-        a1, a2 = self._normal_accelerations(x1, v1, n)
-        rate = self.law.friction * self._normal_force_rate(d, r, a2 - a1)
-        if abs(phase) == ELASTIC_SLIDE:
-            history = self.law.history_of(cap, d)
-            return _sign(phase) * self.law.elastic_force_rate(history, d, r, slip) - rate
-        history = self.law.history_on_cap(cap, d, slip)
-        # s' = F (1/m + arm**2/I) - arm' w, and arm' = -d' for the contact arm
-        slip_rate = cap * (1.0 / self.system.m2 + lever**2 / self.inertia)
-        if self.contact_arm:
-            slip_rate += r * w
-        return _sign(phase) * self.law.trial_force_rate(history, d, r, slip, slip_rate) - rate
-
-    def events(self, phase):
-        """Event functions ``values(y) -> list`` and their crossing directions.
-
-        Event 0 is the contact end; in sticking, events 1 and 2 are the trial force
-        reaching ``+mu N`` and ``-mu N``; in sliding, the cap's
-        (:mod:`contactlab.solver.coulomb_cap`; LAMMPS': event 1 is the end of sliding).
-        """
-        normal, mu = self.normal, self.law.friction
-
-        if phase == STICK:
-
-            def values(y):
-                x1, v1, x2, v2 = y[:4].tolist()
-                n = normal(x2 - x1, v2 - v1)
-                force = self.tangential_force(STICK, y[:7].tolist())
-                return [_contact_value(n, x2 - x1), force - mu * n, -force - mu * n]
-
-            return values, [-1, +1, +1]
-
-        return self.cap_rules.events(phase, _contact_value)
-
-    def touch_phase(self, y0, first_step, rtol, atol):
-        """Phase at a touch: the limit ``t -> 0+`` of LAMMPS' rule.
-
-        The history starts at the touch and the force is capped only once the trial force
-        exceeds ``mu N``. A trial force already above the cap at the touch itself (a
-        damped spring's ``-eta s`` against a cap that starts at zero) slides. Otherwise
-        the contact sticks unless the trial force along a sticking path from the touch's
-        state exceeds the cap just after it: that path is followed for one short DOP853
-        step (a millionth of the first step); the ratio of an elastic trial force to the
-        cap is a power of time near the touch (constant for Hertz-Mindlin, growing for a
-        damped normal force), so the probe's length does not matter. (Reading a damped
-        spring at the probe instead chose sticking wherever the cap had outgrown
-        ``eta s`` by then, and broke Coulomb before it: issue 21's matrix.)
-        """
-        start = list(y0)
-        if self.slip(start) == 0.0:
-            return STICK
-        force = self.tangential_force(STICK, start)
-        cap = self.law.friction * max(self.normal(start[2] - start[0], start[3] - start[1]), 0.0)
-        if abs(force) > cap:
-            return self.cap_rules.slide_phase(+1 if force > 0.0 else -1, start)
-        probe_time = _PROBE * first_step
-        stepper = Stepper(self.rhs(STICK), 0.0, y0, rtol, atol, first_step=probe_time)
-        stepper.step(probe_time)
-        probe = stepper.y.tolist()
-        force = self.tangential_force(STICK, probe)
-        cap = self.law.friction * max(self.normal(probe[2] - probe[0], probe[3] - probe[1]), 0.0)
-        if abs(force) <= cap:
-            return STICK
-        return self.cap_rules.slide_phase(+1 if force > 0.0 else -1, probe)
-
-
-def _contact_value(normal_force, overlap):
-    """Contact-end event value: the normal force while the overlap is positive, a negative
-    value once it is not (one-sided contact: no force at ``d <= 0``).
-
-    The raw formulas keep their sign change at ``d = 0`` through signed powers, but
-    Hunt-Crossley's ``k d**n (1 + 1.5 chi d')`` has its second factor decay towards zero
-    exponentially on unloading (it never reaches it while ``d > 0``); with that factor a
-    rounding below zero, both factors change sign at ``d = 0`` and the force stays
-    positive, so the contact end was missed (found by the audit matrix, issue 21).
-    """
-    return normal_force if overlap > 0.0 else min(normal_force, 0.0) + overlap
-
-
-class ContactPiece:
-    """One phase of the contact: local dense states (n, 7) and the phase code."""
-
-    def __init__(self, t0, t1, phase, states):
-        self.t0, self.t1, self.phase, self.states = t0, t1, phase, states
+        form = self.law.form()
+        par = pack(normal, form, self.radius, self.inertia, self.contact_arm)
+        kratos = self.law.coulomb_cap == "elastic" and form.damping > 0.0
+        return pack_elastic_cap(par) if kratos else par
 
 
 def _solve_contact(model, y0, rtol, scale):
     """Integrate the contact from the touch to the separation; returns (contact phases,
-    y_end): compiled (:func:`contactlab.solver.oblique_phases.compiled_contact`) for
-    LAMMPS' Coulomb cap, in Python (:func:`contactlab.solver.adaptive.integrate_piece`)
-    for Kratos' elastic cap (:mod:`contactlab.solver.coulomb_cap`), not compiled yet."""
+    y_end), compiled (:func:`contactlab.solver.oblique_phases.compiled_contact`)."""
     velocity, force_scale = scale
     force_history = model.law.history_kind == "force"
     atol = tolerances(rtol, velocity, y0[3], force_scale, force_history, model.radius)
@@ -296,33 +125,7 @@ def _solve_contact(model, y0, rtol, scale):
             f"velocity = {velocity!r} m/s is too small for the integrator's absolute "
             "tolerances, which scale with it (they underflow to 0)"
         )
-    if model.law.coulomb_cap == "total":
-        return compiled_contact(model, y0, rtol, atol, velocity)
-    first = Stepper(model.rhs(STICK), 0.0, y0, rtol, atol).initial_step()
-    phase = model.touch_phase(y0, first, rtol, atol)
-    pieces, t, y, touch = [], 0.0, np.asarray(y0, dtype=float), True
-    for _ in range(MAX_PHASES):
-        values, directions = model.events(phase)
-        start, steps, switch, hit = integrate_piece(
-            model.rhs(phase), t, y, 1.0, rtol, atol, values, directions, touch
-        )
-        if hit is None:
-            raise ParameterError(
-                f"the contact had not ended after {t + 1.0:.4g} s, so this is not an impact: "
-                f"check the units of the grain (mass {model.system.m2:.4g} kg), the laws' "
-                f"parameters and the velocity ({velocity:.4g} m/s)"
-            )
-        states = DenseStates(t, steps, start, switch, size=7)
-        pieces.append(ContactPiece(t, hit[0], _sign(phase), states))
-        y = states(hit[0] - t)[0]
-        t, touch = hit[0], False
-        if hit[1] == 0:
-            return piece_phases(model.pack(), pieces), y
-        if phase == STICK:
-            phase = model.cap_rules.slide_phase(+1 if hit[1] == 1 else -1, y)
-        else:
-            phase = model.cap_rules.after_slide(phase, hit[1], y)
-    raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
+    return compiled_contact(model, y0, rtol, atol, velocity)
 
 
 def _check_inputs(grain, sensor, normal_law, tangential_law, velocity, angle, spin):

@@ -1,11 +1,11 @@
 """The solved contact of an oblique impact as data
 (:class:`~contactlab.kernels.oblique_sample.ContactPhases`).
 
-:func:`compiled_contact` runs :func:`contactlab.kernels.oblique_kernel.solve_contact` and
-keeps its phases and steps; :func:`piece_phases` packs the pieces of the Python phase
-loop (Kratos' elastic Coulomb cap, not compiled yet) into the same arrays, so the result
-holds one kind of data and evaluates it with one compiled sampler
-(:func:`contactlab.kernels.oblique_sample.sample`) whichever loop solved the contact.
+:func:`compiled_contact` runs the compiled phase loop of the law's Coulomb cap
+(:func:`contactlab.kernels.oblique_kernel.solve_contact` for LAMMPS' cap,
+:func:`contactlab.kernels.elastic_cap.solve_contact` for Kratos' elastic one) and keeps
+its phases and steps, which the result evaluates with one compiled sampler
+(:func:`contactlab.kernels.oblique_sample.sample`).
 """
 
 import math
@@ -13,6 +13,8 @@ import math
 import numpy as np
 
 from contactlab.errors import ParameterError
+from contactlab.kernels import elastic_cap
+from contactlab.kernels.elastic_cap_rhs import ELASTIC_CAP_MODEL
 from contactlab.kernels.oblique_kernel import (
     MAX_PHASES,
     STATUS_CHATTER,
@@ -21,9 +23,10 @@ from contactlab.kernels.oblique_kernel import (
     solve_contact,
 )
 from contactlab.kernels.oblique_sample import ContactPhases
+from contactlab.kernels.power import MODEL
 from contactlab.solver.adaptive import underflow_message
 
-__all__ = ["compiled_contact", "grid_signals", "piece_phases"]
+__all__ = ["compiled_contact", "grid_signals"]
 
 
 def compiled_contact(model, y0, rtol, atol, velocity):
@@ -44,7 +47,9 @@ def compiled_contact(model, y0, rtol, atol, velocity):
         Impact speed [m/s] (for the messages).
     """
     par = model.pack()
-    status, failed, y_end, table, count, warp, steps = solve_contact(
+    kratos = par[MODEL] == ELASTIC_CAP_MODEL
+    solve = elastic_cap.solve_contact if kratos else solve_contact
+    status, failed, y_end, table, count, warp, steps = solve(
         par, np.asarray(y0, dtype=float), rtol, atol, True
     )
     if status == STATUS_UNDERFLOW:
@@ -58,39 +63,6 @@ def compiled_contact(model, y0, rtol, atol, velocity):
     if status == STATUS_CHATTER:
         raise RuntimeError(f"more than {MAX_PHASES} stick/slip switches in one contact")
     return ContactPhases(par, table[:count], warp, steps), y_end
-
-
-def piece_phases(par, pieces):
-    """The :class:`ContactPhases` of the Python phase loop's pieces.
-
-    Parameters
-    ----------
-    par : numpy.ndarray
-        Packed parameters (:meth:`contactlab.solver.oblique.ObliqueModel.pack`).
-    pieces : list
-        Pieces with ``t0``, ``t1`` [s], ``phase`` (the sign of the force, 0 sticking) and
-        dense ``states`` (:class:`contactlab.kernels.segments.DenseStates` of 7 states).
-    """
-    table, warp, steps = np.zeros((len(pieces), 8)), [], []
-    counts = [0, 0]
-    for row, piece in zip(table, pieces, strict=True):
-        states = piece.states
-        row[:4] = piece.t0, piece.t1, piece.phase, states.switch
-        for first, kept, store, which in ((4, states.start, warp, 0), (6, states.steps, steps, 1)):
-            size = 0 if kept is None else kept.size
-            row[first], row[first + 1] = counts[which], counts[which] + size
-            counts[which] += size
-            if kept is not None:
-                store.append(kept.arrays())
-    return ContactPhases(par, table, _stacked(warp, 8), _stacked(steps, 7))
-
-
-def _stacked(parts, width):
-    """One store ``(count, t_old, h, y_old, F)`` of the kernel's layout from several."""
-    if not parts:
-        return 0, np.empty(0), np.empty(0), np.empty((0, width)), np.empty((0, 7, width))
-    t_old, h, y_old, F = (np.concatenate(arrays) for arrays in zip(*parts, strict=True))
-    return t_old.size, t_old, h, np.ascontiguousarray(y_old), np.ascontiguousarray(F)
 
 
 def grid_signals(contact, free, final, duration, sample_rate):

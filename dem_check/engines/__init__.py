@@ -43,7 +43,7 @@ from importlib.metadata import entry_points
 
 from contactlab.audit import warn_if_broken
 from contactlab.engines import GROUP, load_engine
-from dem_check.engines.config import engine_config
+from dem_check.engines.config import UNSET, engine_config
 from dem_check.engines.result import EngineResult
 
 __all__ = ["ENGINES", "EngineResult", "drop_test", "engine_module"]
@@ -60,7 +60,7 @@ engine_module = load_engine
 an unknown name raises ParameterError listing the valid ones)."""
 
 
-def drop_test(config, *fields, time_step=None, engine="bullet", **options):
+def drop_test(config, *fields, time_step=UNSET, engine="bullet", **options):
     """Drop the grain on the sensor in an engine and read the impact like the reduced model.
 
     Parameters

@@ -12,7 +12,7 @@ import numpy as np
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.tables import write_csv
-from dem_check.engines.config import engine_config
+from dem_check.engines.config import UNSET, engine_config
 
 __all__ = ["EngineChecks", "base_case_check", "convergence_study", "engine_check"]
 
@@ -173,7 +173,7 @@ class EngineChecks:
     def __init__(self, drop_test, name, notes):
         self.drop_test, self.name, self.notes = drop_test, name, tuple(notes)
 
-    def engine_check(self, config, *fields, time_step=None, tolerances=None, **options):
+    def engine_check(self, config, *fields, time_step=UNSET, tolerances=None, **options):
         """Run the impact in the engine and in the reduced model, and compare them
         (:func:`engine_check`: ``config`` an ImpactConfig; ``options`` are the engine's
         ``drop_test`` keywords; the deprecated ``grain, sensor, law, velocity[,
@@ -190,7 +190,7 @@ class EngineChecks:
             **options,
         )
 
-    def convergence_study(self, config, *fields, time_steps=None, **options):
+    def convergence_study(self, config, *fields, time_steps=UNSET, **options):
         """Errors of the engine against the reduced model as the time step shrinks
         (:func:`convergence_study`: ``config`` an ImpactConfig, ``time_steps`` [s];
         ``attrs["order"]``: the observed orders; the deprecated ``grain, sensor, law,

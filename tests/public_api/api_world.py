@@ -162,7 +162,7 @@ VALUES = {
     "fit": fit, "code": lambda: "lammps", "identification": lambda: _identification(),
     "reconstruction": lambda: _reconstruction(), "truth": lambda: None,
     "max_unknowns": lambda: 400, "regularization": lambda: "gcv", "fixed": lambda: {},
-    "noise_model": lambda: "ar",
+    "noise_model": lambda: "ar", "contact_edges": lambda: "significance",
     "laws": lambda: ("linear",), "y_pencil": _pulse, "seed": lambda: 0,
     # study, advisor
     "setup": setup, "overrides": lambda: {}, "factors": lambda: np.ones(3),

@@ -6,9 +6,10 @@ function, class and public method there, named by where it is defined
 (``contactlab.laws.hertz.Hertz.force``). :func:`baseline` builds a valid call of each: a
 required argument's value comes from :data:`VALUES` (by parameter name) or
 :data:`OVERRIDES` (by callable); an optional one keeps its default, and its kind (what a
-hostile value for it is) comes from the default or, for a ``None`` default, from the same
-tables. A callable none of this can call is a failure of ``test_api_coverage.py`` until
-it is given values or listed in :data:`EXEMPT` with a reason, so a new public function is
+hostile value for it is) comes from the default or, for a ``None`` default (or the engine
+entries' :data:`~dem_check.engines.config.UNSET`, "not given"), from the same tables. A
+callable none of this can call is a failure of ``test_api_coverage.py`` until it is given
+values or listed in :data:`EXEMPT` with a reason, so a new public function is
 never silently left out.
 """
 
@@ -28,6 +29,7 @@ import numpy as np
 import pytest
 
 from contactlab.errors import ContactlabWarning
+from dem_check.engines.config import UNSET
 
 sys.path.insert(0, str(Path(__file__).parent))  # the sibling modules below (importlib mode)
 
@@ -242,14 +244,15 @@ def baseline(name):
     arguments, kinds, missing = {}, {}, []
     for p in parameters(name, function):
         empty = p.default is inspect.Parameter.empty
+        omitted = p.default is None or p.default is UNSET
         try:
-            value = _value(name, p.name) if empty or p.default is None else p.default
+            value = _value(name, p.name) if empty or omitted else p.default
         except LookupError:
             missing.append(p.name)
             continue
         if empty:
             arguments[p.name] = value
-        kinds[p.name] = (_kind(name, p.name, value), None if empty else p.default)
+        kinds[p.name] = (_kind(name, p.name, value), None if empty or omitted else p.default)
     if missing:
         raise LookupError(f"{name}: no valid value for {', '.join(missing)}")
     if "**" in OVERRIDES.get(name, {}):

@@ -4,7 +4,7 @@ paper's base case (:mod:`dem_check.engines.check` with pybullet's drop test)."""
 from dem_check.engines import check
 from dem_check.engines.bullet.drop import drop_test
 from dem_check.engines.check import EngineChecks
-from dem_check.engines.config import engine_config
+from dem_check.engines.config import UNSET, engine_config
 
 __all__ = ["base_case_check", "convergence_study", "engine_check"]
 
@@ -13,8 +13,11 @@ _NOTES = ("contact_damping_passed [N*s/m]", "compensate_damping")
 
 _CHECKS = EngineChecks(drop_test, "bullet", _NOTES)
 
+TIME_STEPS = (4e-7, 2e-7, 1e-7, 5e-8)
+"""Default engine steps [s] of :func:`convergence_study`."""
 
-def engine_check(config, *fields, time_step=None, compensate_damping=False, tolerances=None):
+
+def engine_check(config, *fields, time_step=UNSET, compensate_damping=False, tolerances=None):
     """Run the impact in pybullet and in the reduced model, and compare them.
 
     Parameters
@@ -42,18 +45,22 @@ def engine_check(config, *fields, time_step=None, compensate_damping=False, tole
     )
 
 
-def convergence_study(
-    config, *fields, time_steps=(4e-7, 2e-7, 1e-7, 5e-8), compensate_damping=False
-):
+def convergence_study(config, *fields, time_steps=UNSET, compensate_damping=False):
     """Errors of pybullet against the reduced model as the time step shrinks.
 
-    ``config`` is an ImpactConfig and ``time_steps`` the engine steps [s] (the deprecated
-    ``grain, sensor, law, velocity[, time_steps]`` form warns). See
+    ``config`` is an ImpactConfig and ``time_steps`` the engine steps [s], default
+    :data:`TIME_STEPS` (the deprecated ``grain, sensor, law, velocity[, time_steps]`` form
+    warns; with ``time_steps`` also given as the keyword it is refused). See
     :func:`dem_check.engines.check.convergence_study`; ``attrs["compensate_damping"]``
     records the setting.
     """
     config, time_steps = engine_config(
-        config, fields, time_steps, "dem_check.bullet.convergence_study", last="time_steps"
+        config,
+        fields,
+        time_steps,
+        "dem_check.bullet.convergence_study",
+        last="time_steps",
+        default=TIME_STEPS,
     )
     frame = check.convergence_study(
         drop_test, config, time_steps, compensate_damping=compensate_damping

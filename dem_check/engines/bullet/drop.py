@@ -7,7 +7,7 @@ from contactlab.validation import check_number
 from dem_check.engines.bullet.limits import contact_time_estimate
 from dem_check.engines.bullet.run import read_steps, step_engine
 from dem_check.engines.bullet.scene import drop_scene
-from dem_check.engines.config import engine_config
+from dem_check.engines.config import UNSET, engine_config
 from dem_check.engines.record import step_limit
 
 __all__ = ["MAX_STEPS", "TAIL", "drop_test"]
@@ -24,7 +24,7 @@ TAIL = 20e-6
 def drop_test(
     config,
     *fields,
-    time_step=None,
+    time_step=UNSET,
     gravity=False,
     compensate_damping=False,
     gap=None,

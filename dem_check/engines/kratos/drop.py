@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 
 from contactlab.errors import ParameterError
-from dem_check.engines.config import engine_config
+from dem_check.engines.config import UNSET, engine_config
 from dem_check.engines.kratos.scene import drop_scene
 from dem_check.engines.kratos.session import kratos_version
 from dem_check.engines.kratos.stage import KratosRun
@@ -83,7 +83,7 @@ class _Stepper:
 def drop_test(
     config,
     *fields,
-    time_step=None,
+    time_step=UNSET,
     gap=None,
     duration=None,
     threshold=0.0,

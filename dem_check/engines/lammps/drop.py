@@ -2,7 +2,7 @@
 
 import time
 
-from dem_check.engines.config import engine_config
+from dem_check.engines.config import UNSET, engine_config
 from dem_check.engines.lammps.read import read_steps, recorded_columns
 from dem_check.engines.lammps.scene import drop_deck
 from dem_check.engines.lammps.session import LammpsSession
@@ -27,7 +27,7 @@ CHUNK_STEPS = 2000
 def drop_test(
     config,
     *fields,
-    time_step=None,
+    time_step=UNSET,
     gap=None,
     duration=None,
     threshold=0.0,

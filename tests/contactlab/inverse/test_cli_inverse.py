@@ -78,6 +78,14 @@ def test_reconstruct_with_resonance_and_with_config(files, capsys):
     assert data["parameters"]["noise_model"] == "white"
     assert main([*common, *sensor, "--noise-model", "white"]) == 0
     assert _json(capsys)["metrics"] == data["metrics"]
+    # the contact's edges: where the force is significant (default) or at 2 % of the
+    # peak; both within the 5 % of the contact time on this trace
+    assert data["parameters"]["contact_edges"] == "significance"
+    assert data["metrics"]["duration [s]"] == pytest.approx(truth.contact_time, rel=0.05)
+    assert main([*common, *sensor, "--contact-edges", "level"]) == 0
+    level = _json(capsys)
+    assert level["parameters"]["contact_edges"] == "level"
+    assert level["metrics"]["duration [s]"] == pytest.approx(truth.contact_time, rel=0.05)
     assert main([*common, "--sensor-config", str(model), "--method", "inverse"]) == 0
     data = _json(capsys)
     assert data["method"] == "inverse"

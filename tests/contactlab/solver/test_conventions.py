@@ -315,7 +315,7 @@ def test_every_convention_keeps_the_audits(
 def test_kratos_coulomb_cap_with_the_slip_at_rest_ends_and_keeps_the_replica():
     """Arm R, e = 0.98, 10 deg: near the contact's end the slide rests in slip and the saw
     tooth's cut stays near its smallest (0.1 % growth a tooth); the teeth in a row are
-    bounded (coulomb_cap.TEETH), the slide is LAMMPS' there, and the rebound keeps the
+    bounded (kernels.elastic_cap_rhs.TEETH), the slide is LAMMPS' there, and the rebound keeps the
     replica's: measured 4.5e-6, 1.1e-6, 2.8e-7 of vt in R w' at 8000, 32000, 128000 steps
     (first order), 664 phases, the full audit passes."""
     rules = Conventions("radius", "incremental_rescaled", "tied", "elastic")

@@ -16,8 +16,8 @@ SENSOR = cl.Sensor(mass=2e-3, stiffness=5e7, damping=2.0)
 
 
 def _kratos_like():
-    """Damped Hertz and a tied-damping Mindlin law with Kratos' elastic Coulomb cap (the
-    Python phase loop), at an angle that sticks, then slides."""
+    """Damped Hertz and a tied-damping Mindlin law with Kratos' elastic Coulomb cap (its
+    own compiled phase loop), at an angle that sticks, then slides."""
     normal = cl.laws.HertzDamped.from_material(*GRAIN.material(), 0.6, GRAIN.mass)
     tangential = cl.laws.Mindlin.from_material(
         *GRAIN.material(), 0.3, history="incremental", damping="tied", coulomb_cap="elastic"
@@ -47,8 +47,8 @@ def test_the_result_holds_no_solver_object_or_closure(elastic_cap):
 
 
 def test_the_elastic_cap_contact_samples_as_the_law_says(elastic_cap):
-    """The Python loop's pieces, packed into the compiled sampler's arrays, give the
-    tangential force the law's own Python methods give on the same states."""
+    """The elastic cap's compiled phases, read by the sampler, give the tangential force
+    the law's own Python methods give on the same states."""
     res, law = (
         elastic_cap,
         elastic_cap.tangential_law.for_contact(elastic_cap.normal_law, GRAIN.mass),

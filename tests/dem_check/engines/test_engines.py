@@ -11,7 +11,8 @@ from contactlab.config import ImpactConfig
 from contactlab.errors import ParameterError
 from dem_check import engines
 from dem_check.engines import ENGINES, bullet, drop_test, engine_module
-from dem_check.engines.config import engine_config
+from dem_check.engines.bullet.check import TIME_STEPS
+from dem_check.engines.config import UNSET, engine_config
 from dem_check.engines.result import contact_crossings
 
 
@@ -75,10 +76,40 @@ def test_the_checks_read_the_old_form_with_its_last_argument(case):
         r"f\(ImpactConfig\(grain, sensor, law, \{'velocity': velocity\}\), time_steps=\.\.\.\)"
     )
     with pytest.warns(DeprecationWarning, match=new_call):
-        config, read = engine_config(fields[0], (*fields[1:], steps), None, "f", "time_steps")
+        config, read = engine_config(fields[0], (*fields[1:], steps), UNSET, "f", "time_steps")
     assert (config.grain, config.sensor, config.law, config.velocity) == fields
     assert read == steps
     assert engine_config(case, (), steps, "f", "time_steps") == (case, steps)
+
+
+@pytest.mark.parametrize("last", ["time_step", "time_steps"])
+def test_the_old_forms_fifth_argument_beside_the_keyword_is_refused(case, last):
+    """The keyword was dropped silently in favour of the positional; now neither wins."""
+    fields = (case.sensor, case.law, case.velocity, 1e-7)
+    with pytest.raises(ParameterError, match=rf"{last} is given twice to f: .*\(1e-07\).*2e-07"):
+        engine_config(case.grain, fields, 2e-7, "f", last)
+    # the keyword's default tells "not given" from any value, None included
+    with pytest.raises(ParameterError, match=f"{last} is given twice"):
+        engine_config(case.grain, fields, None, "f", last)
+    with pytest.warns(DeprecationWarning):
+        assert engine_config(case.grain, fields, UNSET, "f", last)[1] == 1e-7
+
+
+def test_the_entries_refuse_both_before_running_an_engine(case):
+    fields = (case.grain, case.sensor, case.law, case.velocity, 1e-7)
+    with pytest.raises(ParameterError, match=r"time_step is given twice to dem_check\.drop_test"):
+        drop_test(*fields, time_step=2e-7)
+    with pytest.raises(ParameterError, match="time_step is given twice"):
+        bullet.drop_test(*fields, time_step=2e-7)
+    with pytest.raises(ParameterError, match="time_steps is given twice"):
+        bullet.convergence_study(*fields[:4], (1e-7, 5e-8), time_steps=(2e-7, 1e-7))
+
+
+def test_an_omitted_keyword_gives_the_entrys_default(case):
+    assert engine_config(case, (), UNSET, "f") == (case, None)
+    steps = engine_config(case, (), UNSET, "f", "time_steps", default=TIME_STEPS)
+    assert steps == (case, TIME_STEPS)
+    assert inspect.signature(bullet.convergence_study).parameters["time_steps"].default is UNSET
 
 
 @pytest.mark.parametrize("name", sorted(ENGINES))
