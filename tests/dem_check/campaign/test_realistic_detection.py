@@ -66,11 +66,14 @@ def _scenario(draw):
     onsets = first + np.concatenate([[0.0], np.cumsum(gaps[:-1])]) if count else np.array([])
     velocities = [draw(st.floats(0.2, 2.5)) for _ in range(count)]
     largest = 3.0 * 2.5 / 2.0  # the hard grain's peak signal at 2.5 m/s [N]
+    hum = draw(st.floats(0.0, 2.0))
+    # a record that starts at an impact under fast drift is a known limit (below), and so
+    # is hum of more than 1.5 sigma with drift over 15 (test_hum_and_drift_across_an_impact)
+    drift = draw(st.floats(0.0, 50.0 if first >= 1e-3 else 10.0))
     effects = Effects(
         pink=draw(st.floats(0.0, 2.0)) * NOISE,
-        # a record that starts at an impact under fast drift is a known limit (below)
-        drift=draw(st.floats(0.0, 50.0 if first >= 1e-3 else 10.0)) * NOISE,
-        hum=draw(st.floats(0.0, 2.0)) * NOISE,
+        drift=(min(drift, 15.0) if hum > 1.5 else drift) * NOISE,
+        hum=hum * NOISE,
         mains=draw(st.sampled_from([50.0, 60.0])),
         crosstalk=draw(st.floats(0.0, 0.03)),
         full_scale=draw(st.floats(0.8, 3.0)) * largest,
