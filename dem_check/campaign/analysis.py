@@ -11,8 +11,9 @@ noise are read on both sides of it:
   noise), with the same hysteresis so that only a return to zero ends it;
 - ``peak_sensor_force [N]``: the largest value of the low-passed signal (flat pass band) in
   that lobe;
-- ``impulse [N*s]``: the integral of the signal from the end of the baseline window to a
-  sensor period after the reconstructed contact's end, plus the fitted free ringing's
+- ``impulse [N*s]``: the integral of the signal from the local baseline's end (a tenth
+  of a sensor period before the onset) to a sensor period after the reconstructed
+  contact's end, plus the fitted free ringing's
   integral from there in closed form. The sensor returns to rest, so this is the impulse
   of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
@@ -73,6 +74,13 @@ period read the paper's fig6 grain (white noise 0.9 %, 5 MHz) to 3.2 % instead o
 but realistic records worse (a reconstructed peak 10 % off at 100 sigma with 1/f noise of
 0.3 sigma, against 1.1 %; ``benchmarks/bench_realistic.py``)."""
 
+ONSET_MARGIN = 0.1
+"""Sensor periods before the onset where the local baseline's window ends and the impulse
+integral starts [-] (2.5 us for a 40 kHz sensor: more than the onsets' error, 1.3-1.6
+samples at 1-2 MHz and 1.5 us at 5 MHz, 30-100 sigma). The detection's baseline window
+ends 4-35 us before the onset; 1/f noise under the pulse is best read on the samples
+nearest it, and each sample integrated before the onset adds noise only."""
+
 RECONSTRUCTION_BASELINE = 5.0
 """Sensor periods of a baseline before the impact given to the reconstruction [-] (at
 least 64 samples: its noise to 10 %)."""
@@ -128,7 +136,9 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     # (contactlab.inverse.reconstruct_force's window)
     contact_end = 2.0 * lobe[1] - lobe[0]
     local = _local(t, record, window, contact_end, sensor)
-    detrended = record - local.values
+    # the reconstruction reads its noise model on the detection's baseline window: it
+    # gets the record less the line fitted there
+    detrended = record - _local(t, record, window, contact_end, sensor, near_onset=False).values
     # the low-passed record less the local baseline: ``flat`` is the low-passed record
     # less the running baseline (record - raw), which the low-pass leaves unchanged
     lowpassed = flat + (record - raw) - local.values
@@ -142,11 +152,17 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     return numbers, detrended, contact_end
 
 
-def _local(t, record, window, contact_end, sensor):
+def _local(t, record, window, contact_end, sensor, near_onset=True):
     """The impact's local baseline (:func:`dem_check.campaign.local.local_baseline`),
-    its ringing fitted from ``contact_end`` [s]."""
-    start = window.baseline_window[1] if window.start is None else window.start
-    return local_baseline(t, record, window.baseline_window, start, contact_end, window.end, sensor)
+    its ringing fitted from ``contact_end`` [s]; a baseline before the impact is read up
+    to :data:`ONSET_MARGIN` periods before the onset, where the impulse integral starts
+    (``near_onset=False``: to the detection's baseline window's end)."""
+    base = window.baseline_window
+    if near_onset and base[1] <= window.onset:
+        end = max(base[1], window.onset - ONSET_MARGIN * sensor.period)
+        return local_baseline(t, record, (base[0], end), end, contact_end, window.end, sensor)
+    start = base[1] if window.start is None else window.start
+    return local_baseline(t, record, base, start, contact_end, window.end, sensor)
 
 
 def _reconstruction_part(t, base, end, sensor):

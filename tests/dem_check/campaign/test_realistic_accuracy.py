@@ -33,7 +33,9 @@ peak signal 0.7 %, impulse 0.5 %, reconstructed peak 1.1 %, contact time 2.5 %).
 FORCE_TARGETS = 30.0
 """Significance from which impulse, reconstructed peak and contact time hold [-]
 (measured at 30-100: 3.5 %, 3.0 %, 4.2 %; the peak signal reaches 2.2 % and the onset 4.6
-samples there, docs/campaign.md)."""
+samples there; with the local baseline read up to the onset, impulse 2.0 % and peak
+signal 1.6 %, which the bound allows only from 35 sigma: docs/campaign.md, "What
+accuracy is possible")."""
 
 
 def _record(hard_setup, crosstalk):

@@ -1,0 +1,117 @@
+"""What accuracy of the peak signal and the impulse is possible on realistic records.
+
+For the impacts of ``benchmarks/bench_realistic.py --accuracy`` (the hard grain on the
+40 kHz sensor, contact 100 us; white noise 0.03 N, hum 1.5 sigma, 1/f noise of 1, 0.3 or
+0 times the white noise on a 25 ms record) at 1, 2 and 5 MHz, the standard deviation of
+the best linear unbiased estimator of the peak signal and of the impulse
+(:mod:`dem_check.campaign.bounds`: generalised least squares with the noise's true
+covariance; the Cramer-Rao bound for Gaussian noise) under three models of the signal:
+the contact law's (velocity, stiffness, damping, first touch unknown), any signal below
+twice the sensor's resonance over the contact window then the free ringing ("band"),
+and any signal in the contact window ("free", impulse only; the peak on one free
+sample is that sample's noise less what its neighbours predict). Every model has a line
+for the baseline. Printed relative to the truth at a significance (peak signal over
+``sqrt(white**2 + pink**2)``) of 30 and 100: the errors scale as 1 / significance.
+
+The segment read: 16 sensor periods before the first touch, the contact window (first
+touch to one period after the contact's end) and 16 periods after it.
+
+Run: ``.venv/bin/python benchmarks/bench_bounds.py``
+"""
+
+import math
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+
+import contactlab as cl
+from contactlab.config import load_config
+from dem_check.campaign import Effects
+from dem_check.campaign.bounds import (
+    band_design,
+    blue_variance,
+    free_variance,
+    law_design,
+    noise_autocovariance,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+WHITE = 0.03  # [N], as bench_realistic.py
+RECORD = 25e-3  # [s] length of bench_realistic.py's records (4 impacts 4-7 ms apart)
+VELOCITY = 1.5  # [m/s] (the relative bounds at a given significance do not depend on it)
+PERIODS = 16.0  # sensor periods read on either side
+
+
+def _model():
+    config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
+    return config.grain, config.sensor, cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
+
+
+def bounds(rate, pink):
+    """Standard deviations [N], [N*s] of the peak and impulse under the three models,
+    the truth and the noise scale."""
+    grain, sensor, law = _model()
+    contact = cl.simulate_impact(grain, sensor, law, VELOCITY).contact_time
+    dt = 1.0 / rate
+    onset = PERIODS * sensor.period
+    window = (onset, onset + contact + sensor.period)
+    t = np.arange(round((window[1] + PERIODS * sensor.period) / dt)) * dt
+    effects = Effects.everything(WHITE, 3.0, pink=pink * WHITE)
+    autocovariance = noise_autocovariance(t.size, dt, WHITE, effects, RECORD)
+    design, functionals, (peak, impulse) = law_design(grain, sensor, law, VELOCITY, t, onset)
+    law_sd = np.sqrt(blue_variance(autocovariance, design, functionals))
+    top = int(np.argmin(np.abs(design[:, 0] * VELOCITY - peak)))  # the sample nearest the peak
+    band, terms = band_design(t, window, 2.0 * sensor.resonance, sensor)
+    w, zeta = sensor.angular_frequency, sensor.damping_ratio
+    inside = (t >= window[0]) & (t < window[1])
+    tail = np.zeros(band.shape[1])
+    tail[terms : terms + 2] = (zeta * w / w**2, math.sqrt(1.0 - zeta**2) * w / w**2)
+    signal = band.copy()
+    signal[:, terms:] = 0.0  # the signal's columns only: the ringing's enters by its tail
+    band_functionals = np.column_stack([signal[top], signal[inside].sum(axis=0) * dt + tail])
+    band_sd = np.sqrt(blue_variance(autocovariance, band, band_functionals))
+    baseline = band[:, terms:]  # the ringing and the line: the signal is free inside
+    free_impulse = free_variance(
+        autocovariance, ~inside, inside, baseline, inside * dt, tail[terms:]
+    )
+    single = np.zeros(t.size)
+    single[top] = 1.0
+    free_peak = free_variance(autocovariance, ~inside, inside, baseline, single, 0.0 * tail[terms:])
+    return {
+        "law": law_sd,
+        "band": band_sd,
+        "free": (math.sqrt(free_peak), math.sqrt(free_impulse)),
+        "truth": (peak, impulse),
+        "noise": math.hypot(WHITE, pink * WHITE),
+    }
+
+
+def main():
+    print(f"load average {os.getloadavg()[0]:.1f}")
+    print("standard deviation of the best linear unbiased estimator, % of the truth")
+    header = "| rate | 1/f | significance | peak: law | band | one free sample | "
+    print(header + "impulse: law | band | free |")
+    for pink in (1.0, 0.3, 0.0):
+        for rate in (1e6, 2e6, 5e6):
+            started = time.perf_counter()
+            found = bounds(rate, pink)
+            peak, impulse = found["truth"]
+            for significance in (30.0, 100.0):
+                scale = significance * found["noise"] / peak  # amplitude of that significance
+                cells = [
+                    100.0 * found[m][k] / (scale * (peak, impulse)[k])
+                    for k in (0, 1)
+                    for m in ("law", "band", "free")
+                ]
+                print(
+                    f"| {rate / 1e6:g} MHz | {pink:g} | {significance:g} | "
+                    + " | ".join(f"{c:.2f}" for c in cells)
+                    + " |"
+                )
+            print(f"  ({time.perf_counter() - started:.1f} s)")
+
+
+if __name__ == "__main__":
+    main()
