@@ -84,7 +84,7 @@ def speed():
     print(f"{len(record.trace)} samples, {len(record.truth)} true impacts (with bounces)")
     print(f"run_campaign: {total:.2f} s ({total / read:.0f} x reading the file, {read:.3f} s)")
     print(f"run_campaign CPU time of this process: {cpu:.2f} s (wall time on a loaded machine")
-    print("  is larger; set OPENBLAS_NUM_THREADS=1 on a shared machine)")
+    print("  is larger; run_campaign keeps BLAS to one thread itself)")
     print(f"load average after the run: {load:.1f} (1 min)")
     for stage, seconds in result.timings.items():
         print(f"  {stage}: {seconds:.2f} s")

@@ -142,7 +142,9 @@ def _without_baseline(trace, sensor, k, crosstalk):
     status = "ok"
     if not sensor.is_rigid:
         try:
-            pulse = pulse_baseline(t, values, sensor, window, k, crosstalk=crosstalk)
+            pulse = pulse_baseline(
+                t, values, sensor, window, k, crosstalk=crosstalk, first_touch=False
+            )  # the baseline only: the waveforms are aligned by their own crossing
         except ParameterError as exc:  # e.g. a noise-free trace: no noise to fit against
             status = f"no local baseline ({exc})"
         else:

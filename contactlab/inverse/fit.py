@@ -137,7 +137,8 @@ def _pulse(t, y, sensor, baseline_window, crosstalk):
     a pre-trigger the samples before the pulse it finds)."""
     if baseline_window is None and np.count_nonzero(t < 0.0) >= BASELINE_MIN_SAMPLES:
         baseline_window = clean_noise_window(t, y)
-    pulse = pulse_baseline(t, y, sensor, baseline_window, crosstalk=crosstalk)
+    # the law's fit adjusts its own onset on the whole pulse: no first touch needed here
+    pulse = pulse_baseline(t, y, sensor, baseline_window, crosstalk=crosstalk, first_touch=False)
     if pulse.status.startswith("short pre-trigger"):
         raise ParameterError(
             f"the pulse starts at {pulse.onset:.6g} s, with fewer than {BASELINE_MIN_SAMPLES} "

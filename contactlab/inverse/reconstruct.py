@@ -271,6 +271,7 @@ def reconstruct_force(
     noise_model=None,
     contact_edges=None,
     flank_exponent=1.0,
+    first_touch=True,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -323,6 +324,11 @@ def reconstruct_force(
         Remove the structure's crosstalk with the baseline (modes found on the ringing
         after the contact; :func:`contactlab.inverse.pulse.pulse_baseline`), the modes
         removed named in ``notes``; off for a record already rid of it (a campaign's).
+    first_touch : bool, default True
+        Fit the pulse's first touch on its whole lobe
+        (:func:`contactlab.inverse.lobe_onset.single_onset`; 0.6 s of CPU) and report it
+        as ``first_touch [s]``, ``first_touch_bound [s]`` and ``first_touch_shape``; off
+        where the onset is fitted elsewhere (a campaign's, per record).
     noise_model : {"ar", "white"}, optional
         The noise the Tikhonov estimate assumes (default :data:`DEFAULT_NOISE_MODEL`,
         ``"ar"``). ``"ar"``: an autoregressive model of the block means over the
@@ -424,7 +430,9 @@ def reconstruct_force(
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, unit="N")
         contact_edges = "level"  # a level the user gave is read as given
-    pulse = pulse_baseline(t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk)
+    pulse = pulse_baseline(
+        t, y, sensor, baseline_window, ONSET_SIGMAS, crosstalk=crosstalk, first_touch=first_touch
+    )
     y = y - pulse.values
     noise, onset, base = pulse.noise, pulse.onset, pulse.window
     quiet = y[signals.in_window(t, base)]
@@ -463,6 +471,7 @@ def reconstruct_force(
             "post_window [s]": list(pulse.post),
             "noise [N]": noise,
             "onset [s]": onset,
+            **(pulse.first_touch.parameters() if first_touch else {}),
             "contact_edges": contact_edges,
             "threshold [N]": threshold,
             "sensor_resonance [Hz]": sensor.resonance,

@@ -288,6 +288,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
             baseline_window=base,
             max_unknowns=_unknowns(window.onset, contact_end, sensor),
             crosstalk=False,  # removed above, with the record's modes (or kept on request)
+            first_touch=False,  # the onset was fitted per record (dem_check.campaign.onsets)
         )
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))

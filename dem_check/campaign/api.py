@@ -6,11 +6,11 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
+from threadpoolctl import threadpool_limits
 
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
-from contactlab.inverse import FIT_MODELS
-from contactlab.inverse import onset as onset_fit
+from contactlab.inverse import FIT_MODELS, lobe_onset
 from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise, onsets
@@ -256,8 +256,8 @@ def _settings(paths, options, metadata):
             "smoothing -3 dB [Hz]": detection.CUTOFF_FACTOR * sensor.resonance,
             "false alarms per record": detection.FALSE_ALARMS,
             "onset [sigma]": detection.ONSET_SIGMAS,
-            "onset fit window end [fraction of the peak]": onset_fit.RISE_FRACTION,
-            "onset fit shape read on [impacts]": onsets.SHAPE_IMPACTS,
+            "onset fit: contact family read on [impacts]": onsets.FAMILY_IMPACTS,
+            "onset fit: families [-]": sorted(lobe_onset.FAMILIES),
             "running baseline block [sensor periods]": noise.BLOCK_PERIODS,
             "running baseline block, fewest [samples]": noise.BLOCK_MIN_SAMPLES,
             "min_force [N]": options["limits"]["min_force"],
@@ -378,6 +378,10 @@ def run_campaign(
     file_rows = [_file_row(p.file, p.status, p.reason) for p in problems]
     impact_rows, gallery_traces, records = [], {}, {}
     bar = _Progress(len(files), progress)
+    # One BLAS thread: each impact's linear algebra is small (a few hundred unknowns), where
+    # threads cost more than they give (1.5 M-sample record, 2 cores, load 1: 7.0 s with
+    # one thread, 10-14 s with OpenBLAS' default; docs/campaign.md, Speed).
+    blas = threadpool_limits(limits=1, user_api="blas")
     try:
         for path in files:
             try:
@@ -393,6 +397,7 @@ def run_campaign(
             bar.file_done()
     finally:
         bar.close()
+        blas.restore_original_limits()
     _check_channel_found(channel, file_rows[len(problems) :])
     started = time.perf_counter()
     impacts = _impact_table(impact_rows)

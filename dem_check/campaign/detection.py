@@ -36,8 +36,8 @@ in newtons:
    record that starts at the hit, or an impact right after another's ringing) takes its
    baseline from the quiet samples after its ringing decayed: status
    ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
-   (:mod:`dem_check.campaign.onsets`: the sensor's response to the force's start), which
-   the crossing lags.
+   (:mod:`dem_check.campaign.onsets`: a contact family's force through the sensor, on
+   the whole first lobe), which the crossing lags.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
@@ -142,7 +142,8 @@ class ImpactWindow:
     ``"below min_force"``, ``"too close"`` or ``"offset step"`` (a row of
     :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
     reason: str = ""
-    """Why the status is not ``"ok"`` (empty when it is)."""
+    """Why the status is not ``"ok"`` (empty when it is), and for an analysed impact
+    whose onset could not be fitted, that it is the crossing and why."""
     significance: float = float("nan")
     """Peak of the smoothed signal over its local noise [-]."""
     peak: float = float("nan")
@@ -224,9 +225,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         Shortest time between two impacts' onsets [s]; a candidate closer to the one
         before gets status ``"too close"``.
     fit_onsets : bool, default True
-        Give each analysed impact the onset of a fit of the sensor's response to its
-        rise (:mod:`dem_check.campaign.onsets`); ``False`` keeps the smoothed signal's
-        crossing of :data:`ONSET_SIGMAS` (step 4), which lags the first touch.
+        Give each analysed impact the onset of a fit of its first lobe
+        (:mod:`dem_check.campaign.onsets`; where it fails, the crossing with a note in
+        ``reason``); ``False`` keeps the smoothed signal's crossing of
+        :data:`ONSET_SIGMAS` (step 4), which lags the first touch.
 
     Returns
     -------
