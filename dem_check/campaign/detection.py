@@ -3,12 +3,13 @@
 A record holds impacts separated by stretches without one. The steps, all on the record
 in newtons:
 
-0. **Offset steps** (:mod:`dem_check.campaign.steps`): after a first pass (steps 1-3),
-   level changes that persist are found on the record's period means outside the
-   impacts found, and on a run that lasts to the record's end; each is taken off the
-   record (the samples after it shifted back) and listed in :attr:`Detection.steps` with
-   status ``"offset step"``, and steps 1-6 run again on what is left. Not on records with
-   fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period.
+0. **Offset steps** (:func:`dem_check.campaign.step_runs.search_steps`): after a first
+   pass (steps 1-3), level changes that persist are found on runs that are one or two
+   steps, on the period means outside the impacts, and on runs from the record's start
+   or to its end; each is taken off the record and listed in :attr:`Detection.steps`
+   with status ``"offset step"``; searched again on what is left (up to ``PASSES``),
+   then steps 1-6 run on it. Not with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples
+   per sensor period.
 1. **Baseline and local noise** (:mod:`dem_check.campaign.noise`): a running baseline of
    block medians follows drift, wander, offset steps and slow hum; the local noise is
    the MAD of the residual per block (the largest of a block and its neighbours), so hum,
@@ -72,7 +73,8 @@ from dem_check.campaign.noise import (
     noise_floor,
 )
 from dem_check.campaign.onsets import first_touches
-from dem_check.campaign.steps import edge_steps, find_steps, remove_steps
+from dem_check.campaign.step_runs import search_steps
+from dem_check.campaign.steps import PASSES, merge_steps, remove_steps
 
 __all__ = [
     "ANALYSED",
@@ -244,27 +246,20 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     fit_onsets = check_flag("fit_onsets", fit_onsets)
     stage = _candidates(trace, sensor)
     period = stage["scales"]["period"]
-    mask = np.zeros(len(trace), dtype=bool)
-    for first, last in stage["runs"]:
-        # a run to the record's end is left in: a step there that the running baseline
-        # missed reads as such a run, and the levels on both sides of it are needed
-        if last + stage["scales"]["hold"] < len(trace):  # with the lobe's rise before
-            mask[max(0, first - 2 * period) : last + stage["scales"]["hold"] + 1] = True
-    steps = []
-    if period >= RESOLVED_PERIOD_SAMPLES:  # a period's mean averages its ringing out
-        steps = find_steps(stage["finite"], period, mask)
-        edges = edge_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"])
-        # an edge step's height is read on all the samples after it: it replaces a step
-        # found on the period means' shortened windows there
-        near = [e.window[0] - period for e in edges]
-        steps = [s for s in steps if all(s.index < at for at in near)] + edges
-        steps.sort(key=lambda step: step.index)
-    if steps:
+    steps, given = [], trace
+    ring = (sensor, float(trace.t[1] - trace.t[0]))  # a step across an impact: its ringing
+    for _ in range(PASSES if period >= RESOLVED_PERIOD_SAMPLES else 0):
+        # a period's mean averages its ringing out; a step taken off can leave the
+        # next pass a run that shows another (one near the record's start)
+        more = search_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"], ring)
+        if not more:
+            break
+        steps = merge_steps(steps + more, max(1, period // 8))
         removed = {
             "step": "offset_steps_removed",
-            "steps": [(float(trace.t[s.index]), s.height) for s in steps],
+            "steps": [(float(given.t[s.index]), s.height) for s in steps],
         }
-        trace = trace.derive(removed, values=remove_steps(trace.values, steps))
+        trace = given.derive(removed, values=remove_steps(given.values, steps))
         stage = _candidates(trace, sensor)
     floor, smoothed, ratio, runs = (stage[k] for k in ("floor", "smoothed", "ratio", "runs"))
     t = smoothed.t
@@ -334,6 +329,13 @@ def _step_row(step, t):
         "sensor's ringing); the record after it was shifted back before impacts were "
         "looked for"
     )
+    if step.lobe is not None:
+        reason += (
+            f"; it lies somewhere inside the impact's main lobe from "
+            f"{float(t[step.lobe[0]]):.6g} to {float(t[step.lobe[1] - 1]):.6g} s and cannot "
+            "be told from the impact there: placed at the lobe's middle, the impact's "
+            "samples between it and the true step read its height off"
+        )
     return ImpactWindow(
         at,
         (np.nan, np.nan),

@@ -29,9 +29,12 @@ explicitly:
    sensor period (samples far from both levels, an impact's main lobe, count for
    neither).
 
-Each step is taken off the record (the later samples shifted by its height) and the
-impacts are then found on what is left; each is listed as a row with status
-``"offset step"`` (:func:`dem_check.campaign.detection.find_impacts`).
+A step found across an impact is placed with the sensor's free ringing fitted
+(:mod:`dem_check.campaign.step_ringing`). Runs of the first pass that are steps are
+:mod:`dem_check.campaign.step_runs`'s; runs from the record's start or to its end are
+:func:`edge_steps`'. Each step is taken off the record (the later samples shifted by its
+height) and the impacts are then found on what is left; each is listed as a row with
+status ``"offset step"`` (:func:`dem_check.campaign.detection.find_impacts`).
 """
 
 from dataclasses import dataclass
@@ -40,14 +43,21 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.step_ringing import place_across
 
 __all__ = [
     "STEP_SIGMAS",
     "WINDOW_PERIODS",
     "OffsetStep",
+    "block_levels",
+    "drift_slopes",
     "edge_steps",
     "find_steps",
+    "level_error",
+    "merge_steps",
+    "period_noise",
     "remove_steps",
+    "split",
 ]
 
 WINDOW_PERIODS = 16
@@ -93,6 +103,10 @@ class OffsetStep:
     window: tuple
     """``(first, stop)`` sample indices searched for it (the two windows' inner
     ends)."""
+    lobe: tuple = None
+    """``(first, stop)`` sample indices of the impact's main lobe it lies in, somewhere,
+    when it cannot be told from the impact there (placed at the lobe's middle); else
+    None (:mod:`dem_check.campaign.step_ringing`)."""
 
 
 def _window_medians(levels, size):
@@ -119,7 +133,7 @@ def _running_nanmedian(values, half):
     return out
 
 
-def _block_levels(values, period, masked):
+def block_levels(values, period, masked):
     """Mean of each block of ``period`` samples left after the mask, with its first
     sample index and centre index."""
     firsts = np.arange(0, values.size, period)
@@ -159,7 +173,7 @@ def _level_changes(levels, firsts, stops):
     return {"height": corrected, "significance": significance, "slope": slope, "level": level}
 
 
-def _split(x, level, height, noise):
+def split(x, level, height, noise):
     """Index in ``x`` of the least-absolute-deviation split between ``level`` and
     ``level + height``, samples far from both left out, and how many were left out."""
     old, new = x - level, x - (level + height)
@@ -181,14 +195,14 @@ def _place(values, period, window, boundary, change, noise):
         return x - slope * (np.arange(lo, hi) - boundary)
 
     averaged = uniform_filter1d(values[first:stop], period, mode="nearest")
-    coarse = first + _split(levelled(first, stop, averaged), level, height, noise[0])[0]
+    coarse = first + split(levelled(first, stop, averaged), level, height, noise[0])[0]
     lo, hi = max(first, coarse - period), min(stop, coarse + period)
-    fine, far = _split(levelled(lo, hi, values[lo:hi]), level, height, noise[1])
+    fine, far = split(levelled(lo, hi, values[lo:hi]), level, height, noise[1])
     return lo + fine if 2 * far < hi - lo else coarse
 
 
-def _one_pass(values, period, masked):
-    levels, firsts, stops = _block_levels(values, period, masked)
+def _one_pass(values, period, masked, ring):
+    levels, firsts, stops = block_levels(values, period, masked)
     if levels.size < 2:
         return []
     changes = _level_changes(levels, firsts, stops)
@@ -211,11 +225,20 @@ def _one_pass(values, period, masked):
         window = (int(firsts[lo]), int(stops[hi]))
         change = (changes["level"][k], changes["slope"][k], changes["height"][k])
         index = _place(values, period, window, int(firsts[k + 1]), change, noise)
-        found.append(OffsetStep(index, float(changes["height"][k]), float(significance[k]), window))
+        lobe = None
+        if ring is not None and masked[window[0] : window[1]].any():  # across an impact
+            first, stop = window
+            x = values[first:stop] - change[1] * (np.arange(first, stop) - firsts[k + 1])
+            placed = place_across(x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring)
+            if placed is not None:
+                index = first + placed[0]
+                lobe = None if placed[1] is None else tuple(first + i for i in placed[1])
+        height, sigmas = float(changes["height"][k]), float(significance[k])
+        found.append(OffsetStep(index, height, sigmas, window, lobe))
     return found
 
 
-def find_steps(values, period, masked):
+def find_steps(values, period, masked, ring=None):
     """The DC offset steps of a record (module docstring).
 
     Parameters
@@ -226,6 +249,10 @@ def find_steps(values, period, masked):
         The sensor's period [samples], >= 1.
     masked : numpy.ndarray of bool
         Samples of the impacts found on a first pass, with their ringing.
+    ring : tuple, optional
+        ``(sensor, dt)``: the sensor and the sampling interval [s]; a step found across
+        an impact is then placed with the sensor's free ringing fitted
+        (:func:`dem_check.campaign.step_ringing.place_across`).
 
     Returns
     -------
@@ -236,18 +263,34 @@ def find_steps(values, period, masked):
     """
     found, rest = [], np.asarray(values, dtype=float)
     for _ in range(PASSES):
-        more = _one_pass(rest, period, masked)
+        more = _one_pass(rest, period, masked, ring)
         if not more:
             break
         found += more
         rest = remove_steps(rest, more)
-    return sorted(found, key=lambda step: step.index)
+    return merge_steps(found, max(1, period // 8))
+
+
+def drift_slopes(values, period, masked):
+    """The drift's slope at every sample [N per sample]: that of the period means'
+    level changes (module step 3) at each boundary, interpolated between them (0 where
+    the record holds too few blocks)."""
+    levels, firsts, stops = block_levels(np.asarray(values, dtype=float), period, masked)
+    if levels.size < 2:
+        return np.zeros(len(values))
+    slope = _level_changes(levels, firsts, stops)["slope"]
+    return np.interp(np.arange(len(values)), firsts[1:], slope)
 
 
 def edge_steps(values, runs, period, reach):
-    """Steps that the first pass read as a run to the record's last sample: from the
-    step on, the record stays at one level, as flat as the noise before it, where an
-    impact's main lobe and ringing are not.
+    """Steps that the first pass read as a run to the record's last sample, or from its
+    first: on one side of the step the record stays at one level, as flat as the noise on
+    the other side, where an impact's main lobe and ringing are not.
+
+    A step near an edge leaves few samples on that side, so its height is known less
+    well: it must reach :data:`STEP_SIGMAS` standard errors of the difference of the two
+    levels, each the period means' noise over the periods it spans
+    (:func:`level_error`).
 
     Parameters
     ----------
@@ -263,7 +306,39 @@ def edge_steps(values, runs, period, reach):
     Returns
     -------
     list of OffsetStep
+        In time order.
     """
+    values = np.asarray(values, dtype=float)
+    n = values.size
+    noise = period_noise(values, period)
+    found = _end_steps(values, runs, period, reach, noise)
+    # a step near the start is one near the end of the record read backwards: its index
+    # there is where the old level ends, and its height changes sign
+    mirrored = [(n - 1 - last, n - 1 - first) for first, last in runs]
+    for step in _end_steps(values[::-1], mirrored, period, reach, noise, start_side=True):
+        window = (0, n - step.window[0])
+        found.append(OffsetStep(n - step.index, -step.height, step.significance, window))
+    return sorted(found, key=lambda step: step.index)
+
+
+def period_noise(values, period):
+    """Noise of one period's mean of the record [N], on first differences of the means
+    (drift and steps move few of them)."""
+    means = uniform_filter1d(values, period, mode="nearest")[period // 2 :: period]
+    if means.size < 3:
+        return robust_noise(values)
+    return MAD_TO_SIGMA * float(np.median(np.abs(np.diff(means)))) / np.sqrt(2.0)
+
+
+def level_error(noise, period, samples):
+    """Standard error [N] of a level read on ``samples`` samples: the period means'
+    noise over the periods they span, ``noise * sqrt(period / samples)`` (exact for
+    white noise, fewer than a period included)."""
+    return noise * np.sqrt(period / samples)
+
+
+def _end_steps(values, runs, period, reach, noise, start_side=False):
+    """:func:`edge_steps` at the record's end: runs to its last sample."""
     size = WINDOW_PERIODS * period
     found = []
     for first, last in runs:
@@ -274,17 +349,45 @@ def edge_steps(values, runs, period, reach):
         run, before = values[start:], values[start - min(start, size) : start]
         tail = np.median(values[first:][-max(2, (values.size - first) // 4) :])  # end level
         level = float(np.median(before))
-        at = start + _split(run, level, tail - level, np.inf)[0]
+        at = start + split(run, level, tail - level, np.inf)[0]
         new, old = values[at:], values[max(0, at - size) : at]
         if new.size < 2 or old.size < period:
             continue
-        spread = [robust_noise(x) for x in (new, old)]
+        # before a step at the start, the few samples are a level, not a main lobe (an
+        # impact at the first sample returns to the level): their standard deviation,
+        # which a lobe raises and a median absolute deviation may not, is flat too
+        spread = [(np.std if start_side else robust_noise)(new), robust_noise(old)]
         height = float(np.median(new) - np.median(old))
-        significance = abs(height) / max(spread[1], np.finfo(float).tiny)
+        error = np.hypot(*(level_error(noise, period, x.size) for x in (new, old)))
+        significance = abs(height) / max(error, np.finfo(float).tiny)
         flat = spread[0] <= FLAT_RATIO * spread[1]
-        if flat and significance * np.sqrt(new.size) >= STEP_SIGMAS:
+        if flat and significance >= STEP_SIGMAS:
             found.append(OffsetStep(at, height, significance, (first, values.size)))
     return found
+
+
+def merge_steps(steps, reach):
+    """Steps found again at one place on a later pass (a remainder of a step first read
+    with a neighbour's height) made one: heights added, the larger significance kept;
+    in time order.
+
+    Parameters
+    ----------
+    steps : list of OffsetStep
+    reach : int
+        Largest distance [samples] between two indices that are one place.
+    """
+    out = []
+    for step in sorted(steps, key=lambda step: step.index):
+        if out and step.index - out[-1].index <= reach:
+            last = out[-1]
+            significance = max(last.significance, step.significance)
+            out[-1] = OffsetStep(
+                last.index, last.height + step.height, significance, last.window, last.lobe
+            )
+        else:
+            out.append(step)
+    return out
 
 
 def remove_steps(values, steps):

@@ -1,0 +1,108 @@
+"""Placing an offset step found across an impact: before it, or in its ringing with the
+sensor's free ringing fitted and taken off (issue 22).
+
+:func:`dem_check.campaign.steps.find_steps` reads the level change across an impact that
+the first pass masked (the level after its ringing less the level before it); where the
+step lies is then found on the record around it. A least-absolute-deviation split there
+is drawn to the impact's onset: the flanks of the main lobe lie nearer the higher level,
+and the ringing, larger than the step, counts for both levels at random. So:
+
+1. **Main lobe.** Samples whose one-period mean lies far from both levels (further than
+   the step's height and :data:`~dem_check.campaign.steps.FAR_SIGMAS` of the period
+   means' noise), one period either side, are left out: no step can be placed on them.
+2. **Fit.** The samples left are the level, the step, and from the lobe's end the
+   sensor's free ringing (``exp(-a s) cos(b s)``, ``exp(-a s) sin(b s)``, ``s`` from the
+   lobe's peak, the sensor's resonance and damping): least squares, for every place of
+   the step at once (the step column's part that the other columns do not explain, by
+   cumulative sums: the reduction of the residual sum of squares is
+   ``(r . u)**2 / (u . u - u' M (M' M)^-1 M' u)`` for the step column ``u`` and the
+   residual ``r`` without it).
+3. **Inside the lobe.** A step at the lobe's end, the first sample after it, stands for
+   a step anywhere inside the lobe. When it fits not worse than the best place by more
+   than :data:`SEPARABLE_SIGMAS` (of the residual's noise), the step cannot be told from
+   the impact: it is placed at the lobe's middle (at most half the lobe off) and
+   flagged (the row's reason says so).
+"""
+
+import numpy as np
+from scipy.ndimage import uniform_filter1d
+
+from contactlab.inverse.local_baseline import _ringing
+
+__all__ = ["SEPARABLE_SIGMAS", "place_across"]
+
+SEPARABLE_SIGMAS = 4.0
+"""A step fits better where it is placed than anywhere inside the main lobe when the
+residual sum of squares is less by more than this many noise sigmas squared [-] (a
+chi-squared change of one degree of freedom, at 4 sigma)."""
+
+
+def _lobe(x, level, height, period, far_noise):
+    """``(start, stop)`` indices of the main lobe in ``x`` (module step 1), or None."""
+    averaged = uniform_filter1d(x, period, mode="nearest")
+    distance = np.minimum(np.abs(averaged - level), np.abs(averaged - level - height))
+    far = np.flatnonzero(distance > abs(height) + far_noise)
+    if not far.size:
+        return None
+    return max(0, int(far[0]) - period), min(x.size, int(far[-1]) + period + 1)
+
+
+def place_across(x, level, height, period, far_noise, ring):
+    """Where a step lies in a window that holds an impact (module docstring).
+
+    Parameters
+    ----------
+    x : numpy.ndarray
+        The record in the window [N], the drift's slope taken off.
+    level, height : float
+        The level before the step and the step's height [N].
+    period : int
+        The sensor's period [samples].
+    far_noise : float
+        How far beyond the step's height a period mean must lie from both levels to be
+        an impact's main lobe [N].
+    ring : tuple
+        ``(sensor, dt)``: the :class:`~contactlab.bodies.Sensor` whose free ringing is
+        fitted and the sampling interval [s].
+
+    Returns
+    -------
+    tuple or None
+        ``(index, lobe)``: the first sample at the new level (index in ``x``) and, when
+        it may lie anywhere inside the main lobe, the lobe's ``(start, stop)``, else
+        None. None altogether when the window holds no lobe or too few samples.
+    """
+    lobe = _lobe(x, level, height, period, far_noise)
+    if lobe is None:
+        return None
+    start, stop = lobe
+    kept = np.r_[np.arange(start), np.arange(stop, x.size)]
+    if kept.size < 8:
+        return None
+    peak = start + int(np.argmax(np.abs(x[start:stop] - level)))
+    sensor, dt = ring
+    columns = _ringing(np.clip(kept - peak, 0, None) * dt, sensor)[0]
+    columns[kept < stop] = 0.0  # the ringing is free from the lobe's end
+    m = np.column_stack([np.ones(kept.size), columns])
+    y = x[kept]
+    residual = y - m @ np.linalg.lstsq(m, y, rcond=None)[0]
+    # step column u_j: 1 from kept sample j on; its sums with the columns and the residual
+    tails = np.cumsum(m[::-1], axis=0)[::-1]
+    r_u = np.cumsum(residual[::-1])[::-1]
+    gram = np.linalg.pinv(m.T @ m)
+    u_u = (kept.size - np.arange(kept.size)) - np.einsum("ij,jk,ik->i", tails, gram, tails)
+    gain = np.zeros(kept.size)
+    # u_0 is the constant column itself; a change of the other sign is no such step
+    valid = (u_u > 1e-9 * kept.size) & (np.sign(r_u) == np.sign(height))
+    valid[0] = False
+    if not valid.any():
+        return None
+    gain[valid] = r_u[valid] ** 2 / u_u[valid]
+    j = int(np.argmax(gain))
+    at_end = int(np.searchsorted(kept, stop))  # a step anywhere in the lobe
+    if start > 0 and at_end < kept.size and valid[at_end]:
+        rss = max(float(residual @ residual) - gain[j], 0.0)
+        variance = rss / max(kept.size - m.shape[1] - 1, 1)
+        if j == at_end or gain[j] - gain[at_end] <= SEPARABLE_SIGMAS**2 * variance:
+            return (start + stop) // 2, lobe
+    return int(kept[j]), None

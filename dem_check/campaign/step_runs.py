@@ -1,0 +1,259 @@
+"""Runs of the first pass that are offset steps, not impacts: two steps closer than the
+period means' windows (issue 22).
+
+Two DC offset steps a fraction of a millisecond apart leave the samples between them
+off the running baseline, which follows neither: the first pass reads them as a run.
+A box (a step and its opposite) then reads as an impact, and being masked as one it is
+invisible to :func:`dem_check.campaign.steps.find_steps`, whose medians would see only
+the two steps' sum anyway. So each run is tested against the model of a record that
+holds no impact: a level that changes once or twice (a change point model) on the drift
+of its neighbourhood.
+
+1. **Neighbourhood.** The run with its mask (two periods before, its quiet hold after)
+   and up to :data:`CONTEXT_PERIODS` unmasked sensor periods on each side, less the
+   drift's slope there (:func:`dem_check.campaign.steps.drift_slopes`).
+2. **Change points.** The exact least-squares piecewise constant fit with one and with
+   two change points (``ruptures.KernelCPD``, linear kernel: Killick et al. 2012's
+   dynamic programme, compiled) on means of an eighth of a sensor period; each change
+   point is then placed on the samples by a least-absolute-deviation split between its
+   two levels.
+3. **No impact left.** The record less the fit, averaged over one sensor period (the
+   sensor's ringing averages out, an impact's main lobe does not), stays within
+   :data:`FLAT_SIGMAS` of the neighbourhood's own spread of period means (hum and 1/f
+   noise included), and the run's samples spread no more than :data:`FLAT_RATIO` times
+   the quiet samples beside it. One change point is tried first.
+4. **Significance.** Each change is at least :data:`~dem_check.campaign.steps.STEP_SIGMAS`
+   standard errors of the difference of its two levels (each read on the samples of
+   its piece) and :data:`~dem_check.campaign.steps.LEAST_HEIGHT` sample-noise sigmas.
+
+A step inside an impact's ringing is not such a run (the impact's lobe is left over):
+the period means find it across the masked impact.
+
+References
+----------
+Killick, R., Fearnhead, P. and Eckley, I. A. (2012) Optimal detection of changepoints
+with a linear computational cost. J. Am. Stat. Assoc. 107, 1590-1598. Truong, C.,
+Oudre, L. and Vayatis, N. (2020) Selective review of offline change point detection
+methods. Signal Processing 167, 107299 (``ruptures``).
+"""
+
+import itertools
+
+import numpy as np
+import ruptures
+from scipy.ndimage import median_filter, uniform_filter1d
+
+from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.steps import (
+    FLAT_RATIO,
+    LEAST_HEIGHT,
+    STEP_SIGMAS,
+    WINDOW_PERIODS,
+    OffsetStep,
+    block_levels,
+    drift_slopes,
+    edge_steps,
+    find_steps,
+    level_error,
+    period_noise,
+    remove_steps,
+    split,
+)
+
+__all__ = ["CONTEXT_PERIODS", "FLAT_SIGMAS", "run_steps", "search_steps"]
+
+CONTEXT_PERIODS = 8
+"""Unmasked sensor periods on each side of a run that give its levels before and after
+[-] (half a window of :data:`~dem_check.campaign.steps.WINDOW_PERIODS`)."""
+
+FLAT_SIGMAS = 6.0
+"""Largest deviation of the period-averaged record from the change point fit, in sigmas
+of the record's period means about their running median (:func:`_period_spread`) [-]:
+1/f noise and hum wander the period means of a box of two steps (1/f noise as large as
+the white noise) by up to 5 of them over 0.5 ms; an impact's main lobe leaves 16-44
+(measured on the hard mix of ``benchmarks/bench_steps.py``)."""
+
+DECIMATION = 8
+"""Means per sensor period the change points are searched on [-]."""
+
+BOX_PERIODS = 6
+"""Shortest time between two steps read on one run, in sensor periods [-] (0.15 ms at
+40 kHz): a shorter pair is an impact's main lobe as well. A 0.32 N bounce of the hard
+grain (whose damped contact steps its force on at the touch) fits a box of 65 us with
+edges as sharp as a step's and a top flat to the noise; a weak impact 0.25 ms after a
+true step fits a pair 64 us apart that does not return to its level (both measured,
+the second on the hard mix of ``benchmarks/bench_steps.py``)."""
+
+
+def _context(masked, lo, hi, size):
+    """Indices ``(start, stop)`` reaching up to ``size`` unmasked samples before ``lo``
+    and after ``hi`` (stopping at the next masked sample)."""
+    before = np.flatnonzero(masked[max(0, lo - size) : lo])
+    start = max(0, lo - size) + (int(before[-1]) + 1 if before.size else 0)
+    after = np.flatnonzero(masked[hi : hi + size])
+    stop = min(masked.size, hi + size) if not after.size else hi + int(after[0])
+    return start, stop
+
+
+def _period_spread(values, period, masked):
+    """Spread [N] of the record's period means outside the impacts about their running
+    median over a window (:data:`~dem_check.campaign.steps.WINDOW_PERIODS` + 1 means):
+    the white noise averaged over a period and the slower noise (1/f, hum) that moves a
+    level read over a window."""
+    levels = block_levels(values, period, masked)[0]
+    if levels.size < 2:
+        return 0.0
+    return robust_noise(levels - median_filter(levels, WINDOW_PERIODS + 1, mode="nearest"))
+
+
+def _fit(x, period, changes):
+    """Change points of ``x`` (module step 2) and the piecewise-median fit."""
+    q = max(1, period // DECIMATION)
+    means = x[: x.size // q * q].reshape(-1, q).mean(axis=1)
+    if means.size < 2 * changes + 2:
+        return None
+    coarse = ruptures.KernelCPD(kernel="linear", min_size=1).fit(means)
+    cuts = [0, *(q * b for b in coarse.predict(n_bkps=changes)[:-1]), x.size]
+    noise = MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
+    for k in range(1, len(cuts) - 1):  # on the samples, between the two levels
+        lo, hi = max(cuts[k - 1] + 1, cuts[k] - q), min(cuts[k + 1] - 1, cuts[k] + q)
+        level = np.median(x[cuts[k - 1] : cuts[k]])
+        height = np.median(x[cuts[k] : cuts[k + 1]]) - level
+        cuts[k] = lo + split(x[lo:hi], level, height, noise)[0]
+    pieces = [x[a:b] for a, b in itertools.pairwise(cuts)]
+    if min(piece.size for piece in pieces) < 1:
+        return None
+    fitted = np.concatenate([np.full(p.size, np.median(p)) for p in pieces])
+    return cuts, pieces, fitted
+
+
+def _steps_of(x, start, period, fit, quiet):
+    """The fit's change points as :class:`OffsetStep` if they explain the record
+    (module steps 3 and 4), else None."""
+    cuts, pieces, fitted = fit
+    spread = uniform_filter1d(x - fitted, period, mode="nearest")
+    if np.max(np.abs(spread)) > FLAT_SIGMAS * quiet["periods"]:
+        return None
+    inner = (x - fitted)[cuts[0] + quiet["before"] : cuts[-1] - quiet["after"]]
+    if inner.size and robust_noise(inner) > FLAT_RATIO * quiet["samples"]:
+        return None
+    found = []
+    if len(pieces) == 3 and pieces[1].size < BOX_PERIODS * period:
+        return None  # an impact's main lobe as well
+    for k in range(1, len(cuts) - 1):
+        old, new = pieces[k - 1], pieces[k]
+        height = float(np.median(new) - np.median(old))
+        error = np.hypot(*(level_error(quiet["noise"], period, p.size) for p in (old, new)))
+        significance = abs(height) / max(error, np.finfo(float).tiny)
+        if significance < STEP_SIGMAS or abs(height) < LEAST_HEIGHT * quiet["samples"]:
+            return None
+        window = (start + cuts[k - 1], start + cuts[k + 1])
+        found.append(OffsetStep(start + cuts[k], height, float(significance), window))
+    return found
+
+
+def run_steps(values, runs, period, masked, slopes):
+    """The offset steps that make up whole runs of the first pass (module docstring).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The record [N], finite.
+    runs : list of tuple
+        ``(first, last, lo, hi)``: a run's first and last sample and its mask
+        ``[lo, hi)`` (sample indices); runs at the record's edges are left to
+        :func:`dem_check.campaign.steps.edge_steps`.
+    period : int
+        The sensor's period [samples].
+    masked : numpy.ndarray of bool
+        Samples of the first pass's impacts, with their ringing.
+    slopes : numpy.ndarray
+        The drift's slope at every sample [N per sample].
+
+    Returns
+    -------
+    list of tuple
+        ``(run, steps)``: each run (as given) that is one or two steps, and its
+        :class:`~dem_check.campaign.steps.OffsetStep` list.
+    """
+    values = np.asarray(values, dtype=float)
+    noise = period_noise(values, period)
+    spread = max(_period_spread(values, period, masked), noise)
+    size = CONTEXT_PERIODS * period
+    out = []
+    for run in runs:
+        _, _, lo, hi = run
+        start, stop = _context(masked, lo, hi, size)
+        # the quiet hold after the run (up to the next run's mask) is a level too
+        if lo - start < period or stop - hi + hi - run[1] < period:
+            continue
+        x = values[start:stop] - slopes[lo] * (np.arange(start, stop) - lo)
+        # each side about its own level: a step between them is no noise
+        sides = [side for side in (x[: lo - start], x[hi - start :]) if side.size >= period]
+        levelled = np.concatenate([side - np.median(side) for side in sides])
+        quiet = {
+            "noise": noise,
+            "samples": robust_noise(levelled),
+            "periods": spread,
+            "before": lo - start,
+            "after": stop - hi,
+        }
+        for changes in (1, 2):
+            fit = _fit(x, period, changes)
+            steps = _steps_of(x, start, period, fit, quiet) if fit else None
+            if steps:
+                out.append((run, steps))
+                break
+    return out
+
+
+def search_steps(values, runs, period, hold, ring=None):
+    """Every offset step of a record, from its first pass's candidate runs: runs that
+    are steps (:func:`run_steps`), steps on the period means outside the other runs
+    (:func:`dem_check.campaign.steps.find_steps`) and at the record's edges
+    (:func:`dem_check.campaign.steps.edge_steps`).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The record [N], finite.
+    runs : list of tuple
+        ``(first, last)`` sample indices of the first pass's candidate runs.
+    period : int
+        The sensor's period [samples].
+    hold : int
+        Samples past a run's last one that still belong to it (its quiet hold).
+    ring : tuple, optional
+        ``(sensor, dt)``, for steps found across an impact
+        (:func:`dem_check.campaign.steps.find_steps`).
+
+    Returns
+    -------
+    list of OffsetStep
+        In time order.
+    """
+    n = len(values)
+    masked = np.zeros(n, dtype=bool)
+    inner = []
+    for k, (first, last) in enumerate(runs):
+        # a run to the record's end is left in: a step there that the running baseline
+        # missed reads as such a run, and the levels on both sides of it are needed
+        if last + hold < n:  # with the lobe's rise before
+            lo, hi = max(0, first - 2 * period), last + hold + 1
+            masked[lo:hi] = True
+            if first >= period:  # a run from the start is edge_steps' to judge
+                following = runs[k + 1][0] - 2 * period if k + 1 < len(runs) else n
+                inner.append((first, last, lo, max(last + 1, min(hi, following))))
+    boxed = run_steps(values, inner, period, masked, drift_slopes(values, period, masked))
+    found = [step for _, steps in boxed for step in steps]
+    for (_, _, lo, hi), _ in boxed:
+        masked[lo:hi] = False  # a level now, no impact
+    rest = remove_steps(values, found)
+    levels = {run[0] for run, _ in boxed}
+    edges = edge_steps(rest, [r for r in runs if r[0] not in levels], period, hold)
+    # an edge step's height is read on all the samples on its edge's side: it replaces
+    # a step found on the period means' shortened windows there
+    near = [(e.window[0] - period, e.window[1] + period) for e in edges]
+    means = find_steps(rest, period, masked, ring)
+    means = [s for s in means if not any(lo <= s.index < hi for lo, hi in near)]
+    return sorted(found + means + edges, key=lambda step: step.index)

@@ -1,0 +1,121 @@
+"""Offset steps next to impacts and to one another (issue 22): the step placed in an
+impact's ringing (:mod:`dem_check.campaign.step_ringing`) against brute-force least
+squares and against the truth of an exact model, and runs of the first pass that are
+steps (:mod:`dem_check.campaign.step_runs`) on white noise.
+"""
+
+import numpy as np
+import pytest
+
+from contactlab.inverse.local_baseline import _ringing
+from dem_check.campaign.step_ringing import place_across
+from dem_check.campaign.step_runs import run_steps
+from dem_check.campaign.steps import remove_steps, split
+
+DT = 0.5e-6
+"""Sampling interval [s] (2 MHz)."""
+
+
+def _window(sensor, at, *, height=0.3, noise=0.0, seed=0):
+    """A window of 1600 samples: level 0.1 N, a main lobe (a half sine of 2 N over 200
+    samples from sample 400), the sensor's free ringing from the contact's end (0.6 N)
+    and a step of ``height`` [N] at sample ``at``; white noise of ``noise`` [N]."""
+    n, period = 1600, round(sensor.period / DT)
+    i = np.arange(n)
+    x = np.full(n, 0.1)
+    x[400:600] += 2.0 * np.sin(np.pi * (i[400:600] - 400) / 200)
+    after = i >= 600  # free ringing from the contact's end
+    columns = _ringing((i[after] - 500) * DT, sensor)[0]
+    x[after] += columns @ np.array([0.5, -0.3])
+    x[at:] += height
+    x += np.random.default_rng(seed).normal(0.0, noise, n) if noise else 0.0
+    return x, period
+
+
+def _brute_force(x, kept, columns, height):
+    """Index of the least-squares step: every place tried with numpy's lstsq."""
+    best, where = np.inf, None
+    for j in range(1, kept.size):
+        u = (np.arange(kept.size) >= j).astype(float)
+        m = np.column_stack([columns, u])
+        coef, *_ = np.linalg.lstsq(m, x[kept], rcond=None)
+        rss = float(np.sum((x[kept] - m @ coef) ** 2))
+        if np.sign(coef[-1]) == np.sign(height) and rss < best:
+            best, where = rss, int(kept[j])
+    return where
+
+
+@pytest.mark.parametrize("at", [700, 950, 1300])
+def test_a_step_in_the_ringing_is_placed_exactly_on_the_exact_model(hard_setup, at):
+    sensor = hard_setup[1]
+    x, period = _window(sensor, at)
+    index, lobe = place_across(x, 0.1, 0.3, period, 0.05, (sensor, DT))
+    assert lobe is None
+    assert index == at  # the model is exact: the residual vanishes there only
+
+
+def test_the_cumulative_sums_give_the_brute_force_least_squares(hard_setup):
+    sensor = hard_setup[1]
+    x, period = _window(sensor, 900, noise=0.03, seed=3)
+    index, _ = place_across(x, 0.1, 0.3, period, 0.05, (sensor, DT))
+    # the same model fitted by lstsq for every place of the step (an independent method)
+    start, stop = 400 - period, 600 + period  # the lobe with a period either side
+    kept = np.r_[np.arange(start), np.arange(stop, x.size)]
+    peak = 500
+    ring = _ringing(np.clip(kept - peak, 0, None) * DT, sensor)[0]
+    ring[kept < stop] = 0.0
+    columns = np.column_stack([np.ones(kept.size), ring])
+    assert index == _brute_force(x, kept, columns, 0.3)
+    assert abs(index - 900) <= 2  # 10 noise sigmas: two samples of a split's scatter
+
+
+def test_a_step_inside_the_main_lobe_is_flagged(hard_setup):
+    sensor = hard_setup[1]
+    x, period = _window(sensor, 480)
+    index, lobe = place_across(x, 0.1, 0.3, period, 0.05, (sensor, DT))
+    # the lobe: period means further than the step and 0.05 N from both levels, and a
+    # period either side
+    assert lobe[0] < 400 < 600 < lobe[1]
+    assert index == (lobe[0] + lobe[1]) // 2  # its middle: at most half the lobe off
+
+
+def _levels(offsets, n=4000, noise=0.03, seed=1):
+    """White noise of ``noise`` [N] on ``n`` samples with steps ``(index, height)``."""
+    x = np.random.default_rng(seed).normal(0.0, noise, n)
+    for at, height in offsets:
+        x[at:] += height
+    return x
+
+
+@pytest.mark.parametrize(
+    "offsets",
+    [((2000, 0.3),), ((1800, 0.3), (2200, -0.3)), ((1800, 0.3), (2200, 0.3))],
+    ids=["one", "box", "staircase"],
+)
+def test_a_run_of_steps_is_read_as_its_steps(offsets):
+    period = 50  # 40 kHz at 2 MHz
+    x = _levels(offsets)
+    runs = [(1800, 2199, 1700, 2400)]  # (first, last, mask start, mask stop)
+    masked = np.zeros(x.size, dtype=bool)
+    masked[1700:2400] = True
+    ((_, steps),) = run_steps(x, runs, period, masked, np.zeros(x.size))
+    assert [s.index for s in steps] == [at for at, _ in offsets]  # 10 sigma: exact
+    for step, (_, height) in zip(steps, offsets, strict=True):
+        # medians of 400-1600 samples of white noise: within 4 standard errors
+        assert step.height == pytest.approx(height, abs=4 * 0.03 * 1.2533 / np.sqrt(400))
+    assert np.std(remove_steps(x, steps)) == pytest.approx(0.03, rel=0.1)  # no level left
+
+
+def test_an_impact_shaped_run_is_no_step():
+    period = 50
+    x = _levels(())
+    x[2000:2200] += 1.0 * np.sin(np.pi * np.arange(200) / 200)  # a main lobe, 33 sigma
+    masked = np.zeros(x.size, dtype=bool)
+    masked[1900:2400] = True
+    assert run_steps(x, [(2000, 2199, 1900, 2400)], period, masked, np.zeros(x.size)) == []
+
+
+def test_the_split_is_the_least_absolute_deviation_one():
+    # the closed form: for a clean step the cost is least exactly at it
+    x = np.r_[np.zeros(30), np.ones(70)]
+    assert split(x, 0.0, 1.0, 0.01) == (30, 0)
