@@ -19,19 +19,9 @@ __all__ = ["GAUSS_NODES", "GAUSS_WEIGHTS", "GRADING", "gauss_rule", "panel_edges
 
 
 def panel_edges(length, period, graded=False, graded_end=False):
-    """Relative panel edges on [0, 1] of a piece.
-
-    Parameters
-    ----------
-    length : float
-        Length of the piece [s].
-    period : float
-        Longest panel [s] (``inf``: one panel).
-    graded : bool, default False
-        Grade the panels geometrically towards the start.
-    graded_end : bool, default False
-        Grade them towards the end as well.
-    """
+    """Relative panel edges on [0, 1] of a piece ``length`` [s] long, panels at most
+    ``period`` [s] (``inf``: one panel), graded towards the start and/or the end:
+    :func:`contactlab.kernels.gauss.panel_edges`, without grading by default."""
     return gauss.panel_edges(float(length), float(period), bool(graded), bool(graded_end))
 
 

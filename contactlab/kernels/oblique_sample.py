@@ -226,6 +226,13 @@ def grid(par, table, warp, steps, final, sample_rate, block):
 
 
 @njit(cache=True, error_model="numpy")
+def _scratch(n):
+    """Out arrays of :func:`sample` for ``n`` times: states (7, n), then the unclipped
+    normal formula, the normal and tangential forces and the slip (n,)."""
+    return np.empty((7, n)), np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+
+
+@njit(cache=True, error_model="numpy")
 def peak_forces(par, table, warp, steps, nodes):
     """Largest normal force and largest magnitude of the tangential force [N] on
     ``nodes`` times per phase, ``numpy.linspace(t0, t1, nodes, endpoint=False)`` of each,
@@ -235,13 +242,7 @@ def peak_forces(par, table, warp, steps, nodes):
     saw-tooth contact would otherwise allocate 7.7 MB a call, which the allocator maps
     and the first writes fault in."""
     times = np.empty(nodes)
-    states, raw, normal, tangential, slip = (
-        np.empty((7, nodes)),
-        np.empty(nodes),
-        np.empty(nodes),
-        np.empty(nodes),
-        np.empty(nodes),
-    )
+    states, raw, normal, tangential, slip = _scratch(nodes)
     largest_normal, largest_tangential = -math.inf, -math.inf
     for k in range(table.shape[0]):
         t0, spacing = table[k, 0], (table[k, 1] - table[k, 0]) / nodes
@@ -281,16 +282,9 @@ def arm_moment(par, table, warp, steps, period):
         length = t1 - t0
         edges = panel_edges(length, period, t0 < length, end - t1 < length)
         nodes, weights = rule(t0, t1, edges)
-        n = nodes.size
-        states, raw, normal, tangential, slip = (
-            np.empty((7, n)),
-            np.empty(n),
-            np.empty(n),
-            np.empty(n),
-            np.empty(n),
-        )
+        states, raw, normal, tangential, slip = _scratch(nodes.size)
         sample(par, table[k : k + 1], warp, steps, nodes, states, raw, normal, tangential, slip)
-        for m in range(n):
+        for m in range(nodes.size):
             total += weights[m] * (max(states[2, m] - states[0, m], 0.0) * tangential[m])
     return total
 
