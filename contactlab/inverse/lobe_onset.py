@@ -282,8 +282,10 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     sensor : Sensor
         The moving sensor that recorded it.
     guess : (float, float)
-        A first onset [s] (a threshold crossing, late) and a first contact duration [s]
-        (the lobe's length).
+        The latest the touch can be [s] (a threshold crossing of the raw signal, which
+        lags the touch; a smoothed signal's crossing leads a sharp rise, so that one plus
+        the smoothing kernel's reach) and a first contact duration [s] (the lobe's
+        length).
     noise : float
         The record's noise standard deviation [N] (scales the chi-squared and the bound).
     family : str, default "linear"
@@ -347,7 +349,7 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     if not lo - span <= t0 <= rough:
         raise ParameterError(
             f"the onset fitted at {t0:.6g} s lies outside the span searched, {lo:.6g} to "
-            f"{rough:.6g} s (the crossing)"
+            f"{rough:.6g} s (the latest touch)"
         )
     return LobeFit(
         onset=t0,
