@@ -124,6 +124,7 @@ class LobeModel:
         self.period = sensor.period
         coloured = noise_model is not None and noise_model.order > 0
         self.whiten = noise_model.whiten if coloured else _identity
+        self.ar = noise_model.coefficients if coloured else np.zeros(0)
         centre = float(t.mean())
         self.line = np.column_stack([np.ones_like(t), (t - centre) / self.period])
         self.line_w, self.y_w = self.whiten(self.line), self.whiten(y)
@@ -142,6 +143,17 @@ class LobeModel:
         force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
         return s - 0.5 * step, signal.lfilter(*self.filter, force)
 
+    def white_unit(self, tau):
+        """:meth:`unit` whitened on its fine grid: ``r(s) - sum_k a_k r(s - k dt)``, the
+        sample step ``dt`` being ``fine`` grid steps. Whitening commutes with the shift
+        by ``t0``, so that the whitened column at any onset is this one sampled (its
+        first ``p`` samples, which the filter needs before the window, dropped)."""
+        s, r = self.unit(tau)
+        white = r.copy()
+        for k, a in enumerate(self.ar, start=1):  # r is zero before the force's start
+            white[k * self.fine :] -= a * r[: r.size - k * self.fine]
+        return s, white
+
     def response(self, t0, tau, unit=None):
         """The unit-peak signal on the window's samples [-] (``unit``: :meth:`unit` of
         ``tau``, when already computed)."""
@@ -151,10 +163,12 @@ class LobeModel:
     def solve(self, t0, tau, unit=None, coefficients=True):
         """Linear amplitudes (offset, slope over a sensor period, ``A``; only ``A``
         without ``coefficients``) and the residual sum of squares of the whitened record
-        (the signal's column projected off the line's orthonormal basis)."""
+        (the signal's column projected off the line's orthonormal basis). ``unit``:
+        :meth:`white_unit` of ``tau``, when already computed."""
         if not tau > 0.0:
             return np.full(3, np.nan), math.inf
-        r = self.whiten(self.response(t0, tau, unit))
+        unit = self.white_unit(tau) if unit is None else unit
+        r = self.response(t0, tau, unit)[self.ar.size :]
         r_off = r - self.basis @ (self.basis.T @ r)
         norm = float(r_off @ r_off)
         if not norm > 0.0:  # no force inside the window

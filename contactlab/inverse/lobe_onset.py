@@ -84,6 +84,11 @@ SCAN_DURATIONS = (0.6, 0.75, 0.9, 1.05, 1.2, 1.4, 1.7)
 """Contact durations of the first scan, over the guess [-] (the lobe's length above a
 fraction of its peak is 0.6-0.9 of the contact's duration)."""
 
+START_DURATION = 0.02
+"""The simplex of a fit started near its optimum (``start``) spans this fraction of the
+duration [-] and a sample of the onset (neighbouring dampings of the family read move
+the fit by a few tenths of a sample; Nelder-Mead widens its simplex where needed)."""
+
 AFTER_PERIODS = 0.5
 """Sensor periods fitted after the contact's end [-] (the sensor's free ringing starts)."""
 
@@ -119,7 +124,7 @@ def _scan(model, lo, hi, length):
     best = (math.inf, lo, length)
     onsets = np.arange(lo, hi, SCAN_PERIODS * model.period)
     for tau in length * np.asarray(SCAN_DURATIONS):
-        unit = model.unit(tau)
+        unit = model.white_unit(tau)
         for t0 in onsets:
             rss = model.solve(t0, tau, unit, coefficients=False)[1]
             if rss < best[0]:
@@ -138,6 +143,7 @@ def fit_lobe(
     *,
     damping_free=False,
     noise_model=None,
+    start=None,
 ):
     """The onset of one impact: a contact family's force through the sensor, fitted on
     the impact's first lobe.
@@ -168,6 +174,10 @@ def fit_lobe(
         The record's noise per sample (:func:`contactlab.inverse.noise_colour.fit_ar_noise`
         of its quiet samples): the fit whitens with it, and the chi-squared and the bound
         are the innovation's. None: white noise of ``noise``.
+    start : (float, float), optional
+        An onset [s] and a duration [s] near the fit's (another damping's fit on the
+        same lobe): the first scan is skipped and the simplex starts there, a sample and
+        :data:`START_DURATION` wide.
 
     Returns
     -------
@@ -200,13 +210,13 @@ def fit_lobe(
     def cost(x):
         return model.solve(x[0], x[1], coefficients=False)[1]
 
-    t0, tau = _scan(model, lo, rough, length)
-    dt, step = model.dt, SCAN_PERIODS * period
-    simplex = [
-        [t0, tau],
-        [t0 + step, tau],
-        [t0, tau * (1.0 + SCAN_DURATIONS[1] - SCAN_DURATIONS[0])],
-    ]
+    dt = model.dt
+    if start is None:
+        t0, tau = _scan(model, lo, rough, length)
+        step, widen = SCAN_PERIODS * period, SCAN_DURATIONS[1] - SCAN_DURATIONS[0]
+    else:
+        (t0, tau), step, widen = start, dt, START_DURATION
+    simplex = [[t0, tau], [t0 + step, tau], [t0, tau * (1.0 + widen)]]
     best = optimize.minimize(
         cost,
         simplex[0],
@@ -262,29 +272,48 @@ def lobe_family(lobes, sensor):
         When no lobe can be fitted.
     """
 
-    def chi_squared(lobe, family, damping):
+    def fit(lobe, family, damping, start):
         t, y, guess, noise, *model = lobe
         noise_model = model[0] if model else None
         try:
-            fit = fit_lobe(t, y, sensor, guess, noise, family, damping, noise_model=noise_model)
-            return fit.chi_squared
+            return fit_lobe(
+                t, y, sensor, guess, noise, family, damping, noise_model=noise_model, start=start
+            )
         except ParameterError:  # no contact of this shape fits (or none at all)
-            return math.inf
+            return None
+
+    def grid_fits(lobe, family):  # each damping's fit started from the one before (the
+        # first scanned): the optimum moves little between neighbours
+        fits, start = {}, None
+        for z in DAMPINGS:
+            fits[z] = fit(lobe, family, z, start)
+            if fits[z] is not None:
+                start = (fits[z].onset, fits[z].duration)
+        return fits
+
+    def chi(found):
+        return math.inf if found is None else found.chi_squared
 
     totals, fitted = {}, []
     for lobe in lobes:
-        fits = {(f, z): chi_squared(lobe, f, z) for f in FAMILIES for z in DAMPINGS}
-        if not any(math.isfinite(chi) for chi in fits.values()):
+        fits = {f: grid_fits(lobe, f) for f in FAMILIES}
+        if all(found is None for f in FAMILIES for found in fits[f].values()):
             continue  # too short or no contact: this lobe tells nothing
-        fitted.append(lobe)
-        for shape, chi in fits.items():
-            totals[shape] = totals.get(shape, 0.0) + chi
+        fitted.append((lobe, fits))
+        for f in FAMILIES:
+            for z, found in fits[f].items():
+                totals[(f, z)] = totals.get((f, z), 0.0) + chi(found)
     if not fitted:
         raise ParameterError("no impact with a lobe that can be fitted")
 
     def total(family, z):  # finite where a lobe fails (Brent's parabola takes differences)
-        chi = sum(chi_squared(lobe, family, float(z)) for lobe in fitted)
-        return chi if math.isfinite(chi) else sys.float_info.max
+        sum_ = 0.0
+        for lobe, fits in fitted:  # started from the nearest grid damping's fit
+            near = fits[family][min(DAMPINGS, key=lambda d: abs(d - z))]
+            sum_ += chi(
+                fit(lobe, family, float(z), None if near is None else (near.onset, near.duration))
+            )
+        return sum_ if math.isfinite(sum_) else sys.float_info.max
 
     best = {}
     for family in FAMILIES:  # each family's damping refined: the grid's step alone can
