@@ -21,6 +21,7 @@ import numpy as np
 from scipy import signal
 
 from contactlab.errors import ParameterError
+from contactlab.head_level import head_level
 from contactlab.validation import check_count, check_interval, check_number, check_samples
 
 __all__ = [
@@ -387,7 +388,7 @@ SPREAD_MIN_SAMPLES = 16
 """Fewest samples left in a block after the exclusions to read its noise [-]."""
 
 
-def running_baseline(y, width, exclude=None):
+def running_baseline(y, width, exclude=None, head=0):
     """A baseline that follows slow drift, wander, offset steps and hum, and the local
     noise around it.
 
@@ -418,6 +419,12 @@ def running_baseline(y, width, exclude=None):
         Samples left out of the local noise (pulses found on a first pass, with their
         ringing): a block mostly filled by a pulse's ringing then reads the noise of its
         other samples, or of its neighbours when fewer than 16 are left.
+    head : int, default 0
+        Samples at the record's start that hold a pulse (a record that starts at an
+        impact): the level there and over a block after them is
+        :func:`contactlab.head_level.head_level`'s robust polynomial, fitted after them and
+        extrapolated back, the residual there the distance to it (no block level to choose),
+        and its standard error is added to the local noise under the pulse.
 
     Returns
     -------
@@ -426,9 +433,11 @@ def running_baseline(y, width, exclude=None):
     Raises
     ------
     ParameterError
-        Bad ``width``, non-finite samples or fewer than two blocks.
+        Bad ``width`` or ``head``, non-finite samples, fewer than two blocks, or too few
+        quiet samples after a ``head``.
     """
     width = check_count("width", width, low=8)
+    pulse = check_count("head", head, low=0)  # ``head`` is reused below
     y = check_samples("y", y)
     if exclude is not None:
         exclude = _mask("exclude", exclude, y.size)
@@ -457,11 +466,15 @@ def running_baseline(y, width, exclude=None):
         nearer = gap < distance
         chosen, distance = np.where(nearer, candidate, chosen), np.minimum(gap, distance)
     residual = y - chosen
+    error = np.zeros(y.size)
+    if pulse:
+        stop, level[:stop], error[:stop] = head_level(y, pulse, width, exclude)
+        residual[:stop] = y[:stop] - level[:stop]
     spread = _block_spread(np.abs(residual), edges, exclude)
     widened = np.maximum(
         spread, np.maximum(np.r_[spread[:1], spread[:-1]], np.r_[spread[1:], spread[-1:]])
     )
-    return RunningBaseline(level, residual, MAD_TO_SIGMA * widened[block])
+    return RunningBaseline(level, residual, np.hypot(MAD_TO_SIGMA * widened[block], error))
 
 
 def quiet_window(t, y, width=None):

@@ -1,0 +1,90 @@
+"""The baseline under a pulse at a record's first sample: fitted after it, extrapolated back.
+
+A record that starts at an impact (no pre-trigger) has no quiet samples before the pulse.
+Block medians then put the baseline there by extrapolating the outer blocks' slope, and a
+drift that curves within a few blocks (thermal or charge-amplifier wander over a short
+record) leaves it several noise sigmas off; the residual's choice between neighbouring
+block levels (:func:`contactlab.signals.running_baseline`) is worse still next to a pulse,
+whose samples pull the local mean up (issue 22: a 2 N impact read as 1 N under a drift of
+about 700 N/s). So the level under the pulse is read where the record is quiet: a
+polynomial of degree :data:`HEAD_DEGREE` fitted with a robust loss (scipy's
+``least_squares``, ``soft_l1``: a weak bounce or a burst in the fit window is
+down-weighted, not followed) on the samples after the pulse and its ringing, over
+:data:`HEAD_FIT_BLOCKS` blocks, and extrapolated back to the record's first sample. Its
+standard error, from the fit's covariance, is returned so a threshold can take it in.
+"""
+
+import numpy as np
+from scipy.optimize import least_squares
+from scipy.stats import median_abs_deviation
+
+from contactlab.errors import ParameterError
+
+__all__ = ["HEAD_DEGREE", "HEAD_FIT_BLOCKS", "HEAD_MIN_SAMPLES", "head_level"]
+
+HEAD_DEGREE = 2
+"""Degree of the polynomial fitted after the pulse [-]: a drift that curves over the fit
+window (a 5 Hz wander's slope changes by a third over 2 ms) is followed; a cubic would
+scatter more when extrapolated back over the pulse."""
+
+HEAD_FIT_BLOCKS = 1.0
+"""Length of the fit window after the pulse [blocks of the running baseline]: long
+against the pulse it is extrapolated over, short against the drift's curvature."""
+
+HEAD_MIN_SAMPLES = 64
+"""Fewest quiet samples the fit needs [-] (16 per coefficient and more)."""
+
+def head_level(y, head, width, exclude=None):
+    """The level of the first ``head`` samples (a pulse at the record's start) and of the
+    fit window after them, and its standard error (module docstring).
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+        Finite samples (any unit), checked by the caller.
+    head : int
+        Samples at the record's start that hold the pulse and its ringing, >= 1.
+    width : int
+        Block length of the running baseline [samples]: the fit window is
+        :data:`HEAD_FIT_BLOCKS` of them after ``head``.
+    exclude : numpy.ndarray of bool, optional
+        Samples left out of the fit (other pulses in the window).
+
+    Returns
+    -------
+    stop : int
+        One past the last sample the level covers (``head`` and the fit window).
+    level : numpy.ndarray
+        The fitted polynomial over samples ``0 .. stop - 1`` (unit of ``y``).
+    error : numpy.ndarray
+        Its standard error there (unit of ``y``), from the fit's covariance and the
+        robust noise of its residual.
+
+    Raises
+    ------
+    ParameterError
+        Fewer than :data:`HEAD_MIN_SAMPLES` quiet samples after the pulse.
+    """
+    stop = min(y.size, head + max(HEAD_MIN_SAMPLES, round(HEAD_FIT_BLOCKS * width)))
+    index = np.arange(head, stop)
+    if exclude is not None:
+        index = index[~exclude[head:stop]]
+    if index.size < HEAD_MIN_SAMPLES:
+        raise ParameterError(
+            f"only {index.size} quiet samples after the pulse at the record's start (need "
+            f"{HEAD_MIN_SAMPLES}): no baseline to extrapolate under it; record a pre-trigger"
+        )
+    scale = float(stop - head)
+    design = np.vander((index - head) / scale, HEAD_DEGREE + 1, increasing=True)
+    start, *_ = np.linalg.lstsq(design, y[index], rcond=None)
+    first = y[index] - design @ start
+    noise = float(median_abs_deviation(first, scale="normal"))
+    if noise > 0.0:  # an exactly constant stretch is its own level
+        fitted = least_squares(
+            lambda c: design @ c - y[index], start, loss="soft_l1", f_scale=noise
+        )
+        start = fitted.x
+    covariance = noise**2 * np.linalg.inv(design.T @ design)
+    whole = np.vander((np.arange(stop) - head) / scale, HEAD_DEGREE + 1, increasing=True)
+    error = np.sqrt(np.einsum("ij,jk,ik->i", whole, covariance, whole))
+    return stop, whole @ start, error
