@@ -67,9 +67,10 @@ def _scenario(draw):
     velocities = [draw(st.floats(0.2, 2.5)) for _ in range(count)]
     largest = 3.0 * 2.5 / 2.0  # the hard grain's peak signal at 2.5 m/s [N]
     hum = draw(st.floats(0.0, 2.0))
-    # a record that starts at an impact under fast drift is a known limit (below), and so
-    # is hum of more than 1.5 sigma with drift over 15 (test_hum_and_drift_across_an_impact)
-    drift = draw(st.floats(0.0, 50.0 if first >= 1e-3 else 10.0))
+    # hum of more than 1.5 sigma with drift over 15 is a known limit
+    # (test_hum_and_drift_across_an_impact); a record that starts at an impact takes the
+    # whole drift range (test_a_record_that_starts_at_its_impact_under_fast_drift)
+    drift = draw(st.floats(0.0, 50.0))
     effects = Effects(
         pink=draw(st.floats(0.0, 2.0)) * NOISE,
         drift=(min(drift, 15.0) if hum > 1.5 else drift) * NOISE,
@@ -185,16 +186,6 @@ def test_plate_ringing_after_a_strong_impact_read_as_a_step(hard_setup):
     _check(record, hard_setup[1], effects)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known limit (issue 22, open): a record that starts at its impact, under drift of "
-    "about 40 noise sigmas, 1/f noise and a 12-bit ADC; measured after the offset-step search "
-    "on this branch: with the bounce at 1.5 ms the impact reads 1.03 N of its 2.03 N peak "
-    "(significance 16) and the bounce (0.76 N, 11 noise sigmas) is missed; with the bounce at "
-    "1.95 ms an overlap is invented 0.1 ms after the start (the bounce is found, 5 us late). "
-    "The drift's excursion is reached within the 6 ms record: 1.2 N, a ramp of 590 N/s over "
-    "the first ms (20 noise sigmas per ms)",
-)
 @pytest.mark.parametrize(
     ("pink", "drift", "hum", "bounce", "delay"),
     [(2.0, 42.0, 0.0, 0.375, 1.5e-3), (1.0, 40.0, 1.0, 0.5, 0.001953125)],
@@ -202,6 +193,12 @@ def test_plate_ringing_after_a_strong_impact_read_as_a_step(hard_setup):
 def test_a_record_that_starts_at_its_impact_under_fast_drift(
     hard_setup, pink, drift, hum, bounce, delay
 ):
+    """A 2 N impact at the record's first sample under a drift of about 700 N/s (40 noise
+    sigmas within the 6 ms record), 1/f noise and a 12-bit ADC. With block levels alone
+    the baseline under it was 0.2 N high (the outer blocks' slope extrapolated, and the
+    residual's block level chosen by a mean the pulse pulled up): the impact read 1.03 N
+    and its bounce was missed, or an overlap was invented 0.1 ms in. The baseline is now
+    fitted after the impact's run and extrapolated back (``contactlab.head_level``)."""
     sensor = hard_setup[1]
     effects = Effects(
         pink=pink * NOISE,
@@ -213,7 +210,20 @@ def test_a_record_that_starts_at_its_impact_under_fast_drift(
         bounce_delay=delay,
     )
     record = _record(hard_setup, [1.25], np.array([0.0]), length=6e-3, effects=effects, seed=250)
-    _check(record, sensor, effects)
+    found = _check(record, sensor, effects)
+    # the baseline under the impact against the record without its impacts (drift, hum
+    # and noise; 400 samples average the white noise out)
+    bare = Effects(bounce=bounce, bounce_delay=delay)
+    sampling = {"length": 6e-3, "sample_rate": 2e6, "noise": 0.0}
+    clean = realistic_record(*hard_setup, [1.25], np.array([0.0]), **sampling, effects=bare)
+    values = np.asarray(record.trace.values)
+    level = values - np.asarray(found.signal.values)
+    under = record.trace.t < 0.2e-3  # the contact and the first sensor periods
+    error = np.mean(level[under] - (values - np.asarray(clean.trace.values))[under])
+    # within 1.5 noise sigmas: the 1/f noise's slow part under the pulse (about 0.5
+    # sigma here) cannot be read from after it; measured 0.99 and 0.49 sigma, and 2.9
+    # and 4.6 with the block levels extrapolated before the head fit
+    assert abs(error) <= 1.5 * record.noise
 
 
 @pytest.mark.xfail(
