@@ -99,7 +99,7 @@ HEAD_QUIET_SAMPLES = 16
 of its first one starts at the impact [-] (the quiet samples a local baseline needs,
 ``dem_check.campaign.detection.BASELINE_MIN_SAMPLES``): the running baseline is then
 fitted after that run and extrapolated back under it
-(:func:`contactlab.head_level.head_level`)."""
+(:func:`contactlab._head_level.head_level`)."""
 
 HEAD_PASSES = 3
 """Passes of detect, exclude the run at the record's start, re-fit [-]: the first

@@ -198,7 +198,7 @@ def test_a_record_that_starts_at_its_impact_under_fast_drift(
     the baseline under it was 0.2 N high (the outer blocks' slope extrapolated, and the
     residual's block level chosen by a mean the pulse pulled up): the impact read 1.03 N
     and its bounce was missed, or an overlap was invented 0.1 ms in. The baseline is now
-    fitted after the impact's run and extrapolated back (``contactlab.head_level``)."""
+    fitted after the impact's run and extrapolated back (``contactlab._head_level``)."""
     sensor = hard_setup[1]
     effects = Effects(
         pink=pink * NOISE,

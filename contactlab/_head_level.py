@@ -34,9 +34,11 @@ against the pulse it is extrapolated over, short against the drift's curvature."
 HEAD_MIN_SAMPLES = 64
 """Fewest quiet samples the fit needs [-] (16 per coefficient and more)."""
 
-def head_level(y, head, width, exclude=None):
-    """The level of the first ``head`` samples (a pulse at the record's start) and of the
-    fit window after them, and its standard error (module docstring).
+
+def head_level(y, head, width, exclude, level, residual):
+    """Put the level of the first ``head`` samples (a pulse at the record's start) and of
+    the fit window after them into ``level``, and ``y`` less it into ``residual``; return
+    its standard error (module docstring).
 
     Parameters
     ----------
@@ -47,18 +49,17 @@ def head_level(y, head, width, exclude=None):
     width : int
         Block length of the running baseline [samples]: the fit window is
         :data:`HEAD_FIT_BLOCKS` of them after ``head``.
-    exclude : numpy.ndarray of bool, optional
+    exclude : numpy.ndarray of bool or None
         Samples left out of the fit (other pulses in the window).
+    level, residual : numpy.ndarray
+        The running baseline's level and residual (``y``'s size), changed in place over
+        the pulse and the fit window.
 
     Returns
     -------
-    stop : int
-        One past the last sample the level covers (``head`` and the fit window).
-    level : numpy.ndarray
-        The fitted polynomial over samples ``0 .. stop - 1`` (unit of ``y``).
-    error : numpy.ndarray
-        Its standard error there (unit of ``y``), from the fit's covariance and the
-        robust noise of its residual.
+    numpy.ndarray
+        The standard error of the level at every sample (unit of ``y``; 0 past the fit
+        window), from the fit's covariance and the robust noise of its residual.
 
     Raises
     ------
@@ -71,8 +72,9 @@ def head_level(y, head, width, exclude=None):
         index = index[~exclude[head:stop]]
     if index.size < HEAD_MIN_SAMPLES:
         raise ParameterError(
-            f"only {index.size} quiet samples after the pulse at the record's start (need "
-            f"{HEAD_MIN_SAMPLES}): no baseline to extrapolate under it; record a pre-trigger"
+            f"only {index.size} quiet samples after the pulse at the record's start (head = "
+            f"{head} samples; need {HEAD_MIN_SAMPLES}): no baseline to extrapolate under it; "
+            "record a pre-trigger"
         )
     scale = float(stop - head)
     design = np.vander((index - head) / scale, HEAD_DEGREE + 1, increasing=True)
@@ -86,5 +88,8 @@ def head_level(y, head, width, exclude=None):
         start = fitted.x
     covariance = noise**2 * np.linalg.inv(design.T @ design)
     whole = np.vander((np.arange(stop) - head) / scale, HEAD_DEGREE + 1, increasing=True)
-    error = np.sqrt(np.einsum("ij,jk,ik->i", whole, covariance, whole))
-    return stop, whole @ start, error
+    level[:stop] = whole @ start
+    residual[:stop] = y[:stop] - level[:stop]
+    error = np.zeros(y.size)
+    error[:stop] = np.sqrt(np.einsum("ij,jk,ik->i", whole, covariance, whole))
+    return error
