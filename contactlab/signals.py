@@ -20,8 +20,8 @@ from typing import NamedTuple
 import numpy as np
 from scipy import signal
 
-from contactlab.errors import ParameterError
 from contactlab._head_level import head_level
+from contactlab.errors import ParameterError
 from contactlab.validation import check_count, check_interval, check_number, check_samples
 
 __all__ = [
