@@ -23,9 +23,13 @@ from contactlab.errors import ParameterError
 __all__ = ["HEAD_DEGREE", "HEAD_FIT_BLOCKS", "HEAD_MIN_SAMPLES", "head_level"]
 
 HEAD_DEGREE = 2
-"""Degree of the polynomial fitted after the pulse [-]: a drift that curves over the fit
-window (a 5 Hz wander's slope changes by a third over 2 ms) is followed; a cubic would
-scatter more when extrapolated back over the pulse."""
+"""Highest degree of the polynomial fitted after the pulse [-]: a drift that curves over
+the fit window (issue 22's record: its slope fell from 720 to 460 N/s over 1.5 ms) is
+followed; a cubic would scatter more when extrapolated back over the pulse."""
+
+CURVATURE_SIGMAS = 3.0
+"""The quadratic term is kept when it is this many of its standard errors [-]; else the
+level is a line (whose extrapolation back over the pulse scatters much less)."""
 
 HEAD_FIT_BLOCKS = 1.0
 """Length of the fit window after the pulse [blocks of the running baseline]: long
@@ -33,6 +37,24 @@ against the pulse it is extrapolated over, short against the drift's curvature."
 
 HEAD_MIN_SAMPLES = 64
 """Fewest quiet samples the fit needs [-] (16 per coefficient and more)."""
+
+
+def _robust_fit(x, values, degree):
+    """Coefficients of a polynomial of ``degree`` in ``x`` fitted with the ``soft_l1``
+    loss, and their covariance: the robust noise of the residual, times its integrated
+    autocorrelation time (1/f noise leaves fewer independent samples than there are)."""
+    design = np.vander(x, degree + 1, increasing=True)
+    start, *_ = np.linalg.lstsq(design, values, rcond=None)
+    noise = float(median_abs_deviation(values - design @ start, scale="normal"))
+    if noise > 0.0:  # an exactly constant stretch is its own level
+        start = least_squares(lambda c: design @ c - values, start, loss="soft_l1", f_scale=noise).x
+    left = values - design @ start
+    spectrum = np.fft.rfft(left - left.mean(), 2 * left.size)
+    correlation = np.fft.irfft(np.abs(spectrum) ** 2)[: left.size]
+    correlation = correlation / correlation[0] if correlation[0] > 0.0 else correlation
+    positive = np.cumprod(correlation[1:] > 0.0).astype(bool)  # the initial positive run
+    time = 1.0 + 2.0 * float(np.sum(correlation[1:][positive]))
+    return start, noise**2 * time * np.linalg.inv(design.T @ design)
 
 
 def head_level(y, head, width, exclude, level, residual):
@@ -77,18 +99,12 @@ def head_level(y, head, width, exclude, level, residual):
             "record a pre-trigger"
         )
     scale = float(stop - head)
-    design = np.vander((index - head) / scale, HEAD_DEGREE + 1, increasing=True)
-    start, *_ = np.linalg.lstsq(design, y[index], rcond=None)
-    first = y[index] - design @ start
-    noise = float(median_abs_deviation(first, scale="normal"))
-    if noise > 0.0:  # an exactly constant stretch is its own level
-        fitted = least_squares(
-            lambda c: design @ c - y[index], start, loss="soft_l1", f_scale=noise
-        )
-        start = fitted.x
-    covariance = noise**2 * np.linalg.inv(design.T @ design)
-    whole = np.vander((np.arange(stop) - head) / scale, HEAD_DEGREE + 1, increasing=True)
-    level[:stop] = whole @ start
+    x = (index - head) / scale
+    coefficients, covariance = _robust_fit(x, y[index], HEAD_DEGREE)
+    if abs(coefficients[-1]) < CURVATURE_SIGMAS * np.sqrt(covariance[-1, -1]):
+        coefficients, covariance = _robust_fit(x, y[index], HEAD_DEGREE - 1)
+    whole = np.vander((np.arange(stop) - head) / scale, coefficients.size, increasing=True)
+    level[:stop] = whole @ coefficients
     residual[:stop] = y[:stop] - level[:stop]
     error = np.zeros(y.size)
     error[:stop] = np.sqrt(np.einsum("ij,jk,ik->i", whole, covariance, whole))
