@@ -15,6 +15,10 @@ baseline is followed, not read once, and the noise is read locally:
   hum, wander faster than a block and a structure's ringing raise their own block's
   threshold. The impacts found on a first pass, with their ringing, are left out of it
   on the second (a hard hit's ringing can fill most of a block);
+- a record that starts at an impact (its first run within :data:`HEAD_QUIET_SAMPLES`
+  of the start) has no block level under it: the run is excluded and the baseline
+  re-fitted after it and extrapolated back (``running_baseline``'s ``head``; up to
+  :data:`HEAD_PASSES` passes of detect, exclude, re-fit);
 - the threshold is ``sigmas`` local noise sigmas of the smoothed residual, ``sigmas``
   set so that Gaussian noise crosses it in fewer than :data:`FALSE_ALARMS` records.
 """
