@@ -17,14 +17,20 @@ Run: ``.venv/bin/python benchmarks/bench_fast_drift.py [--records N] [--compare]
 """
 
 import argparse
+import sys
 import time
+from pathlib import Path
 from unittest import mock
 
 import numpy as np
 from bench_steps import NOISE, hard, judge
 
 import dem_check.campaign.noise as noise_module
-from dem_check.campaign import Effects, find_impacts, realistic_record, records
+from dem_check.campaign import Effects, find_impacts, realistic_record
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "dem_check" / "campaign"))
+# the test's drift and hum alone (the generator's draws replayed)
+from test_realistic_detection import _drift_and_hum as drift_and_hum
 
 
 def record_at_start(seed):
@@ -50,18 +56,7 @@ def record_at_start(seed):
     record = realistic_record(
         *hard(), velocities, onsets, **sampling, noise=NOISE, effects=effects, seed=seed
     )
-    return record, effects, _drift_and_hum(record, effects, seed)
-
-
-def _drift_and_hum(record, effects, seed):
-    """The record's drift and hum alone [N], drawn as ``add_effects`` draws them (white
-    noise, 1/f noise and steps first, from the same generator)."""
-    t = np.asarray(record.trace.t)
-    rng = np.random.default_rng(seed)
-    rng.normal(0.0, NOISE, t.size)
-    records._pink(rng, t.size, effects.pink)
-    records._steps(rng, t, effects)
-    return records._drift(rng, t, effects.drift) + records._hum(rng, t, effects)
+    return record, effects, drift_and_hum(record, effects, seed)
 
 
 def baseline_error(record, truth, found):

@@ -69,10 +69,10 @@ def head_level(y, head, width, exclude, level, residual):
     head : int
         Samples at the record's start that hold the pulse and its ringing, >= 1.
     width : int
-        Block length of the running baseline [samples]: the fit window is
+        Block length of the running baseline [samples]: the fit window holds
         :data:`HEAD_FIT_BLOCKS` of them after ``head``.
     exclude : numpy.ndarray of bool or None
-        Samples left out of the fit (other pulses in the window).
+        Samples left out of the fit (other pulses): the window reaches past them.
     level, residual : numpy.ndarray
         The running baseline's level and residual (``y``'s size), changed in place over
         the pulse and the fit window.
@@ -86,18 +86,19 @@ def head_level(y, head, width, exclude, level, residual):
     Raises
     ------
     ParameterError
-        Fewer than :data:`HEAD_MIN_SAMPLES` quiet samples after the pulse.
+        Fewer than :data:`HEAD_MIN_SAMPLES` samples after the pulse, ``exclude`` left out.
     """
-    stop = min(y.size, head + max(HEAD_MIN_SAMPLES, round(HEAD_FIT_BLOCKS * width)))
-    index = np.arange(head, stop)
-    if exclude is not None:
-        index = index[~exclude[head:stop]]
+    index = np.arange(head, y.size)
+    if exclude is not None:  # the window reaches past other pulses to hold its samples
+        index = index[~exclude[head:]]
+    index = index[: max(HEAD_MIN_SAMPLES, round(HEAD_FIT_BLOCKS * width))]
     if index.size < HEAD_MIN_SAMPLES:
         raise ParameterError(
             f"only {index.size} quiet samples after the pulse at the record's start (head = "
             f"{head} samples; need {HEAD_MIN_SAMPLES}): no baseline to extrapolate under it; "
             "record a pre-trigger"
         )
+    stop = int(index[-1]) + 1
     scale = float(stop - head)
     x = (index - head) / scale
     coefficients, covariance = _robust_fit(x, y[index], HEAD_DEGREE)
