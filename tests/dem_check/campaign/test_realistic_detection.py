@@ -228,7 +228,7 @@ def test_a_record_that_starts_at_its_impact_under_fast_drift(
     error = np.mean((level - _drift_and_hum(record, effects, seed=250))[under])
     # within one noise sigma of the drift and hum: the fit after the impact scatters with
     # the 1/f noise, extrapolated back over the 0.4-0.6 ms of its ringing; measured 0.10
-    # and 0.43 sigma, and 3.4 and 5.5 with block levels alone (before the head fit)
+    # and 0.43 sigma, and 3.3 and 5.5 with block levels alone (before the head fit)
     assert abs(error) <= record.noise
 
 
