@@ -7,11 +7,13 @@ record) leaves it several noise sigmas off; the residual's choice between neighb
 block levels (:func:`contactlab.signals.running_baseline`) is worse still next to a pulse,
 whose samples pull the local mean up (issue 22: a 2 N impact read as 1 N under a drift of
 about 700 N/s). So the level under the pulse is read where the record is quiet: a
-polynomial of degree :data:`HEAD_DEGREE` fitted with a robust loss (scipy's
-``least_squares``, ``soft_l1``: a weak bounce or a burst in the fit window is
-down-weighted, not followed) on the samples after the pulse and its ringing, over
-:data:`HEAD_FIT_BLOCKS` blocks, and extrapolated back to the record's first sample. Its
-standard error, from the fit's covariance, is returned so a threshold can take it in.
+line, or a quadratic where its curvature is :data:`CURVATURE_SIGMAS` standard errors,
+fitted with a robust loss (scipy's ``least_squares``, ``soft_l1``: a weak bounce or a
+burst in the fit window is down-weighted, not followed) on :data:`HEAD_FIT_BLOCKS`
+blocks of samples after the pulse and its ringing (past other pulses left out), and
+extrapolated back to the record's first sample. Its standard error, from the fit's
+covariance with the residual's autocorrelation time counted, is returned so a threshold
+can take it in.
 """
 
 import numpy as np
@@ -20,7 +22,7 @@ from scipy.stats import median_abs_deviation
 
 from contactlab.errors import ParameterError
 
-__all__ = ["HEAD_DEGREE", "HEAD_FIT_BLOCKS", "HEAD_MIN_SAMPLES", "head_level"]
+__all__ = ["CURVATURE_SIGMAS", "HEAD_DEGREE", "HEAD_FIT_BLOCKS", "HEAD_MIN_SAMPLES", "head_level"]
 
 HEAD_DEGREE = 2
 """Highest degree of the polynomial fitted after the pulse [-]: a drift that curves over
