@@ -197,7 +197,7 @@ def predict_gap(autocovariance, y, design, before, after, inside, q):
     autocovariance : numpy.ndarray
         Noise autocovariance at lags ``0 .. len(y)-1`` [N**2].
     y : numpy.ndarray
-        The segment [N].
+        The segment [N] (``(n,)``, or ``(n, k)``: ``k`` records read at once).
     design : numpy.ndarray
         ``(len(y), m)`` baseline model (zero inside where a column is signal).
     before, after : numpy.ndarray of int
@@ -216,7 +216,7 @@ def predict_gap(autocovariance, y, design, before, after, inside, q):
         Predicted noise at ``inside`` [N].
     """
     starts = np.concatenate([_blocks(before, q, True), _blocks(after, q, False)])
-    n = y.size
+    n = design.shape[0]
     c = np.concatenate([autocovariance[:0:-1], autocovariance])  # lags -(n-1) .. n-1
     cross = _box(c, q)  # sample k, block starting at 0: lag k (offset n-1)
     within = _box(cross[::-1], q)[::-1]  # block starting at k against block at 0
