@@ -4,7 +4,11 @@ Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read o
 segment (local baseline, impact, decayed ringing), less its own baseline: a line fitted
 before the impact and on the sensor's free ringing after its contact
 (:mod:`dem_check.campaign.local`), so that drift, wander, hum and the slow part of 1/f
-noise are read on both sides of it:
+noise are read on both sides of it. With the record's white and 1/f noise levels
+(:func:`dem_check.campaign.local.record_noise`, estimated once per record) the line and
+ringing are fitted by generalised least squares and the noise under the pulse is
+predicted from both sides (its conditional mean, :mod:`contactlab.inverse.noise_prediction`)
+and taken off with the line before the peak signal and the impulse are read:
 
 - ``sensor_response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
   :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
