@@ -195,7 +195,8 @@ def predict_gap(autocovariance, y, design, before, after, inside, q):
     Parameters
     ----------
     autocovariance : numpy.ndarray
-        Noise autocovariance at lags ``0 .. len(y)-1`` [N**2].
+        Noise autocovariance at lags ``0 .. len(y)-1`` [N**2] (those up to the span of
+        the samples used are read).
     y : numpy.ndarray
         The segment [N] (``(n,)``, or ``(n, k)``: ``k`` records read at once).
     design : numpy.ndarray
@@ -216,8 +217,12 @@ def predict_gap(autocovariance, y, design, before, after, inside, q):
         Predicted noise at ``inside`` [N].
     """
     starts = np.concatenate([_blocks(before, q, True), _blocks(after, q, False)])
-    n = design.shape[0]
-    c = np.concatenate([autocovariance[:0:-1], autocovariance])  # lags -(n-1) .. n-1
+    # lags within the samples used only: offsets from the first of them
+    first = min(starts.min(), inside.min())
+    n = max(starts.max() + q, inside.max() + 1) - first
+    starts, inside = starts - first, inside - first
+    y, design = y[first : first + n], design[first : first + n]
+    c = np.concatenate([autocovariance[n - 1 : 0 : -1], autocovariance[:n]])  # lags -(n-1) .. n-1
     cross = _box(c, q)  # sample k, block starting at 0: lag k (offset n-1)
     within = _box(cross[::-1], q)[::-1]  # block starting at k against block at 0
     members = starts[:, None] + np.arange(q)
