@@ -21,10 +21,15 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   the reconstructed peak (and the dip rule), as before the significance rule.
   ``--crosstalk-only``: the configurations with crosstalk only; ``--no-refine``: the
   joint pencil's structure poles without their variable-projection refinement (as
-  before it).
+  before it); ``--no-prediction``: the local baseline's ordinary line, without the noise
+  under the pulse predicted from both sides (as before it); ``--records N``: records per
+  configuration. Also printed: the root-mean-square error of the peak signal and
+  impulse scaled to 30 sigma over the impacts above it (to set against
+  ``bench_bounds.py``).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 [--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
+[--no-prediction] [--records N]
 [--noise-model white] [--contact-edges level]``
 """
 
