@@ -21,10 +21,15 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   the reconstructed peak (and the dip rule), as before the significance rule.
   ``--crosstalk-only``: the configurations with crosstalk only; ``--no-refine``: the
   joint pencil's structure poles without their variable-projection refinement (as
-  before it).
+  before it); ``--no-prediction``: the local baseline's ordinary line, without the noise
+  under the pulse predicted from both sides (as before it); ``--records N``: records per
+  configuration. Also printed: the root-mean-square error of the peak signal and
+  impulse scaled to 30 sigma over the impacts above it (to set against
+  ``bench_bounds.py``).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 [--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
+[--no-prediction] [--records N]
 [--noise-model white] [--contact-edges level]``
 """
 
@@ -44,6 +49,7 @@ from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.local import record_noise
 from dem_check.campaign.structure import record_modes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -162,11 +168,12 @@ def _errors(row, true, rate, noise):
     }
 
 
-def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
+def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True, predict=True):
     """Detection and analysis of one record in memory (what ``run_campaign`` does for
     each impact, without the files and the report); the errors of its impacts."""
     found = find_impacts(record.trace, sensor)
     modes = record_modes(found, sensor, refine=refine) if crosstalk else []
+    noise = record_noise(found, sensor) if predict else None
     truth, rows = record.truth, []
     for window in found.impacts:
         gap = np.abs(truth["onset [s]"] - window.onset)
@@ -177,7 +184,9 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
         if window.status not in ANALYSED:
             rows.append({"status": window.status})
             continue
-        row, _ = analyse_impact(found, window, sensor, grain, crosstalk=crosstalk, modes=modes)
+        row, _ = analyse_impact(
+            found, window, sensor, grain, crosstalk=crosstalk, modes=modes, noise=noise
+        )
         rows.append(_errors(row, true, rate, record.noise) if row["status"] == "ok" else row)
     onsets = np.array([w.onset for w in found.impacts])
     for onset in truth["onset [s]"]:
@@ -186,14 +195,16 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
     return rows
 
 
-def accuracy(names=None, crosstalk=True, refine=True):
+def accuracy(names=None, crosstalk=True, refine=True, predict=True, records=RECORDS):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
     print(f"crosstalk removal {'on' if crosstalk else 'off'}, joint poles refined: {refine}")
+    print(f"noise under the pulse predicted from both sides: {predict}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
-        for record in _records(rate, range(RECORDS), changes):
-            for row in _analyse(record, sensor, grain, rate, counts, crosstalk, refine):
+        for record in _records(rate, range(records), changes):
+            analysed = _analyse(record, sensor, grain, rate, counts, crosstalk, refine, predict)
+            for row in analysed:
                 rows.append({"configuration": name, **row})
     table = pd.DataFrame(rows)
     print(counts)
@@ -209,6 +220,14 @@ def accuracy(names=None, crosstalk=True, refine=True):
     print(largest.round(3).to_string())
     print("95th percentile of the errors:")
     print(grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95)).round(3).to_string())
+    strong = ok[ok["significance"] >= 30.0]
+    scaled = strong[["peak_sensor_force", "impulse"]].mul(strong["significance"] / 30.0, axis=0)
+    rms = scaled.groupby(strong["configuration"], sort=False).agg(
+        lambda v: np.sqrt(np.nanmean(v**2))
+    )
+    rms["impacts"] = strong.groupby("configuration", sort=False).size()
+    print("root-mean-square error scaled to 30 sigma (error x significance / 30), over 30 sigma:")
+    print(rms.round(4).to_string())
 
 
 def main():
@@ -229,6 +248,12 @@ def main():
         action="store_true",
         help="the joint pencil's poles as they are, without the variable projection",
     )
+    parser.add_argument(
+        "--no-prediction",
+        action="store_true",
+        help="the local baseline's ordinary line, without the noise predicted under the pulse",
+    )
+    parser.add_argument("--records", type=int, default=RECORDS, help="records per configuration")
     parser.add_argument(
         "--noise-model",
         choices=["ar", "white"],
@@ -251,7 +276,13 @@ def main():
         names = args.configuration
         if args.crosstalk_only:
             names = [n for n in names or CONFIGURATIONS if CONFIGURATIONS[n][1]["crosstalk"]]
-        accuracy(names, crosstalk=not args.no_crosstalk, refine=not args.no_refine)
+        accuracy(
+            names,
+            crosstalk=not args.no_crosstalk,
+            refine=not args.no_refine,
+            predict=not args.no_prediction,
+            records=args.records,
+        )
 
 
 if __name__ == "__main__":
