@@ -289,6 +289,8 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
             max_unknowns=_unknowns(window.onset, contact_end, sensor),
             crosstalk=False,  # removed above, with the record's modes (or kept on request)
             first_touch=False,  # the onset was fitted per record (dem_check.campaign.onsets)
+            # the edges with the shape of the record's contact family (its onset fit's)
+            contact_family=detection.contact_family,
         )
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))

@@ -174,6 +174,10 @@ class Detection:
     steps: list = ()
     """:class:`ImpactWindow` rows of the record's DC offset steps (status ``"offset
     step"``, ``peak`` the height [N]), in time order."""
+    contact_family: tuple = None
+    """The contact family and damping ratio ``(name, zeta [-])`` the onset fit read on the
+    record's most significant impacts (:mod:`dem_check.campaign.onsets`), or None (not
+    fitted)."""
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -283,7 +287,8 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     )
     if not fit_onsets or period < RESOLVED_PERIOD_SAMPLES:
         return found  # a sensor period of a few samples holds no rise to fit
-    return dataclasses.replace(found, impacts=first_touches(found, sensor, ANALYSED))
+    impacts, family = first_touches(found, sensor, ANALYSED)
+    return dataclasses.replace(found, impacts=impacts, contact_family=family)
 
 
 def _candidates(trace, sensor):
