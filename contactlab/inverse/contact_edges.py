@@ -38,6 +38,7 @@ from scipy import linalg
 from contactlab.errors import ParameterError
 from contactlab.inverse.lobe_onset import FAMILIES, force_shape
 from contactlab.metrics import PulseMetrics, impulse, pulse_metrics, rise_time
+from contactlab.validation import check_number
 
 __all__ = [
     "DIP_FRACTION",
@@ -48,6 +49,7 @@ __all__ = [
     "THRESHOLD_SIGMAS",
     "TOUCH_SPAN",
     "family_flanks",
+    "flank_shapes",
     "level_edges",
     "significant_edges",
     "tikhonov_std",
@@ -151,6 +153,19 @@ def family_flanks(family, damping):
     u, h = force_shape(family, float(damping))
     step = float(np.interp(TOUCH_SPAN, u, h)) if damping > 0.0 else 0.0
     return {"exponent": n, "end_exponent": n if damping == 0.0 else 1.0, "step": step}
+
+
+def flank_shapes(exponent, family=None):
+    """The flanks' keywords of :func:`significant_edges`: ``exponent`` [-], or where a
+    contact ``family`` ``(name, damping ratio)`` is given, its :func:`family_flanks`."""
+    if family is None:
+        return {"exponent": exponent}
+    if exponent != 1.0:
+        raise ParameterError("give flank_exponent or contact_family, not both")
+    name, damping = family
+    return family_flanks(
+        name, check_number("contact_family damping", damping, low=0.0, low_open=False)
+    )
 
 
 def _half_step(t, force, level):

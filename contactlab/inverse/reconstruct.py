@@ -33,7 +33,7 @@ from contactlab.inverse.contact_edges import (
     SIGNIFICANCE_SIGMAS,
     THRESHOLD_FRACTION,
     THRESHOLD_SIGMAS,
-    family_flanks,
+    flank_shapes,
     level_edges,
     significant_edges,
     tikhonov_std,
@@ -366,8 +366,7 @@ def reconstruct_force(
         with its onsets) (``"significance"`` only): the flanks' power laws and the
         force's jump at the touch from the family's force
         (:func:`contactlab.inverse.contact_edges.family_flanks`), instead of
-        ``flank_exponent``. A damped contact's start is then read at half its jump (a
-        line through the rounded jump reached zero 2-4 us early).
+        ``flank_exponent``: a damped contact's start at half its force's jump.
 
     Returns
     -------
@@ -434,13 +433,7 @@ def reconstruct_force(
     flank_exponent = check_number(
         "flank_exponent", flank_exponent, low=1.0, high=3.0, low_open=False
     )
-    flanks = {"exponent": flank_exponent}
-    if contact_family is not None:
-        if flank_exponent != 1.0:
-            raise ParameterError("give flank_exponent or contact_family, not both")
-        name, damping = contact_family
-        damping = check_number("contact_family damping", damping, low=0.0, low_open=False)
-        flanks = family_flanks(name, damping)
+    flanks = flank_shapes(flank_exponent, contact_family)
     contact_edges = check_choice(
         "contact_edges", contact_edges or DEFAULT_CONTACT_EDGES, CONTACT_EDGES
     )

@@ -17,6 +17,7 @@ from contactlab.inverse.contact_edges import (
     SIGNIFICANCE_SIGMAS,
     TOUCH_SPAN,
     family_flanks,
+    flank_shapes,
     significant_edges,
     tikhonov_std,
 )
@@ -128,6 +129,13 @@ def test_the_families_flank_laws():
     assert 0.0 < damped["step"] < 1.0
     with pytest.raises(ParameterError, match="family"):
         family_flanks("plastic", 0.1)
+    # bad input named: a family with an exponent, a negative damping
+    assert flank_shapes(1.5) == {"exponent": 1.5}
+    assert flank_shapes(1.0, ("hertz", 0.0)) == family_flanks("hertz", 0.0)
+    with pytest.raises(ParameterError, match="flank_exponent or contact_family"):
+        flank_shapes(1.5, ("hertz", 0.0))
+    with pytest.raises(ParameterError, match="contact_family damping"):
+        flank_shapes(1.0, ("linear", -0.1))
 
 
 @pytest.mark.parametrize("width", [1e-6, 2e-6, 4e-6])
