@@ -25,12 +25,15 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   under the pulse predicted from both sides (as before it); ``--records N``: records per
   configuration. Also printed: the root-mean-square error of the peak signal and
   impulse scaled to 30 sigma over the impacts above it (to set against
-  ``bench_bounds.py``).
+  ``bench_bounds.py``). ``--law hertz``: the records with a Hertz contact (:data:`HERTZ`)
+  instead of the linear one; ``--linear-flanks``: the reconstructed contact's edges read
+  with a line on each flank whatever the contact family the onset fit read on the record
+  (as before the family was passed to the reconstruction).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 [--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
 [--no-prediction] [--records N]
-[--noise-model white] [--contact-edges level]``
+[--noise-model white] [--contact-edges level] [--law hertz] [--linear-flanks]``
 """
 
 import argparse
@@ -44,6 +47,7 @@ import pandas as pd
 
 import contactlab as cl
 import contactlab.inverse.reconstruct as reconstruct_module
+import dem_check.campaign.analysis as analysis_module
 from contactlab.config import load_config
 from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
@@ -56,6 +60,11 @@ ROOT = Path(__file__).resolve().parents[1]
 NOISE = 0.03  # [N]
 RECORDS = 4  # per configuration
 MATCH = 60e-6  # [s] a detected onset this close to a true one is that impact
+
+
+HERTZ = cl.laws.Hertz(k_hertz=1.5e6)
+"""The Hertz contact of ``--law hertz`` (``bench_onsets.py``'s) on the hard grain and
+sensor: its force rises as t**1.5."""
 
 
 def hard():
@@ -195,14 +204,14 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True, p
     return rows
 
 
-def accuracy(names=None, crosstalk=True, refine=True, predict=True, records=RECORDS):
+def accuracy(names=None, crosstalk=True, refine=True, predict=True, records=RECORDS, law=None):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
     print(f"crosstalk removal {'on' if crosstalk else 'off'}, joint poles refined: {refine}")
     print(f"noise under the pulse predicted from both sides: {predict}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
-        for record in _records(rate, range(records), changes):
+        for record in _records(rate, range(records), changes, law):
             analysed = _analyse(record, sensor, grain, rate, counts, crosstalk, refine, predict)
             for row in analysed:
                 rows.append({"configuration": name, **row})
@@ -266,7 +275,27 @@ def main():
         default=reconstruct_module.DEFAULT_CONTACT_EDGES,
         help="how the reconstructed contact's edges are read (level: 2 %% of the peak, before)",
     )
+    parser.add_argument(
+        "--law",
+        choices=["linear", "hertz"],
+        default="linear",
+        help="the contact law of --accuracy's records (hertz: k_hertz = 1.5e6 N/m**1.5)",
+    )
+    parser.add_argument(
+        "--linear-flanks",
+        action="store_true",
+        help="the reconstructed contact's edges read with a line on each flank whatever the "
+        "record's contact family (as before the family was passed)",
+    )
     args = parser.parse_args()
+    if args.linear_flanks:
+
+        def linear_flanks(*given, **options):  # the campaign's call without its family
+            return reconstruct_module.reconstruct_force(
+                *given, **{**options, "contact_family": None}
+            )
+
+        analysis_module.reconstruct_force = linear_flanks
     reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
     reconstruct_module.DEFAULT_CONTACT_EDGES = args.contact_edges
     print(f"noise model {args.noise_model}, contact edges {args.contact_edges}")
@@ -276,12 +305,15 @@ def main():
         names = args.configuration
         if args.crosstalk_only:
             names = [n for n in names or CONFIGURATIONS if CONFIGURATIONS[n][1]["crosstalk"]]
+        law = HERTZ if args.law == "hertz" else None
+        print(f"contact law {args.law}, flanks {'linear' if args.linear_flanks else 'family'}")
         accuracy(
             names,
             crosstalk=not args.no_crosstalk,
             refine=not args.no_refine,
             predict=not args.no_prediction,
             records=args.records,
+            law=law,
         )
 
 

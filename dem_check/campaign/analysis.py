@@ -23,7 +23,9 @@ and taken off with the line before the peak signal and the impulse are read:
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
   by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV on the problem
   whitened with the noise's AR model read on the baseline, a force value per twentieth
-  of a sensor period) on the segment;
+  of a sensor period) on the segment, its contact's edges read with the shape of the
+  contact family the onset fit read on the record (:attr:`Detection.contact_family`:
+  a damped contact's start at half its force's jump at the touch);
 - with a grain, ``velocity_change [m/s]`` = impulse / grain mass (``(1 + e) v`` for an
   impact at speed ``v`` and restitution ``e``: the impulse alone cannot separate them);
 - with ``fit=`` a law name, :func:`contactlab.inverse.fit_contact` on the segment: each
@@ -311,6 +313,8 @@ def analyse_impact(
             max_unknowns=_unknowns(window.onset, contact_end, sensor),
             crosstalk=False,  # removed above, with the record's modes (or kept on request)
             first_touch=False,  # the onset was fitted per record (dem_check.campaign.onsets)
+            # the edges with the shape of the record's contact family (its onset fit's)
+            contact_family=detection.contact_family,
         )
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))

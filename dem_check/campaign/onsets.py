@@ -141,13 +141,18 @@ def record_onsets(detection, windows, sensor):
 def first_touches(detection, sensor, statuses):
     """The detection's impacts, those with a status of ``statuses`` with their onset
     fitted (:func:`record_onsets`); where the fit failed, the crossing is kept and the
-    impact's ``reason`` says so."""
+    impact's ``reason`` says so. Returned as the :class:`Detection` fields ``impacts`` and
+    ``contact_family``: the record's family and damping ratio ``(name, zeta [-])`` (None
+    where none was read), with which the reconstruction reads its contact's edges
+    (:mod:`dem_check.campaign.analysis`)."""
     chosen = [k for k, w in enumerate(detection.impacts) if w.status in statuses]
     if not chosen:
-        return list(detection.impacts)
-    onsets, notes, _, _ = record_onsets(detection, [detection.impacts[k] for k in chosen], sensor)
+        return {"impacts": list(detection.impacts), "contact_family": None}
+    onsets, notes, family, damping = record_onsets(
+        detection, [detection.impacts[k] for k in chosen], sensor
+    )
     impacts = list(detection.impacts)
     for k, onset, note in zip(chosen, onsets, notes, strict=True):
         reason = "; ".join(r for r in (impacts[k].reason, note) if r)
         impacts[k] = dataclasses.replace(impacts[k], onset=onset, reason=reason)
-    return impacts
+    return {"impacts": impacts, "contact_family": None if family is None else (family, damping)}
