@@ -69,18 +69,22 @@ def test_the_compiled_loop_gives_the_python_loops_phases_and_rebound(solved, nam
     """The same equations, events and switch rules at rtol 1e-9, in numba instead of the
     Python DOP853 stepper (the same scipy tables): the same phases, and the rebound and
     forces within the integration's tolerance. Measured: the same phase codes in every
-    case (170 in the 30 deg one), phase ends within 2.1e-11 of the contact time, rebounds
+    case (170 in the 30 deg one), phase ends within 2.1e-11 of the contact time (3.2e-9
+    since the warped start's norm changed, below), rebounds
     within 2.4e-13 of vt, grid forces within 7.6e-14 of the peak normal force; a changed
     rule moves them by 1e-3 of vt or more (``test_conventions.py``: the cap's own effect
     is 1.5e-3 to 2.5e-3 at 5 deg)."""
     res, old = solved[name], GOLDEN[name]
     assert [code for _, _, code in res.phases] == [code for _, _, code in old["phases"]]
-    # a phase's end is an event located to Brent's xtol on an interpolant of rtol 1e-9
+    # a phase's end is an event located to Brent's xtol on an interpolant of rtol 1e-9;
+    # the recording's warped start combined DOP853's estimates over all components
+    # (docs/verification.md, finding 11): at 5 deg its phase ends are 5.2e-9 of the
+    # contact time off a rtol 1e-13 solution, today's 2.1e-9, so they differ by 3.2e-9
     np.testing.assert_allclose(
         [t1 for _, t1, _ in res.phases],
         [t1 for _, t1, _ in old["phases"]],
         rtol=0.0,
-        atol=1e-9 * res.contact_time,
+        atol=1e-8 * res.contact_time,
     )
     vt = res.incident_tangential_velocity
     # a different step choice stays within rtol 1e-9 of the speed; a rule moves it >= 1e-3
