@@ -39,6 +39,7 @@ __all__ = [
     "SIGNED_DAMPING",
     "STIFFNESS",
     "force",
+    "force_floor",
     "pack",
     "power",
     "rhs",
@@ -132,6 +133,30 @@ def force(d, r, par):
         return elastic
     signed = par[SIGNED_DAMPING] > 0.0
     return elastic + par[DAMPING] * power(d, ad, par[DAMPING_EXPONENT], signed) * r
+
+
+@njit(cache=True, error_model="numpy")
+def force_floor(d_lo, d_hi, r_lo, r_hi, par):
+    """Lower bound [N] of :func:`force` over overlaps ``d_lo <= d <= d_hi`` [m] and rates
+    ``r_lo <= r <= r_hi`` [m/s], and the force's size there [N] (``|a| d_hi**p + |b|
+    D(d_hi) max |r|``); the bound is ``-inf`` unless ``d_lo > 0``.
+
+    For ``d > 0`` both ``d**p`` and ``D(d)`` grow with ``d`` (``p, q >= 0``), so the
+    elastic term is least at an end of the overlaps and the damping term ``b D(d) r``,
+    bilinear in ``(D, r)``, at a corner of the box.
+    """
+    if not d_lo > 0.0:
+        return -math.inf, 0.0
+    a, b = par[STIFFNESS], par[DAMPING]
+    p, q, signed = par[EXPONENT], par[DAMPING_EXPONENT], par[SIGNED_DAMPING] > 0.0
+    e_lo, e_hi = a * power(d_lo, d_lo, p, True), a * power(d_hi, d_hi, p, True)
+    size = max(abs(e_lo), abs(e_hi))
+    floor = min(e_lo, e_hi)
+    if b != 0.0:
+        g_lo, g_hi = b * power(d_lo, d_lo, q, signed), b * power(d_hi, d_hi, q, signed)
+        floor += min(g_lo * r_lo, g_lo * r_hi, g_hi * r_lo, g_hi * r_hi)
+        size += max(abs(g_lo), abs(g_hi)) * max(abs(r_lo), abs(r_hi))
+    return floor, size
 
 
 @njit(cache=True, error_model="numpy")

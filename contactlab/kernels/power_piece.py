@@ -21,7 +21,7 @@ from contactlab.kernels.brent import WORK_SIZE
 from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, step
 from contactlab.kernels.model_rhs import events
 from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, sample, waits
-from contactlab.kernels.power import rhs
+from contactlab.kernels.power import force_floor, rhs
 
 __all__ = [
     "MAX_RETAKES",
@@ -115,6 +115,36 @@ def _grow(t_old, h, y_old, F):
 
 
 @njit(cache=True, error_model="numpy")
+def _span(F, y_old, i, j):
+    """Bounds ``(lo, hi)`` of ``z[j] - z[i]`` on a step's interpolant (``y_old``, ``F``).
+
+    The interpolant is ``y_old + x (F0 + (1 - x) (F1 + x (F2 + ...)))`` (Horner in ``x``
+    and ``1 - x``, :func:`contactlab.kernels.dop853.interpolate`), so on ``0 <= x <= 1``
+    it lies within ``x (1 - x) sum |F1..F6| <= sum |F1..F6| / 4`` of the chord from
+    ``y_old`` to ``y_old + F0``.
+    """
+    start = y_old[j] - y_old[i]
+    end = start + (F[0, j] - F[0, i])
+    bend = 0.0
+    for k in range(1, F.shape[0]):
+        bend += abs(F[k, j] - F[k, i])
+    return min(start, end) - 0.25 * bend, max(start, end) + 0.25 * bend
+
+
+@njit(cache=True, error_model="numpy")
+def _pressed(F, y_old, par):
+    """Whether the contact force is bounded above zero on the whole step's interpolant
+    (overlap and rate from :func:`_span`, the force from
+    :func:`contactlab.kernels.power.force_floor`), by more than ``1e-9`` of its size (the
+    interpolant's rounding is ~1e-16 of it): no sample of the step could then find the
+    contact's end, and :func:`_run` skips them."""
+    d_lo, d_hi = _span(F, y_old, 0, 2)
+    r_lo, r_hi = _span(F, y_old, 1, 3)
+    floor, size = force_floor(d_lo, d_hi, r_lo, r_hi, par)
+    return floor > 1e-9 * size
+
+
+@njit(cache=True, error_model="numpy")
 def _run(t, y, h_try, end, rtol, atol, par, warped):
     """Steps from ``(t, y)`` until ``end``, the event, or (warped) the hand-over.
 
@@ -122,7 +152,8 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
     + 1 points of every step and between them
     (:func:`contactlab.kernels.oblique_events.first_crossing`), not at the step's ends
     only: a sensor plate's ringing can bring the force to zero and back inside one step
-    (docs/verification.md, finding 12).
+    (docs/verification.md, finding 12). A step whose interpolant keeps the force bounded
+    above zero (:func:`_pressed`) is not sampled: the search would find nothing there.
 
     Returns (status, n_steps, t_old, h, y_old, F, hit, t, y, t_old_last): ``hit`` is the
     event time (nan if none); ``t, y`` the last step's end; ``t_old_last`` its start.
@@ -146,11 +177,16 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
         if count == t_old.size:
             t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
         interpolant(K, h, y, y_new, f_new, par, warped, F[count])
-        sample(t, h, y, F[count], y_new, par, 0.0, times, rows, tmp)
-        hit, index = first_crossing(
-            (t, h, y, F[count]), 1, armed, times, rows, par, 0.0, tmp, row, work, rising
-        )
-        hit = math.nan if index < 0 else hit
+        if _pressed(F[count], y, par):
+            rows[0] = rows[SUBSTEPS]
+            events(y_new, par, 0.0, rows[SUBSTEPS])
+            hit = math.nan
+        else:
+            sample(t, h, y, F[count], y_new, par, 0.0, times, rows, tmp)
+            hit, index = first_crossing(
+                (t, h, y, F[count]), 1, armed, times, rows, par, 0.0, tmp, row, work, rising
+            )
+            hit = math.nan if index < 0 else hit
         if not math.isnan(hit):
             again = retake_bound(t, hit, t_new, retaken)
             if not math.isnan(again):  # the step again from t, to just past the end
