@@ -118,17 +118,20 @@ def _grow(t_old, h, y_old, F):
 def _span(F, y_old, i, j):
     """Bounds ``(lo, hi)`` of ``z[j] - z[i]`` on a step's interpolant (``y_old``, ``F``).
 
-    The interpolant is ``y_old + x (F0 + (1 - x) (F1 + x (F2 + ...)))`` (Horner in ``x``
-    and ``1 - x``, :func:`contactlab.kernels.dop853.interpolate`), so on ``0 <= x <= 1``
-    it lies within ``x (1 - x) sum |F1..F6| <= sum |F1..F6| / 4`` of the chord from
-    ``y_old`` to ``y_old + F0``.
+    The interpolant is ``y_old + x F0 + x (1 - x) P(x)``, ``P = F1 + x (F2 + (1 - x) (F3
+    + ...))`` (Horner in ``x`` and ``1 - x``, :func:`contactlab.kernels.dop853.interpolate`):
+    interval arithmetic from the innermost coefficient, each factor ``x`` or ``1 - x`` in
+    ``[0, 1]``, bounds ``P``, and ``x (1 - x)`` lies in ``[0, 1/4]``; the chord ``y_old +
+    x F0`` lies between the step's ends.
     """
+    last = F.shape[0] - 1
+    lo = hi = F[last, j] - F[last, i]
+    for k in range(last - 1, 0, -1):
+        c = F[k, j] - F[k, i]
+        lo, hi = c + min(lo, 0.0), c + max(hi, 0.0)
     start = y_old[j] - y_old[i]
     end = start + (F[0, j] - F[0, i])
-    bend = 0.0
-    for k in range(1, F.shape[0]):
-        bend += abs(F[k, j] - F[k, i])
-    return min(start, end) - 0.25 * bend, max(start, end) + 0.25 * bend
+    return min(start, end) + 0.25 * min(lo, 0.0), max(start, end) + 0.25 * max(hi, 0.0)
 
 
 @njit(cache=True, error_model="numpy")
