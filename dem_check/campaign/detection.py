@@ -40,10 +40,11 @@ in newtons:
    the whole first lobe), which the crossing lags.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
-   :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
-   first one's ringing decayed. Both are flagged ``"overlap"``, never merged. A record
-   with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period does not
-   resolve the ringing, and this check is not made.
+   :data:`GROWTH_FACTOR` (plus the noise floor) to the detection threshold, a second
+   impact started before the first one's ringing decayed. Both are flagged
+   ``"overlap"``, never merged. A record with fewer than
+   :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period does not resolve the
+   ringing, and this check is not made.
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
@@ -176,18 +177,26 @@ class Detection:
     step"``, ``peak`` the height [N]), in time order."""
 
 
-def _growths(z, first_lobe_end, last, period, noise_floor_level):
-    """Sample indices where the ringing envelope grows: later impacts (module step 5)."""
+def _growths(z, ratio, first_lobe_end, last, period, levels):
+    """Sample indices where the ringing envelope grows: later impacts (module step 5).
+
+    ``levels``: the noise floor's level [N] and the detection threshold [local noise
+    sigmas]: a later impact reaches the threshold, as it would alone (under hum of 2
+    noise sigmas and drift of 37, the ringing's tail of a 2 m/s impact dipped to 1.5
+    floor sigmas for one period and rose to 5.4 local sigmas the next: an overlap was
+    invented, ``test_hum_and_drift_across_an_impact``)."""
     start = first_lobe_end + period  # the free ringing is under way one period later
     windows = (last + 1 - start) // period
     if windows < 2:
         return []
     envelope = np.abs(z[start : start + windows * period]).reshape(windows, period).max(axis=1)
-    grows = envelope[1:] > GROWTH_FACTOR * envelope[:-1] + noise_floor_level
+    significance = ratio[start : start + windows * period].reshape(windows, period).max(axis=1)
+    grows = envelope[1:] > GROWTH_FACTOR * envelope[:-1] + levels[0]
+    grows &= significance[1:] >= levels[1]
     runs = np.flatnonzero(grows & ~np.concatenate([[False], grows[:-1]])) + 1
     found = []
     for k in runs:
-        level = GROWTH_FACTOR * envelope[k - 1] + noise_floor_level
+        level = GROWTH_FACTOR * envelope[k - 1] + levels[0]
         segment = np.abs(z[start + k * period : start + (k + 1) * period])
         found.append(start + k * period + int(np.argmax(segment > level)))
     return found
@@ -476,7 +485,8 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
     level = FLOOR_SIGMAS * floor.smoothed_noise
     resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
     growths = resolved and lobe_end > detected
-    later = _growths(z, lobe_end, last, scales["period"], level) if growths else []
+    levels = (level, floor.sigmas)
+    later = _growths(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
     if not later:
         if after:
             reason = (
