@@ -22,8 +22,14 @@ explicitly:
    windows before and after (a step raises it at about one window of boundaries), and
    is taken off.
 4. **Significance.** The change over its noise: the median absolute change over the
-   record (most boundaries hold no step) scaled for windows shortened at the edges. A
-   change of :data:`STEP_SIGMAS` or more, the largest within a window, is a step.
+   record (most boundaries hold no step) scaled for windows shortened at the edges, or,
+   where larger, the changes' spread within :data:`DRIFT_WINDOWS` windows either side
+   (a level that does not stay: a plate mode's slow ringing moves the medians up and
+   down, a step at fewer than half of those boundaries) and, for windows further apart
+   than a window (masked impacts between or among them), the spread of the record's
+   changes between full windows as far apart (hum's and drift's curvature, which the
+   slope does not take off, grows with the distance). A change of :data:`STEP_SIGMAS`
+   or more, the largest within a window, is a step.
 5. **Where.** Between the two windows, the sample where the level changes: the
    least-absolute-deviation split between the two levels of the record averaged over one
    sensor period (samples far from both levels, an impact's main lobe, count for
@@ -134,8 +140,8 @@ def _running_nanmedian(values, half):
 
 
 def _local_spread(changes, half):
-    """Spread of the level changes within ``half`` boundaries either side of each
-    (1.4826 times their median absolute deviation from their running median)."""
+    """Spread [N] of the level ``changes`` within ``half`` boundaries either side of
+    each (1.4826 times their median absolute deviation from their running median)."""
     width = 2 * half + 1
     centred = changes - median_filter(changes, width, mode="nearest")
     return MAD_TO_SIGMA * median_filter(np.abs(centred), width, mode="nearest")
@@ -152,6 +158,9 @@ def _gap_spread(levels, firsts, stops, slope, counts):
     blocks = firsts // period
     grid = np.full(int(blocks[-1]) + 1, np.nan)
     grid[blocks] = levels
+    out = np.zeros(levels.size - 1)
+    if grid.size < 2 * size:
+        return out
     # medians of the full windows of unmasked blocks starting at each block (nan else)
     medians = np.median(np.lib.stride_tricks.sliding_window_view(grid, size), axis=1)
     on_grid = np.interp(np.arange(grid.size), blocks[1:], slope) * period
@@ -159,7 +168,6 @@ def _gap_spread(levels, firsts, stops, slope, counts):
     n_before, n_after = counts
     reach = blocks[np.minimum(j + n_after - 1, levels.size - 1)] - blocks[j - n_before] + 1
     gaps = reach - n_before - n_after
-    out = np.zeros(j.size)
     for gap in np.unique(gaps[gaps > 0]):
         i = np.arange(max(medians.size - size - gap, 0))
         change = medians[i + size + gap] - medians[i] - on_grid[i + size] * (size + gap)
