@@ -34,9 +34,11 @@ lint: $(STAMP_TEST)
 	$(VENV)/bin/ruff check .
 	$(VENV)/bin/ruff format --check .
 
+# one pytest worker per core, whole files to a worker (their module fixtures are built once);
+# the slowest tests are listed at the end to keep the suite inside its 10 minutes
 test: lint
 	$(VENV)/bin/contactlab warm-up
-	$(PY) -m pytest
+	$(PY) -m pytest -n auto --dist loadfile --durations=15
 
 bench: $(STAMP_DEMO)
 	for f in benchmarks/bench_*.py; do $(PY) $$f || exit 1; done

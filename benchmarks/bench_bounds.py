@@ -16,18 +16,31 @@ for the baseline. Printed relative to the truth at a significance (peak signal o
 The segment read: 16 sensor periods before the first touch, the contact window (first
 touch to one period after the contact's end) and 16 periods after it.
 
-Run: ``.venv/bin/python benchmarks/bench_bounds.py``
+``--readers DRAWS``: the campaign's impulse reader (``local_baseline``, windows as
+``dem_check.campaign.analysis`` sets them: 8 periods before the onset less a tenth, the
+contact and a period, 16 periods after) on ``DRAWS`` stretches of noise alone (white,
+1/f and hum drawn as ``realistic_record`` draws them on 25 ms records): its standard
+deviation with the ordinary line and with the noise under the pulse predicted from both
+sides (white and 1/f levels estimated on the rest of each record), against the ``free``
+bound of the same windows (same draws for both readers).
+
+Run: ``.venv/bin/python benchmarks/bench_bounds.py [--readers DRAWS] [--rate HZ]
+[--pink RATIO]``
 """
 
+import argparse
 import math
 import os
 import time
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 import contactlab as cl
 from contactlab.config import load_config
+from contactlab.inverse.local_baseline import _ringing, local_baseline
+from contactlab.inverse.noise_prediction import estimate_coloured_noise
 from dem_check.campaign import Effects
 from dem_check.campaign.bounds import (
     band_design,
@@ -36,6 +49,7 @@ from dem_check.campaign.bounds import (
     law_design,
     noise_autocovariance,
 )
+from dem_check.campaign.records import add_effects
 
 ROOT = Path(__file__).resolve().parents[1]
 WHITE = 0.03  # [N], as bench_realistic.py
@@ -88,13 +102,75 @@ def bounds(rate, pink):
     }
 
 
+def readers(rate, pink, draws, seed=1):
+    """Standard deviations [N*s] of the impulse read on noise alone with the ordinary
+    line and with the predicted noise, the ``free`` bound of the same windows, the
+    truth [N*s] and the noise scale [N] (``--readers``)."""
+    grain, sensor, law = _model()
+    impact = cl.simulate_impact(grain, sensor, law, VELOCITY)
+    dt, period = 1.0 / rate, sensor.period
+    onset = PERIODS * period
+    start, post = onset - 0.1 * period, onset + impact.contact_time + period
+    t = np.arange(round((post + PERIODS * period) / dt)) * dt
+    base = (start - 8.0 * period, start)
+    effects = Effects(pink=pink * WHITE, hum=1.5 * WHITE)
+    total = round(RECORD / dt)
+    rng = np.random.default_rng(seed)
+    read = {"line": [], "predicted": []}
+    no_impacts = pd.DataFrame({"onset [s]": [], "peak_sensor_force [N]": []})
+    for _ in range(draws):
+        noise = add_effects(
+            np.arange(total) * dt, np.zeros(total), effects, no_impacts, WHITE, rng
+        )[0]
+        first = int(rng.integers(0, total - t.size))
+        y = noise[first : first + t.size]
+        quiet = np.ones(total, dtype=bool)
+        quiet[first : first + t.size] = False
+        levels = estimate_coloured_noise(noise, quiet, dt, RECORD, period)
+        for name, model in (("line", None), ("predicted", levels)):
+            read[name].append(local_baseline(t, y, base, start, post, post, sensor, model).impulse)
+    inside = (t >= start) & (t < post)
+    fitted = ((t >= base[0]) & (t < base[1])) | ((t >= post) & (t <= post + PERIODS * period))
+    ringing, a, b = _ringing(np.maximum(t - post, 0.0), sensor)
+    ringing[t < post] = 0.0
+    design = np.column_stack([np.ones(t.size), t - t.mean(), ringing])
+    tail = np.array([0.0, 0.0, a, b]) / sensor.angular_frequency**2
+    autocovariance = noise_autocovariance(t.size, dt, WHITE, effects, RECORD)
+    bound = math.sqrt(free_variance(autocovariance, fitted, inside, design, inside * dt, tail))
+    spread = {name: float(np.std(v)) for name, v in read.items()}
+    return spread, bound, impact, math.hypot(WHITE, pink * WHITE)
+
+
 def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--readers", type=int, default=0, help="draws of the readers' check")
+    parser.add_argument("--rate", type=float, action="append", help="sample rate [Hz]")
+    parser.add_argument("--pink", type=float, action="append", help="1/f over white noise")
+    args = parser.parse_args()
+    rates, pinks = args.rate or (1e6, 2e6, 5e6), args.pink or (1.0, 0.3, 0.0)
     print(f"load average {os.getloadavg()[0]:.1f}")
+    if args.readers:
+        print(f"impulse readers on noise alone, {args.readers} draws, % of the truth at 30 sigma")
+        print("| rate | 1/f | line | predicted | free bound | line / bound | predicted / bound |")
+        for pink in pinks:
+            for rate in rates:
+                started = time.perf_counter()
+                spread, bound, impact, noise = readers(rate, pink, args.readers)
+                scale = 100.0 / (30.0 * noise / impact.peak_sensor_force * impact.impulse)
+                cells = [spread["line"] * scale, spread["predicted"] * scale, bound * scale]
+                ratios = [spread["line"] / bound, spread["predicted"] / bound]
+                print(
+                    f"| {rate / 1e6:g} MHz | {pink:g} | "
+                    + " | ".join(f"{c:.2f}" for c in cells + ratios)
+                    + f" |  ({time.perf_counter() - started:.0f} s, load "
+                    + f"{os.getloadavg()[0]:.1f})"
+                )
+        return
     print("standard deviation of the best linear unbiased estimator, % of the truth")
     header = "| rate | 1/f | significance | peak: law | band | one free sample | "
     print(header + "impulse: law | band | free |")
-    for pink in (1.0, 0.3, 0.0):
-        for rate in (1e6, 2e6, 5e6):
+    for pink in pinks:
+        for rate in rates:
             started = time.perf_counter()
             found = bounds(rate, pink)
             peak, impulse = found["truth"]

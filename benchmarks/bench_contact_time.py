@@ -9,11 +9,14 @@ noise 50 and 20), 8 noise seeds each. Both contact-edge rules are run on the sam
 signals: ``significance`` (the default: the contact where the force is significantly
 above zero, its edges extrapolated along the flanks) and ``level`` (2 % of the peak and
 the dip rule, as before); on the Hertz force also the significance rule with Hertz's
-power law at the flanks (``flank_exponent=1.5``). Printed: the largest and mean relative
-errors against the closed-form (half-sine) or integrated (Hertz) peak and contact time,
-and their mean (bias).
+power law at the flanks (``flank_exponent=1.5``); on a linear spring-dashpot's force
+(closed form, damping ratio 0.177: it jumps to 42 % of its peak at the touch) the
+significance rule with a line on each flank and with the contact family
+(``contact_family=("linear", 0.177)``: the start at half the jump). Printed: the
+largest and mean relative errors against the closed-form (half-sine, spring-dashpot) or
+integrated (Hertz) peak and contact time, and their mean (bias).
 
-Run: ``.venv/bin/python benchmarks/bench_contact_time.py [--seeds 8]``
+Run: ``.venv/bin/python benchmarks/bench_contact_time.py [--seeds 8] [--shape NAME]``
 """
 
 import argparse
@@ -67,11 +70,41 @@ def hertz(t):
     return np.interp(t, sol.t, force, left=0.0, right=0.0), (float(force.max()), duration)
 
 
+DAMPING = 0.177
+"""Damping ratio of :func:`damped_linear` [-] (the hard test grain's, k2 = 4e4 N/m,
+c2 = 0.5 N*s/m, 50 mg: its force jumps to 42 % of its peak at the touch)."""
+
+
+def damped_linear(t):
+    """A linear spring-dashpot impact on a rigid wall in closed form, ``x = v / wd
+    exp(-zeta w0 t) sin(wd t)``, ``F / m = w0**2 x + 2 zeta w0 x'`` until the force
+    returns to zero, scaled to PEAK and CONTACT; its peak and duration."""
+    zeta, w0 = DAMPING, 1.0
+    wd = w0 * np.sqrt(1.0 - zeta**2)
+
+    def unit(s):  # force over m v of the unit oscillator (w0 = 1)
+        decay = np.exp(-zeta * w0 * s)
+        x = decay * np.sin(wd * s) / wd
+        v = decay * (np.cos(wd * s) - zeta * w0 * np.sin(wd * s) / wd)
+        return w0**2 * x + 2.0 * zeta * w0 * v
+
+    # the grain leaves where the force returns to zero (closed form:
+    # tan(wd s) = -2 zeta sqrt(1 - zeta**2) / (1 - 2 zeta**2), in (pi / 2, pi))
+    leave = (np.pi + np.arctan(-2.0 * zeta * np.sqrt(1.0 - zeta**2) / (1.0 - 2.0 * zeta**2))) / wd
+    fine = np.linspace(0.0, leave, 200001)
+    top = float(unit(fine).max())
+    s = np.clip(t, 0.0, None) * leave / CONTACT
+    force = np.where((t >= 0.0) & (s <= leave), PEAK * unit(s) / top, 0.0)
+    return force, (PEAK, CONTACT)
+
+
 RULES = {
     "half_sine": [("significance", 1.0), ("level", 1.0)],
     "hertz": [("significance", 1.0), ("significance", 1.5), ("level", 1.0)],
+    "damped_linear": [("significance", 1.0), ("significance", ("linear", DAMPING))],
 }
-"""Contact-edge rules and flank exponents run on each shape."""
+"""Contact-edge rules and flank exponents (or a contact family, ``(name, damping)``) run
+on each shape."""
 
 
 def signal(shape, rate):
@@ -93,24 +126,35 @@ def noise(kind, size, seed):
     return x / x.std()
 
 
-def run(seeds):
+SHAPES = {f.__name__: f for f in (half_sine, hertz, damped_linear)}
+"""The forces run, by name (``--shape``)."""
+
+
+def run(seeds, shapes=tuple(SHAPES)):
     rows = []
-    for shape in (half_sine, hertz):
+    for shape in (SHAPES[name] for name in shapes):
         for rate in (1e6, 2e6):
             t, clean, (peak, duration) = signal(shape, rate)
             for kind in ("white", "ar1"):
                 for level in (0.02, 0.05):
                     for seed in range(seeds):
                         y = clean + level * peak * noise(kind, t.size, seed)
-                        for rule, exponent in RULES[shape.__name__]:
+                        for rule, flanks in RULES[shape.__name__]:
+                            family = flanks if isinstance(flanks, tuple) else None
                             m = reconstruct_force(
-                                t, y, SENSOR, contact_edges=rule, flank_exponent=exponent
+                                t,
+                                y,
+                                SENSOR,
+                                contact_edges=rule,
+                                flank_exponent=1.0 if family else flanks,
+                                contact_family=family,
                             ).metrics
                             rows.append(
                                 {
                                     "case": f"{shape.__name__} {rate / 1e6:g} MHz {kind} "
                                     f"{level:.0%}",
-                                    "rule": f"{rule}, p = {exponent:g}",
+                                    "rule": f"{rule}, "
+                                    + (f"family {family}" if family else f"p = {flanks:g}"),
                                     "peak": m.peak / peak - 1.0,
                                     "contact_time": m.duration / duration - 1.0,
                                 }
@@ -135,9 +179,10 @@ def run(seeds):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--seeds", type=int, default=8)
+    parser.add_argument("--shape", action="append", choices=list(SHAPES))
     args = parser.parse_args()
     print(f"load average: {os.getloadavg()[0]:.1f} (1 min)")
-    run(args.seeds)
+    run(args.seeds, args.shape or tuple(SHAPES))
 
 
 if __name__ == "__main__":

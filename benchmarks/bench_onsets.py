@@ -12,7 +12,11 @@ record (``lobe``, what ``find_impacts`` reports), largest and 95th-percentile er
 samples and microseconds, and the median Cramér-Rao bound of the onset under the
 record's white noise (``bound``; its 1/f noise adds to it), also scaled to 30 sigma.
 
-Run: ``.venv/bin/python benchmarks/bench_onsets.py [--all] [--records N]``
+``--law``, ``--rate``: a subset; ``--noise-model white``: the lobe fit without whitening
+(as before it; the bound is then the white noise's).
+
+Run: ``.venv/bin/python benchmarks/bench_onsets.py [--all] [--records N] [--law NAME]
+[--rate HZ] [--noise-model white]``
 """
 
 import argparse
@@ -24,7 +28,8 @@ import pandas as pd
 
 import contactlab as cl
 from contactlab.inverse.lobe_onset import fit_lobe
-from dem_check.campaign import find_impacts
+from contactlab.inverse.noise_colour import NOISE_MODELS
+from dem_check.campaign import find_impacts, onsets
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.onsets import _lobe, record_onsets
 
@@ -60,8 +65,9 @@ def errors(record, sensor, rate):
         true = truth.iloc[int(gap.argmin())]
         bound = np.nan
         if not note:  # the bound at the fit (the white noise of the record)
-            t, y, guess, _ = _lobe(found, window, sensor)
-            bound = fit_lobe(t, y, sensor, guess, record.noise, family, damping).bound * rate
+            t, y, guess, _, model = _lobe(found, window, sensor)
+            fit = fit_lobe(t, y, sensor, guess, record.noise, family, damping, noise_model=model)
+            bound = fit.bound * rate
         rows.append(
             {
                 "significance": true["peak_sensor_force [N]"] / record.noise,
@@ -79,11 +85,23 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--all", action="store_true", help="crosstalk, clipping, steps on")
     parser.add_argument("--records", type=int, default=4)
+    parser.add_argument("--law", action="append", choices=["linear", "hertz"])
+    parser.add_argument("--rate", action="append", type=float, help="[Hz]")
+    parser.add_argument(
+        "--noise-model",
+        choices=list(NOISE_MODELS),
+        default=onsets.NOISE_MODEL,
+        help="the lobe fit's noise model (white: as before the whitened fit)",
+    )
     args = parser.parse_args()
+    onsets.NOISE_MODEL = args.noise_model
+    print(f"lobe fit's noise model: {args.noise_model}")
     sensor, laws = setup()
     rows = []
     for name, law in laws.items():
-        for rate in (1e6, 2e6, 5e6):
+        if args.law and name not in args.law:
+            continue
+        for rate in args.rate or (1e6, 2e6, 5e6):
             for record in records(law, rate, range(args.records), args.all):
                 for row in errors(record, sensor, rate):
                     rows.append({"law": name, "rate [MHz]": rate / 1e6, **row})

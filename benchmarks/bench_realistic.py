@@ -21,11 +21,19 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   the reconstructed peak (and the dip rule), as before the significance rule.
   ``--crosstalk-only``: the configurations with crosstalk only; ``--no-refine``: the
   joint pencil's structure poles without their variable-projection refinement (as
-  before it).
+  before it); ``--no-prediction``: the local baseline's ordinary line, without the noise
+  under the pulse predicted from both sides (as before it); ``--records N``: records per
+  configuration. Also printed: the root-mean-square error of the peak signal and
+  impulse scaled to 30 sigma over the impacts above it (to set against
+  ``bench_bounds.py``). ``--law hertz``: the records with a Hertz contact (:data:`HERTZ`)
+  instead of the linear one; ``--linear-flanks``: the reconstructed contact's edges read
+  with a line on each flank whatever the contact family the onset fit read on the record
+  (as before the family was passed to the reconstruction).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 [--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
-[--noise-model white] [--contact-edges level]``
+[--no-prediction] [--records N]
+[--noise-model white] [--contact-edges level] [--law hertz] [--linear-flanks]``
 """
 
 import argparse
@@ -39,11 +47,13 @@ import pandas as pd
 
 import contactlab as cl
 import contactlab.inverse.reconstruct as reconstruct_module
+import dem_check.campaign.analysis as analysis_module
 from contactlab.config import load_config
 from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.local import record_noise
 from dem_check.campaign.structure import record_modes
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -52,17 +62,24 @@ RECORDS = 4  # per configuration
 MATCH = 60e-6  # [s] a detected onset this close to a true one is that impact
 
 
+HERTZ = cl.laws.Hertz(k_hertz=1.5e6)
+"""The Hertz contact of ``--law hertz`` (``bench_onsets.py``'s) on the hard grain and
+sensor: its force rises as t**1.5."""
+
+
 def hard():
     config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
     return config.grain, config.sensor, cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
 
 
-def speed():
+def speed_record():
+    """The speed benchmark's record: 1.5 million samples at 5 MHz, 20 impacts of 1-2.5
+    m/s and their bounces, every effect of ``Effects.everything``."""
     grain, sensor, law = hard()
     rate, length = 5e6, 0.3  # 1.5 million samples
     rng = np.random.default_rng(7)
     onsets = np.arange(20) * 14e-3 + 2e-3 + rng.uniform(0, 5e-3, 20)
-    record = realistic_record(
+    return realistic_record(
         grain,
         sensor,
         law,
@@ -74,6 +91,11 @@ def speed():
         effects=Effects.everything(NOISE, 3.0),
         seed=7,
     )
+
+
+def speed():
+    grain, sensor, _ = hard()
+    record = speed_record()
     with tempfile.TemporaryDirectory() as folder:
         path = Path(folder) / "day.h5"
         write_trace(path, record.trace, "hdf5", name="day/sensor", time="attrs")
@@ -155,11 +177,12 @@ def _errors(row, true, rate, noise):
     }
 
 
-def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
+def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True, predict=True):
     """Detection and analysis of one record in memory (what ``run_campaign`` does for
     each impact, without the files and the report); the errors of its impacts."""
     found = find_impacts(record.trace, sensor)
     modes = record_modes(found, sensor, refine=refine) if crosstalk else []
+    noise = record_noise(found, sensor) if predict else None
     truth, rows = record.truth, []
     for window in found.impacts:
         gap = np.abs(truth["onset [s]"] - window.onset)
@@ -170,7 +193,9 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
         if window.status not in ANALYSED:
             rows.append({"status": window.status})
             continue
-        row, _ = analyse_impact(found, window, sensor, grain, crosstalk=crosstalk, modes=modes)
+        row, _ = analyse_impact(
+            found, window, sensor, grain, crosstalk=crosstalk, modes=modes, noise=noise
+        )
         rows.append(_errors(row, true, rate, record.noise) if row["status"] == "ok" else row)
     onsets = np.array([w.onset for w in found.impacts])
     for onset in truth["onset [s]"]:
@@ -179,14 +204,16 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True):
     return rows
 
 
-def accuracy(names=None, crosstalk=True, refine=True):
+def accuracy(names=None, crosstalk=True, refine=True, predict=True, records=RECORDS, law=None):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
     print(f"crosstalk removal {'on' if crosstalk else 'off'}, joint poles refined: {refine}")
+    print(f"noise under the pulse predicted from both sides: {predict}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
-        for record in _records(rate, range(RECORDS), changes):
-            for row in _analyse(record, sensor, grain, rate, counts, crosstalk, refine):
+        for record in _records(rate, range(records), changes, law):
+            analysed = _analyse(record, sensor, grain, rate, counts, crosstalk, refine, predict)
+            for row in analysed:
                 rows.append({"configuration": name, **row})
     table = pd.DataFrame(rows)
     print(counts)
@@ -202,6 +229,14 @@ def accuracy(names=None, crosstalk=True, refine=True):
     print(largest.round(3).to_string())
     print("95th percentile of the errors:")
     print(grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95)).round(3).to_string())
+    strong = ok[ok["significance"] >= 30.0]
+    scaled = strong[["peak_sensor_force", "impulse"]].mul(strong["significance"] / 30.0, axis=0)
+    rms = scaled.groupby(strong["configuration"], sort=False).agg(
+        lambda v: np.sqrt(np.nanmean(v**2))
+    )
+    rms["impacts"] = strong.groupby("configuration", sort=False).size()
+    print("root-mean-square error scaled to 30 sigma (error x significance / 30), over 30 sigma:")
+    print(rms.round(4).to_string())
 
 
 def main():
@@ -223,6 +258,12 @@ def main():
         help="the joint pencil's poles as they are, without the variable projection",
     )
     parser.add_argument(
+        "--no-prediction",
+        action="store_true",
+        help="the local baseline's ordinary line, without the noise predicted under the pulse",
+    )
+    parser.add_argument("--records", type=int, default=RECORDS, help="records per configuration")
+    parser.add_argument(
         "--noise-model",
         choices=["ar", "white"],
         default=reconstruct_module.DEFAULT_NOISE_MODEL,
@@ -234,7 +275,27 @@ def main():
         default=reconstruct_module.DEFAULT_CONTACT_EDGES,
         help="how the reconstructed contact's edges are read (level: 2 %% of the peak, before)",
     )
+    parser.add_argument(
+        "--law",
+        choices=["linear", "hertz"],
+        default="linear",
+        help="the contact law of --accuracy's records (hertz: k_hertz = 1.5e6 N/m**1.5)",
+    )
+    parser.add_argument(
+        "--linear-flanks",
+        action="store_true",
+        help="the reconstructed contact's edges read with a line on each flank whatever the "
+        "record's contact family (as before the family was passed)",
+    )
     args = parser.parse_args()
+    if args.linear_flanks:
+
+        def linear_flanks(*given, **options):  # the campaign's call without its family
+            return reconstruct_module.reconstruct_force(
+                *given, **{**options, "contact_family": None}
+            )
+
+        analysis_module.reconstruct_force = linear_flanks
     reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
     reconstruct_module.DEFAULT_CONTACT_EDGES = args.contact_edges
     print(f"noise model {args.noise_model}, contact edges {args.contact_edges}")
@@ -244,7 +305,16 @@ def main():
         names = args.configuration
         if args.crosstalk_only:
             names = [n for n in names or CONFIGURATIONS if CONFIGURATIONS[n][1]["crosstalk"]]
-        accuracy(names, crosstalk=not args.no_crosstalk, refine=not args.no_refine)
+        law = HERTZ if args.law == "hertz" else None
+        print(f"contact law {args.law}, flanks {'linear' if args.linear_flanks else 'family'}")
+        accuracy(
+            names,
+            crosstalk=not args.no_crosstalk,
+            refine=not args.no_refine,
+            predict=not args.no_prediction,
+            records=args.records,
+            law=law,
+        )
 
 
 if __name__ == "__main__":

@@ -330,20 +330,23 @@ class ObliqueResult:
         """Per contact phase, Gauss-Legendre nodes [s] and weights graded at both ends and
         at most a sensor period apart (:func:`contactlab.quadrature.gauss_rule`), with the
         states and forces there (:meth:`_contact`)."""
-        period = math.inf if self.sensor.is_rigid else self.sensor.period
         for t0, t1, _ in self._contact.phases():
-            nodes, weights = gauss_rule(t0, t1, period, graded=True, graded_end=True)
+            nodes, weights = gauss_rule(t0, t1, self._panel_period, graded=True, graded_end=True)
             yield nodes, weights, *self._contact(nodes)
 
     def _arm_shortening_moment(self):
         """``integral d F dt`` [N*m*s] over the contact with ``lever_arm="contact"`` (the
-        torque arm ``R - d`` adds it to ``I dw + m R dvt``), 0 with the radius arm."""
+        torque arm ``R - d`` adds it to ``I dw + m R dvt``), 0 with the radius arm:
+        Gauss-Legendre phase by phase in one compiled pass
+        (:func:`contactlab.kernels.oblique_sample.arm_moment`)."""
         if self.lever_arm != "contact":
             return 0.0
-        total = 0.0
-        for _, weights, st, _, _, tangential, _ in self._gauss_nodes():
-            total += weights @ (np.maximum(st[:, 2] - st[:, 0], 0.0) * tangential)
-        return total
+        return self._contact.arm_moment(self._panel_period)
+
+    @property
+    def _panel_period(self):
+        """Longest quadrature panel [s]: the sensor's period (a wall's is infinite)."""
+        return math.inf if self.sensor.is_rigid else self.sensor.period
 
     def _end_energies(self, **spent):
         """:class:`EnergyLedger` from the end states plus the integrals in ``spent`` [J]."""

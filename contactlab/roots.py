@@ -101,7 +101,8 @@ def departure_root(fn, lo, hi, direction):
     fn : callable
         Event function of time [s].
     lo, hi : float
-        Bracket [s]; ``fn(hi)`` is past zero (:func:`is_past`).
+        Bracket [s]; ``fn`` is past zero (:func:`is_past`) at ``hi`` or, for a contact's
+        end, at a sample inside it.
     direction : int
         Crossing direction, as in :func:`crosses`.
 
@@ -128,8 +129,8 @@ def departure_root(fn, lo, hi, direction):
             return crossed_side(fn, locate_root(fn, armed, t), hi, direction)
         else:
             armed = t
-    if armed is None:
-        return lo
+    if armed is None or not has_happened(fn(hi), direction):
+        return lo  # it never waited, or waited only after it was past (a contact's end)
     return crossed_side(fn, locate_root(fn, armed, hi), hi, direction)
 
 

@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy import signal
 
+from contactlab._head_level import head_level
 from contactlab.errors import ParameterError
 from contactlab.validation import check_count, check_interval, check_number, check_samples
 
@@ -387,25 +388,24 @@ SPREAD_MIN_SAMPLES = 16
 """Fewest samples left in a block after the exclusions to read its noise [-]."""
 
 
-def running_baseline(y, width, exclude=None):
+def running_baseline(y, width, exclude=None, head=0):
     """A baseline that follows slow drift, wander, offset steps and hum, and the local
     noise around it.
 
-    The samples are cut into blocks of about ``width`` samples; each block's median is
-    its level. The baseline is these levels interpolated linearly between the block
-    centres, and extrapolated with the outer slopes before the first centre and after
-    the last (what a drift or a hum slower than a block looks like). The residual of a
-    sample is its distance to one of four candidate levels, the interpolated one and
-    the medians of its own block and of the two blocks around it: the one nearest to the
-    mean of the samples on one side of it (over :data:`LOCAL_MEAN_FRACTION` of a block,
-    so the choice does not follow the noise; the side whose mean is nearer the sample,
-    so a step's two sides each keep their level). A pulse much shorter than a block stands above
-    all four, so it is kept whole; at a DC offset step the samples before and after it
-    each find a block on their own side, so the step leaves no residual that could pass
-    for an impact. The local noise of a block is :data:`MAD_TO_SIGMA` times the median
-    absolute residual of its samples, and the noise at a sample the largest of its
-    block's and its two neighbours' (a decaying ringing or a hum that fills a block
-    raises its own threshold).
+    The samples are cut into blocks of about ``width`` samples; each block's median is its
+    level. The baseline is these levels interpolated linearly between the block centres, and
+    extrapolated with the outer slopes before the first centre and after the last (what a
+    drift or a hum slower than a block looks like). The residual of a sample is its distance
+    to one of four candidate levels, the interpolated one and the medians of its own block
+    and of the two blocks around it: the one nearest to the mean of the samples on one side
+    of it (over :data:`LOCAL_MEAN_FRACTION` of a block, so the choice does not follow the
+    noise; the side whose mean is nearer the sample, so a step's two sides each keep their
+    level). A pulse much shorter than a block stands above all four, so it is kept whole; at
+    a DC offset step the samples before and after it each find a block on their own side, so
+    the step leaves no residual that could pass for an impact. The local noise of a block is
+    :data:`MAD_TO_SIGMA` times the median absolute residual of its samples, and the noise at
+    a sample the largest of its block's and its two neighbours' (a decaying ringing or a hum
+    that fills a block raises its own threshold).
 
     Parameters
     ----------
@@ -418,6 +418,10 @@ def running_baseline(y, width, exclude=None):
         Samples left out of the local noise (pulses found on a first pass, with their
         ringing): a block mostly filled by a pulse's ringing then reads the noise of its
         other samples, or of its neighbours when fewer than 16 are left.
+    head : int, default 0
+        Samples at the record's start that hold a pulse: the level there and a block on is
+        :func:`~contactlab._head_level.head_level`'s robust fit after them, extrapolated
+        back, the residual the distance to it, the noise with the fit's error added.
 
     Returns
     -------
@@ -426,9 +430,10 @@ def running_baseline(y, width, exclude=None):
     Raises
     ------
     ParameterError
-        Bad ``width``, non-finite samples or fewer than two blocks.
+        Bad ``width`` or ``head``, non-finite samples, too few blocks or quiet samples.
     """
     width = check_count("width", width, low=8)
+    pulse = check_count("head", head, low=0)  # ``head`` is reused below
     y = check_samples("y", y)
     if exclude is not None:
         exclude = _mask("exclude", exclude, y.size)
@@ -457,11 +462,12 @@ def running_baseline(y, width, exclude=None):
         nearer = gap < distance
         chosen, distance = np.where(nearer, candidate, chosen), np.minimum(gap, distance)
     residual = y - chosen
+    error = head_level(y, pulse, width, exclude, level, residual) if pulse else 0.0
     spread = _block_spread(np.abs(residual), edges, exclude)
     widened = np.maximum(
         spread, np.maximum(np.r_[spread[:1], spread[:-1]], np.r_[spread[1:], spread[-1:]])
     )
-    return RunningBaseline(level, residual, MAD_TO_SIGMA * widened[block])
+    return RunningBaseline(level, residual, np.hypot(MAD_TO_SIGMA * widened[block], error))
 
 
 def quiet_window(t, y, width=None):

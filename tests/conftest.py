@@ -12,6 +12,7 @@ from pathlib import Path
 import matplotlib
 import pytest
 from hypothesis import settings
+from hypothesis.internal.conjecture import providers
 
 matplotlib.use("Agg")
 
@@ -21,7 +22,18 @@ matplotlib.use("Agg")
 # new failures locally.
 settings.register_profile("derandomized", derandomize=True)
 settings.register_profile("random", derandomize=False)
-settings.load_profile("random" if os.environ.get("CONTACTLAB_RANDOM_SWEEPS") else "derandomized")
+RANDOM_SWEEPS = bool(os.environ.get("CONTACTLAB_RANDOM_SWEEPS"))
+settings.load_profile("random" if RANDOM_SWEEPS else "derandomized")
+
+# Hypothesis also draws, now and then, a literal constant found in the source of every
+# non-test module loaded so far. That pool grows with each import, so the same test drew
+# other examples alone than in the whole suite, in another order, on another xdist worker,
+# or after any constant changed anywhere in the package. The derandomized profile draws
+# from hypothesis' own constants only; the random profile keeps the source constants.
+if not RANDOM_SWEEPS:
+    NO_SOURCE_CONSTANTS = providers.Constants()
+    assert hasattr(providers, "_get_local_constants"), "hypothesis renamed its constant pool"
+    providers._get_local_constants = lambda: NO_SOURCE_CONSTANTS
 
 # helper modules of the tests themselves (tests/support/) import by name: importlib mode puts
 # no test folder on the path (and tests/ itself would shadow the packages with its folders)

@@ -41,6 +41,7 @@ LAYERS = (
         (
             "contactlab.metrics",
             "contactlab.signals",
+            "contactlab._head_level",
             "contactlab.result",
             "contactlab.oblique_result",
             "contactlab.plotting",

@@ -33,6 +33,7 @@ COMPILED_MODULES = (
     "contactlab.kernels.oblique_rhs",
     "contactlab.kernels.oblique_events",
     "contactlab.kernels.oblique_kernel",
+    "contactlab.kernels.gauss",
     "contactlab.kernels.oblique_sample",
     "contactlab.batch.oblique_kernel",
 )

@@ -15,6 +15,13 @@ reconstruction's own uncertainty:
    significance level, if that is higher) is extrapolated to zero. The flank's middle is
    where the rounding has least effect: the rounding bends its foot, the peak's curvature
    its top.
+3. A force that jumps at the touch (a damped contact's ``c v``: the hard test grain's
+   jumps to 42 % of its peak) has no flank to fit there: the rounding turns the jump
+   into a ramp as wide as the smoothing, and the line through it reached zero 2-4 us
+   before the touch (contact times 2-3 % long). Given the jump (``step``, a fraction of
+   the peak; :func:`family_flanks` reads it from the contact family's shape), the
+   start is where the rising force crosses half of it: a smoothing symmetric about the
+   jump leaves it there.
 
 References
 ----------
@@ -29,7 +36,9 @@ import numpy as np
 from scipy import linalg
 
 from contactlab.errors import ParameterError
+from contactlab.inverse.lobe_onset import FAMILIES, force_shape
 from contactlab.metrics import PulseMetrics, impulse, pulse_metrics, rise_time
+from contactlab.validation import check_number
 
 __all__ = [
     "DIP_FRACTION",
@@ -38,6 +47,9 @@ __all__ = [
     "SIGNIFICANCE_SIGMAS",
     "THRESHOLD_FRACTION",
     "THRESHOLD_SIGMAS",
+    "TOUCH_SPAN",
+    "family_flanks",
+    "flank_shapes",
     "level_edges",
     "significant_edges",
     "tikhonov_std",
@@ -64,6 +76,12 @@ which held the contact open to +55 %; measured in ``docs/campaign.md``)."""
 
 THRESHOLD_SIGMAS = 5.0
 """...raised to this many standard deviations of the reconstruction's own baseline."""
+
+TOUCH_SPAN = 0.02
+"""The jump of a family's force at the touch is read on its unit shape this fraction of
+the contact's duration after the touch [-] (2 us for 100 us, about the reconstruction's
+grid step: the span the smoothing cannot tell from a jump; a linear spring-dashpot's
+force is within 1 % of its jump there, Hertz with Tsuji's damping rises as ``u**0.25``)."""
 
 
 def tikhonov_std(h, penalty, noise):
@@ -108,7 +126,61 @@ def _flank_zero(t, force, levels, rising, exponent):
     return -intercept / slope
 
 
-def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS, exponent=1.0):
+def family_flanks(family, damping):
+    """The edges' shapes of a contact family's force (:func:`significant_edges`).
+
+    Parameters
+    ----------
+    family : str
+        A name of :data:`contactlab.inverse.lobe_onset.FAMILIES` (the force
+        ``d**n + 2 zeta d**m d'``).
+    damping : float
+        Its damping ratio ``zeta`` [-].
+
+    Returns
+    -------
+    dict
+        ``exponent``: the rising flank's power law, ``n`` (the overlap grows linearly
+        at the touch); ``end_exponent``: the falling flank's, ``n`` undamped and 1
+        damped (the grain leaves where ``d**n = -2 zeta d**m d'``, with ``d > 0``: the
+        force crosses zero at a finite slope); ``step``: the force's jump at the touch
+        over its peak, the unit shape :func:`contactlab.inverse.lobe_onset.force_shape`
+        read :data:`TOUCH_SPAN` after the touch [-].
+    """
+    if family not in FAMILIES:
+        raise ParameterError(f"family must be one of {sorted(FAMILIES)}, not {family!r}")
+    n = FAMILIES[family][0]
+    u, h = force_shape(family, float(damping))
+    step = float(np.interp(TOUCH_SPAN, u, h)) if damping > 0.0 else 0.0
+    return {"exponent": n, "end_exponent": n if damping == 0.0 else 1.0, "step": step}
+
+
+def flank_shapes(exponent, family=None):
+    """The flanks' keywords of :func:`significant_edges`: ``exponent`` [-], or where a
+    contact ``family`` ``(name, damping ratio)`` is given, its :func:`family_flanks`."""
+    if family is None:
+        return {"exponent": exponent}
+    if exponent != 1.0:
+        raise ParameterError("give flank_exponent or contact_family, not both")
+    name, damping = family
+    return family_flanks(
+        name, check_number("contact_family damping", damping, low=0.0, low_open=False)
+    )
+
+
+def _half_step(t, force, level):
+    """Time [s] where the rising ``force`` last crosses ``level`` before its end, by
+    linear interpolation (``t[0]`` if it starts above it)."""
+    under = np.flatnonzero(force[:-1] < level)
+    if not under.size:
+        return float(t[0])
+    i = int(under[-1])
+    return float(t[i] + (level - force[i]) * (t[i + 1] - t[i]) / (force[i + 1] - force[i]))
+
+
+def significant_edges(
+    t, force, std, sigmas=SIGNIFICANCE_SIGMAS, exponent=1.0, *, end_exponent=None, step=0.0
+):
     """Pulse metrics of a reconstructed force, its edges read from its uncertainty.
 
     Parameters
@@ -127,6 +199,14 @@ def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS, exponent=1.0):
         line is fitted to ``F**(1 / exponent)``. 1 for a force linear in the overlap
         (or with a viscous step), 1.5 for Hertz (the overlap is linear in time at the
         edges); a line on a Hertz flank reads its contact 6-8 % short.
+    end_exponent : float, optional
+        The falling flank's power law [-] where it differs (default ``exponent``; a
+        damped contact's force ends at a finite slope: 1).
+    step : float, default 0.0
+        The force's jump at the touch over its peak [-] (:func:`family_flanks`). From
+        the level the line would be fitted from (half the jump above
+        :data:`FLANK_LOW` of the peak and the significance level) the start is the
+        rising force's crossing of half the jump (module docstring); below, the line.
 
     Returns
     -------
@@ -153,11 +233,14 @@ def significant_edges(t, force, std, sigmas=SIGNIFICANCE_SIGMAS, exponent=1.0):
     above = np.flatnonzero(~significant[top:])
     last = top + int(above[0]) - 1 if above.size else force.size - 1
     edges = []
-    for part, rising in ((slice(first, top + 1), True), (slice(top, last + 1), False)):
+    flanks = ((slice(first, top + 1), True, exponent), (slice(top, last + 1), False, end_exponent))
+    for part, rising, power in flanks:
         floor = max(FLANK_LOW * peak, float(np.max(sigmas * std[part])))
+        if rising and 0.5 * step * peak >= floor:  # half the jump is above the flank's foot
+            edges.append(_half_step(t[part], force[part], 0.5 * step * peak))
+            continue
         levels = (floor, max(FLANK_HIGH * peak, floor))
-        zero = _flank_zero(t[part], force[part], levels, rising, exponent)
-        edges.append(zero)
+        edges.append(_flank_zero(t[part], force[part], levels, rising, power or exponent))
     # an extrapolation is kept only between the run's bounds and the peak: a flank too
     # short or too curved to fit keeps the significance crossing
     start = t[first] if edges[0] is None else min(max(edges[0], t[0]), t[top])

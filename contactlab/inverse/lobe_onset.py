@@ -16,9 +16,13 @@ the line are linear least squares; ``t0`` and ``tau`` minimise the residual. The
 is taken to be rigid against the contact (its stiffness ``k1`` is 10**3 times a grain's
 contact stiffness for the 40 kHz disc): the force's shape then does not depend on it.
 
-The Cramér-Rao bound of ``t0`` (:attr:`LobeFit.bound`) is that of white noise of the
-record's standard deviation with ``A``, ``tau`` and the line unknown:
-``sqrt([(J^T J)^-1]_00) sigma`` with ``J`` the model's derivatives at the fit.
+With the record's noise model (an autoregressive process fitted on its quiet samples,
+:mod:`contactlab.inverse.noise_colour`) the fit whitens the residual first
+(:mod:`contactlab.inverse.lobe_model`). The Cramér-Rao bound of ``t0``
+(:attr:`LobeFit.bound`) is that of the noise (white of the record's standard deviation,
+or the noise model's) with ``A``, ``tau`` and the line unknown:
+``sqrt([(J^T J)^-1]_00) sigma`` with ``J`` the model's (whitened) derivatives at the fit
+and ``sigma`` the (innovation's) standard deviation.
 """
 
 import functools
@@ -27,10 +31,11 @@ import sys
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import integrate, optimize, signal
+from scipy import optimize
 
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
+from contactlab.inverse.lobe_model import FAMILIES, LobeModel, force_shape
 
 __all__ = [
     "DAMPINGS",
@@ -42,10 +47,6 @@ __all__ = [
     "lobe_family",
     "single_onset",
 ]
-
-FAMILIES = {"linear": (1.0, 0.0), "hertz": (1.5, 0.25)}
-"""Contact families ``name: (n, m)``: the force ``d**n + 2 zeta d**m d'`` [-] (a linear
-spring-dashpot; Hertz with Tsuji's damping, undamped Hertz at ``zeta = 0``)."""
 
 DAMPINGS = (0.0, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.4, 0.5)
 """Damping ratios ``zeta`` tried [-] (restitution 1 to about 0.2 for the linear family)."""
@@ -63,16 +64,6 @@ damping fitted to the noise, 0.002-0.005 on undamped contacts, moved Hertz onset
 PEAK_SIGMAS = 3.0
 """A fitted force whose peak is below this many noise sigmas is no contact [-] (the
 detector finds impacts from five)."""
-
-SHAPE_POINTS = 4096
-"""Samples of the unit force shape on its unit duration [-] (interpolated linearly: a
-relative error below 1e-6 of the peak where the shape is smooth)."""
-
-FINE_PERIODS = 1.0 / 128.0
-"""The force is pushed through the sensor on a step of at most this many sensor periods
-and half a sample [-] (the first-order hold is exact for a piecewise-linear force; the
-signal, interpolated linearly between the steps, is then within ``(2 pi / 128)**2 / 8 =
-3e-4`` of its peak; a damped contact's force step is centred on its step)."""
 
 BEFORE_PERIODS = 1.0
 """Sensor periods of record fitted before the earliest onset sought [-] (the line)."""
@@ -93,6 +84,11 @@ SCAN_DURATIONS = (0.6, 0.75, 0.9, 1.05, 1.2, 1.4, 1.7)
 """Contact durations of the first scan, over the guess [-] (the lobe's length above a
 fraction of its peak is 0.6-0.9 of the contact's duration)."""
 
+START_DURATION = 0.02
+"""The simplex of a fit started near its optimum (``start``) spans this fraction of the
+duration [-] and a sample of the onset (neighbouring dampings of the family read move
+the fit by a few tenths of a sample; Nelder-Mead widens its simplex where needed)."""
+
 AFTER_PERIODS = 0.5
 """Sensor periods fitted after the contact's end [-] (the sensor's free ringing starts)."""
 
@@ -112,163 +108,43 @@ class LobeFit:
     damping: float
     """The family's damping ratio ``zeta`` [-]."""
     chi_squared: float
-    """Residual sum of squares over the noise variance [-]."""
+    """Residual sum of squares over the noise variance [-] (whitened: over the
+    innovation's)."""
     samples: int
     """Samples fitted [-]."""
     bound: float
-    """Cramér-Rao bound of ``onset`` under white noise of the given sigma [s], with the
-    damping known or (``damping_free``) unknown."""
+    """Cramér-Rao bound of ``onset`` [s] under the noise given (white of its sigma, or
+    the noise model), with the damping known or (``damping_free``) unknown."""
 
 
-@functools.lru_cache(maxsize=64)
-def force_shape(family, damping):
-    """The unit force shape of a contact family: ``h(u)`` on ``u`` in [0, 1], peak 1.
-
-    Parameters
-    ----------
-    family : str
-        A name of :data:`FAMILIES`.
-    damping : float
-        Damping ratio ``zeta`` [-], >= 0.
-
-    Returns
-    -------
-    u, h : numpy.ndarray
-        Time over the contact's duration [-] and force over its peak [-]
-        (:func:`scipy.integrate.solve_ivp`, relative tolerance 1e-10).
-    """
-    if family not in FAMILIES:
-        raise ParameterError(f"family must be one of {sorted(FAMILIES)}, not {family!r}")
-    n, m = FAMILIES[family]
-
-    def force(d, v):  # odd in d: the event below crosses zero cleanly
-        return math.copysign(abs(d) ** n, d) + 2.0 * damping * abs(d) ** m * v
-
-    def rhs(_, x):
-        return [x[1], -force(x[0], x[1])]
-
-    def released(u, x):  # the force returns to zero (after its start)
-        return force(x[0], x[1]) if u > 1e-6 else 1.0
-
-    released.terminal, released.direction = True, -1.0
-    solved = integrate.solve_ivp(
-        rhs, (0.0, 20.0), [0.0, 1.0], events=released, rtol=1e-10, atol=1e-12, dense_output=True
-    )
-    end = float(solved.t_events[0][0])
-    u = np.linspace(0.0, end, SHAPE_POINTS)
-    d, v = solved.sol(u)
-    h = np.array([force(a, b) for a, b in zip(d, v, strict=True)])
-    h[-1] = 0.0
-    return u / end, h / h.max()
+def _scan(model, lo, hi, length):
+    """The best onset and duration on a grid: onsets from ``lo`` to ``hi`` [s] every
+    :data:`SCAN_PERIODS` sensor period (the residual has a minimum every sensor period,
+    where the ringing realigns), durations :data:`SCAN_DURATIONS` times ``length`` [s]."""
+    best = (math.inf, lo, length)
+    onsets = np.arange(lo, hi, SCAN_PERIODS * model.period)
+    for tau in length * np.asarray(SCAN_DURATIONS):
+        unit = model.white_unit(tau)
+        for t0 in onsets:
+            rss = model.solve(t0, tau, unit, coefficients=False)[1]
+            if rss < best[0]:
+                best = (rss, t0, tau)
+    return best[1], best[2]
 
 
-@functools.lru_cache(maxsize=16)
-def _sensor_filter(w, zeta, step):
-    """The signal response of a sensor (angular frequency ``w`` [rad/s], damping ratio
-    ``zeta`` [-]) as a discrete filter on ``step`` [s] (first-order hold: exact for a
-    piecewise-linear force)."""
-    b, a, _ = signal.cont2discrete(
-        ([2.0 * zeta * w, w * w], [1.0, 2.0 * zeta * w, w * w]), step, method="foh"
-    )
-    return np.ravel(b), np.ravel(a)
-
-
-class _Model:
-    """The signal of ``A h((t - t0) / tau)`` on a window, for the fit and its bound."""
-
-    def __init__(self, t, y, sensor, family, damping):
-        self.t, self.y = t, y
-        self.dt = float(t[1] - t[0])
-        self.u, self.h = force_shape(family, damping)
-        self.family, self.damping = family, damping
-        self.fine = math.ceil(max(2.0, self.dt / (FINE_PERIODS * sensor.period)))
-        self.filter = _sensor_filter(
-            sensor.angular_frequency, sensor.damping_ratio, self.dt / self.fine
-        )
-        self.period = sensor.period
-        centre = float(t.mean())
-        self.line = np.column_stack([np.ones_like(t), (t - centre) / self.period])
-        self.basis = np.linalg.qr(self.line)[0]
-        self.y_off = y - self.basis @ (self.basis.T @ y)
-        self.y_rss = float(self.y_off @ self.y_off)
-
-    def unit(self, tau, shape=None):
-        """The unit-peak signal against the time since the force's start: time [s] and
-        signal [-]. The force starts half a fine step after a fine sample, so that the
-        hold's ramp over that step centres a damped contact's force step on it.
-        ``shape``: another ``(u, h)`` than the model's."""
-        step = self.dt / self.fine
-        s = np.arange(-1, self.fine * (self.t.size + 2)) * step
-        u, h = (self.u, self.h) if shape is None else shape
-        force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
-        return s - 0.5 * step, signal.lfilter(*self.filter, force)
-
-    def response(self, t0, tau, unit=None):
-        """The unit-peak signal on the window's samples [-] (``unit``: :meth:`unit` of
-        ``tau``, when already computed)."""
-        s, r = self.unit(tau) if unit is None else unit
-        return np.interp(self.t - t0, s, r, left=0.0)
-
-    def design(self, t0, tau, unit=None):
-        """Columns: offset, slope (over a sensor period), the unit-peak signal."""
-        return np.column_stack([self.line, self.response(t0, tau, unit)])
-
-    def solve(self, t0, tau, unit=None, coefficients=True):
-        """Linear amplitudes (offset, slope, ``A``; only ``A`` without ``coefficients``)
-        and the residual sum of squares (the signal's column projected off the line's
-        orthonormal basis)."""
-        if not tau > 0.0:
-            return np.full(3, np.nan), math.inf
-        r = self.response(t0, tau, unit)
-        r_off = r - self.basis @ (self.basis.T @ r)
-        norm = float(r_off @ r_off)
-        if not norm > 0.0:  # no force inside the window
-            return np.full(3, np.nan), math.inf
-        amplitude = float(r_off @ self.y_off) / norm
-        rss = max(self.y_rss - amplitude * amplitude * norm, 0.0)
-        if not coefficients:
-            return amplitude, rss
-        line = np.linalg.lstsq(self.line, self.y - amplitude * r, rcond=None)[0]
-        return np.array([*line, amplitude]), rss
-
-    def scan(self, lo, hi, length):
-        """The best onset and duration on a grid: onsets from ``lo`` to ``hi`` [s] every
-        :data:`SCAN_PERIODS` sensor period (the residual has a minimum every sensor
-        period, where the ringing realigns), durations :data:`SCAN_DURATIONS` times
-        ``length`` [s]."""
-        best = (math.inf, lo, length)
-        onsets = np.arange(lo, hi, SCAN_PERIODS * self.period)
-        for tau in length * np.asarray(SCAN_DURATIONS):
-            unit = self.unit(tau)
-            for t0 in onsets:
-                rss = self.solve(t0, tau, unit, coefficients=False)[1]
-                if rss < best[0]:
-                    best = (rss, t0, tau)
-        return best[1], best[2]
-
-    def bound(self, t0, tau, noise, damping_free):
-        """Cramér-Rao bound of ``t0`` [s] (central differences of a tenth of a sample;
-        with ``damping_free`` the damping ratio is a nuisance parameter too, its
-        derivative one-sided over 0.01)."""
-        coefficients, _ = self.solve(t0, tau)
-        ht, htau = 0.1 * self.dt, 1e-3 * tau
-        d_t0 = (self.response(t0 + ht, tau) - self.response(t0 - ht, tau)) / (2.0 * ht)
-        d_tau = (self.response(t0, tau + htau) - self.response(t0, tau - htau)) / (2.0 * htau)
-        a = coefficients[2]
-        columns = [a * d_t0 * self.dt, a * d_tau * tau, self.design(t0, tau)]
-        if damping_free:
-            other = self.unit(tau, force_shape(self.family, self.damping + 0.01))
-            d_zeta = (self.response(t0, tau, other) - self.response(t0, tau)) / 0.01
-            columns.insert(2, a * d_zeta)
-        jacobian = np.column_stack(columns)
-        try:
-            covariance = np.linalg.inv(jacobian.T @ jacobian)
-        except np.linalg.LinAlgError:  # no rise in the window: no information on t0
-            return math.inf
-        return float(math.sqrt(max(covariance[0, 0], 0.0)) * noise * self.dt)
-
-
-def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, damping_free=False):
+def fit_lobe(
+    t,
+    y,
+    sensor,
+    guess,
+    noise,
+    family="linear",
+    damping=0.0,
+    *,
+    damping_free=False,
+    noise_model=None,
+    start=None,
+):
     """The onset of one impact: a contact family's force through the sensor, fitted on
     the impact's first lobe.
 
@@ -282,8 +158,10 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     sensor : Sensor
         The moving sensor that recorded it.
     guess : (float, float)
-        A first onset [s] (a threshold crossing, late) and a first contact duration [s]
-        (the lobe's length).
+        The latest the touch can be [s] (a threshold crossing of the raw signal, which
+        lags the touch; a smoothed signal's crossing leads a sharp rise, so that one plus
+        the smoothing kernel's reach) and a first contact duration [s] (the lobe's
+        length).
     noise : float
         The record's noise standard deviation [N] (scales the chi-squared and the bound).
     family : str, default "linear"
@@ -292,6 +170,14 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
         The family's damping ratio [-].
     damping_free : bool, default False
         The bound counts the damping as unknown (it was read on this lobe alone).
+    noise_model : ARNoise, optional
+        The record's noise per sample (:func:`contactlab.inverse.noise_colour.fit_ar_noise`
+        of its quiet samples): the fit whitens with it, and the chi-squared and the bound
+        are the innovation's. None: white noise of ``noise``.
+    start : (float, float), optional
+        An onset [s] and a duration [s] near the fit's (another damping's fit on the
+        same lobe): the first scan is skipped and the simplex starts there, a sample and
+        :data:`START_DURATION` wide.
 
     Returns
     -------
@@ -319,18 +205,18 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
         raise ParameterError(
             f"the lobe at {rough:.6g} s has too few samples around it to fit its onset"
         )
-    model = _Model(t[inside], y[inside], sensor, family, damping)
+    model = LobeModel(t[inside], y[inside], sensor, family, damping, noise_model)
 
     def cost(x):
         return model.solve(x[0], x[1], coefficients=False)[1]
 
-    t0, tau = model.scan(lo, rough, length)
-    dt, step = model.dt, SCAN_PERIODS * period
-    simplex = [
-        [t0, tau],
-        [t0 + step, tau],
-        [t0, tau * (1.0 + SCAN_DURATIONS[1] - SCAN_DURATIONS[0])],
-    ]
+    dt = model.dt
+    if start is None:
+        t0, tau = _scan(model, lo, rough, length)
+        step, widen = SCAN_PERIODS * period, SCAN_DURATIONS[1] - SCAN_DURATIONS[0]
+    else:
+        (t0, tau), step, widen = start, dt, START_DURATION
+    simplex = [[t0, tau], [t0 + step, tau], [t0, tau * (1.0 + widen)]]
     best = optimize.minimize(
         cost,
         simplex[0],
@@ -339,6 +225,7 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     )
     t0, tau = (float(v) for v in best.x)
     coefficients, rss = model.solve(t0, tau)
+    sigma = noise if noise_model is None or noise_model.order == 0 else noise_model.innovation
     if not (tau > 0.0 and coefficients[2] > PEAK_SIGMAS * noise):
         raise ParameterError(
             f"no contact fitted at {rough:.6g} s (duration {tau:.3g} s, peak "
@@ -347,7 +234,7 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
     if not lo - span <= t0 <= rough:
         raise ParameterError(
             f"the onset fitted at {t0:.6g} s lies outside the span searched, {lo:.6g} to "
-            f"{rough:.6g} s (the crossing)"
+            f"{rough:.6g} s (the latest touch)"
         )
     return LobeFit(
         onset=t0,
@@ -355,9 +242,9 @@ def fit_lobe(t, y, sensor, guess, noise, family="linear", damping=0.0, *, dampin
         amplitude=float(coefficients[2]),
         family=family,
         damping=float(damping),
-        chi_squared=rss / noise**2,
+        chi_squared=rss / sigma**2,
         samples=int(model.t.size),
-        bound=model.bound(t0, tau, noise, damping_free),
+        bound=model.bound(t0, tau, sigma, damping_free),
     )
 
 
@@ -369,9 +256,9 @@ def lobe_family(lobes, sensor):
 
     Parameters
     ----------
-    lobes : list of (t, y, guess, noise)
-        The impacts, as :func:`fit_lobe` takes them; those that cannot be fitted are left
-        out.
+    lobes : list of (t, y, guess, noise) or (t, y, guess, noise, noise_model)
+        The impacts, as :func:`fit_lobe` takes them (without ``noise_model`` or with
+        None: white noise); those that cannot be fitted are left out.
     sensor : Sensor
 
     Returns
@@ -385,27 +272,48 @@ def lobe_family(lobes, sensor):
         When no lobe can be fitted.
     """
 
-    def chi_squared(lobe, family, damping):
-        t, y, guess, noise = lobe
+    def fit(lobe, family, damping, start):
+        t, y, guess, noise, *model = lobe
+        noise_model = model[0] if model else None
         try:
-            return fit_lobe(t, y, sensor, guess, noise, family, damping).chi_squared
+            return fit_lobe(
+                t, y, sensor, guess, noise, family, damping, noise_model=noise_model, start=start
+            )
         except ParameterError:  # no contact of this shape fits (or none at all)
-            return math.inf
+            return None
+
+    def grid_fits(lobe, family):  # each damping's fit started from the one before (the
+        # first scanned): the optimum moves little between neighbours
+        fits, start = {}, None
+        for z in DAMPINGS:
+            fits[z] = fit(lobe, family, z, start)
+            if fits[z] is not None:
+                start = (fits[z].onset, fits[z].duration)
+        return fits
+
+    def chi(found):
+        return math.inf if found is None else found.chi_squared
 
     totals, fitted = {}, []
     for lobe in lobes:
-        fits = {(f, z): chi_squared(lobe, f, z) for f in FAMILIES for z in DAMPINGS}
-        if not any(math.isfinite(chi) for chi in fits.values()):
+        fits = {f: grid_fits(lobe, f) for f in FAMILIES}
+        if all(found is None for f in FAMILIES for found in fits[f].values()):
             continue  # too short or no contact: this lobe tells nothing
-        fitted.append(lobe)
-        for shape, chi in fits.items():
-            totals[shape] = totals.get(shape, 0.0) + chi
+        fitted.append((lobe, fits))
+        for f in FAMILIES:
+            for z, found in fits[f].items():
+                totals[(f, z)] = totals.get((f, z), 0.0) + chi(found)
     if not fitted:
         raise ParameterError("no impact with a lobe that can be fitted")
 
     def total(family, z):  # finite where a lobe fails (Brent's parabola takes differences)
-        chi = sum(chi_squared(lobe, family, float(z)) for lobe in fitted)
-        return chi if math.isfinite(chi) else sys.float_info.max
+        sum_ = 0.0
+        for lobe, fits in fitted:  # started from the nearest grid damping's fit
+            near = fits[family][min(DAMPINGS, key=lambda d: abs(d - z))]
+            sum_ += chi(
+                fit(lobe, family, float(z), None if near is None else (near.onset, near.duration))
+            )
+        return sum_ if math.isfinite(sum_) else sys.float_info.max
 
     best = {}
     for family in FAMILIES:  # each family's damping refined: the grid's step alone can

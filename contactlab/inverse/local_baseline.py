@@ -39,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactlab.inverse.noise_prediction import BLOCK_PER_PERIOD, predict_gap
 from contactlab.metrics import impulse
 
 __all__ = ["DEGREE", "POST_PERIODS", "PRE_PERIODS", "LocalBaseline", "local_baseline"]
@@ -75,7 +76,8 @@ class LocalBaseline:
     """The baseline window's part that was fitted ``[start, end)`` [s] (its last
     :data:`PRE_PERIODS` periods before the impact)."""
     values: np.ndarray
-    """The baseline at every sample of the segment [N]."""
+    """The baseline at every sample of the segment [N] (with a noise model, plus the
+    noise predicted under the pulse)."""
     post: tuple
     """Post-contact window ``[start, end]`` [s] the baseline (and ringing) were fitted on."""
     impulse: float
@@ -108,7 +110,7 @@ def _rms(values, ddof):
     return math.sqrt(float(values @ values) / (values.size - ddof))
 
 
-def local_baseline(t, y, base, start, contact_end, end, sensor):
+def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
     """Fit the local baseline of one impact and integrate its impulse (module docstring).
 
     Parameters
@@ -127,6 +129,12 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
     end : float
         When the ringing had decayed [s] (the integral's end on a coarse record).
     sensor : Sensor
+    noise : ColouredNoise, optional
+        The record's noise (:func:`contactlab.inverse.noise_prediction.estimate_coloured_noise`):
+        with it, and a baseline on both sides of a resolved impact, the line and ringing
+        are fitted by generalised least squares and the noise from ``start`` to the
+        post-contact window is predicted from both sides and taken off with the line
+        (:func:`contactlab.inverse.noise_prediction.predict_gap`).
 
     Returns
     -------
@@ -158,13 +166,28 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
         ringing[~in_post] = 0.0
         columns.append(ringing)
     design = np.concatenate(columns, axis=1)
-    coefficients, *_ = np.linalg.lstsq(design[fitted], y[fitted], rcond=None)
+    predicted = np.zeros(t.size)
+    if noise is not None and resolved and degree > 0:
+        # GLS on both sides and the noise under the pulse predicted from them
+        q = max(1, round(sensor.period / dt / BLOCK_PER_PERIOD))
+        under = np.flatnonzero((t >= start) & (t <= post[0]))
+        coefficients, predicted[under] = predict_gap(
+            noise.autocovariance(t.size),
+            y,
+            design,
+            np.flatnonzero(in_base),
+            np.flatnonzero(in_post),
+            under,
+            q,
+        )
+    else:
+        coefficients, *_ = np.linalg.lstsq(design[fitted], y[fitted], rcond=None)
     line = powers @ coefficients[: degree + 1]
     residual = y - design @ coefficients
     if resolved:
         amplitude_cos, amplitude_sin = coefficients[degree + 1 :]
         tail = (amplitude_cos * a + amplitude_sin * b) / sensor.angular_frequency**2
-        total = impulse(t, y - line, start, post[0]) + tail
+        total = impulse(t, y - line - predicted, start, post[0]) + tail
     else:
         total = impulse(t, y - line, start, end)
     if degree > 0:
@@ -174,7 +197,7 @@ def local_baseline(t, y, base, start, contact_end, end, sensor):
         drift = float(slope * np.ptp(t[fitted]))
     return LocalBaseline(
         window=tuple(base),
-        values=line,
+        values=line + predicted,
         post=post,
         impulse=float(total),
         noise=_rms(residual[in_base] - residual[in_base].mean(), 1) if in_base.any() else math.nan,

@@ -33,6 +33,7 @@ from contactlab.inverse.contact_edges import (
     SIGNIFICANCE_SIGMAS,
     THRESHOLD_FRACTION,
     THRESHOLD_SIGMAS,
+    flank_shapes,
     level_edges,
     significant_edges,
     tikhonov_std,
@@ -271,6 +272,7 @@ def reconstruct_force(
     noise_model=None,
     contact_edges=None,
     flank_exponent=1.0,
+    contact_family=None,
     first_touch=True,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
@@ -358,6 +360,13 @@ def reconstruct_force(
         [1, 3] (``"significance"`` only): the flanks' lines are fitted to ``F**(1/p)``.
         1 for a linear or viscoelastic law, 1.5 for Hertz (with 1 a Hertz contact comes
         out 6-8 % short).
+    contact_family : (str, float), optional
+        The contact's family and damping ratio ``(name, zeta [-])``
+        (:data:`contactlab.inverse.lobe_onset.FAMILIES`; a campaign reads it per record
+        with its onsets) (``"significance"`` only): the flanks' power laws and the
+        force's jump at the touch from the family's force
+        (:func:`contactlab.inverse.contact_edges.family_flanks`), instead of
+        ``flank_exponent``: a damped contact's start at half its force's jump.
 
     Returns
     -------
@@ -424,6 +433,7 @@ def reconstruct_force(
     flank_exponent = check_number(
         "flank_exponent", flank_exponent, low=1.0, high=3.0, low_open=False
     )
+    flanks = flank_shapes(flank_exponent, contact_family)
     contact_edges = check_choice(
         "contact_edges", contact_edges or DEFAULT_CONTACT_EDGES, CONTACT_EDGES
     )
@@ -455,7 +465,7 @@ def reconstruct_force(
         raise ParameterError("the reconstructed force is zero everywhere: no pulse found")
     if contact_edges == "significance":
         std = np.full(t.size, spread) if std is None else std
-        metrics = significant_edges(t, force, std, exponent=flank_exponent)
+        metrics = significant_edges(t, force, std, **flanks)
         # the level the force's peak had to pass; the edges are the flanks' lines at zero
         threshold = SIGNIFICANCE_SIGMAS * float(std[np.argmax(force)])
     else:

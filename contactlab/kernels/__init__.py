@@ -15,5 +15,8 @@
   :mod:`~contactlab.kernels.oblique_kernel`: the oblique impact's equations, events and
   phase loop (LAMMPS' Coulomb cap); :mod:`~contactlab.kernels.elastic_cap_rhs`,
   :mod:`~contactlab.kernels.elastic_cap`: Kratos' elastic cap's slides and phase loop;
-  :mod:`~contactlab.kernels.oblique_sample`: the solved contact's sampler.
+  :mod:`~contactlab.kernels.oblique_sample`: the solved contact's sampler and its
+  lever-arm moment;
+* :mod:`~contactlab.kernels.gauss`: the composite Gauss-Legendre rule on graded panels
+  (:mod:`contactlab.quadrature`'s).
 """

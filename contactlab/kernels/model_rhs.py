@@ -8,14 +8,15 @@ field says (:data:`~contactlab.kernels.power.NORMAL_MODEL`,
 :data:`~contactlab.kernels.power.OBLIQUE_MODEL` or
 :data:`~contactlab.kernels.elastic_cap_rhs.ELASTIC_CAP_MODEL`, set by the packers). A stepper that
 took its right-hand side as an argument could not be cached on disk by numba, so the
-choice is made here, once per evaluation.
+choice is made here, once per evaluation; :func:`events` chooses the event functions the
+same way (:mod:`contactlab.kernels.oblique_events` locates them for either model).
 """
 
 from contactlab.compiled import njit
 from contactlab.kernels import elastic_cap_rhs, oblique_rhs
 from contactlab.kernels import power as power_rhs
 
-__all__ = ["rhs"]
+__all__ = ["events", "rhs"]
 
 
 @njit(cache=True, error_model="numpy")
@@ -28,3 +29,17 @@ def rhs(z, par, warped, out):
         elastic_cap_rhs.rhs(z, par, warped, out)
     else:
         power_rhs.rhs(z, par, warped, out)
+
+
+@njit(cache=True, error_model="numpy")
+def events(z, par, phase, out):
+    """Event values into ``out``; returns how many the model has in ``phase``.
+
+    The normal contact has one, its end: the force formula
+    (:func:`contactlab.kernels.power.force`, negative where the contact would pull); the
+    oblique models' are :func:`contactlab.kernels.elastic_cap_rhs.events`.
+    """
+    if par[power_rhs.MODEL] == power_rhs.NORMAL_MODEL:
+        out[0] = power_rhs.force(z[2] - z[0], z[3] - z[1], par)
+        return 1
+    return elastic_cap_rhs.events(z, par, phase, out)

@@ -20,7 +20,7 @@ from contactlab.kernels.brent import WORK_SIZE
 from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, interpolate, step
 from contactlab.kernels.elastic_cap_rhs import EVENTS, events
 from contactlab.kernels.model_rhs import rhs
-from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, waits
+from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, sample, waits
 from contactlab.kernels.oblique_rhs import (
     FRICTION,
     PHASE,
@@ -138,14 +138,7 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
         t_old = t
         y_old[:] = y
         interpolant(K, h, y_old, y_new, f_new, par, warped, F)
-        rows[0] = rows[SUBSTEPS]
-        for i in range(SUBSTEPS + 1):
-            times[i] = t_old + h * (i / SUBSTEPS)
-        for i in range(1, SUBSTEPS):
-            interpolate(F, y_old, i / SUBSTEPS, tmp)
-            events(tmp, par, phase, rows[i])
-        times[SUBSTEPS] = t_old + h
-        events(y_new, par, phase, rows[SUBSTEPS])
+        sample(t_old, h, y_old, F, y_new, par, phase, times, rows, tmp)
         hit, hit_j = first_crossing(
             (t_old, h, y_old, F), count, armed, times, rows, par, phase, tmp, row, work, rising
         )

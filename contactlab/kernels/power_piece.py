@@ -4,8 +4,10 @@
 laws of :class:`contactlab.laws.base.PowerForm` (every Hertz-family law): the same
 stepper (:mod:`contactlab.kernels.dop853`), the same start in
 ``s = tau**(1/4)`` at a touch and hand-over to time, the same event (the contact force
-falling through zero, located by Brent's method on the step's interpolant to the
-solver's tolerance and taken on its crossed side, :func:`contactlab.roots.crossed_side`).
+falling through zero, sought at nine points of each step and between them, located by
+Brent's method on the step's interpolant to the solver's tolerance and taken on its
+crossed side, :func:`contactlab.roots.crossed_side`: the oblique solver's rule,
+:mod:`contactlab.kernels.oblique_events`).
 It serves :func:`~contactlab.solver.adaptive.adaptive_contact` (one impact) and the
 batch kernel (:mod:`contactlab.kernels.hertz_impact`, thousands of impacts).
 """
@@ -15,11 +17,11 @@ import math
 import numpy as np
 
 from contactlab.compiled import njit
-from contactlab.kernels.brent import WORK_SIZE, brent_next, brent_start
-from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, interpolate, step
-from contactlab.kernels.power import force, rhs
-from contactlab.kernels.rules import happened
-from contactlab.roots import SIDE_STEPS
+from contactlab.kernels.brent import WORK_SIZE
+from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, step
+from contactlab.kernels.model_rhs import events
+from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, sample, waits
+from contactlab.kernels.power import rhs
 
 __all__ = [
     "MAX_RETAKES",
@@ -113,40 +115,14 @@ def _grow(t_old, h, y_old, F):
 
 
 @njit(cache=True, error_model="numpy")
-def _event(z, par):
-    """The contact-end event function: the force formula at the state's overlap and rate."""
-    return force(z[2] - z[0], z[3] - z[1], par)
-
-
-@njit(cache=True, error_model="numpy")
-def _event_on_step(t, t_old, h, after, F, y_old, par, tmp):
-    """Event value at ``t`` inside a step: its end value at the step's end."""
-    if t == t_old + h:
-        return after
-    interpolate(F, y_old, (t - t_old) / h, tmp)
-    return _event(tmp, par)
-
-
-@njit(cache=True, error_model="numpy")
-def _locate(t_old, h, before, after, F, y_old, par, tmp, work):
-    """The crossing in a step (Brent, then its crossed side)."""
-    lo, hi = t_old, t_old + h
-    x, done = brent_start(work, lo, before, hi, after)
-    while not done:
-        x, done = brent_next(work, _event_on_step(x, t_old, h, after, F, y_old, par, tmp))
-    t = x
-    for _ in range(SIDE_STEPS):
-        if t >= hi:
-            return hi
-        if happened(_event_on_step(t, t_old, h, after, F, y_old, par, tmp), -1):
-            return t
-        t = np.nextafter(t, math.inf)
-    return hi
-
-
-@njit(cache=True, error_model="numpy")
 def _run(t, y, h_try, end, rtol, atol, par, warped):
     """Steps from ``(t, y)`` until ``end``, the event, or (warped) the hand-over.
+
+    The contact's end is looked for at :data:`~contactlab.kernels.oblique_events.SUBSTEPS`
+    + 1 points of every step and between them
+    (:func:`contactlab.kernels.oblique_events.first_crossing`), not at the step's ends
+    only: a sensor plate's ringing can bring the force to zero and back inside one step
+    (docs/verification.md, finding 12).
 
     Returns (status, n_steps, t_old, h, y_old, F, hit, t, y, t_old_last): ``hit`` is the
     event time (nan if none); ``t, y`` the last step's end; ``t_old_last`` its start.
@@ -155,10 +131,13 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
     t_old, hs = np.empty(_FIRST_CAPACITY), np.empty(_FIRST_CAPACITY)
     y_old, F = np.empty((_FIRST_CAPACITY, n)), np.empty((_FIRST_CAPACITY, _DENSE, n))
     K, f, y_new, f_new = np.empty((WORK_ROWS, n)), np.empty(n), np.empty(n), np.empty(n)
-    tmp, work = np.empty(n), np.empty(WORK_SIZE)
+    tmp, row, work, rising = np.empty(n), np.empty(1), np.empty(WORK_SIZE), np.empty(SUBSTEPS + 1)
+    times, rows = np.empty(SUBSTEPS + 1), np.empty((SUBSTEPS + 1, 1))
     rhs(y, par, warped, f)
     y = y.copy()
-    before, hit, count, last_start = _event(y, par), math.nan, 0, t
+    events(y, par, 0.0, rows[SUBSTEPS])
+    armed = np.array([waits(rows[SUBSTEPS, 0], -1)])
+    hit, count, last_start = math.nan, 0, t
     bound, retaken = end, 0
     while t < end:
         ok, t_new, h_next, h = step(t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new)
@@ -167,11 +146,15 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
         if count == t_old.size:
             t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
         interpolant(K, h, y, y_new, f_new, par, warped, F[count])
-        after = _event(y_new, par)
-        if before > 0.0 and after <= 0.0:
-            hit = _locate(t, h, before, after, F[count], y, par, tmp, work)
+        sample(t, h, y, F[count], y_new, par, 0.0, times, rows, tmp)
+        hit, index = first_crossing(
+            (t, h, y, F[count]), 1, armed, times, rows, par, 0.0, tmp, row, work, rising
+        )
+        hit = math.nan if index < 0 else hit
+        if not math.isnan(hit):
             again = retake_bound(t, hit, t_new, retaken)
             if not math.isnan(again):  # the step again from t, to just past the end
+                rows[SUBSTEPS] = rows[0]
                 h_try, bound, retaken, hit = h_next, again, retaken + 1, math.nan
                 continue
         t_old[count], hs[count], y_old[count] = t, h, y
@@ -184,7 +167,7 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
             break
         if warped and last_start > 0.0 and t**4 - last_start**4 < last_start**4:
             break  # adaptive._warp_stops_paying: steps in time do as well from here
-        before = after
+        armed[0] = armed[0] or waits(rows[SUBSTEPS, 0], -1)
     return STATUS_OK, count, t_old, hs, y_old, F, hit, t, y, last_start
 
 

@@ -111,7 +111,7 @@ def integrate_piece(
         # first step in s: the s of the step an integrator in t would start with
         first_in_s = Stepper(fun, t0, y, rtol, atol).initial_step() ** 0.25
         z0, z_tol = np.append(y, 0.0), np.append(atol, 1.0)
-        warped = Stepper(_warped(fun), 0.0, z0, rtol, z_tol, first_step=first_in_s)
+        warped = Stepper(_warped(fun), 0.0, z0, rtol, z_tol, first_step=first_in_s, separate=True)
         start, hit = _run(
             warped, tau_max**0.25, event_values, directions, retaken, _warp_stops_paying
         )
@@ -255,7 +255,8 @@ def _first_crossing(step, before, after, directions, event_values, armed):
     for j, (direction, ready) in enumerate(zip(directions, armed, strict=True)):
         fn = lambda t, j=j: value(t, j)  # noqa: E731
         if not ready:
-            if is_past(after[j], direction):
+            past = [is_past(row[j], direction) for row in (rows[1:] if j == 0 else rows[-1:])]
+            if any(past):  # the contact's end: at any sample (oblique_events._left_zero)
                 found.append((departure_root(fn, t_old, t_old + h, direction), j))
             continue
         rising = np.array([direction * row[j] for row in rows])  # crosses from < 0 to >= 0

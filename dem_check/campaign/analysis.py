@@ -4,7 +4,11 @@ Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read o
 segment (local baseline, impact, decayed ringing), less its own baseline: a line fitted
 before the impact and on the sensor's free ringing after its contact
 (:mod:`dem_check.campaign.local`), so that drift, wander, hum and the slow part of 1/f
-noise are read on both sides of it:
+noise are read on both sides of it. With the record's white and 1/f noise levels
+(:func:`dem_check.campaign.local.record_noise`, estimated once per record) the line and
+ringing are fitted by generalised least squares and the noise under the pulse is
+predicted from both sides (its conditional mean, :mod:`contactlab.inverse.noise_prediction`)
+and taken off with the line before the peak signal and the impulse are read:
 
 - ``sensor_response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
   :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
@@ -19,7 +23,9 @@ noise are read on both sides of it:
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
   by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV on the problem
   whitened with the noise's AR model read on the baseline, a force value per twentieth
-  of a sensor period) on the segment;
+  of a sensor period) on the segment, its contact's edges read with the shape of the
+  contact family the onset fit read on the record (:attr:`Detection.contact_family`:
+  a damped contact's start at half its force's jump at the touch);
 - with a grain, ``velocity_change [m/s]`` = impulse / grain mass (``(1 + e) v`` for an
   impact at speed ``v`` and restitution ``e``: the impulse alone cannot separate them);
 - with ``fit=`` a law name, :func:`contactlab.inverse.fit_contact` on the segment: each
@@ -39,7 +45,7 @@ from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.inverse.reconstruct import DEFAULT_MAX_UNKNOWNS
 from contactlab.metrics import first_lobe
 from dem_check.campaign.detection import ONSET_SIGMAS
-from dem_check.campaign.local import local_baseline
+from dem_check.campaign.local import local_baseline, record_noise
 from dem_check.campaign.plausibility import physics_status
 from dem_check.campaign.structure import impact_crosstalk, record_modes
 
@@ -90,6 +96,9 @@ RECONSTRUCTION_TAIL = 8.0
 the signal to three periods past a window that ends a lobe-length after the main
 lobe."""
 
+NOT_GIVEN = object()
+"""Default of ``analyse_impact``'s ``noise``: estimate it (``None`` means none)."""
+
 GALLERY_PERIODS = 3.0
 """Sensor periods kept for the report's gallery before the reconstruction window and
 after it [-]."""
@@ -122,7 +131,7 @@ def _main_lobe_start(y, level):
     return int(under[-1]) if under.size else 0
 
 
-def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
+def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise):
     """Peak, response time and impulse of the signal (module docstring), and the record
     less its local baseline."""
     base = window.baseline_window
@@ -135,7 +144,7 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     # a contact cannot outlast one lobe-length after the signal's first lobe
     # (contactlab.inverse.reconstruct_force's window)
     contact_end = 2.0 * lobe[1] - lobe[0]
-    local = _local(t, record, window, contact_end, sensor)
+    local = _local(t, record, window, contact_end, sensor, noise)
     # the reconstruction reads its noise model on the detection's baseline window: it
     # gets the record less the line fitted there
     detrended = record - _local(t, record, window, contact_end, sensor, near_onset=False).values
@@ -152,15 +161,19 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor):
     return numbers, detrended, contact_end
 
 
-def _local(t, record, window, contact_end, sensor, near_onset=True):
+def _local(t, record, window, contact_end, sensor, noise=None, near_onset=True):
     """The impact's local baseline (:func:`dem_check.campaign.local.local_baseline`),
     its ringing fitted from ``contact_end`` [s]; a baseline before the impact is read up
     to :data:`ONSET_MARGIN` periods before the onset, where the impulse integral starts
-    (``near_onset=False``: to the detection's baseline window's end)."""
+    (``near_onset=False``: to the detection's baseline window's end). With the record's
+    ``noise`` (:func:`dem_check.campaign.local.record_noise`) the noise under the pulse
+    is predicted from both sides and taken off with the line."""
     base = window.baseline_window
     if near_onset and base[1] <= window.onset:
         end = max(base[1], window.onset - ONSET_MARGIN * sensor.period)
-        return local_baseline(t, record, (base[0], end), end, contact_end, window.end, sensor)
+        return local_baseline(
+            t, record, (base[0], end), end, contact_end, window.end, sensor, noise
+        )
     start = base[1] if window.start is None else window.start
     return local_baseline(t, record, base, start, contact_end, window.end, sensor)
 
@@ -221,7 +234,9 @@ def _fit(t, raw, base, grain, sensor, law):
     return _fit_columns(fit), notes
 
 
-def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=True, modes=None):
+def analyse_impact(
+    detection, window, sensor, grain=None, fit=None, crosstalk=True, modes=None, noise=NOT_GIVEN
+):
     """The table row and gallery traces of one ``"ok"`` impact.
 
     Parameters
@@ -242,6 +257,11 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
     modes : list of (float, float), optional
         The record's structure modes (:func:`dem_check.campaign.structure.record_modes`,
         found once per record); found here when not given.
+    noise : ColouredNoise or None, optional
+        The record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`,
+        estimated once per record); estimated here when not given; ``None``: the
+        baseline is the ordinary least-squares line and ringing, with no noise predicted
+        under the pulse.
 
     Returns
     -------
@@ -259,7 +279,11 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
     record = np.asarray(detection.record.values[part], dtype=float)
     base = window.baseline_window
     row = {**window_row(window), "significance [-]": window.significance}
-    numbers, detrended, contact_end = _signal_numbers(t, record, raw, smooth, flat, window, sensor)
+    if noise is NOT_GIVEN:
+        noise = record_noise(detection, sensor)
+    numbers, detrended, contact_end = _signal_numbers(
+        t, record, raw, smooth, flat, window, sensor, noise
+    )
     if crosstalk:
         if modes is None:
             modes = record_modes(detection, sensor)
@@ -269,7 +293,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
         if found.modes:
             record, raw, smooth, flat = (v - found.values for v in (record, raw, smooth, flat))
             numbers, detrended, contact_end = _signal_numbers(
-                t, record, raw, smooth, flat, window, sensor
+                t, record, raw, smooth, flat, window, sensor, noise
             )
     row.update(numbers)
     if grain is not None:
@@ -289,6 +313,8 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
             max_unknowns=_unknowns(window.onset, contact_end, sensor),
             crosstalk=False,  # removed above, with the record's modes (or kept on request)
             first_touch=False,  # the onset was fitted per record (dem_check.campaign.onsets)
+            # the edges with the shape of the record's contact family (its onset fit's)
+            contact_family=detection.contact_family,
         )
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))
@@ -311,7 +337,7 @@ def analyse_impact(detection, window, sensor, grain=None, fit=None, crosstalk=Tr
         # noise than to the first lobe's bound (about 130 us against 200 us for a 100 us
         # contact on a 40 kHz sensor)
         end = rec.metrics.end + sensor.period
-        row["impulse [N*s]"] = _local(t, record, window, end, sensor).impulse
+        row["impulse [N*s]"] = _local(t, record, window, end, sensor, noise).impulse
         if grain is not None:
             row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     start, end = rec.parameters["window [s]"]

@@ -16,6 +16,7 @@ from contactlab.validation import check_choice, check_count, check_number, check
 from dem_check.campaign import detection, noise, onsets
 from dem_check.campaign.analysis import analyse_impact, window_row
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
+from dem_check.campaign.local import record_noise
 from dem_check.campaign.result import CampaignResult
 from dem_check.campaign.statistics import (
     join_metadata,
@@ -206,11 +207,12 @@ def _analyse_file(path, options, timings, progress):
     rows, gallery = [], {}
     started = time.perf_counter()
     modes = record_modes(found, sensor) if options["crosstalk"] else []
+    levels = record_noise(found, sensor)  # white and 1/f noise, once per record
     for k, window in enumerate(found.impacts):
         progress.impact(path, k, len(found.impacts))
         if window.status in detection.ANALYSED:
             row, traces = analyse_impact(
-                found, window, sensor, grain, fit, options["crosstalk"], modes
+                found, window, sensor, grain, fit, options["crosstalk"], modes, levels
             )
             if traces is not None:
                 gallery[(path, k)] = traces

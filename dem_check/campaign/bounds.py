@@ -34,8 +34,8 @@ import math
 import numpy as np
 from scipy.linalg import cho_factor, cho_solve, solve_toeplitz, toeplitz
 
-from contactlab.errors import ParameterError
 from contactlab.inverse.local_baseline import _ringing
+from contactlab.inverse.noise_prediction import pink_autocovariance
 from contactlab.solver.impact import simulate_impact
 
 __all__ = [
@@ -72,14 +72,8 @@ def noise_autocovariance(count, dt, white, effects, record_length):
     numpy.ndarray
         ``count`` values [N**2].
     """
-    total = round(record_length / dt)
-    if total < count:
-        raise ParameterError(f"record_length must span the {count} lags; got {record_length} s")
-    power = np.zeros(total // 2 + 1)
-    power[1:] = 1.0 / np.arange(1, power.size)
-    pink = np.fft.irfft(power, total)[:count]
     lags = np.arange(count) * dt
-    out = (effects.pink**2 / pink[0]) * pink
+    out = effects.pink**2 * pink_autocovariance(count, dt, record_length)
     out[0] += white**2
     for order, relative in enumerate((1.0, *effects.harmonics), start=1):
         amplitude = effects.hum * relative

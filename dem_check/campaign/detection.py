@@ -28,16 +28,15 @@ in newtons:
    stayed under the floor for :data:`QUIET_PERIODS` sensor periods. A user's
    ``min_force`` [N] and ``min_separation`` [s] turn weaker or closer candidates into
    rows with status ``"below min_force"`` / ``"too close"`` (listed, not analysed).
-4. **Onset.** On the smoothed segment, the last crossing before the detection (searched
-   back from where the impact reached the threshold) of :data:`ONSET_SIGMAS` times the
-   noise of the segment's own baseline (the quiet samples just before the impact, at
-   most :data:`BASELINE_PERIODS` periods). An
-   impact with fewer than :data:`BASELINE_MIN_SAMPLES` quiet samples before it (a
-   record that starts at the hit, or an impact right after another's ringing) takes its
-   baseline from the quiet samples after its ringing decayed: status
-   ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
-   (:mod:`dem_check.campaign.onsets`: a contact family's force through the sensor, on
-   the whole first lobe), which the crossing lags.
+4. **Onset.** On the smoothed segment, the last crossing before the detection (searched back
+   from where the impact reached the threshold) of :data:`ONSET_SIGMAS` times the noise of
+   the segment's own baseline (the quiet samples just before the impact, at most
+   :data:`BASELINE_PERIODS` periods). An impact with fewer than :data:`BASELINE_MIN_SAMPLES`
+   quiet samples before it (a record that starts at the hit, or an impact right after
+   another's ringing) takes its baseline from the quiet samples after its ringing decayed:
+   status ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
+   (:mod:`dem_check.campaign.onsets`: a contact family's force through the sensor, on the
+   whole first lobe), which the crossing lags.
 5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
    value per sensor period) is followed; where it grows by more than
    :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
@@ -102,8 +101,8 @@ lobe-length after the main lobe, and a short pre-trigger's baseline lies there."
 
 BASELINE_PERIODS = 20.0
 """Longest baseline taken before an impact [sensor periods] (at least 4 *
-:data:`BASELINE_MIN_SAMPLES` samples): enough samples for the noise (to a few per
-cent) without reaching back into an older impact."""
+:data:`BASELINE_MIN_SAMPLES` samples): enough samples for the noise (to a few per cent) without
+reaching back into an older impact."""
 
 BASELINE_MIN_SAMPLES = 16
 """Fewest baseline samples (as :func:`contactlab.inverse.reconstruct_force` requires)."""
@@ -137,10 +136,9 @@ class ImpactWindow:
     """Time the ringing had decayed [s]: :data:`QUIET_PERIODS` after the last sample above
     the noise floor (or the record's end)."""
     status: str
-    """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``,
-    ``"no baseline"``, ``"negative"``, ``"overrange"``, ``"clipped"``,
-    ``"below min_force"``, ``"too close"`` or ``"offset step"`` (a row of
-    :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
+    """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``, ``"no baseline"``,
+    ``"negative"``, ``"overrange"``, ``"clipped"``, ``"below min_force"``, ``"too close"`` or
+    ``"offset step"`` (a row of :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is), and for an analysed impact
     whose onset could not be fitted, that it is the crossing and why."""
@@ -174,6 +172,8 @@ class Detection:
     steps: list = ()
     """:class:`ImpactWindow` rows of the record's DC offset steps (status ``"offset
     step"``, ``peak`` the height [N]), in time order."""
+    contact_family: tuple = None
+    """``(name, damping ratio [-])`` the onset fit read (:mod:`dem_check.campaign.onsets`)."""
 
 
 def _growths(z, first_lobe_end, last, period, noise_floor_level):
@@ -283,7 +283,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     )
     if not fit_onsets or period < RESOLVED_PERIOD_SAMPLES:
         return found  # a sensor period of a few samples holds no rise to fit
-    return dataclasses.replace(found, impacts=first_touches(found, sensor, ANALYSED))
+    return dataclasses.replace(found, **first_touches(found, sensor, ANALYSED))
 
 
 def _candidates(trace, sensor):

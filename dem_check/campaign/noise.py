@@ -15,6 +15,10 @@ baseline is followed, not read once, and the noise is read locally:
   hum, wander faster than a block and a structure's ringing raise their own block's
   threshold. The impacts found on a first pass, with their ringing, are left out of it
   on the second (a hard hit's ringing can fill most of a block);
+- a record that starts at an impact (its first run within :data:`HEAD_QUIET_SAMPLES`
+  of the start) has no block level under it: the run is excluded and the baseline
+  re-fitted after it and extrapolated back (``running_baseline``'s ``head``; up to
+  :data:`HEAD_PASSES` passes of detect, exclude, re-fit);
 - the threshold is ``sigmas`` local noise sigmas of the smoothed residual, ``sigmas``
   set so that Gaussian noise crosses it in fewer than :data:`FALSE_ALARMS` records.
 """
@@ -94,6 +98,18 @@ QUIET_PERIODS = 4.0
 QUIET_MIN_SAMPLES = 8
 """Fewest samples below the floor that end an impact (coarse records) [-]."""
 
+HEAD_QUIET_SAMPLES = 16
+"""A record whose first impact run (with its ringing) starts within this many samples
+of its first one starts at the impact [-] (the quiet samples a local baseline needs,
+``dem_check.campaign.detection.BASELINE_MIN_SAMPLES``): the running baseline is then
+fitted after that run and extrapolated back under it
+(:func:`contactlab._head_level.head_level`)."""
+
+HEAD_PASSES = 3
+"""Passes of detect, exclude the run at the record's start, re-fit [-]: the first
+pass's baseline is off under that run, which lengthens it; the second's run is the
+impact's, and a third confirms it."""
+
 
 def candidate_runs(ratio, hold, sigmas):
     """``(first, last)`` sample indices of each run of ``ratio`` (smoothed signal over
@@ -125,6 +141,17 @@ def _impact_mask(values, width, hold, sigmas):
     for first, last in candidate_runs(ratio, hold, sigmas):
         mask[first : last + hold + 1] = True
     return mask
+
+
+def _head(mask, longest):
+    """Samples of the impact run (with its ringing) that the record starts in, 0 when it
+    starts quiet (at least :data:`HEAD_QUIET_SAMPLES` samples before the first run), at
+    most ``longest``."""
+    if not mask[:HEAD_QUIET_SAMPLES].any():
+        return 0
+    quiet = np.flatnonzero(~mask)
+    after = quiet[quiet >= np.argmax(mask)]
+    return int(min(after[0] if after.size else mask.size, longest))
 
 
 @dataclass(frozen=True)
@@ -242,15 +269,22 @@ def noise_floor(trace, sensor):
     width = block_samples(values.size, sensor.period, dt)
     cutoff = CUTOFF_FACTOR * sensor.resonance
     kernel = math.sqrt(math.log(2.0)) / (2.0 * math.pi * cutoff)
-    levelled = signals.running_baseline(values, width).residual
-    smoothed_raw = _gaussian(finite.derive({"step": "levelled"}, values=levelled), kernel, dt)
-    smoothed_values = np.asarray(smoothed_raw.values, dtype=float)
     sigmas = max(MIN_SIGMAS, float(norm.isf(FALSE_ALARMS / (2.0 * len(trace)))))
     hold = max(QUIET_MIN_SAMPLES, round(QUIET_PERIODS * sensor.period / dt))
-    mask = _impact_mask(smoothed_values, width, hold, sigmas)
+    head = 0
+    for _ in range(HEAD_PASSES):  # detect, exclude the pulse at the start, re-fit
+        levelled = signals.running_baseline(values, width, head=head).residual
+        step = {"step": "levelled", "head [samples]": head}
+        smoothed_raw = _gaussian(finite.derive(step, values=levelled), kernel, dt)
+        smoothed_values = np.asarray(smoothed_raw.values, dtype=float)
+        mask = _impact_mask(smoothed_values, width, hold, sigmas)
+        found = _head(mask, values.size - width)
+        if found == head:
+            break
+        head = found
     smooth = signals.running_baseline(smoothed_values, width, exclude=mask)
-    raw = signals.running_baseline(values, width, exclude=mask)
-    step = {"step": "running_baseline", "block [samples]": width}
+    raw = signals.running_baseline(values, width, exclude=mask, head=head)
+    step = {"step": "running_baseline", "block [samples]": width, "head [samples]": head}
     signal = finite.derive(step, values=values - raw.level)
     typical = float(np.median(smooth.noise))
     if typical == 0.0:

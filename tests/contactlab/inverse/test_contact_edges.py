@@ -6,6 +6,8 @@ import pytest
 import scipy.signal as sg
 from hypothesis import given
 from hypothesis import strategies as st
+from scipy.optimize import brentq
+from scipy.stats import norm
 
 import contactlab as cl
 from contactlab.errors import ParameterError
@@ -13,6 +15,9 @@ from contactlab.inverse import reconstruct_force
 from contactlab.inverse.contact_edges import (
     FLANK_HIGH,
     SIGNIFICANCE_SIGMAS,
+    TOUCH_SPAN,
+    family_flanks,
+    flank_shapes,
     significant_edges,
     tikhonov_std,
 )
@@ -82,6 +87,89 @@ def test_hertz_flanks_extrapolate_with_their_power_law():
     # the line through x**1.5 between 10 % and 50 % meets zero at x = 0.065 (87.0 us
     # measured): short by more than the issue's 5 % target, which is why Hertz needs 1.5
     assert significant_edges(t, force, std).duration < 0.95 * 100e-6
+
+
+def _spring_dashpot(u, zeta):
+    """Closed form: a unit linear spring-dashpot impact on a rigid wall (w0 = 1, v = 1),
+    its force ``x + 2 zeta x'`` over its peak at ``u`` times its duration [-]."""
+    wd = np.sqrt(1.0 - zeta**2)
+    # the force returns to zero where tan(wd s) = -2 zeta wd / (1 - 2 zeta**2)
+    leave = (np.pi + np.arctan(-2.0 * zeta * wd / (1.0 - 2.0 * zeta**2))) / wd
+    # its peak where its derivative vanishes: tan(wd s) = wd (1 - 4 zeta**2) /
+    # (zeta (3 - 4 zeta**2))
+    top = np.arctan(wd * (1.0 - 4.0 * zeta**2) / (zeta * (3.0 - 4.0 * zeta**2))) / wd
+
+    def force(s):
+        decay = np.exp(-zeta * s)
+        return decay * (
+            np.sin(wd * s) / wd + 2.0 * zeta * (np.cos(wd * s) - zeta * np.sin(wd * s) / wd)
+        )
+
+    return force(u * leave) / force(top)
+
+
+@pytest.mark.parametrize("zeta", [0.05, 0.177, 0.3])
+def test_a_spring_dashpots_jump_is_its_closed_form(zeta):
+    # independent method: the closed-form force against the family's shape, which
+    # lobe_onset.force_shape integrates by solve_ivp on 4096 points (its linear
+    # interpolation is within 1e-6 of the peak where the force is smooth; 1e-5 leaves
+    # room for the integration's tolerance of 1e-10 compounded over the contact)
+    flanks = family_flanks("linear", zeta)
+    assert flanks["step"] == pytest.approx(_spring_dashpot(TOUCH_SPAN, zeta), abs=1e-5)
+    assert flanks["exponent"] == flanks["end_exponent"] == 1.0
+
+
+def test_the_families_flank_laws():
+    # undamped: no jump, the force's power of the overlap at both ends; damped Hertz
+    # (Tsuji): it leaves at a finite slope (exponent 1) and jumps as u**0.25 at the touch
+    assert family_flanks("hertz", 0.0) == {"exponent": 1.5, "end_exponent": 1.5, "step": 0.0}
+    assert family_flanks("linear", 0.0) == {"exponent": 1.0, "end_exponent": 1.0, "step": 0.0}
+    damped = family_flanks("hertz", 0.2)
+    assert damped["exponent"] == 1.5 and damped["end_exponent"] == 1.0
+    assert 0.0 < damped["step"] < 1.0
+    with pytest.raises(ParameterError, match="family"):
+        family_flanks("plastic", 0.1)
+    # bad input named: a family with an exponent, a negative damping
+    assert flank_shapes(1.5) == {"exponent": 1.5}
+    assert flank_shapes(1.0, ("hertz", 0.0)) == family_flanks("hertz", 0.0)
+    with pytest.raises(ParameterError, match="flank_exponent or contact_family"):
+        flank_shapes(1.5, ("hertz", 0.0))
+    with pytest.raises(ParameterError, match="contact_family damping"):
+        flank_shapes(1.0, ("linear", -0.1))
+
+
+@pytest.mark.parametrize("width", [1e-6, 2e-6, 4e-6])
+def test_a_rounded_jump_is_read_at_half_its_height(width):
+    # a jump to 42 % of the peak at t0 (between two samples), then straight flanks
+    # (rise and fall 50 us), rounded by a Gaussian of standard deviation ``width`` (a
+    # regularised reconstruction's smoothing): half the jump is crossed at the jump,
+    # a little earlier for the ramp after it (closed form: the rounded jump and ramp
+    # are ``jump Phi(x / w) + slope (x Phi(x / w) + w phi(x / w))``); a line through
+    # the rounded jump reaches zero microseconds early. The level is half the jump of
+    # the peak read, which the rounding lowers (by 2.5 % at a width of 2 us)
+    t = np.arange(-100e-6, 300e-6, 0.25e-6)
+    t0, jump, slope = 0.125e-6, 0.42, (1.0 - 0.42) / 50e-6
+    sharp = np.where(t >= t0, jump + slope * (t - t0), 0.0)
+    sharp = np.clip(np.minimum(sharp, (100e-6 + t0 - t) / 50e-6), 0.0, None)
+    kernel = np.exp(-0.5 * (np.arange(-80, 81) * 0.25e-6 / width) ** 2)  # to 5 widths
+    force = np.convolve(sharp, kernel / kernel.sum(), mode="same")
+    std = np.full(t.size, 0.01)
+    read = significant_edges(t, force, std, step=jump)
+
+    def rounded(x):  # the rounded force at t0 + x, less half the jump of the rounded peak
+        z = x / width
+        ramp = slope * (x * norm.cdf(z) + width * norm.pdf(z))
+        return jump * norm.cdf(z) + ramp - 0.5 * jump * force.max()
+
+    exact = t0 + brentq(rounded, -5.0 * width, 5.0 * width)
+    # 0.02 us: the linear interpolation of the erf between samples of 0.25 us (its
+    # curvature over half a sample, under 0.02 us at a width of 1 us)
+    assert read.start == pytest.approx(exact, abs=0.02e-6)
+    # the ramp's and the rounded peak's shift: a small part of the width (0.15 of it at
+    # 4 us, where the ramp rises by 5 % of the peak over one width)
+    assert abs(exact - t0) < 0.2 * width
+    line = significant_edges(t, force, std)
+    assert line.start < t0 - width  # the line through the rounded jump: early
 
 
 def test_a_noise_bump_after_the_contact_does_not_hold_it_open():

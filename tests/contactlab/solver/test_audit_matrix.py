@@ -93,18 +93,15 @@ def test_thornton_on_a_wall_at_5_m_s_rebounds_at_its_closed_form(rtol):
     assert audit.ok, [c.describe() for c in audit.failures]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="open, found by benchmarks/audit_matrix.py: an elastic contact (Thornton below "
-    "yield, and Hertz with its kH) of a 0.88 g grain at 1.23 m/s rebounds 1.06e-8 (106 rtol) "
-    "off e = 1 at rtol 1e-10 (6.7e-9 at 1e-8, 2.3e-11 at 1e-12): the first warped step after "
-    "the touch (t 1e-9 -> 1.5e-5 s) is accepted with its energy 2.1e-8 off, DOP853's error "
-    "norm letting the overlap's large 3rd-order estimate shrink the velocity's 5th-order one; "
-    "combined per component it gives 2.6e-10, but step counts then follow rounding "
-    "(docs/verification.md, known limits)",
-)
 @pytest.mark.parametrize("law", ["thornton", "hertz"])
 def test_elastic_rebound_after_a_long_first_warped_step(law):
+    """Regression (found by benchmarks/audit_matrix.py; docs/verification.md, finding 11): an
+    elastic contact of a 0.88 g grain at 1.23 m/s rebounded 1.06e-8 (106 rtol) off e = 1:
+    the warped start's second step was accepted with its energy 2.1e-8 off, the overlap's
+    3rd-order estimate (``v0 s**4``) shrinking the velocity's 5th-order one in DOP853's
+    norm. The warped start now combines the two estimates per component: 7.2e-11
+    (Thornton) and 4.4e-11 (Hertz); scipy's ``solve_ivp`` in time at the same rtol gives
+    7.7e-11."""
     grain = cl.Grain(
         diameter=0.01,
         density=1682.0131005723867,
@@ -120,18 +117,16 @@ def test_elastic_rebound_after_a_long_first_warped_step(law):
     assert res.restitution == pytest.approx(1.0, abs=10.0 * 1e-10)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="open, found by benchmarks/audit_matrix.py (oblique, seed 21, 600 draws; the code "
-    "before issue 21's retakes gives the same numbers): Hunt-Crossley at chi v = 19.8 on a "
-    "128.5 kHz, 7.8 g sensor, normal incidence: the normal formula pulls at t = 2.1445 ms, "
-    "7 us before the located end (2.1519 ms), by 1.26e-8 of the peak force in simulate_impact "
-    "(tolerance 1e-8) and 1.89e-8 in simulate_oblique (tolerance 1e-9): a contact end missed "
-    "where the plate's ringing brings the force to zero and back (docs/verification.md, "
-    "known limits)",
-)
 @pytest.mark.parametrize("solver", ["normal", "oblique"])
 def test_strongly_damped_hunt_crossley_on_a_stiff_sensor_stays_one_sided(solver):
+    """Regression (found by benchmarks/audit_matrix.py, oblique, seed 21; docs/verification.md,
+    finding 12): Hunt-Crossley at chi v = 19.8 on a 128.5 kHz, 7.8 g sensor. The plate's
+    ringing brings the force to zero at 2.14424 ms (scipy's ``solve_ivp`` at rtol 1e-13)
+    and back inside one step; both solvers missed that end and closed the contact at
+    2.1519 ms, the formula pulling by 1.26e-8 (normal) and 1.89e-8 (oblique) of the peak in
+    between. The normal pieces now look for the end at nine points of each step as the
+    oblique phases do, and the oblique contact's end is found where a phase starts at zero
+    force (a stick ending with it) and the force dips inside the step."""
     grain = cl.Grain(
         diameter=0.00906,
         density=2927.666720347371,

@@ -214,6 +214,21 @@ def test_the_contact_arm_lowers_the_spin_by_the_overlap_moment(degrees):
     assert difference == pytest.approx(expected, rel=1e-6)
 
 
+@pytest.mark.parametrize("degrees", [45.0, 70.0])
+def test_the_audits_arm_moment_is_the_closed_form_in_gross_sliding(degrees):
+    """The default audit's ``integral d F dt`` (the compiled quadrature of
+    :func:`contactlab.kernels.oblique_sample.arm_moment`) is ``-mu integral d N dt`` in
+    gross sliding, a closed form for elastic Hertz; the angular-momentum check it enters
+    passes."""
+    res = _oblique(ELASTIC, Conventions("contact", "total", "none"), degrees)
+    assert [code for _, _, code in res.phases] == ["slide-"]  # F = -mu N throughout
+    vn = SPEED * math.cos(math.radians(degrees))
+    expected = -MU * _hertz_moment_of_overlap(ELASTIC, GRAIN.mass, vn)
+    # Gauss-Legendre on graded panels of the rtol 1e-9 interpolant: measured 9.1e-11 rel
+    assert res._arm_shortening_moment() == pytest.approx(expected, rel=1e-9)
+    assert res.audit(full=False)["momentum_angular"].passed
+
+
 def test_tied_damping_ratio_is_the_normal_laws():
     """``damping_ratio``: the normal damping force is ``2 gamma sqrt(m Kn) d'`` with ``Kn``
     the elastic tangent stiffness, for both damped laws; zero for elastic Hertz."""

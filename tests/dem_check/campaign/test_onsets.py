@@ -91,3 +91,31 @@ def test_an_impact_whose_fit_fails_keeps_its_crossing_and_says_so(hard_setup, mo
     for k in analysed:
         assert kept[k].onset == crossing[k].onset
         assert "5-sigma crossing" in kept[k].reason and "forced by the test" in kept[k].reason
+
+
+def test_a_crossing_that_leads_the_touch_still_finds_the_family_and_the_touch(hard_setup):
+    """At 5 MHz the smoothed signal of a linear contact's force step crosses five sigmas
+    up to 3 samples before the touch (the Gaussian kernel's reach). A search that ended at
+    the crossing made the linear family's fit fail on the strongest impacts, the record
+    read ``hertz`` with damping 0.34, and every onset was 3.4-4.7 samples early (measured
+    on this record before the fix; the benchmark's 3.6-4.0 at 5 MHz with 2 % crosstalk)."""
+    grain, sensor, law = hard_setup
+    effects = Effects.everything(NOISE, 3.0, pink=0.3 * NOISE, full_scale=None, steps=0)
+    record = four_impact_record(
+        grain, sensor, law, [2.4, 0.6, 1.8, 1.2], effects, sample_rate=5e6, seed=5
+    )
+    found = find_impacts(record.trace, sensor, fit_onsets=False)
+    analysed = [w for w in found.impacts if w.status in ANALYSED]
+    fitted, notes, family, damping = onsets.record_onsets(found, analysed, sensor)
+    truth = record.truth["onset [s]"].to_numpy()
+    true = np.array([truth[np.abs(truth - w.onset).argmin()] for w in analysed])
+    crossing = (np.array([w.onset for w in analysed]) - true) * 5e6
+    assert crossing.min() < 0.0  # the case: a crossing before the touch (-2.75 measured)
+    assert family == "linear"
+    # the hard grain's c2 / (2 sqrt(k2 m2)) = 0.177: read 0.1735 here, 0.1716-0.1727 on
+    # the benchmark's records (rigid-wall shapes against the two-mass solver, noise);
+    # 0.01 is twice the refinement's tolerance (lobe_onset.DAMPING_TOLERANCE)
+    assert damping == pytest.approx(0.177, abs=0.01)
+    assert not any(notes)
+    errors = (np.asarray(fitted) - true) * 5e6
+    assert np.abs(errors).max() <= 2.0, errors  # the issue's target (measured 0.76 at 12 sigma)

@@ -1,0 +1,203 @@
+"""A contact family's force through the sensor on a record's window, fitted by least
+squares (:mod:`contactlab.inverse.lobe_onset` fits its onset and duration with it).
+
+The record's force is ``A h((t - t0) / tau)`` (the unit shape ``h`` of
+:func:`force_shape`) and its signal that force through the sensor (``k1 x1 + c1 v1``,
+the transfer function ``(c1 p + k1) / (m1 p**2 + c1 p + k1)``), plus a line for the
+drift. ``A`` and the line are linear least squares (variable projection); with a noise
+model (an autoregressive process, :class:`contactlab.inverse.noise_colour.ARNoise`) the
+record and every column are whitened by its filter ``A(z)`` first (generalised least
+squares): the slow part of 1/f noise, which a fit that takes it as white reads as the
+pulse's shape, then weighs as little as it carries.
+"""
+
+import functools
+import math
+
+import numpy as np
+from scipy import integrate, signal
+
+from contactlab.errors import ParameterError
+
+__all__ = ["FAMILIES", "FINE_PERIODS", "SHAPE_POINTS", "LobeModel", "force_shape"]
+
+FAMILIES = {"linear": (1.0, 0.0), "hertz": (1.5, 0.25)}
+"""Contact families ``name: (n, m)``: the force ``d**n + 2 zeta d**m d'`` [-] (a linear
+spring-dashpot; Hertz with Tsuji's damping, undamped Hertz at ``zeta = 0``)."""
+
+SHAPE_POINTS = 4096
+"""Samples of the unit force shape on its unit duration [-] (interpolated linearly: a
+relative error below 1e-6 of the peak where the shape is smooth)."""
+
+FINE_PERIODS = 1.0 / 128.0
+"""The force is pushed through the sensor on a step of at most this many sensor periods
+and half a sample [-] (the first-order hold is exact for a piecewise-linear force; the
+signal, interpolated linearly between the steps, is then within ``(2 pi / 128)**2 / 8 =
+3e-4`` of its peak; a damped contact's force step is centred on its step)."""
+
+
+@functools.lru_cache(maxsize=64)
+def force_shape(family, damping):
+    """The unit force shape of a contact family: ``h(u)`` on ``u`` in [0, 1], peak 1.
+
+    Parameters
+    ----------
+    family : str
+        A name of :data:`FAMILIES`.
+    damping : float
+        Damping ratio ``zeta`` [-], >= 0.
+
+    Returns
+    -------
+    u, h : numpy.ndarray
+        Time over the contact's duration [-] and force over its peak [-]
+        (:func:`scipy.integrate.solve_ivp`, relative tolerance 1e-10).
+    """
+    if family not in FAMILIES:
+        raise ParameterError(f"family must be one of {sorted(FAMILIES)}, not {family!r}")
+    n, m = FAMILIES[family]
+
+    def force(d, v):  # odd in d: the event below crosses zero cleanly
+        return math.copysign(abs(d) ** n, d) + 2.0 * damping * abs(d) ** m * v
+
+    def rhs(_, x):
+        return [x[1], -force(x[0], x[1])]
+
+    def released(u, x):  # the force returns to zero (after its start)
+        return force(x[0], x[1]) if u > 1e-6 else 1.0
+
+    released.terminal, released.direction = True, -1.0
+    solved = integrate.solve_ivp(
+        rhs, (0.0, 20.0), [0.0, 1.0], events=released, rtol=1e-10, atol=1e-12, dense_output=True
+    )
+    end = float(solved.t_events[0][0])
+    u = np.linspace(0.0, end, SHAPE_POINTS)
+    d, v = solved.sol(u)
+    h = np.array([force(a, b) for a, b in zip(d, v, strict=True)])
+    h[-1] = 0.0
+    return u / end, h / h.max()
+
+
+@functools.lru_cache(maxsize=16)
+def _sensor_filter(w, zeta, step):
+    """The signal response of a sensor (angular frequency ``w`` [rad/s], damping ratio
+    ``zeta`` [-]) as a discrete filter on ``step`` [s] (first-order hold: exact for a
+    piecewise-linear force)."""
+    b, a, _ = signal.cont2discrete(
+        ([2.0 * zeta * w, w * w], [1.0, 2.0 * zeta * w, w * w]), step, method="foh"
+    )
+    return np.ravel(b), np.ravel(a)
+
+
+def _identity(values):
+    return np.asarray(values, dtype=float)
+
+
+class LobeModel:
+    """The signal of ``A h((t - t0) / tau)`` plus a line on a window, for the fit and
+    its bound.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        The window's time [s] (uniform) and signal [N].
+    sensor : contactlab.Sensor
+        The moving sensor.
+    family : str
+        A name of :data:`FAMILIES`.
+    damping : float
+        Its damping ratio [-].
+    noise_model : ARNoise, optional
+        The record's noise per sample; its filter whitens the record and the columns
+        (the first ``p`` samples only start it). None: white noise.
+    """
+
+    def __init__(self, t, y, sensor, family, damping, noise_model=None):
+        self.t, self.y = t, y
+        self.dt = float(t[1] - t[0])
+        self.u, self.h = force_shape(family, damping)
+        self.family, self.damping = family, damping
+        self.fine = math.ceil(max(2.0, self.dt / (FINE_PERIODS * sensor.period)))
+        self.filter = _sensor_filter(
+            sensor.angular_frequency, sensor.damping_ratio, self.dt / self.fine
+        )
+        self.period = sensor.period
+        coloured = noise_model is not None and noise_model.order > 0
+        self.whiten = noise_model.whiten if coloured else _identity
+        self.ar = noise_model.coefficients if coloured else np.zeros(0)
+        centre = float(t.mean())
+        self.line = np.column_stack([np.ones_like(t), (t - centre) / self.period])
+        self.line_w, self.y_w = self.whiten(self.line), self.whiten(y)
+        self.basis = np.linalg.qr(self.line_w)[0]
+        self.y_off = self.y_w - self.basis @ (self.basis.T @ self.y_w)
+        self.y_rss = float(self.y_off @ self.y_off)
+
+    def unit(self, tau, shape=None):
+        """The unit-peak signal against the time since the force's start: time [s] and
+        signal [-]. The force starts half a fine step after a fine sample, so that the
+        hold's ramp over that step centres a damped contact's force step on it.
+        ``shape``: another ``(u, h)`` than the model's."""
+        step = self.dt / self.fine
+        s = np.arange(-1, self.fine * (self.t.size + 2)) * step
+        u, h = (self.u, self.h) if shape is None else shape
+        force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
+        return s - 0.5 * step, signal.lfilter(*self.filter, force)
+
+    def white_unit(self, tau):
+        """:meth:`unit` whitened on its fine grid: ``r(s) - sum_k a_k r(s - k dt)``, the
+        sample step ``dt`` being ``fine`` grid steps. Whitening commutes with the shift
+        by ``t0``, so that the whitened column at any onset is this one sampled (its
+        first ``p`` samples, which the filter needs before the window, dropped)."""
+        s, r = self.unit(tau)
+        white = r.copy()
+        for k, a in enumerate(self.ar, start=1):  # r is zero before the force's start
+            white[k * self.fine :] -= a * r[: r.size - k * self.fine]
+        return s, white
+
+    def response(self, t0, tau, unit=None):
+        """The unit-peak signal on the window's samples [-] (``unit``: :meth:`unit` of
+        ``tau``, when already computed)."""
+        s, r = self.unit(tau) if unit is None else unit
+        return np.interp(self.t - t0, s, r, left=0.0)
+
+    def solve(self, t0, tau, unit=None, coefficients=True):
+        """Linear amplitudes (offset, slope over a sensor period, ``A``; only ``A``
+        without ``coefficients``) and the residual sum of squares of the whitened record
+        (the signal's column projected off the line's orthonormal basis). ``unit``:
+        :meth:`white_unit` of ``tau``, when already computed."""
+        if not tau > 0.0:
+            return np.full(3, np.nan), math.inf
+        unit = self.white_unit(tau) if unit is None else unit
+        r = self.response(t0, tau, unit)[self.ar.size :]
+        r_off = r - self.basis @ (self.basis.T @ r)
+        norm = float(r_off @ r_off)
+        if not norm > 0.0:  # no force inside the window
+            return np.full(3, np.nan), math.inf
+        amplitude = float(r_off @ self.y_off) / norm
+        rss = max(self.y_rss - amplitude * amplitude * norm, 0.0)
+        if not coefficients:
+            return amplitude, rss
+        line = np.linalg.lstsq(self.line_w, self.y_w - amplitude * r, rcond=None)[0]
+        return np.array([*line, amplitude]), rss
+
+    def bound(self, t0, tau, noise, damping_free):
+        """Cramér-Rao bound of ``t0`` [s] for noise of standard deviation ``noise`` [N]
+        (the whitened noise's: the innovation's with a noise model), central differences
+        of a tenth of a sample; with ``damping_free`` the damping ratio is a nuisance
+        parameter too, its derivative one-sided over 0.01."""
+        coefficients, _ = self.solve(t0, tau)
+        ht, htau = 0.1 * self.dt, 1e-3 * tau
+        d_t0 = (self.response(t0 + ht, tau) - self.response(t0 - ht, tau)) / (2.0 * ht)
+        d_tau = (self.response(t0, tau + htau) - self.response(t0, tau - htau)) / (2.0 * htau)
+        a = coefficients[2]
+        columns = [a * d_t0 * self.dt, a * d_tau * tau, self.line, self.response(t0, tau)]
+        if damping_free:
+            other = self.unit(tau, force_shape(self.family, self.damping + 0.01))
+            d_zeta = (self.response(t0, tau, other) - self.response(t0, tau)) / 0.01
+            columns.insert(2, a * d_zeta)
+        jacobian = self.whiten(np.column_stack(columns))
+        try:
+            covariance = np.linalg.inv(jacobian.T @ jacobian)
+        except np.linalg.LinAlgError:  # no rise in the window: no information on t0
+            return math.inf
+        return float(math.sqrt(max(covariance[0, 0], 0.0)) * noise * self.dt)
