@@ -1,8 +1,8 @@
 """Benchmark: the joint pencil's structure poles, before and after their refinement.
 
-Windows built here in closed form, not by the record model: eight windows of ringing
-after a hit, of the lengths found between the hits and bounces of
-``bench_realistic.py --accuracy`` (1.3-3.8 ms), each holding the 40 kHz sensor's
+Windows built in closed form (``tests/support/plate_windows.py``, the test's), not by
+the record model: eight windows of ringing after a hit, of the lengths found between the
+hits and bounces of ``bench_realistic.py --accuracy`` (1.3-3.8 ms), each holding the 40 kHz sensor's
 ringing, an offset, the 730 Hz (damping ratio 0.01) and 1890 Hz (0.02) plate modes at
 0.015-0.03 with their own amplitudes and phases, and noise: none, white (0.03), 1/f
 (0.01; a sum of first-order processes with corners 10 Hz-100 kHz) or both, at 1 and
@@ -16,58 +16,21 @@ Run: ``.venv/bin/python benchmarks/bench_joint_poles.py [--seeds N]``
 """
 
 import argparse
-import math
 import os
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
-from scipy import signal
 
-import contactlab as cl
 from contactlab.inverse.crosstalk import joint_structure_modes
 
-SENSOR = cl.Sensor.from_resonance(40e3, 0.01, damping_ratio=0.02)
-PLATE = [(730.0, 0.01), (1890.0, 0.02)]
-LENGTHS = [1.3e-3, 2.3e-3, 1.3e-3, 3.8e-3, 1.4e-3, 1.9e-3, 1.4e-3, 3.6e-3]  # [s]
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "support"))
+# the test's windows, so that the benchmark measures its case on more seeds and rates
+from plate_windows import PLATE, SENSOR, mode_error, plate_windows
+
 NOISES = {"none": (0.0, 0.0), "white": (0.03, 0.0), "1/f": (0.0, 0.01), "both": (0.03, 0.01)}
-
-
-def _damped(s, frequency, zeta):
-    w = 2.0 * math.pi * frequency
-    return np.where(s >= 0.0, np.exp(-zeta * w / math.sqrt(1 - zeta**2) * s) * np.sin(w * s), 0.0)
-
-
-def _flicker(count, rng, dt):
-    """1/f noise of unit standard deviation: first-order processes a decade apart."""
-    noise = np.zeros(count)
-    for corner in 10.0 ** np.arange(1, 6):
-        decay = math.exp(-2.0 * math.pi * corner * dt)
-        noise += signal.lfilter([1.0], [1.0, -decay], rng.normal(0, math.sqrt(1 - decay**2), count))
-    return noise / noise.std()
-
-
-def windows(seed, rate, white, flicker):
-    rng = np.random.default_rng(seed)
-    sizes = [round(length * rate) for length in LENGTHS]
-    noise = white * rng.normal(size=sum(sizes)) + flicker * _flicker(sum(sizes), rng, 1 / rate)
-    out, first = [], 0
-    for size in sizes:
-        t = np.arange(size) / rate
-        y = 0.1 + 0.5 * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
-        for frequency, zeta in PLATE:
-            y += rng.uniform(0.015, 0.03) * _damped(t + rng.uniform(0.0, 2e-3), frequency, zeta)
-        out.append((t, y + noise[first : first + size]))
-        first += size
-    return out
-
-
-def _error(candidates, significant, frequency):
-    errors = [
-        abs(f / frequency - 1.0)
-        for (f, _), hits in zip(candidates, significant.sum(axis=0), strict=True)
-        if abs(f / frequency - 1.0) < 0.3 and hits >= significant.shape[0] / 2
-    ]
-    return min(errors, default=math.nan)
+"""White and 1/f noise standard deviations [N] of each case."""
 
 
 def main():
@@ -80,12 +43,12 @@ def main():
             errors = {False: [], True: []}
             seconds = {False: 0.0, True: 0.0}
             for seed in range(seeds):
-                data = windows(seed, rate, white, flicker)
+                data = plate_windows(seed, rate, white, flicker)
                 for refine in errors:
                     started = time.perf_counter()
                     found = joint_structure_modes(data, SENSOR, refine=refine)
                     seconds[refine] += time.perf_counter() - started
-                    errors[refine].append([_error(*found, f) for f, _ in PLATE])
+                    errors[refine].append([mode_error(*found, f) for f, _ in PLATE])
             line = f"{rate / 1e6:.0f} MHz {name:6s}"
             for refine, label in ((False, "pencil"), (True, "refined")):
                 e = 100 * np.array(errors[refine])

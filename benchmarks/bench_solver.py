@@ -131,9 +131,8 @@ def hertz_case(grain, sensor):
 
 def main():
     paper = cl.study.StudySetup.paper()  # the paper's grain and 40 kHz disc sensor
-    grain, sensor = paper.grain, paper.sensor
-    linear_case(grain, sensor)
-    hertz_case(grain, sensor)
+    linear_case(paper.grain, paper.sensor)
+    hertz_case(paper.grain, paper.sensor)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,7 @@ exact two-mass solver, pulse metrics, and the error study of Keska et al. (2021)
 SI units everywhere. Overlap ``d = x2 - x1 > 0`` in compression; ``S2 >= 0``.
 """
 
-from contactlab import analytic, laws, metrics
+from contactlab import analytic, laws, metrics, solver
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import (
     ParameterError,
@@ -20,7 +20,8 @@ from contactlab.errors import (
 )
 from contactlab.oblique_result import ObliqueResult
 from contactlab.result import ImpactResult
-from contactlab.solver import (
+from contactlab.solver import (  # noqa: F401 (handed on through solver.__all__)
+    METHODS,
     simulate_impact,
     simulate_oblique,
     wall_contact_time,
@@ -43,13 +44,8 @@ __all__ = [
     "analytic",
     "laws",
     "metrics",
-    "simulate_impact",
-    "simulate_oblique",
-    "wall_contact_time",
-    "wall_dissipated_energy",
-    "wall_impact",
-    "wall_restitution",
 ]
+__all__ += solver.__all__  # the solver's public names, handed on (one list)
 
 __version__ = "0.1.0"
 

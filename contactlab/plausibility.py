@@ -212,10 +212,9 @@ def likely_slips(key, value):
 
     Parameters
     ----------
-    key : str
-        A key of :data:`RANGES`.
-    value : float
-        The value as given, in SI units [the range's unit].
+    key, value
+        As for :func:`check_plausible`: the range's key, and the value as given in the
+        range's SI unit.
 
     Returns
     -------

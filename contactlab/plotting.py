@@ -73,6 +73,7 @@ def plot_impact(result, ax=None, title=None):
     Returns
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
+        The figure and the axes the two forces are drawn into.
     """
     curves = [
         (result.contact_force, 2.6, "black", "contact force $S_2$"),
@@ -95,6 +96,7 @@ def plot_oblique(result, ax=None, title=None):
     Returns
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
+        The figure and the axes; the sensor signal is left out for a rigid sensor.
     """
     curves = [
         (result.normal_force, 2.6, "black", "normal force $S_2$"),

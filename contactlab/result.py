@@ -358,6 +358,8 @@ class ImpactResult(ImpactSignals):
 
     @cached_property
     def _contact_peak(self):
+        """``(time [s], force [N])`` of the first contact's largest force, refined on the
+        dense solution between the grid's samples."""
         start, end = self.contact_intervals[0]
         return self._refined_max(self._forces_on, self.contact_force, start, end)
 

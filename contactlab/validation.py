@@ -84,6 +84,7 @@ def check_number(
     Returns
     -------
     float
+        ``value`` converted (an ``int`` or numpy scalar becomes a float).
 
     Raises
     ------

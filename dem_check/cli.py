@@ -8,7 +8,14 @@ import json
 import sys
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import Parser, add_crosstalk_flag, add_outputs, add_strict, run
+from contactlab.cli.running import (
+    Parser,
+    add_crosstalk_flag,
+    add_outputs,
+    add_strict,
+    run,
+    same_named,
+)
 from contactlab.config import load
 from contactlab.errors import ParameterError
 
@@ -110,16 +117,11 @@ def _campaign(args):
         args.paths,
         sensor,
         grain,
-        sensitivity=args.sensitivity,
-        channel=args.channel,
-        out=args.out,
-        fit=args.fit,
-        metadata=args.metadata,
-        gallery=args.gallery,
         progress=not args.no_progress,
-        min_force=args.min_force,
-        min_separation=args.min_separation,
         crosstalk=not args.no_crosstalk,
+        **same_named(args, "sensitivity", "channel", "metadata"),  # reading the records
+        **same_named(args, "fit", "min_force", "min_separation"),  # analysing them
+        **same_named(args, "out", "gallery"),  # the report
     )
     print(dump(result.summary()) if args.json else result)
     if args.out:

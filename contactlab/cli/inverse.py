@@ -4,7 +4,7 @@ import sys
 from pathlib import Path
 
 from contactlab.cli.output import dump
-from contactlab.cli.running import add_crosstalk_flag, add_outputs
+from contactlab.cli.running import add_crosstalk_flag, add_outputs, same_named
 from contactlab.errors import ParameterError
 
 __all__ = ["add_inverse_parsers"]
@@ -71,12 +71,10 @@ def _reconstruct(args):
         sensor,
         args.method,
         baseline_window=args.baseline,
-        regularization=args.regularization,
-        cutoff=args.cutoff,
         crosstalk=not args.no_crosstalk,
-        noise_model=args.noise_model,
-        contact_edges=args.contact_edges,
-        flank_exponent=args.flank_exponent,
+        **same_named(
+            args, "regularization", "cutoff", "noise_model", "contact_edges", "flank_exponent"
+        ),
     )
     if args.plot:
         _save_plot(rec.plot()[0], args.plot)

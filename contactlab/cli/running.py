@@ -24,7 +24,15 @@ import warnings
 from contactlab.cli.setup import announce_compile
 from contactlab.errors import ContactlabWarning, ParameterError, TraceFormatError
 
-__all__ = ["INPUT_ERRORS", "Parser", "add_crosstalk_flag", "add_outputs", "add_strict", "run"]
+__all__ = [
+    "INPUT_ERRORS",
+    "Parser",
+    "add_crosstalk_flag",
+    "add_outputs",
+    "add_strict",
+    "run",
+    "same_named",
+]
 
 INPUT_ERRORS = (ParameterError, TraceFormatError, OSError, ImportError)
 """What bad input raises: a parameter, a file's content, a missing file, an extra not
@@ -173,3 +181,9 @@ def add_crosstalk_flag(parser):
         action="store_true",
         help="keep the structure's modes ringing after a hit (removed by default)",
     )
+
+
+def same_named(args, *names):
+    """``{name: args.name}`` for the options whose flag has the name of the keyword it
+    fills (``--min-force`` fills ``min_force``), to hand on to the command's function."""
+    return {name: getattr(args, name) for name in names}

@@ -18,6 +18,7 @@ from contactlab.validation import check_number
 __all__ = [
     "BASELINE_MIN_SAMPLES",
     "baseline",
+    "check_baseline_samples",
     "check_window",
     "lobe_around_peak",
     "uniform_signal",
@@ -70,6 +71,44 @@ def check_window(name, window):
     return start, end
 
 
+def check_baseline_samples(t, window, found=False):
+    """Refuse a noise window that holds too few samples to estimate the noise.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Sample times [s].
+    window : (float, float)
+        The window ``[start, end)`` [s].
+    found : bool, default False
+        Whether the window was found before the pulse (its end is the pulse's start) or
+        given (or taken as every pre-trigger sample); the message speaks to either.
+
+    Raises
+    ------
+    ParameterError
+        Fewer than :data:`BASELINE_MIN_SAMPLES` samples of ``t`` lie in ``window``; the
+        message says how to give a window.
+    """
+    count = int(signals.in_window(t, window).sum())
+    if count >= BASELINE_MIN_SAMPLES:
+        return
+    if found:
+        where = (
+            f"only {count} samples lie before the pulse, which starts about {window[1]:.6g} "
+            f"s; a noise estimate needs {BASELINE_MIN_SAMPLES}: record a longer pre-trigger"
+        )
+    else:
+        where = (
+            f"baseline window {window} s holds {count} samples; need at least "
+            f"{BASELINE_MIN_SAMPLES} pre-trigger samples: record a pre-trigger"
+        )
+    raise ParameterError(
+        f"{where}, or give the noise window (baseline_window=(start, end) [s]; --baseline "
+        "T0 T1 on the command line)"
+    )
+
+
 def baseline(t, y, window=None, k=5.0):
     """Baseline mean, noise and onset of a pulse (:mod:`contactlab.signals`).
 
@@ -105,13 +144,7 @@ def baseline(t, y, window=None, k=5.0):
         window = (float(t[0]), 0.0)
     else:
         window = check_window("baseline_window", window)
-    count = int(signals.in_window(t, window).sum())
-    if count < BASELINE_MIN_SAMPLES:
-        raise ParameterError(
-            f"baseline window {window} s holds {count} samples; need at least "
-            f"{BASELINE_MIN_SAMPLES} pre-trigger samples (record a pre-trigger or pass "
-            "baseline_window=(start, end) [s], --baseline T0 T1 on the command line)"
-        )
+    check_baseline_samples(t, window)
     mean, noise, _ = signals.baseline(t, y, window, name="baseline_window")
     if noise == 0.0:
         raise ParameterError(f"the baseline window {window} s is exactly constant (no noise)")

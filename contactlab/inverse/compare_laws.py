@@ -29,11 +29,22 @@ import warnings
 from dataclasses import dataclass
 
 from contactlab.entry_checks import check_names
+from contactlab.errors import ParameterError
 from contactlab.inverse.fit import IdentifiabilityWarning, fit_contact
 from contactlab.inverse.fit_models import FIT_MODELS
 from contactlab.inverse.fit_quality import FitQualityWarning
 
-__all__ = ["DISFAVOURED_DELTA_BIC", "LawComparison", "RankedLaw", "compare_laws"]
+__all__ = [
+    "COMPARED_FIT_OPTIONS",
+    "DISFAVOURED_DELTA_BIC",
+    "LawComparison",
+    "RankedLaw",
+    "compare_laws",
+]
+
+COMPARED_FIT_OPTIONS = ("baseline_window", "window", "max_nfev", "crosstalk")
+"""The keywords of :func:`~contactlab.inverse.fit.fit_contact` that :func:`compare_laws`
+passes to every fit (``fixed`` names one law's parameters, so it is not among them)."""
 
 DISFAVOURED_DELTA_BIC = 10.0
 """BIC difference to the best law above which a law is disfavoured [-] (Kass & Raftery
@@ -153,29 +164,21 @@ def _fit_recording_warnings(*args, **kwargs):
     return fit, notes
 
 
-def compare_laws(
-    t,
-    signal,
-    grain,
-    sensor,
-    laws=None,
-    velocity=None,
-    *,
-    baseline_window=None,
-    window=None,
-    max_nfev=200,
-    crosstalk=True,
-):
+def compare_laws(t, signal, grain, sensor, laws=None, velocity=None, **fit_options):
     """Fit every candidate law to a trace and rank them by BIC.
 
     Parameters
     ----------
-    t, signal, grain, sensor, velocity, baseline_window, window, max_nfev, crosstalk
-        As for :func:`~contactlab.inverse.fit.fit_contact`; the noise window and the
-        fitted samples found for the first law are used for every law.
+    t, signal, grain, sensor, velocity
+        As for :func:`~contactlab.inverse.fit.fit_contact`.
     laws : str or sequence of str, optional
         Keys of :data:`FIT_MODELS` (default all of them; a name given twice is fitted
         once).
+    **fit_options
+        The keywords of :func:`~contactlab.inverse.fit.fit_contact` named in
+        :data:`COMPARED_FIT_OPTIONS` (``baseline_window``, ``window``, ``max_nfev``,
+        ``crosstalk``), passed to every fit; the noise window and the fitted samples
+        found for the first law are used for every law.
 
     Returns
     -------
@@ -184,7 +187,8 @@ def compare_laws(
     Raises
     ------
     ParameterError
-        As :func:`~contactlab.inverse.fit.fit_contact`, or an unknown law.
+        As :func:`~contactlab.inverse.fit.fit_contact`, an unknown law, or a keyword not
+        in :data:`COMPARED_FIT_OPTIONS`.
 
     Notes
     -----
@@ -192,18 +196,24 @@ def compare_laws(
     ``notes`` instead of being issued; a :class:`FitQualityWarning` is not issued either
     (each entry's ``verdict`` and ``reasons`` hold it).
     """
+    unknown = sorted(set(fit_options) - set(COMPARED_FIT_OPTIONS))
+    if unknown:
+        raise ParameterError(
+            f"compare_laws takes no {', '.join(unknown)}; its fit options are "
+            f"{', '.join(COMPARED_FIT_OPTIONS)}"
+        )
     laws = tuple(FIT_MODELS) if laws is None else check_names("laws", laws, tuple(FIT_MODELS))
-    options = {"velocity": velocity, "max_nfev": max_nfev, "crosstalk": crosstalk}
     first, notes = _fit_recording_warnings(
-        t, signal, grain, sensor, laws[0], baseline_window=baseline_window, window=window, **options
+        t, signal, grain, sensor, laws[0], velocity=velocity, **fit_options
     )
     same = {
+        **fit_options,
         "baseline_window": first.quality.noise_window,
         "window": (float(first.t[0]), float(first.t[-1])),
     }
     fits = [(first, notes)]
     fits += [
-        _fit_recording_warnings(t, signal, grain, sensor, law, **same, **options)
+        _fit_recording_warnings(t, signal, grain, sensor, law, velocity=velocity, **same)
         for law in laws[1:]
     ]
     n = first.t.size

@@ -162,6 +162,10 @@ def flank_shapes(exponent, family=None):
         return {"exponent": exponent}
     if exponent != 1.0:
         raise ParameterError("give flank_exponent or contact_family, not both")
+    if not isinstance(family, (tuple, list)) or len(family) != 2:
+        raise ParameterError(
+            f"contact_family must be a pair (family name, damping ratio), not {family!r}"
+        )
     name, damping = family
     return family_flanks(
         name, check_number("contact_family damping", damping, low=0.0, low_open=False)

@@ -11,8 +11,7 @@ of the pulse below the detection threshold stays out of it as well.
 import numpy as np
 
 from contactlab import signals
-from contactlab.errors import ParameterError
-from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
+from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_baseline_samples
 
 __all__ = ["MAX_REFINEMENTS", "clean_noise_window"]
 
@@ -76,11 +75,5 @@ def clean_noise_window(t, y, k=5.0):
         window = (window[0], end)
         if moved < t[1] - t[0]:
             break
-    count = int(signals.in_window(t, window).sum())
-    if count < BASELINE_MIN_SAMPLES:
-        raise ParameterError(
-            f"only {count} samples lie before the pulse, which starts about {window[1]:.6g} "
-            f"s; a noise estimate needs {BASELINE_MIN_SAMPLES}: record a longer pre-trigger, "
-            "or give the noise window (baseline_window=(start, end) [s]; --baseline T0 T1)"
-        )
+    check_baseline_samples(t, window, found=True)
     return window

@@ -36,6 +36,7 @@ def plot_identification(t, signal, identification, ax=None, title=None):
     Returns
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
+        The figure and the axes; the identification window is shaded.
     """
     check_shaped(
         "identification",
@@ -83,6 +84,7 @@ def plot_reconstruction(reconstruction, truth=None, ax=None, title=None):
     Returns
     -------
     (matplotlib.figure.Figure, matplotlib.axes.Axes)
+        The figure and the axes the forces and the signal are drawn into.
     """
     check_shaped(
         "reconstruction",

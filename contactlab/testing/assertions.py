@@ -137,6 +137,7 @@ def assert_contact_time(
     Returns
     -------
     ImpactResult
+        The impact whose contact time was checked.
 
     Raises
     ------
@@ -163,6 +164,7 @@ def assert_matches_closed_form(law, grain, velocity, rtol=CLOSED_FORM_RTOL):
     Returns
     -------
     ImpactResult
+        The impact the closed forms were compared with.
 
     Raises
     ------

@@ -107,6 +107,7 @@ def detect_onset(trace, k=5.0, pre_trigger=None):
     Returns
     -------
     float
+        The onset: the interpolated time of the first crossing [s].
 
     Raises
     ------

@@ -52,10 +52,9 @@ def noise_autocovariance(count, dt, white, effects, record_length):
 
     Parameters
     ----------
-    count : int
-        Lags [samples].
-    dt : float
-        Sample interval [s].
+    count, dt
+        Lags [samples] and sample interval [s], as for
+        :func:`contactlab.inverse.noise_prediction.pink_autocovariance`.
     white : float
         White noise standard deviation [N].
     effects : Effects

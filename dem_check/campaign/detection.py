@@ -37,12 +37,11 @@ in newtons:
    status ``"short pre-trigger"``, analysed. The analysed impacts' onsets are then fitted
    (:mod:`dem_check.campaign.onsets`: a contact family's force through the sensor, on the
    whole first lobe), which the crossing lags.
-5. **Overlaps.** Free ringing only decays. After the first lobe, the envelope (largest
-   value per sensor period) is followed; where it grows by more than
-   :data:`GROWTH_FACTOR` (plus the noise floor) a second impact started before the
-   first one's ringing decayed. Both are flagged ``"overlap"``, never merged. A record
-   with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period does not
-   resolve the ringing, and this check is not made.
+5. **Overlaps.** Free ringing only decays. Where the envelope after the first lobe
+   (largest value per sensor period) grows by more than :data:`GROWTH_FACTOR` (plus the
+   noise floor) to the detection threshold, a second impact started in the first one's
+   ringing. Both are flagged ``"overlap"``, never merged. Not with fewer than
+   :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period (ringing not resolved).
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
 """
@@ -176,18 +175,19 @@ class Detection:
     """``(name, damping ratio [-])`` the onset fit read (:mod:`dem_check.campaign.onsets`)."""
 
 
-def _growths(z, first_lobe_end, last, period, noise_floor_level):
-    """Sample indices where the ringing envelope grows: later impacts (module step 5)."""
+def _growths(z, ratio, first_lobe_end, last, period, levels):
+    """Where the ringing envelope grows to the detection threshold: later impacts."""
     start = first_lobe_end + period  # the free ringing is under way one period later
     windows = (last + 1 - start) // period
     if windows < 2:
         return []
     envelope = np.abs(z[start : start + windows * period]).reshape(windows, period).max(axis=1)
-    grows = envelope[1:] > GROWTH_FACTOR * envelope[:-1] + noise_floor_level
+    reached = ratio[start : start + windows * period].reshape(windows, period).max(axis=1)
+    grows = (reached[1:] >= levels[1]) & (envelope[1:] > GROWTH_FACTOR * envelope[:-1] + levels[0])
     runs = np.flatnonzero(grows & ~np.concatenate([[False], grows[:-1]])) + 1
     found = []
     for k in runs:
-        level = GROWTH_FACTOR * envelope[k - 1] + noise_floor_level
+        level = GROWTH_FACTOR * envelope[k - 1] + levels[0]
         segment = np.abs(z[start + k * period : start + (k + 1) * period])
         found.append(start + k * period + int(np.argmax(segment > level)))
     return found
@@ -473,10 +473,10 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
             reason = f"{inside.size} {kind} samples (first at {t[inside[0]]:.6g} s): {what}"
             return [window(onset, kind, reason)]
     lobe_end = detected + int(np.argmax(z[detected : last + 1] <= 0.0))
-    level = FLOOR_SIGMAS * floor.smoothed_noise
     resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
     growths = resolved and lobe_end > detected
-    later = _growths(z, lobe_end, last, scales["period"], level) if growths else []
+    levels = (FLOOR_SIGMAS * floor.smoothed_noise, floor.sigmas)  # [N], [local sigmas]
+    later = _growths(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
     if not later:
         if after:
             reason = (

@@ -215,14 +215,11 @@ def search_steps(values, runs, period, hold, ring=None):
 
     Parameters
     ----------
-    values : numpy.ndarray
-        The record [N], finite.
-    runs : list of tuple
-        ``(first, last)`` sample indices of the first pass's candidate runs.
-    period : int
-        The sensor's period [samples].
+    values, runs, period
+        As for :func:`dem_check.campaign.steps.edge_steps`.
     hold : int
-        Samples past a run's last one that still belong to it (its quiet hold).
+        Samples past a run's last one that still belong to it (its quiet hold; the
+        ``reach`` of :func:`~dem_check.campaign.steps.edge_steps`).
     ring : tuple, optional
         ``(sensor, dt)``, for steps found across an impact
         (:func:`dem_check.campaign.steps.find_steps`).

@@ -22,8 +22,14 @@ explicitly:
    windows before and after (a step raises it at about one window of boundaries), and
    is taken off.
 4. **Significance.** The change over its noise: the median absolute change over the
-   record (most boundaries hold no step) scaled for windows shortened at the edges. A
-   change of :data:`STEP_SIGMAS` or more, the largest within a window, is a step.
+   record (most boundaries hold no step) scaled for windows shortened at the edges, or,
+   where larger, the changes' spread within :data:`DRIFT_WINDOWS` windows either side
+   (a level that does not stay: a plate mode's slow ringing moves the medians up and
+   down, a step at fewer than half of those boundaries) and, for windows further apart
+   than a window (masked impacts between or among them), the spread of the record's
+   changes between full windows as far apart (hum's and drift's curvature, which the
+   slope does not take off, grows with the distance). A change of :data:`STEP_SIGMAS`
+   or more, the largest within a window, is a step.
 5. **Where.** Between the two windows, the sample where the level changes: the
    least-absolute-deviation split between the two levels of the record averaged over one
    sensor period (samples far from both levels, an impact's main lobe, count for
@@ -40,7 +46,7 @@ status ``"offset step"`` (:func:`dem_check.campaign.detection.find_impacts`).
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.ndimage import maximum_filter1d, uniform_filter1d
+from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
 from dem_check.campaign.step_ringing import place_across
@@ -133,6 +139,45 @@ def _running_nanmedian(values, half):
     return out
 
 
+def _local_spread(changes, half):
+    """Spread [N] of the level ``changes`` within ``half`` boundaries either side of
+    each (1.4826 times their median absolute deviation from their running median)."""
+    width = 2 * half + 1
+    centred = changes - median_filter(changes, width, mode="nearest")
+    return MAD_TO_SIGMA * median_filter(np.abs(centred), width, mode="nearest")
+
+
+def _gap_spread(levels, firsts, stops, slope, counts):
+    """Spread [N] of the drift-corrected level change at each boundary whose two
+    windows lie further apart than a window (masked blocks between or among them),
+    read on the record: the changes between every two full windows of unmasked blocks
+    the same number of blocks apart (0 where none is further apart, or fewer than
+    four windows of such pairs)."""
+    size = WINDOW_PERIODS
+    period = int(np.max(stops - firsts))
+    blocks = firsts // period
+    grid = np.full(int(blocks[-1]) + 1, np.nan)
+    grid[blocks] = levels
+    out = np.zeros(levels.size - 1)
+    if grid.size < 2 * size:
+        return out
+    # medians of the full windows of unmasked blocks starting at each block (nan else)
+    medians = np.median(np.lib.stride_tricks.sliding_window_view(grid, size), axis=1)
+    on_grid = np.interp(np.arange(grid.size), blocks[1:], slope) * period
+    j = np.arange(1, levels.size)
+    n_before, n_after = counts
+    reach = blocks[np.minimum(j + n_after - 1, levels.size - 1)] - blocks[j - n_before] + 1
+    gaps = reach - n_before - n_after
+    for gap in np.unique(gaps[gaps > 0]):
+        i = np.arange(max(medians.size - size - gap, 0))
+        change = medians[i + size + gap] - medians[i] - on_grid[i + size] * (size + gap)
+        change = change[np.isfinite(change)]
+        if change.size >= 4 * size:
+            spread = MAD_TO_SIGMA * np.median(np.abs(change - np.median(change)))
+            out[gaps == gap] = spread
+    return out
+
+
 def block_levels(values, period, masked):
     """Mean of each block of ``period`` samples left after the mask, with its first
     sample index and centre index."""
@@ -167,6 +212,8 @@ def _level_changes(levels, firsts, stops):
     scale = np.sqrt((1.0 / n_before + 1.0 / n_after) * size / 2.0)
     reference = corrected[full] if full.sum() >= 4 * size else corrected
     spread = MAD_TO_SIGMA * np.median(np.abs(reference - np.median(reference)))
+    spread = np.maximum(spread, _local_spread(corrected / scale, DRIFT_WINDOWS * size))
+    spread = np.maximum(spread, _gap_spread(levels, firsts, stops, slope, (n_before, n_after)))
     significance = np.abs(corrected) / np.maximum(spread * scale, np.finfo(float).tiny)
     edge = firsts[j].astype(float)
     level = before + slope * (edge - left)  # the old level at the boundary

@@ -75,6 +75,8 @@ class EngineResult(ImpactSignals):
 
     @cached_property
     def _contact_peak(self):
+        """``(time [s], force [N])`` of the first contact's largest force, read on the
+        engine's steps (no dense solution between them)."""
         start, end = self.contact_intervals[0]
         return metrics.peak(self.t, self.contact_force, start, end)
 

@@ -100,6 +100,7 @@ def check_time_step(time_step, grain, sensor, law, velocity, min_steps, default)
     Returns
     -------
     float
+        The engine's time step: ``time_step`` as given, or the default [s].
 
     Raises
     ------

@@ -63,28 +63,49 @@ LINEAR = 'law = "linear"\nstiffness = 1.0e5\ndamping = 1.0'
 MATERIAL = "density = 765.0\nshear_modulus = 9e6\npoisson_ratio = 0.2"
 
 
-@pytest.mark.parametrize(
-    ("old", "new", "message"),
-    [
-        # a key the sensor's constructor does not take: named, with the valid ones
-        (
-            "damping_ratio = 0.02",
-            "damping_ratio = 0.02\ncolour = 1",
-            "[sensor]: unknown key(s) 'colour'",
-        ),
-        ("damping_ratio = 0.02", "damping_ratio = 0.02\ncolour = 1", "valid keys are resonance"),
-        ("damping_ratio = 0.02", "thickness = 2e-3", "missing required key(s) 'diameter'"),
-        # a flag given as a string would be truthy: refused, not guessed
-        ("resonance = 40.0e3", 'rigid = "false"\nresonance = 40.0e3', "rigid must be true or"),
-        (LINEAR, 'law = "hertz"\nfrom_material = "no"', "from_material must be true or false"),
-        (
-            LINEAR,
-            'law = "hertz"\nfrom_material = true\nradus = 1',
-            "unknown key(s) 'radus'",
-        ),
-        (f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n", "grain = 5\n", "grain must be a table"),
-    ],
-)
+CONFIG_ERRORS = {
+    # a key the sensor's constructor does not take: named, with the valid ones
+    "unknown key named": (
+        "damping_ratio = 0.02",
+        "damping_ratio = 0.02\ncolour = 1",
+        "[sensor]: unknown key(s) 'colour'",
+    ),
+    "valid keys listed": (
+        "damping_ratio = 0.02",
+        "damping_ratio = 0.02\ncolour = 1",
+        "valid keys are resonance",
+    ),
+    "missing key named": (
+        "damping_ratio = 0.02",
+        "thickness = 2e-3",
+        "missing required key(s) 'diameter'",
+    ),
+    # a flag given as a string would be truthy: refused, not guessed
+    "rigid as text": (
+        "resonance = 40.0e3",
+        'rigid = "false"\nresonance = 40.0e3',
+        "rigid must be true or",
+    ),
+    "from_material as text": (
+        LINEAR,
+        'law = "hertz"\nfrom_material = "no"',
+        "from_material must be true or false",
+    ),
+    "unknown contact key": (
+        LINEAR,
+        'law = "hertz"\nfrom_material = true\nradus = 1',
+        "unknown key(s) 'radus'",
+    ),
+    "table as a number": (
+        f"[grain]\ndiameter = 5.0e-3\n{MATERIAL}\n",
+        "grain = 5\n",
+        "grain must be a table",
+    ),
+}
+"""Config mistakes: ``(text replaced, replacement, message)`` by what they show."""
+
+
+@pytest.mark.parametrize(("old", "new", "message"), CONFIG_ERRORS.values(), ids=CONFIG_ERRORS)
 def test_config_errors_name_file_table_and_key(tmp_path, old, new, message):
     path = tmp_path / "bad.toml"
     text = GOOD.replace("density = 765.0", MATERIAL)

@@ -163,6 +163,7 @@ VALUES = {
     "reconstruction": lambda: _reconstruction(), "truth": lambda: None,
     "max_unknowns": lambda: 400, "regularization": lambda: "gcv", "fixed": lambda: {},
     "noise_model": lambda: "ar", "contact_edges": lambda: "significance",
+    "contact_family": lambda: ("linear", 0.2),
     "laws": lambda: ("linear",), "y_pencil": _pulse, "seed": lambda: 0,
     # study, advisor
     "setup": setup, "overrides": lambda: {}, "factors": lambda: np.ones(3),

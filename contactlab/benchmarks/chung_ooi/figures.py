@@ -160,6 +160,8 @@ def save_attribution_figure(case, material, attributions, out):
 
 
 def draw_tangential_speed(case, curves):
+    """Chung & Ooi's test 5: ``psi2`` and ``-R w'/(mu vn)`` against ``psi1``,
+    contactlab's Mindlin forms, LAMMPS' points and gross sliding's closed form."""
     e = case.inputs["restitution"]
 
     def draw(ax):
@@ -182,6 +184,9 @@ def draw_tangential_speed(case, curves):
 
 
 def draw_beta(case, curves):
+    """The slip ratio ``beta`` against the scaled slip: contactlab's Mindlin forms, LAMMPS'
+    points where measured and gross sliding's ``beta = x - 1``."""
+
     def draw(ax):
         for name, forms in curves.items():
             for history, data in forms.items():
@@ -197,6 +202,9 @@ def draw_beta(case, curves):
 
 
 def draw_pair_spin(case, curves):
+    """Test 7, two identical spheres: spin and tangential velocity after the impact against the
+    initial spin, beside the theory ``w1' = w``, ``v1t' = 0``."""
+
     def draw(ax):
         for name, data in curves.items():
             ax.plot(data[:, 0], data[:, 1], "o-", label=f"{name}: w1' [rad/s]")

@@ -266,6 +266,41 @@ def linear_step(contact):
     return step, f"contact time / {LINEAR_STEPS_PER_CONTACT} (MercuryDPM's guidance)"
 
 
+def rayleigh_step(contact, fraction, guidance):
+    """A time step of ``fraction`` of the contact's Rayleigh time [s] and its guidance
+    line (``guidance`` names where the fraction comes from)."""
+    step = fraction * contact.rayleigh_time
+    return (
+        step,
+        f"{fraction:.0%} of the Rayleigh time {number(contact.rayleigh_time)} s ({guidance})",
+    )
+
+
+def snippet(contact, code, comment, hertz_step, lines):
+    """One code's input: the header, then ``lines(contact, step)``.
+
+    Parameters
+    ----------
+    contact : ExportContact
+        The fitted contact.
+    code : str
+        The code's name in the header.
+    comment : str
+        The code's comment mark (``"#"``, ``"//"``).
+    hertz_step : callable
+        ``hertz_step(contact)`` gives the time step [s] of a Hertz contact and the
+        guidance it follows; a linear contact takes :func:`linear_step` in every code.
+    lines : callable
+        ``lines(contact, step)`` gives the code's lines at time step ``step`` [s].
+
+    Returns
+    -------
+    list of str
+    """
+    step, why = (linear_step if contact.family == "linear" else hertz_step)(contact)
+    return [*contact.header(code, comment, why, step), *lines(contact, step)]
+
+
 def type_pair(value):
     """A peratomtypepair matrix for 2 atom types (grain, plate) with one value."""
     return " ".join([number(value)] * 4)

@@ -1,6 +1,6 @@
 """LIGGGHTS input: ``pair_style gran`` with hooke/stiffness or hertz."""
 
-from contactlab.inverse.export.contact import linear_step, number, type_pair
+from contactlab.inverse.export.contact import number, rayleigh_step, snippet, type_pair
 
 __all__ = ["write"]
 
@@ -9,12 +9,13 @@ LIGGGHTS_RAYLEIGH_FRACTION = 0.1
 """LIGGGHTS Hertz: 10 % of the Rayleigh time (``fix check/timestep/gran`` example)."""
 
 
-def write(c):
-    """LIGGGHTS lines for an :class:`~contactlab.inverse.export.contact.ExportContact`."""
+def _hertz_step(c):
+    return rayleigh_step(c, LIGGGHTS_RAYLEIGH_FRACTION, "fix check/timestep/gran")
+
+
+def _lines(c, step):
     if c.family == "linear":
-        step, why = linear_step(c)
-        body = [
-            "# atom type 1 = grain, atom type 2 = sensor plate (wall mesh); units si",
+        model = [
             "# hooke/stiffness with absolute damping: F = kn d + gamman_abs d' (limitForce:",
             "# never tensile, as the fitted one-sided law)",
             "pair_style gran model hooke/stiffness tangential history absolute_damping on "
@@ -27,13 +28,7 @@ def write(c):
             f"fix m4 all property/global gammat_abs peratomtypepair 2 {type_pair(0.0)}",
         ]
     else:
-        step = LIGGGHTS_RAYLEIGH_FRACTION * c.rayleigh_time
-        why = (
-            f"{LIGGGHTS_RAYLEIGH_FRACTION:g} x Rayleigh time {number(c.rayleigh_time)} s "
-            "(fix check/timestep/gran)"
-        )
-        body = [
-            "# atom type 1 = grain, atom type 2 = sensor plate (wall mesh); units si",
+        model = [
             "# Hertz with Tsuji damping from the restitution (limitForce: never tensile)",
             "pair_style gran model hertz tangential history limitForce on",
             "pair_coeff * *",
@@ -48,9 +43,15 @@ def write(c):
             f"fix ts_check all check/timestep/gran 1000 {LIGGGHTS_RAYLEIGH_FRACTION:g} "
             f"{LIGGGHTS_RAYLEIGH_FRACTION:g}",
         ]
-    body += [
+    return [
+        "# atom type 1 = grain, atom type 2 = sensor plate (wall mesh); units si",
+        *model,
         f"# coefficientFriction: {c.friction_note()}",
         f"fix m5 all property/global coefficientFriction peratomtypepair 2 {type_pair(c.friction)}",
         f"timestep {number(step)}",
     ]
-    return [*c.header("LIGGGHTS", "#", why, step), *body]
+
+
+def write(c):
+    """LIGGGHTS lines for an :class:`~contactlab.inverse.export.contact.ExportContact`."""
+    return snippet(c, "LIGGGHTS", "#", _hertz_step, _lines)

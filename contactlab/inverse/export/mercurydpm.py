@@ -1,15 +1,21 @@
 """MercuryDPM input: a C++ species set-up."""
 
-from contactlab.inverse.export.contact import LINEAR_STEPS_PER_CONTACT, linear_step, number
+from contactlab.inverse.export.contact import LINEAR_STEPS_PER_CONTACT, number, snippet
 
 __all__ = ["write"]
 
 
-def write(c):
-    """MercuryDPM lines for an :class:`~contactlab.inverse.export.contact.ExportContact`."""
+def _hertz_step(c):
+    step = c.contact_time / LINEAR_STEPS_PER_CONTACT
+    return step, (
+        f"Hertz contact time at the impact velocity / {LINEAR_STEPS_PER_CONTACT} "
+        "(MercuryDPM's getCollisionTime / 50 habit)"
+    )
+
+
+def _lines(c, step):
     if c.family == "linear":
-        step, why = linear_step(c)
-        body = [
+        species = [
             "// normal force k d + c d' (LinearViscoelasticSpecies)",
             "auto species = speciesHandler.copyAndAddObject(LinearViscoelasticSpecies());",
             f"species->setDensity({number(c.density)}); // [kg/m^3]",
@@ -17,12 +23,7 @@ def write(c):
             f"species->setDissipation({number(c.damping)}); // [N*s/m]",
         ]
     else:
-        step = c.contact_time / LINEAR_STEPS_PER_CONTACT
-        why = (
-            f"Hertz contact time at the impact velocity / {LINEAR_STEPS_PER_CONTACT} "
-            "(MercuryDPM's getCollisionTime / 50 habit)"
-        )
-        body = [
+        species = [
             "// normal force 4/3 E* sqrt(R d) d + alpha sqrt(m* kn) d' with alpha from e",
             "// (HertzianViscoelasticNormalSpecies); the species' modulus is the contact's E*:",
             "// this value is for grain-plate contacts (grain-grain: E/(2(1-nu^2)))",
@@ -31,8 +32,13 @@ def write(c):
             "species->setElasticModulusAndRestitutionCoefficient("
             f"{number(c.effective_modulus)}, {number(c.restitution)}); // E* [Pa], e [-]",
         ]
-    body += [
+    return [
+        *species,
         f"// sliding friction: {c.friction_note()} (set it on a friction species)",
         f"setTimeStep({number(step)}); // [s]",
     ]
-    return [*c.header("MercuryDPM", "//", why, step), *body]
+
+
+def write(c):
+    """MercuryDPM lines for an :class:`~contactlab.inverse.export.contact.ExportContact`."""
+    return snippet(c, "MercuryDPM", "//", _hertz_step, _lines)

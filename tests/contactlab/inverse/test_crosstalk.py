@@ -5,27 +5,20 @@ import math
 
 import numpy as np
 import pytest
-from scipy import signal
+from plate_windows import PLATE, SENSOR, damped, mode_error, plate_windows
 
-import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.inverse.crosstalk import fit_crosstalk, joint_structure_modes, structure_modes
 
-SENSOR = cl.Sensor.from_resonance(40e3, 0.01, damping_ratio=0.02)
 RATE = 2e6
 MODES = [(1890.0, 0.02), (4100.0, 0.015)]
-
-
-def _damped(s, frequency, zeta):
-    w = 2.0 * math.pi * frequency
-    return np.where(s >= 0.0, np.exp(-zeta * w / math.sqrt(1 - zeta**2) * s) * np.sin(w * s), 0.0)
 
 
 def test_structure_modes_finds_the_modes_beside_the_sensors_ringing():
     t = np.arange(round(4e-3 * RATE)) / RATE
     rng = np.random.default_rng(1)
-    sensor_ringing = 2.0 * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
-    modes = sum(0.05 * _damped(t + 3e-4, f, z) for f, z in MODES)
+    sensor_ringing = 2.0 * damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
+    modes = sum(0.05 * damped(t + 3e-4, f, z) for f, z in MODES)
     y = sensor_ringing + modes + 0.3 + 5.0 * t + rng.normal(0.0, 0.01, t.size)
     found = structure_modes(t, y, SENSOR)
     for frequency, zeta in MODES:
@@ -54,7 +47,7 @@ def test_fit_crosstalk_recovers_the_response_to_the_pulse():
     pulse *= 3.0
     truth = np.zeros(t.size)
     for (frequency, zeta), weight in zip(MODES, (200.0, 300.0), strict=True):
-        kernel = _damped(t, frequency, zeta)
+        kernel = damped(t, frequency, zeta)
         truth += weight * np.convolve(pulse, kernel)[: t.size] * dt  # 1.3-2 % of the peak
     rng = np.random.default_rng(2)
     y = pulse + truth + 0.1 + rng.normal(0.0, 0.01, t.size)
@@ -87,8 +80,8 @@ def _short_windows(count, length, amplitudes, rng, noise=0.005):
     windows = []
     for amplitude in amplitudes[:count]:
         lag = rng.uniform(0.0, 1.4e-3)  # the mode's phase: it rang from before the window
-        ringing = 1.0 * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
-        mode = amplitude * _damped(t + lag, 730.0, 0.01)
+        ringing = 1.0 * damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
+        mode = amplitude * damped(t + lag, 730.0, 0.01)
         windows.append((t, ringing + mode + rng.normal(0.1, noise, t.size)))
     return windows
 
@@ -126,67 +119,16 @@ def test_joint_pencil_refuses_what_is_not_windows():
         joint_structure_modes([(np.arange(4.0), np.zeros(4))], SENSOR)
 
 
-def _flicker(count, rng, dt):
-    """1/f noise of unit standard deviation: a sum of first-order (Ornstein-Uhlenbeck)
-    processes of equal variance with corners a decade apart, 10 Hz to 100 kHz (their sum's
-    spectrum falls as 1/f between the corners; Keshner 1982), not the record model's
-    spectral shaping."""
-    noise = np.zeros(count)
-    for corner in 10.0 ** np.arange(1, 6):
-        decay = math.exp(-2.0 * math.pi * corner * dt)
-        drive = rng.normal(0.0, math.sqrt(1.0 - decay**2), count)
-        noise += signal.lfilter([1.0], [1.0, -decay], drive)
-    return noise / noise.std()
-
-
-PLATE = [(730.0, 0.01), (1890.0, 0.02)]
-LENGTHS = [1.3e-3, 2.3e-3, 1.3e-3, 3.8e-3, 1.4e-3, 1.9e-3, 1.4e-3, 3.6e-3]
-"""Windows as between the benchmark's hits and bounces at 1 MHz (docs/campaign.md)."""
-
-
-def _plate_windows(seed, rate=1e6, white=0.03, flicker=0.01):
-    """Windows of ringing after eight hits: the sensor's ringing, the :data:`PLATE` modes
-    (0.015-0.03 each, ringing from 0-2 ms before the window) and white and 1/f noise cut
-    from one continuous record (the 1/f noise is slower than a window)."""
-    rng = np.random.default_rng(seed)
-    sizes = [round(length * rate) for length in LENGTHS]
-    noise = white * rng.normal(size=sum(sizes)) + flicker * _flicker(sum(sizes), rng, 1 / rate)
-    windows, first = [], 0
-    for size in sizes:
-        t = np.arange(size) / rate
-        y = 0.1 + SENSOR_RINGING * _damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
-        for frequency, zeta in PLATE:
-            lag = rng.uniform(0.0, 2e-3)
-            y += rng.uniform(0.015, 0.03) * _damped(t + lag, frequency, zeta)
-        windows.append((t, y + noise[first : first + size]))
-        first += size
-    return windows
-
-
-SENSOR_RINGING = 0.5
-
-
-def _error_at(candidates, significant, frequency):
-    """Relative error of the candidate nearest ``frequency`` significant after half of
-    the windows (nan when there is none within 30 %)."""
-    errors = [
-        abs(f / frequency - 1.0)
-        for (f, _), hits in zip(candidates, significant.sum(axis=0), strict=True)
-        if abs(f / frequency - 1.0) < 0.3 and hits >= significant.shape[0] / 2
-    ]
-    return min(errors, default=math.nan)
-
-
 def test_refined_joint_poles_under_1f_noise():
     # damped sinusoids at known frequencies in white and 1/f noise (not the record
     # model): the stacked pencil reads the 730 Hz mode growing (dropped) or biased, the
     # variable projection on the windows finds it (docs/campaign.md, "Crosstalk")
     pencil, refined = [], []
     for seed in range(6):
-        windows = _plate_windows(seed)
+        windows = plate_windows(seed)
         for out, refine in ((pencil, False), (refined, True)):
             candidates, significant = joint_structure_modes(windows, SENSOR, refine=refine)
-            out.append([_error_at(candidates, significant, f) for f, _ in PLATE])
+            out.append([mode_error(candidates, significant, f) for f, _ in PLATE])
     pencil, refined = np.array(pencil), np.array(refined)
     # measured on these six: the pencil found 730 Hz twice (errors 20 % and 1.2 %) and
     # 1890 Hz three times (up to 2.7 %); refined, 730 Hz five times (up to 3.1 %), 1890
