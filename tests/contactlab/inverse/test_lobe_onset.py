@@ -108,6 +108,18 @@ def test_onsets_without_noise_are_exact(shape, family, damping):
     assert fit.amplitude == pytest.approx(2.0, rel=1e-3)  # the same, relative
 
 
+def _assert_efficient_and_unbiased(errors, bounds):
+    """20 fitted onsets' errors [samples] spread as their Cramér-Rao ``bounds`` [samples]
+    say, around zero."""
+    assert len(errors) == 20
+    spread, bound = float(np.std(errors, ddof=1)), float(np.median(bounds))
+    # 20 draws: the sample standard deviation is within 35 % of the truth with 98 %
+    # probability (chi-squared with 19 degrees of freedom)
+    assert spread == pytest.approx(bound, rel=0.35), (spread, bound)
+    # the mean of 20 within 3 standard errors
+    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(20), np.mean(errors)
+
+
 def test_the_bound_is_the_spread_of_the_onsets():
     """Under white noise at 30 sigma, 20 noisy Hertz records: the onsets' spread is the
     Cramér-Rao bound (the fit is efficient there) and their mean is unbiased."""
@@ -118,12 +130,7 @@ def test_the_bound_is_the_spread_of_the_onsets():
         fit = fit_lobe(t, y, SENSOR, (t0 + 15e-6, 90e-6), noise, "hertz", 0.0)
         errors.append((fit.onset - t0) * rate)
         bounds.append(fit.bound * rate)
-    spread, bound = float(np.std(errors, ddof=1)), float(np.median(bounds))
-    # 20 draws: the sample standard deviation is within 35 % of the truth with 98 %
-    # probability (chi-squared with 19 degrees of freedom)
-    assert spread == pytest.approx(bound, rel=0.35), (spread, bound)
-    # the mean of 20 within 3 standard errors
-    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(20), np.mean(errors)
+    _assert_efficient_and_unbiased(errors, bounds)
 
 
 def test_the_whitened_column_is_the_ar_filter_of_the_sampled_one():
@@ -158,12 +165,7 @@ def test_the_whitened_fit_reaches_its_bound_under_ar_noise():
         )
         errors.append((fit.onset - t0) * rate)
         bounds.append(fit.bound * rate)
-    spread, bound = float(np.std(errors, ddof=1)), float(np.median(bounds))
-    # 20 draws: the sample standard deviation is within 35 % of the truth with 98 %
-    # probability (chi-squared with 19 degrees of freedom)
-    assert spread == pytest.approx(bound, rel=0.35), (spread, bound)
-    # the mean of 20 within 3 standard errors
-    assert abs(np.mean(errors)) <= 3.0 * bound / math.sqrt(20), np.mean(errors)
+    _assert_efficient_and_unbiased(errors, bounds)
 
 
 def test_a_fit_started_near_its_optimum_finds_the_scanned_one():
