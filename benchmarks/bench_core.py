@@ -79,10 +79,14 @@ def single_with_metrics():
 
 
 def figures():
-    """Every figure of bench_solver and bench_batch's throughput, as a dict (this tree)."""
+    """Every figure of bench_solver and bench_batch's throughput, as a dict (this tree).
+
+    ``bench_batch`` (its frames, loop and rate) is the measured tree's own when the tree
+    has one (``_measure`` puts its ``benchmarks/`` first): its loop reads the results
+    through that tree's API.
+    """
     import numpy as np
 
-    sys.path.insert(0, str(HERE))
     import bench_batch
 
     from contactlab.batch import hertz_impacts, linear_impacts
@@ -131,6 +135,7 @@ def _measure(tree):
     env = dict(os.environ, PYTHONPATH=str(tree))
     code = (
         f"import sys; sys.path.insert(0, {str(HERE)!r}); import bench_core, json; "
+        f"sys.path.insert(0, {str(tree / 'benchmarks')!r}); "
         "print(json.dumps(bench_core.figures()))"
     )
     done = subprocess.run(
