@@ -98,6 +98,57 @@ def test_crosstalk_rings_at_the_plate_modes_after_each_impact(hard_setup):
         assert psd[near].max() > 100.0 * np.median(psd)  # a line at each mode
 
 
+def _one_mode_ringing(hard_setup, mode, rate=2e6, onset=2e-3, length=12e-3):
+    """The crosstalk of one 2 m/s impact with one plate mode, its clean record [N] and
+    the record's time [s] (no noise)."""
+    grain, sensor, law = hard_setup
+    common = {"length": length, "sample_rate": rate, "noise": 0.0}
+    plain = realistic_record(grain, sensor, law, [2.0], [onset], **common)
+    effects = Effects(crosstalk=0.05, plate_modes=(mode,))
+    rec = realistic_record(grain, sensor, law, [2.0], [onset], **common, effects=effects)
+    clean = np.asarray(plain.trace.values)
+    return np.asarray(rec.trace.values) - clean, clean, np.asarray(rec.trace.t), rec.truth
+
+
+def test_crosstalk_is_the_plate_s_response_to_the_impact_s_force(hard_setup):
+    # the sensor stands on the plate: its force drives the plate's mode, whose answer is
+    # the convolution of that force with the mode's impulse response. Independent
+    # method: the convolution summed by FFT (trapezoidal rule, its end terms zero since
+    # the response starts at 0 and the force before the touch is 0), not the model's
+    # first-order-hold recursion
+    frequency, zeta = 1890.0, 0.02
+    ringing, clean, t, truth = _one_mode_ringing(hard_setup, (frequency, zeta))
+    dt = t[1] - t[0]
+    w = 2.0 * np.pi * frequency
+    response = np.exp(-zeta * w * t) * np.sin(w * t)
+    reference = signal.fftconvolve(clean, response)[: t.size] * dt
+    scale = float(ringing @ reference / (reference @ reference))
+    # the trapezoidal rule's error is (w dt)**2 / 12 = 3e-6 of the response at 2 MHz,
+    # and the first-order hold is exact for the sampled force: 1e-4 of the ringing's
+    # largest value is far above both and far below any other model
+    assert np.max(np.abs(ringing - scale * reference)) < 1e-4 * np.max(np.abs(ringing))
+    # scaled by the force's first lobe (its impulse): the response to that impulse at
+    # once starts at 0.5-1 times crosstalk * peak (the drawn weight)
+    first = int(np.flatnonzero(clean > 0.0)[0])
+    end = first + int(np.flatnonzero(clean[first:] <= 0.0)[0])
+    weight = scale * float(np.sum(clean[first:end]) * dt)
+    peak = truth["peak_sensor_force [N]"][0]
+    assert 0.5 * 0.05 * peak <= weight <= 0.05 * peak
+
+
+def test_crosstalk_starts_with_the_force_not_at_the_touch(hard_setup):
+    # a ringing started at full amplitude at the touch (sin(w s)) would reach 12 % of
+    # its amplitude 10 us in at 1890 Hz; the response to a force that grows from zero
+    # over the 100 us contact is still under 1 % of it there (about w s**2 F / (2 J),
+    # 0.2 %)
+    onset = 2e-3
+    ringing, _, t, _ = _one_mode_ringing(hard_setup, (1890.0, 0.02), onset=onset)
+    early = (t >= onset) & (t <= onset + 10e-6)
+    later = t > onset + 0.3e-3  # after the contact: the free ringing
+    assert np.max(np.abs(ringing[early])) < 0.01 * np.max(np.abs(ringing[later]))
+    assert not ringing[t < onset].any()
+
+
 def test_the_adc_quantises_and_clips_at_its_rails(hard_setup):
     grain, sensor, law = hard_setup
     effects = Effects(full_scale=2.0, bits=12)
