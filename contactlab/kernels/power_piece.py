@@ -114,7 +114,7 @@ def _grow(t_old, h, y_old, F):
     return t2, h2, y2, F2
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _span(F, y_old, i, j):
     """Bounds ``(lo, hi)`` of ``z[j] - z[i]`` on a step's interpolant (``y_old``, ``F``).
 
@@ -134,7 +134,7 @@ def _span(F, y_old, i, j):
     return min(start, end) + 0.25 * min(lo, 0.0), max(start, end) + 0.25 * max(hi, 0.0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _pressed(F, y_old, par):
     """Whether the contact force is bounded above zero on the whole step's interpolant
     (overlap and rate from :func:`_span`, the force from
