@@ -226,9 +226,9 @@ def accuracy(names=None, crosstalk=True, refine=True, predict=True, records=RECO
     largest = grouped.agg(lambda v: np.nanmax(np.abs(v)))
     largest["impacts"] = ok.groupby(keys, observed=True, sort=False).size()
     print("largest errors (onset in samples, the others relative):")
-    print(largest.round(3).to_string())
+    print(largest.round(4).to_string())
     print("95th percentile of the errors:")
-    print(grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95)).round(3).to_string())
+    print(grouped.agg(lambda v: np.nanpercentile(np.abs(v), 95)).round(4).to_string())
     strong = ok[ok["significance"] >= 30.0]
     scaled = strong[["peak_sensor_force", "impulse"]].mul(strong["significance"] / 30.0, axis=0)
     rms = scaled.groupby(strong["configuration"], sort=False).agg(
