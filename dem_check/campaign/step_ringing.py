@@ -160,9 +160,9 @@ def second_across(x, level, height, period, far_noise, ring, index):
     tuple or None
         ``(index, heights, sides)``: the second step's first sample at the new level
         (index in ``x``), the two steps' heights [N] fitted together (the first's,
-        then the second's) and how many samples of ``x`` outside the lobe lie on each
-        side of the second within its stretch (before the lobe: from the window's start
-        to the lobe; after it: from the lobe's end to the window's end) [-]; None when
+        then the second's) and, for each, how many samples of ``x`` outside the lobe lie
+        on either side of it within its stretch (before the lobe: from the window's
+        start to the lobe; after it: from the lobe's end to the window's end) [-]; None when
         it would not be told from the impact (a place inside the lobe fits as well, by
         :data:`SEPARABLE_SIGMAS`) or there is no room.
     """
@@ -190,5 +190,5 @@ def second_across(x, level, height, period, far_noise, ring, index):
     if fit["valid"][at_end] and gain[j] - fit["gain"][at_end] <= SEPARABLE_SIGMAS**2 * variance:
         return None
     both = _fit(x, kept, stop, peak, ring, fixed=(first, j))["coefficients"][-2:]
-    sides = (j, at_end - j) if before else (j - at_end, kept.size - j)
+    sides = [(i, at_end - i) if i < at_end else (i - at_end, kept.size - i) for i in (first, j)]
     return int(kept[j]), (float(both[0]), float(both[1])), sides

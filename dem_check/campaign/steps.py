@@ -282,28 +282,31 @@ def _one_pass(values, period, masked, ring):
                 index = first + placed[0]
                 lobe = None if placed[1] is None else tuple(first + i for i in placed[1])
             other = second_across(*args, index - first) if placed and not lobe else None
-            sigmas = _second(other, period, noise)
+            sigmas = _both(other, period, noise)
             if sigmas:  # a step before the impact and one in its ringing
-                (h1, h2), scale = other[1], float(significance[k] / abs(changes["height"][k]))
-                found.append(OffsetStep(index, h1, abs(h1) * scale, window))
-                found.append(OffsetStep(first + other[0], h2, sigmas, window))
+                for at, h, sigma in zip((index, first + other[0]), other[1], sigmas, strict=True):
+                    found.append(OffsetStep(at, h, sigma, window))
                 continue
         height, sigmas = float(changes["height"][k]), float(significance[k])
         found.append(OffsetStep(index, height, sigmas, window, lobe))
     return found
 
 
-def _second(other, period, noise):
-    """The significance of the second step of :func:`second_across` (its height over the
-    standard error of its two levels), or 0 when it is under :data:`STEP_SIGMAS` of
-    those or :data:`LEAST_HEIGHT` sample sigmas (``noise``: of the period means and of
+def _both(other, period, noise):
+    """The significances of the two steps of :func:`second_across` (each height over the
+    standard error of its two levels), or None unless both reach :data:`STEP_SIGMAS` of
+    those and :data:`LEAST_HEIGHT` sample sigmas (``noise``: of the period means and of
     the samples [N])."""
     if other is None:
-        return 0.0
-    height, sides = other[1][1], other[2]
-    error = np.hypot(*(level_error(noise[0], period, n) for n in sides))
-    sigmas = abs(height) / max(error, np.finfo(float).tiny)
-    return sigmas if sigmas >= STEP_SIGMAS and abs(height) >= LEAST_HEIGHT * noise[1] else 0.0
+        return None
+    out = []
+    for height, sides in zip(other[1], other[2], strict=True):
+        error = np.hypot(*(level_error(noise[0], period, n) for n in sides))
+        sigmas = abs(height) / max(error, np.finfo(float).tiny)
+        if sigmas < STEP_SIGMAS or abs(height) < LEAST_HEIGHT * noise[1]:
+            return None
+        out.append(float(sigmas))
+    return out
 
 
 def find_steps(values, period, masked, ring=None):
