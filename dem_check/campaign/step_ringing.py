@@ -39,11 +39,12 @@ chi-squared change of one degree of freedom, at 4 sigma)."""
 
 
 QUIET_FRACTION = 0.25
-"""Samples before a main lobe, a quarter of a sensor period, that all lie near the band
-between the two levels where the sensor is at rest [-] (:func:`_rise`)."""
+"""The samples before a main lobe that a rise is told on, a quarter of a sensor period
+[-] (:func:`_rise`)."""
 
 RISE_SIGMAS = 4.0
-"""Near the band: within this many sample-noise sigmas of it [-]."""
+"""A rise leaves the band between the two levels by this many sample-noise sigmas [-]
+(:func:`_rise`)."""
 
 
 def _lobe(x, level, height, period, far_noise):
@@ -63,26 +64,34 @@ def _lobe(x, level, height, period, far_noise):
     peak = int(np.argmax(np.where(far, outside, -np.inf)))
     inside = np.flatnonzero(far & (stretches == stretches[peak]))
     start = max(0, int(inside[0]) - period)
-    return max(start, _rise(x[: int(inside[0])], low, high, period)), min(
-        x.size, int(inside[-1]) + period + 1
-    )
+    return _rise(x[:peak], start, (low, high), period), min(x.size, int(inside[-1]) + period + 1)
 
 
-def _rise(x, low, high, period):
-    """Where the main lobe rises in ``x`` (the record up to its first far period mean):
-    after the last :data:`QUIET_FRACTION` of a period of samples all within
-    :data:`RISE_SIGMAS` sample sigmas of the band between the two levels, less that
-    stretch again; 0 when there is none. Before its impact the sensor is at rest, so the
-    samples there place a step a period or more nearer the onset than the period
-    means do (a step 19 us before an onset at 1 MHz: seed 14 of the hard mix)."""
+def _rise(x, start, band, period):
+    """Where the main lobe rises in ``x`` (the record up to the lobe's largest
+    excursion), searched from ``start`` (the period means' conservative start): the
+    first sample that leaves the ``band`` ``(low, high)`` between the two levels [N] by
+    more than :data:`RISE_SIGMAS` sample-noise sigmas or the median of the
+    :data:`QUIET_FRACTION` of a period before it by twice that, unless the samples from
+    it on settle as a step does (as many, within the band and spread over no more than
+    twice that), less half that stretch as a margin. Before its impact the sensor is at
+    rest, so the samples there place a step a period or more nearer the onset than the
+    period means do (a step 19 us before an onset at 1 MHz: seed 14 of the hard mix)."""
     quiet = max(2, round(QUIET_FRACTION * period))
-    if x.size <= quiet:
-        return 0
-    noise = MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
-    within = (x >= low - RISE_SIGMAS * noise) & (x <= high + RISE_SIGMAS * noise)
-    runs = np.convolve(within, np.ones(quiet), mode="valid") == quiet
-    ends = np.flatnonzero(runs)
-    return max(0, int(ends[-1])) if ends.size else 0
+    reach = RISE_SIGMAS * MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
+
+    def within(values):
+        return values.min() >= band[0] - reach and values.max() <= band[1] + reach
+
+    i = start + quiet
+    while i < x.size:
+        if not within(x[i : i + 1]) or abs(x[i] - np.median(x[i - quiet : i])) > 2.0 * reach:
+            ahead = x[i : i + quiet]
+            if ahead.size < quiet or np.ptp(ahead) > 2.0 * reach or not within(ahead):
+                return max(start, i - quiet // 2)
+            i += quiet  # a step: the level it settles at is the one to follow
+        i += 1
+    return max(start, x.size - quiet // 2)
 
 
 def _fit(x, kept, stop, peak, ring, fixed=()):

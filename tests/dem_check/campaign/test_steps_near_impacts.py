@@ -75,3 +75,41 @@ def test_a_step_before_an_impact_and_one_in_its_ringing(hard_setup, seed):
         assert step.peak == pytest.approx(height, abs=0.05)
     assert [w.status for w in found.impacts] == ["ok", "ok"]
     assert np.abs(onsets - truth).max() <= MATCH
+
+
+@pytest.mark.parametrize(
+    "seed",
+    [
+        1,
+        2,
+        pytest.param(
+            3,
+            marks=pytest.mark.xfail(
+                strict=True,
+                reason="known limit (issue 22): drift and hum bend the level after the "
+                "impact (0.54 N above the old level just after its ringing, 0.35 N 1 ms "
+                "later, period means less the drift's slope), the change across it reads "
+                "0.446 N of 0.614 and the new level lies outside the band between the two "
+                "levels: the ringing is taken for the main lobe and the step, flagged as "
+                "inside it, is placed at 1.342 ms, 0.36 ms off (the impact 25 us early)",
+            ),
+        ),
+        4,
+    ],
+)
+def test_a_step_just_before_an_onset_is_placed_before_it(hard_setup, seed):
+    # seed 14 of the hard mix: a 1.52 m/s impact (2.46 N) at 1 MHz and a 0.614 N step 19
+    # us before its onset. The main lobe was taken to start a period and a half before
+    # the onset (period means, a period's margin), the step could not be told from the
+    # impact and was placed at the lobe's middle, 63 us off; the sensor is at rest
+    # before its impact, so the samples there place it
+    record = _record(hard_setup, 1.517, ((1e-3 - 19e-6, 0.614),), rate=1e6, seed=seed)
+    found, onsets, truth = _read(record, hard_setup[1])
+    (step,) = found.steps
+    assert abs(step.onset - (1e-3 - 19e-6)) <= 3e-6  # three samples: a split's error
+    assert "main lobe" not in step.reason  # told from the impact
+    # read as a level change across the impact under drift and hum: measured 0.535-0.675 N
+    # on seeds 1, 2, 4 (medians of period means, 1/f noise and hum of 1-1.5 sigma)
+    assert step.peak == pytest.approx(0.614, abs=0.1)
+    assert [w.status for w in found.impacts] == ["ok", "ok"]
+    assert np.abs(onsets - truth).max() <= MATCH
