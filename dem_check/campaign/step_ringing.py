@@ -30,7 +30,7 @@ from scipy.ndimage import label, maximum_filter1d, uniform_filter1d
 from contactlab.inverse.local_baseline import _ringing
 from contactlab.signals import MAD_TO_SIGMA
 
-__all__ = ["SEPARABLE_SIGMAS", "place_across", "second_across"]
+__all__ = ["SEPARABLE_SIGMAS", "place_across", "rise", "second_across"]
 
 SEPARABLE_SIGMAS = 4.0
 """A step fits better where it is placed than anywhere inside the main lobe when the
@@ -40,11 +40,11 @@ chi-squared change of one degree of freedom, at 4 sigma)."""
 
 QUIET_FRACTION = 0.25
 """The samples before a main lobe that a rise is told on, a quarter of a sensor period
-[-] (:func:`_rise`)."""
+[-] (:func:`rise`)."""
 
 RISE_SIGMAS = 4.0
 """A rise leaves the band between the two levels by this many sample-noise sigmas [-]
-(:func:`_rise`)."""
+(:func:`rise`)."""
 
 
 def _lobe(x, level, height, period, far_noise):
@@ -64,10 +64,10 @@ def _lobe(x, level, height, period, far_noise):
     peak = int(np.argmax(np.where(far, outside, -np.inf)))
     inside = np.flatnonzero(far & (stretches == stretches[peak]))
     start = max(0, int(inside[0]) - period)
-    return _rise(x[:peak], start, (low, high), period), min(x.size, int(inside[-1]) + period + 1)
+    return rise(x[:peak], start, (low, high), period), min(x.size, int(inside[-1]) + period + 1)
 
 
-def _rise(x, start, band, period):
+def rise(x, start, band, period):
     """Where the main lobe rises in ``x`` (the record up to the lobe's largest
     excursion), searched from ``start`` (the period means' conservative start): the
     first sample that leaves the ``band`` ``(low, high)`` between the two levels [N] by

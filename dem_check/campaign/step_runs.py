@@ -44,6 +44,7 @@ import ruptures
 from scipy.ndimage import median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.step_ringing import rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
     LEAST_HEIGHT,
@@ -76,7 +77,7 @@ the white noise) by up to 5 of them over 0.5 ms; an impact's main lobe leaves 16
 DECIMATION = 8
 """Means per sensor period the change points are searched on [-]."""
 
-HEAD_PERIODS = 2
+HEAD_PERIODS = 4
 """Sensor periods at the head of a run that are one level when a step starts it [-]
 (:func:`head_steps`; a step closer to the impact is placed across it:
 :mod:`dem_check.campaign.step_ringing`)."""
@@ -236,15 +237,22 @@ def head_steps(values, runs, period, masked, slopes):
     noise = period_noise(values, period)
     out = []
     for first, last, lo, hi in runs:
-        start = _context(masked, lo, hi, CONTEXT_PERIODS * period)[0]
+        start, stop = _context(masked, lo, hi, CONTEXT_PERIODS * period)
         head = first + HEAD_PERIODS * period
         if first - start < period or head > last:
             continue
-        x = values[start:head] - slopes[lo] * (np.arange(start, head) - lo)
+        x = values[start:stop] - slopes[lo] * (np.arange(start, stop) - lo)
         level, quiet = float(np.median(x[: first - start])), robust_noise(x[: first - start])
-        at = split(x, level, float(np.median(x[first - start :])) - level, quiet)[0]
-        old, new = x[:at], x[at:]  # the run may start a sample or two before the step
-        if old.size < period or new.size < period:
+        at = split(
+            x[: head - start],
+            level,
+            float(np.median(x[first - start : head - start])) - level,
+            quiet,
+        )[0]
+        new = float(np.median(x[at : at + HEAD_PERIODS * period]))
+        # the run may start a sample or two before the step; the head lasts to the rise
+        old, new = x[:at], x[at : rise(x, at, (new, new), period)]
+        if old.size < period or new.size < HEAD_PERIODS * period:
             continue
         height = float(np.median(new) - np.median(old))
         error = np.hypot(*(level_error(noise, period, part.size) for part in (old, new)))
@@ -253,8 +261,22 @@ def head_steps(values, runs, period, masked, slopes):
             continue
         if abs(height) < LEAST_HEIGHT * quiet:
             continue
+        # a head longer than BOX_PERIODS is a longer level than a contact's
+        if new.size < BOX_PERIODS * period and not _stays(x, hi - start, level, height):
+            continue
         out.append(OffsetStep(start + at, height, float(significance), (start, head)))
     return out
+
+
+def _stays(x, hi, level, height):
+    """Whether a head step's level stays after the run (``x[hi:]``, the drift taken off):
+    nearer the new level ``level + height`` than the old ``level`` [N]. A bounce of the
+    hard grain fits a box of 65 us with a top flat to the noise and returns to the
+    level (:data:`BOX_PERIODS`)."""
+    if x.size <= hi:
+        return False
+    after = float(np.median(x[hi:]))
+    return abs(after - level - height) < abs(after - level)
 
 
 def search_steps(values, runs, period, hold, ring=None):
