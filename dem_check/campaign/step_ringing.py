@@ -9,7 +9,11 @@ and the ringing, larger than the step, counts for both levels at random. So:
 
 1. **Main lobe.** Samples whose one-period mean lies far from both levels (further than
    the step's height and :data:`~dem_check.campaign.steps.FAR_SIGMAS` of the period
-   means' noise), one period either side, are left out: no step can be placed on them.
+   means' noise; where none does, a lobe less than twice the step's height high, outside
+   the band between the levels by that noise), in the stretch around the largest
+   excursion, one period either side, are left out: no step can be placed on them. The
+   lobe's start is then moved to where the samples rise (:func:`rise`): before its
+   impact the sensor is at rest.
 2. **Fit.** The samples left are the level, the step, and from the lobe's end the
    sensor's free ringing (``exp(-a s) cos(b s)``, ``exp(-a s) sin(b s)``, ``s`` from the
    lobe's peak, the sensor's resonance and damping): least squares, for every place of
@@ -55,7 +59,12 @@ def _lobe(x, level, height, period, far_noise):
     # lobe beyond it (a lobe of the step's sign less than twice the step's height high
     # lies within the step's height of the new level: seed 83 of bench_steps)
     outside = np.maximum(averaged - high, low - averaged)
-    far = outside > far_noise
+    # further than the step's height from both levels where a lobe is (the band's edges
+    # move with 1/f noise, hum and drift: a lobe so taken can reach into the ringing),
+    # else outside the band
+    distance = np.minimum(np.abs(averaged - level), np.abs(averaged - level - height))
+    far = distance > abs(height) + far_noise
+    far = far if far.any() else outside > far_noise
     if not far.any():
         return None
     # the far stretch around the largest excursion, gaps shorter than a period bridged
