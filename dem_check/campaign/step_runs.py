@@ -27,7 +27,9 @@ of its neighbourhood.
    its piece) and :data:`~dem_check.campaign.steps.LEAST_HEIGHT` sample-noise sigmas.
 
 A step inside an impact's ringing is not such a run (the impact's lobe is left over):
-the period means find it across the masked impact.
+the period means find it across the masked impact. A step a few periods before an
+impact starts the impact's run: :func:`head_steps` reads it on the run's head, one flat
+level up to the lobe's rise.
 
 References
 ----------
