@@ -327,7 +327,7 @@ def _step_row(step, t):
         f"({step.significance:.3g} sigma of a level change): a DC offset step, not an "
         "impact (an impact's signal returns to its level after the contact and the "
         "sensor's ringing); the record after it was shifted back before impacts were "
-        "looked for"
+        f"looked for{step.note}"
     )
     if step.lobe is not None:
         reason += (
