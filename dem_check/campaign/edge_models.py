@@ -318,7 +318,9 @@ def start_fit(values, index, runs, reach, ring):
     The window reaches as far past the step as it lies from the start (at least
     four sensor periods, up to the next run); the noise model is fitted on the quiet
     record after the run from the start (:data:`QUIET_PERIODS`); the lobe may begin up to
-    its longest duration before the first sample and up to the step.
+    its longest duration before the first sample and up to half a sensor period after it
+    (a lobe that begins later leaves the first samples at the level: the run would not
+    start there; let begin later, it reads a step as the rise of a negative lobe).
 
     Parameters
     ----------
@@ -349,7 +351,8 @@ def start_fit(values, index, runs, reach, ring):
     if isinstance(noise, float) and not noise > 0.0:  # no quiet record after the run
         noise = edge_noise(values[index:stop], 2 * period, period)
     longest = round(DURATIONS[-1] * period)
-    return judge_edge(values, (0, stop), index, ring, noise, (-longest, index))
+    latest = min(index - 1, period // 2)
+    return judge_edge(values, (0, stop), index, ring, noise, (-longest, latest))
 
 
 def end_fit(values, index, first, runs, reach, ring):

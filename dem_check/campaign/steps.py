@@ -378,6 +378,7 @@ def edge_steps(values, runs, period, reach, ring=None):
             fit = start_fit(values, index, runs, reach, ring)
             if not fit.step:
                 continue  # an impact's lobe: the run is left to the impacts
+            index = fit.index  # placed by the fit, under the record's noise model
             note = f"; {fit.reason()}: a level change within one sample is no sensor's response"
         found.append(OffsetStep(index, -step.height, step.significance, window, note=note))
     return sorted(found, key=lambda step: step.index)
