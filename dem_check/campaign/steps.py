@@ -416,11 +416,12 @@ def _end_steps(values, runs, period, reach, noise, start_side=False, ring=None, 
         level = float(np.median(before))
         at = start + split(run, level, tail - level, np.inf)[0]
         new, old = values[at:], values[max(0, at - size) : at]
-        if new.size < 2 or old.size < period:
-            continue
-        if ring is not None and not start_side and new.size < period:
-            fit = end_fit(values, at, first, all_runs, reach, ring)
-            if fit.step:  # a step in the last samples: too few for a spread
+        if ring is not None and not start_side:
+            # a step in the last period: too few samples for a spread, and for the tail's
+            # median the split reads the level on (it is sought there, placed by the fit)
+            late = at if 2 <= new.size < period else values.size - max(1, period // 2)
+            fit = end_fit(values, late, first, all_runs, reach, ring)
+            if fit.step and values.size - fit.index < period:
                 note = (
                     f"; in the record's last {values.size - fit.index} samples, fewer than a "
                     f"sensor period: {fit.reason()}: a lobe's start follows the sensor's "
@@ -428,6 +429,10 @@ def _end_steps(values, runs, period, reach, noise, start_side=False, ring=None, 
                 )
                 window = (first, values.size)
                 found.append(OffsetStep(fit.index, fit.height, fit.significance, window, note=note))
+                continue
+            if new.size < period:
+                continue  # the start of a lobe: left to the impacts
+        if new.size < 2 or old.size < period:
             continue
         # before a step at the start, the few samples are a level, not a main lobe (an
         # impact at the first sample returns to the level): their standard deviation,
