@@ -372,7 +372,9 @@ def edge_steps(values, runs, period, reach, ring=None):
     # a step near the start is one near the end of the record read backwards: its index
     # there is where the old level ends, and its height changes sign
     mirrored = [(n - 1 - last, n - 1 - first) for first, last in runs]
-    for step in _end_steps(values[::-1], mirrored, period, reach, noise, start_side=True, ring=ring):
+    for step in _end_steps(
+        values[::-1], mirrored, period, reach, noise, start_side=True, ring=ring
+    ):
         window, index, note = (0, n - step.window[0]), n - step.index, ""
         if ring is not None:
             fit = start_fit(values, index, runs, reach, ring)
