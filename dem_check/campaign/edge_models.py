@@ -32,7 +32,9 @@ Both chi-squared values are of the whitened residual (over the innovation's vari
 The model with the lower Akaike information criterion (``chi2 + 2 k``; ``k`` = 4 for
 the step: the line, its height and place; 5 for the lobe: the line, ``A``, ``t0`` and
 ``tau``) is taken (:func:`judge_edge`): a level change within one sample is no
-sensor's response, and a lobe's hump and ringing are no level.
+sensor's response, and a lobe's hump and ringing are no level. :func:`start_fit` and
+:func:`end_fit` choose the window, the noise model's quiet samples and the lobe's onsets
+at each edge.
 
 References
 ----------
@@ -58,7 +60,9 @@ __all__ = [
     "SCAN_PERIODS",
     "EdgeFit",
     "edge_noise",
+    "end_fit",
     "judge_edge",
+    "start_fit",
 ]
 
 EDGE_FAMILIES = (("linear", 0.0), ("linear", 0.25), ("linear", 0.5), ("hertz", 0.0))
@@ -312,6 +316,15 @@ def _quiet(values, lo, hi, runs, reach):
     return values[lo + starts[k] : lo + stops[k]]
 
 
+def _side_noise(values, quiet, fallback, runs, reach, period):
+    """:func:`edge_noise` of the quiet record in ``quiet`` (``(lo, hi)`` indices, cut at
+    the runs), or where there is none, of the samples in ``fallback`` (one level)."""
+    noise = edge_noise(_quiet(values, *quiet, runs, reach), 2 * period, period)
+    if isinstance(noise, float) and not noise > 0.0:
+        noise = edge_noise(values[fallback[0] : fallback[1]], 2 * period, period)
+    return noise
+
+
 def start_fit(values, index, runs, reach, ring):
     """:func:`judge_edge` for a step found ``index`` samples after the record's start.
 
@@ -339,17 +352,14 @@ def start_fit(values, index, runs, reach, ring):
     -------
     EdgeFit
     """
-    sensor, dt = ring
-    period = max(1, round(sensor.period / dt))
+    period = max(1, round(ring[0].period / ring[1]))
     n = len(values)
     later = [first for first, _ in runs if first > index]
     stop = min(n, index + max(index, 4 * period), *later)
     own = [last for first, last in runs if first <= index] or [index]
-    quiet_from = max(own) + reach
-    quiet = _quiet(values, quiet_from, quiet_from + round(QUIET_PERIODS * period), runs, reach)
-    noise = edge_noise(quiet, 2 * period, period)
-    if isinstance(noise, float) and not noise > 0.0:  # no quiet record after the run
-        noise = edge_noise(values[index:stop], 2 * period, period)
+    lo = max(own) + reach
+    quiet = (lo, lo + round(QUIET_PERIODS * period))
+    noise = _side_noise(values, quiet, (index, stop), runs, reach, period)
     longest = round(DURATIONS[-1] * period)
     latest = min(index - 1, period // 2)
     return judge_edge(values, (0, stop), index, ring, noise, (-longest, latest))
@@ -367,13 +377,10 @@ def end_fit(values, index, first, runs, reach, ring):
     -------
     EdgeFit
     """
-    sensor, dt = ring
-    period = max(1, round(sensor.period / dt))
+    period = max(1, round(ring[0].period / ring[1]))
     n = len(values)
     lo = max(0, min(first, n - 2 * (n - index)) - 4 * period)
-    quiet = _quiet(values, max(0, lo - round(QUIET_PERIODS * period)), lo, runs, reach)
-    noise = edge_noise(quiet, 2 * period, period)
-    if isinstance(noise, float) and not noise > 0.0:
-        noise = edge_noise(values[lo:index], 2 * period, period)
+    quiet = (max(0, lo - round(QUIET_PERIODS * period)), lo)
+    noise = _side_noise(values, quiet, (lo, index), runs, reach, period)
     earliest = max(0, first - lo - period)
     return judge_edge(values, (lo, n), index, ring, noise, (earliest, n - 1 - lo))
