@@ -42,6 +42,7 @@ Akaike, H. (1974) A new look at the statistical model identification. IEEE Trans
 Autom. Control 19, 716-723.
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -108,6 +109,8 @@ class EdgeFit:
     """``(family, damping, t0 [s from the record's start], tau [s], A [N])`` of it."""
     samples: int
     """Samples fitted (after the whitening filter's first ones) [-]."""
+    note: str = ""
+    """What the row of a step found so says (:func:`end_fit`)."""
 
     def reason(self):
         """The comparison in words, for a candidate's row."""
@@ -365,9 +368,10 @@ def start_fit(values, index, runs, reach, ring):
     return judge_edge(values, (0, stop), index, ring, noise, (-longest, latest))
 
 
-def end_fit(values, index, first, runs, reach, ring):
-    """:func:`judge_edge` for a step found ``index`` (its first sample at the new
-    level) in a run from ``first`` to the record's last sample.
+def end_fit(values, at, first, runs, reach, ring):
+    """:func:`judge_edge` for a step in the last sensor period of a run from ``first``
+    to the record's last sample: too few samples for a spread, and for the tail's
+    median a split (at ``at``) reads the new level on, so the step is sought there.
 
     The window holds the run and four sensor periods before it (at least twice the
     samples after the step); the noise model is fitted on the quiet record before it;
@@ -376,11 +380,19 @@ def end_fit(values, index, first, runs, reach, ring):
     Returns
     -------
     EdgeFit
+        Its ``step`` only for a step placed within the last period, with its ``note``.
     """
     period = max(1, round(ring[0].period / ring[1]))
     n = len(values)
+    index = at if 2 <= n - at < period else n - max(1, period // 2)
     lo = max(0, min(first, n - 2 * (n - index)) - 4 * period)
     quiet = (max(0, lo - round(QUIET_PERIODS * period)), lo)
     noise = _side_noise(values, quiet, (lo, index), runs, reach, period)
     earliest = max(0, first - lo - period)
-    return judge_edge(values, (lo, n), index, ring, noise, (earliest, n - 1 - lo))
+    fit = judge_edge(values, (lo, n), index, ring, noise, (earliest, n - 1 - lo))
+    note = (
+        f"; in the record's last {n - fit.index} samples, fewer than a sensor period: "
+        f"{fit.reason()}: a lobe's start follows the sensor's response, a level change "
+        "within one sample does not"
+    )
+    return dataclasses.replace(fit, step=fit.step and n - fit.index < period, note=note)
