@@ -115,6 +115,10 @@ class LobeFit:
     bound: float
     """Cramér-Rao bound of ``onset`` [s] under the noise given (white of its sigma, or
     the noise model), with the damping known or (``damping_free``) unknown."""
+    uncertainty: float = math.nan
+    """Standard deviation of ``onset`` [s] under the noise covariance given
+    (``autocovariance``; :meth:`contactlab.inverse.lobe_model.LobeModel.onset_spread`),
+    the family and damping known; ``nan`` without one."""
 
 
 def _scan(model, lo, hi, length):
@@ -144,6 +148,7 @@ def fit_lobe(
     damping_free=False,
     noise_model=None,
     start=None,
+    autocovariance=None,
 ):
     """The onset of one impact: a contact family's force through the sensor, fitted on
     the impact's first lobe.
@@ -178,6 +183,10 @@ def fit_lobe(
         An onset [s] and a duration [s] near the fit's (another damping's fit on the
         same lobe): the first scan is skipped and the simplex starts there, a sample and
         :data:`START_DURATION` wide.
+    autocovariance : numpy.ndarray, optional
+        The record's noise autocovariance at lags ``0, 1, ...`` samples [N**2] (e.g.
+        :meth:`contactlab.inverse.noise_prediction.ColouredNoise.autocovariance`, at
+        least as many lags as the window fitted): gives :attr:`LobeFit.uncertainty`.
 
     Returns
     -------
@@ -245,6 +254,9 @@ def fit_lobe(
         chi_squared=rss / sigma**2,
         samples=int(model.t.size),
         bound=model.bound(t0, tau, sigma, damping_free),
+        uncertainty=math.nan
+        if autocovariance is None
+        else model.onset_spread(t0, tau, autocovariance),
     )
 
 

@@ -7,6 +7,12 @@ family's force pushed through the sensor; the family and its damping are chosen 
 record on its most significant impacts, since every impact of a record has the same
 contact law (:func:`contactlab.inverse.lobe_onset.lobe_family`). Where an impact's fit
 fails it keeps the crossing, and its ``reason`` says why.
+
+Each fitted onset carries its uncertainty: the standard deviation of the fit's onset
+under the record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`,
+the covariance the local baselines use; :attr:`contactlab.inverse.lobe_onset.LobeFit.uncertainty`),
+or under white noise of the baseline window's spread where the record has too few quiet
+samples to estimate it; ``nan`` for a crossing.
 """
 
 import dataclasses
@@ -16,6 +22,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse.lobe_onset import fit_lobe, lobe_family
 from contactlab.inverse.noise_colour import fit_ar_noise
+from dem_check.campaign.local import record_noise
 
 __all__ = [
     "FAMILY_IMPACTS",
@@ -92,8 +99,19 @@ def _lobe(detection, window, sensor):
     return t, y, (latest, length), noise, noise_model
 
 
-def record_onsets(detection, windows, sensor):
-    """The fitted onsets of ``windows``, and the contact family they share.
+def record_onsets(detection, windows, sensor, noise=None):
+    """The fitted onsets of ``windows``, their uncertainties, and the contact family
+    they share.
+
+    Parameters
+    ----------
+    detection : Detection
+    windows : list of ImpactWindow
+    sensor : Sensor
+    noise : ColouredNoise, optional
+        The record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`):
+        each onset's uncertainty under it; None: under white noise of the impact's
+        baseline window's standard deviation.
 
     Returns
     -------
@@ -106,6 +124,8 @@ def record_onsets(detection, windows, sensor):
         when none could be fitted: every impact keeps its crossing).
     damping : float or None
         Its damping ratio [-].
+    uncertainties : list of float
+        Standard deviation of each fitted onset [s] (``nan`` for a crossing).
     """
     lobes, failed = [], {}
     for k, window in enumerate(windows):
@@ -122,37 +142,68 @@ def record_onsets(detection, windows, sensor):
         family, damping = lobe_family([lobes[k] for k in strongest], sensor)
     except ParameterError as error:  # no lobe could be fitted: every impact keeps its crossing
         note = f"onset: the 5-sigma crossing (no lobe of the record could be fitted: {error})"
-        return [w.onset for w in windows], [note] * len(windows), None, None
-    onsets, notes = [], []
+        count = len(windows)
+        return [w.onset for w in windows], [note] * count, None, None, [np.nan] * count
+    onsets, notes, uncertainties = [], [], []
     for k, (window, lobe) in enumerate(zip(windows, lobes, strict=True)):
         try:
             if lobe is None:
                 raise ParameterError(failed[k])
-            t, y, guess, noise, noise_model = lobe
-            fit = fit_lobe(t, y, sensor, guess, noise, family, damping, noise_model=noise_model)
+            t, y, guess, spread, noise_model = lobe
+            if noise is None:  # white noise of the baseline window's spread
+                covariance = np.zeros(t.size)
+                covariance[0] = spread**2
+            else:
+                covariance = noise.autocovariance(t.size)
+            fit = fit_lobe(
+                t,
+                y,
+                sensor,
+                guess,
+                spread,
+                family,
+                damping,
+                noise_model=noise_model,
+                autocovariance=covariance,
+            )
             onsets.append(fit.onset)
             notes.append("")
+            uncertainties.append(fit.uncertainty)
         except ParameterError as error:
             onsets.append(window.onset)
-            notes.append(f"onset: the 5-sigma crossing (its lobe fit failed: {error})")
-    return onsets, notes, family, damping
+            notes.append(
+                f"onset: the 5-sigma crossing (its lobe fit failed: {error}); no onset "
+                "uncertainty is given for a crossing"
+            )
+            uncertainties.append(np.nan)
+    return onsets, notes, family, damping, uncertainties
 
 
 def first_touches(detection, sensor, statuses):
     """The detection's impacts, those with a status of ``statuses`` with their onset
-    fitted (:func:`record_onsets`); where the fit failed, the crossing is kept and the
-    impact's ``reason`` says so. Returned as the :class:`Detection` fields ``impacts`` and
+    fitted (:func:`record_onsets`) and its ``onset_uncertainty`` [s] under the record's
+    noise (:func:`dem_check.campaign.local.record_noise`); where the fit failed, the
+    crossing is kept and the impact's ``reason`` says so. Returned as the :class:`Detection` fields ``impacts`` and
     ``contact_family``: the record's family and damping ratio ``(name, zeta [-])`` (None
     where none was read), with which the reconstruction reads its contact's edges
     (:mod:`dem_check.campaign.analysis`)."""
     chosen = [k for k, w in enumerate(detection.impacts) if w.status in statuses]
     if not chosen:
         return {"impacts": list(detection.impacts), "contact_family": None}
-    onsets, notes, family, damping = record_onsets(
-        detection, [detection.impacts[k] for k in chosen], sensor
+    noise = record_noise(detection, sensor)
+    onsets, notes, family, damping, uncertainties = record_onsets(
+        detection, [detection.impacts[k] for k in chosen], sensor, noise
     )
+    if noise is None:
+        white = (
+            "onset uncertainty: under white noise of the baseline's spread (too few quiet "
+            "samples in the record to estimate its 1/f noise)"
+        )
+        notes = [note or white for note in notes]
     impacts = list(detection.impacts)
-    for k, onset, note in zip(chosen, onsets, notes, strict=True):
+    for k, onset, note, spread in zip(chosen, onsets, notes, uncertainties, strict=True):
         reason = "; ".join(r for r in (impacts[k].reason, note) if r)
-        impacts[k] = dataclasses.replace(impacts[k], onset=onset, reason=reason)
+        impacts[k] = dataclasses.replace(
+            impacts[k], onset=onset, reason=reason, onset_uncertainty=spread
+        )
     return {"impacts": impacts, "contact_family": None if family is None else (family, damping)}
