@@ -229,6 +229,36 @@ class LobeModel:
         covariance_times = linalg.matmul_toeplitz(np.asarray(autocovariance)[:n], influence)
         return float(math.sqrt(max(float(influence @ covariance_times), 0.0)) * self.dt)
 
+    def damping_terms(self, t0, tau, autocovariance):
+        """What an error of the damping ratio, read on several impacts of a record, adds
+        to the onset's variance (:func:`dem_check.campaign.onsets.record_onsets` sums
+        them): ``(shift, information, noise, cross)``.
+
+        With the damping fixed ``d`` too high, the fit's onset moves by ``-shift * d``
+        (``shift`` [s] per unit damping ratio, the other parameters refitted). A damping
+        read by least squares on impacts ``F`` errs by ``d = sum_F u_W' e / sum_F
+        information``, ``u`` the whitened damping column made orthogonal to the fit's
+        others, ``u_W = W' u``, ``information = u' u`` [N**2]; ``noise = u_W' S u_W``
+        [N**4] is the variance of its numerator's term, ``cross = g' S u_W`` [s N**2] its
+        covariance with this impact's onset error ``g' e`` (:meth:`onset_spread`).
+        Linearised at the fit; the damping's derivative one-sided over 0.01.
+        """
+        whitened = self.whiten(self._jacobian(t0, tau, True))
+        zeta = whitened[:, 2]
+        known = np.delete(whitened, 2, axis=1)
+        normal = known.T @ known
+        back = np.linalg.solve(normal, known.T @ zeta)
+        row = np.linalg.solve(normal, np.eye(known.shape[1])[0])
+        u = zeta - known @ back
+        influence, u_w = self._whiten_adjoint(known @ row), self._whiten_adjoint(u)
+        s_u = linalg.matmul_toeplitz(np.asarray(autocovariance)[: u_w.size], u_w)
+        return (
+            float(back[0]) * self.dt,
+            float(u @ u),
+            float(u_w @ s_u),
+            float(influence @ s_u) * self.dt,
+        )
+
     def _whiten_adjoint(self, values):
         """``W' v``: the adjoint of :attr:`whiten` (``W`` drops the first ``p`` rows and
         subtracts ``a_k`` times the samples ``k`` before)."""

@@ -119,6 +119,10 @@ class LobeFit:
     """Standard deviation of ``onset`` [s] under the noise covariance given
     (``autocovariance``; :meth:`contactlab.inverse.lobe_model.LobeModel.onset_spread`),
     the family and damping known; ``nan`` without one."""
+    damping_terms: tuple | None = None
+    """What an error of the damping read adds to that variance
+    (:meth:`contactlab.inverse.lobe_model.LobeModel.damping_terms`, under the same
+    covariance); None without one."""
 
 
 def _scan(model, lo, hi, length):
@@ -186,7 +190,8 @@ def fit_lobe(
     autocovariance : numpy.ndarray, optional
         The record's noise autocovariance at lags ``0, 1, ...`` samples [N**2] (e.g.
         :meth:`contactlab.inverse.noise_prediction.ColouredNoise.autocovariance`, at
-        least as many lags as the window fitted): gives :attr:`LobeFit.uncertainty`.
+        least as many lags as the window fitted): gives :attr:`LobeFit.uncertainty` and
+        :attr:`LobeFit.damping_terms`.
 
     Returns
     -------
@@ -257,6 +262,9 @@ def fit_lobe(
         uncertainty=math.nan
         if autocovariance is None
         else model.onset_spread(t0, tau, autocovariance),
+        damping_terms=None
+        if autocovariance is None
+        else model.damping_terms(t0, tau, autocovariance),
     )
 
 

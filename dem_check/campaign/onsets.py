@@ -144,7 +144,7 @@ def record_onsets(detection, windows, sensor, noise=None):
         note = f"onset: the 5-sigma crossing (no lobe of the record could be fitted: {error})"
         count = len(windows)
         return [w.onset for w in windows], [note] * count, None, None, [np.nan] * count
-    onsets, notes, uncertainties = [], [], []
+    onsets, notes, fits = [], [], []
     for k, (window, lobe) in enumerate(zip(windows, lobes, strict=True)):
         try:
             if lobe is None:
@@ -168,15 +168,37 @@ def record_onsets(detection, windows, sensor, noise=None):
             )
             onsets.append(fit.onset)
             notes.append("")
-            uncertainties.append(fit.uncertainty)
+            fits.append(fit)
         except ParameterError as error:
             onsets.append(window.onset)
             notes.append(
                 f"onset: the 5-sigma crossing (its lobe fit failed: {error}); no onset "
                 "uncertainty is given for a crossing"
             )
-            uncertainties.append(np.nan)
-    return onsets, notes, family, damping, uncertainties
+            fits.append(None)
+    return onsets, notes, family, damping, _uncertainties(fits, strongest)
+
+
+def _uncertainties(fits, read_on):
+    """Each fitted onset's standard deviation [s] (``nan`` where not fitted): its own
+    noise's (the damping known) and that of the damping ratio read on the impacts
+    ``read_on`` (indices), which moves every onset of the record the same way
+    (:meth:`contactlab.inverse.lobe_model.LobeModel.damping_terms`: ``var = s**2 +
+    shift**2 var(d) - 2 shift cov``, ``var(d) = sum noise / (sum information)**2``,
+    ``cov = cross / sum information`` for an impact the damping was read on)."""
+    shared = [fits[k].damping_terms for k in read_on if fits[k] is not None]
+    information = sum(terms[1] for terms in shared)
+    damping_variance = sum(terms[2] for terms in shared) / information**2 if shared else 0.0
+    out = []
+    for k, fit in enumerate(fits):
+        if fit is None:
+            out.append(np.nan)
+            continue
+        shift, _, _, cross = fit.damping_terms
+        together = cross / information if k in read_on and shared else 0.0
+        variance = fit.uncertainty**2 + shift**2 * damping_variance - 2.0 * shift * together
+        out.append(float(np.sqrt(max(variance, 0.0))))  # a variance: >= 0 but for rounding
+    return out
 
 
 def first_touches(detection, sensor, statuses):
