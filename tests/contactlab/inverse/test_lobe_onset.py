@@ -229,9 +229,7 @@ def test_the_damping_shift_is_how_far_the_fit_moves_with_the_damping():
     t, y = _record(_hertz_shape, t0, 100e-6, 2.0, rate, 0.0, 0)
     guess, covariance = (t0 + 15e-6, 90e-6), np.eye(1, t.size)[0]
     first = fit_lobe(t, y, SENSOR, guess, 0.01, "hertz", 0.0, autocovariance=covariance)
-    moved = fit_lobe(
-        t, y, SENSOR, guess, 0.01, "hertz", 0.01, start=(first.onset, first.duration)
-    )
+    moved = fit_lobe(t, y, SENSOR, guess, 0.01, "hertz", 0.01, start=(first.onset, first.duration))
     shift, information, noise, _ = first.damping_terms
     assert information > 0.0 and noise > 0.0
     # a linearisation against a refit 0.01 away: the move is second order in the

@@ -77,9 +77,7 @@ def test_samples_left_out_next_to_the_gap_move_the_bridge_to_the_next_sample_kep
     inside = index[first:last]
     y = np.random.default_rng(6).normal(size=n)
     autocovariance = phi ** np.arange(n)
-    _, found = predict_gap(
-        autocovariance, y, np.zeros((n, 0)), np.array(before), after, inside, 1
-    )
+    _, found = predict_gap(autocovariance, y, np.zeros((n, 0)), np.array(before), after, inside, 1)
     a, c = first - 1, last + left_out
     k = inside[min(int(position * gap), gap - 1)]
     expected = (
