@@ -206,9 +206,9 @@ def first_touches(detection, sensor, statuses):
     fitted (:func:`record_onsets`) and its ``onset_uncertainty`` [s] under the record's
     noise (:func:`dem_check.campaign.local.record_noise`); where the fit failed, the
     crossing is kept and the impact's ``reason`` says so. Returned as the
-    :class:`Detection` fields ``impacts`` and ``contact_family``: the record's family and damping ratio ``(name, zeta [-])`` (None
-    where none was read), with which the reconstruction reads its contact's edges
-    (:mod:`dem_check.campaign.analysis`)."""
+    :class:`Detection` fields ``impacts`` and ``contact_family``: the record's family and
+    damping ratio ``(name, zeta [-])`` (None where none was read), with which the
+    reconstruction reads its contact's edges (:mod:`dem_check.campaign.analysis`)."""
     chosen = [k for k, w in enumerate(detection.impacts) if w.status in statuses]
     if not chosen:
         return {"impacts": list(detection.impacts), "contact_family": None}
