@@ -43,7 +43,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.inverse.reconstruct import DEFAULT_MAX_UNKNOWNS
-from contactlab.metrics import first_lobe
+from contactlab.metrics import first_lobe, impulse
 from contactlab.quantities import column
 from dem_check.campaign.detection import ONSET_SIGMAS
 from dem_check.campaign.local import local_baseline, record_noise
@@ -211,10 +211,18 @@ def _held(detection, window, t, sensor):
 
 
 def _last_force(rec):
-    """Time of the reconstructed force's last sample above its significance threshold
-    [s] (the end of the last contact the reconstruction holds)."""
+    """End of the last contact the reconstruction holds [s]: of its run of force above
+    the significance threshold that lies after the contact and carries at least
+    :data:`IMPULSE_EXCESS` of its impulse (a second contact the impulse check is for;
+    a shorter excursion of noise read as force is not one), else the contact's end."""
     above = np.flatnonzero(rec.force > rec.parameters["threshold [N]"])
-    return float(rec.t[above[-1]]) if above.size else rec.metrics.end
+    last = rec.metrics.end
+    for run in np.split(above, np.flatnonzero(np.diff(above) > 1) + 1):
+        if run.size > 1 and rec.t[run[0]] > rec.metrics.end:
+            carried = impulse(rec.t[run], rec.force[run])
+            if carried >= IMPULSE_EXCESS * rec.metrics.impulse:
+                last = float(rec.t[run[-1]])
+    return last
 
 
 def _reconstruction_part(t, base, end, sensor):
@@ -372,7 +380,7 @@ def analyse_impact(
     # contact, with the window from the first lobe's bound: 1.83 times the contact's
     # impulse instead of 2). A period past the contact's end also spans less 1/f noise
     # than the first lobe's bound (about 130 us against 200 us for a 100 us contact)
-    last = max(rec.metrics.end, _last_force(rec))
+    last = _last_force(rec)
     row["impulse [N*s]"] = _local(
         t, record, window, last + sensor.period, sensor, noise, held=held
     ).impulse
