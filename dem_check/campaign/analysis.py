@@ -3,13 +3,16 @@
 Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
 segment (local baseline, impact, decayed ringing), less its own baseline: a line fitted
 before the impact and on the sensor's free ringing after its contact
-(:mod:`dem_check.campaign.local`), so that drift, wander, hum and the slow part of 1/f
+(:mod:`dem_check.campaign.local`; the samples of the record's other impacts held out), so that drift, wander, hum and the slow part of 1/f
 noise are read on both sides of it. With the record's white and 1/f noise levels
 (:func:`dem_check.campaign.local.record_noise`, estimated once per record) the line and
 ringing are fitted by generalised least squares and the noise under the pulse is
 predicted from both sides (its conditional mean, :mod:`contactlab.inverse.noise_prediction`)
 and taken off with the line before the peak signal and the impulse are read:
 
+- ``onset_uncertainty [s]``: the standard deviation of the fitted onset under the
+  record's white and 1/f noise, with the damping ratio read on the record
+  (:mod:`dem_check.campaign.onsets`; NaN for a crossing, and the reason says why);
 - ``sensor_response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
   :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
   noise), with the same hysteresis so that only a return to zero ends it;
@@ -17,7 +20,7 @@ and taken off with the line before the peak signal and the impulse are read:
   that lobe;
 - ``impulse [N*s]``: the integral of the signal from the local baseline's end (a tenth
   of a sensor period before the onset) to a sensor period after the reconstructed
-  contact's end, plus the fitted free ringing's
+  contact's end (or a later contact's, which flags an ``"overlap"``), plus the fitted free ringing's
   integral from there in closed form. The sensor returns to rest, so this is the impulse
   of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
