@@ -3,8 +3,9 @@
 Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
 segment (local baseline, impact, decayed ringing), less its own baseline: a line fitted
 before the impact and on the sensor's free ringing after its contact
-(:mod:`dem_check.campaign.local`; the samples of the record's other impacts held out), so that drift, wander, hum and the slow part of 1/f
-noise are read on both sides of it. With the record's white and 1/f noise levels
+(:mod:`dem_check.campaign.local`; the samples of the record's other impacts held out),
+so that drift, wander, hum and the slow part of 1/f noise are read on both sides of it.
+With the record's white and 1/f noise levels
 (:func:`dem_check.campaign.local.record_noise`, estimated once per record) the line and
 ringing are fitted by generalised least squares and the noise under the pulse is
 predicted from both sides (its conditional mean, :mod:`contactlab.inverse.noise_prediction`)
