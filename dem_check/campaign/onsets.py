@@ -188,6 +188,8 @@ def _uncertainties(fits, read_on):
     ``cov = cross / sum information`` for an impact the damping was read on)."""
     shared = [fits[k].damping_terms for k in read_on if fits[k] is not None]
     information = sum(terms[1] for terms in shared)
+    if not information > 0.0:  # no impact the damping was read on was fitted
+        shared = []
     damping_variance = sum(terms[2] for terms in shared) / information**2 if shared else 0.0
     out = []
     for k, fit in enumerate(fits):
