@@ -17,7 +17,8 @@ impact of at least 10 noise sigmas, the structure's ringing counted, with no row
 60 us), and for the step rows (status ``"offset step"``) how many lie within 60 us of a
 true step. Prints the failing records (seed, what went wrong) and the CPU time.
 
-Run: ``.venv/bin/python benchmarks/bench_steps.py [--records 100]``
+Run: ``.venv/bin/python benchmarks/bench_steps.py [--records 100] [--seeds 14 15 ...]``
+(``--seeds``: only those records, as numbered in the full run).
 """
 
 import argparse
@@ -119,11 +120,13 @@ def judge(record, effects, found):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--records", type=int, default=100)
+    parser.add_argument("--seeds", type=int, nargs="+", help="only these records (seeds)")
     args = parser.parse_args()
+    seeds = args.seeds if args.seeds else range(args.records)
     _, sensor, _ = hard()
     counts = {"invented": 0, "invented step": 0, "missed": 0, "steps found": 0, "steps": 0}
     cpu, failing = 0.0, 0
-    for seed in range(args.records):
+    for seed in seeds:
         record, effects = hard_mix(seed)
         started = time.process_time()
         found = find_impacts(record.trace, sensor)
@@ -142,7 +145,7 @@ def main():
             print(f"seed {seed}: steps at {steps}, truth {record.truth['onset [s]'].tolist()}")
             for kind, detail in wrong:
                 print(f"    {kind}: {detail}")
-    print(counts, f"records failing: {failing} of {args.records}")
+    print(counts, f"records failing: {failing} of {len(seeds)}")
     print(f"find_impacts CPU time: {cpu:.2f} s")
 
 

@@ -22,7 +22,8 @@ import numpy as np
 from scipy.integrate import DOP853 as _SCIPY
 
 from contactlab.compiled import njit
-from contactlab.kernels.model_rhs import rhs
+from contactlab.kernels.model_rhs import NORMAL, rhs
+from contactlab.kernels.power import rhs as power_rhs
 
 __all__ = [
     "STAGES",
@@ -115,12 +116,15 @@ def _error_norm(K, h, scale, separate):
 
 
 @njit(cache=True, error_model="numpy")
-def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new):
+def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new, model):
     """One accepted step from ``(t, y)`` with ``f = f(y)``, not beyond ``t_bound``.
 
     Writes the new state and its slope into ``y_new`` and ``f_new`` and the stages into
     ``K`` ((:data:`WORK_ROWS`, n): rows 0..12 kept for :func:`interpolant`, the last two
-    scratch).
+    scratch). ``model`` is :data:`~contactlab.kernels.model_rhs.NORMAL` (the normal
+    contact's :func:`contactlab.kernels.power.rhs`) or
+    :data:`~contactlab.kernels.model_rhs.ANY_MODEL` (:func:`contactlab.kernels.model_rhs.rhs`),
+    a constant where compiled (see :mod:`contactlab.kernels.model_rhs`).
 
     Returns
     -------
@@ -141,9 +145,15 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new):
         K[0, :] = f
         for s in range(1, STAGES):
             _stage_state(y, h, _A[s], K, s, tmp)
-            rhs(tmp, par, warped, K[s])
+            if model == NORMAL:  # a constant: numba keeps one branch (model_rhs)
+                power_rhs(tmp, par, warped, K[s])
+            else:
+                rhs(tmp, par, warped, K[s])
         _stage_state(y, h, _B, K, STAGES, y_new)
-        rhs(y_new, par, warped, f_new)
+        if model == NORMAL:
+            power_rhs(y_new, par, warped, f_new)
+        else:
+            rhs(y_new, par, warped, f_new)
         K[STAGES, :] = f_new
         for c in range(n):
             scale[c] = atol[c] + max(abs(y[c]), abs(y_new[c])) * rtol
@@ -160,15 +170,19 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new):
 
 
 @njit(cache=True, error_model="numpy")
-def interpolant(K, h, y_old, y, f_new, par, warped, F):
+def interpolant(K, h, y_old, y, f_new, par, warped, F, model):
     """The step's 7th-order interpolant coefficients into ``F`` (7, n), as
-    :meth:`Stepper.interpolant` (three extra stages into ``K``)."""
+    :meth:`Stepper.interpolant` (three extra stages into ``K``; ``model`` as in
+    :func:`step`)."""
     n = y.size
     tmp = K[_DENSE_STAGES]
     for i in range(_EXTRA):
         stage = STAGES + 1 + i
         _stage_state(y_old, h, _A_EXTRA[i], K, stage, tmp)
-        rhs(tmp, par, warped, K[stage])
+        if model == NORMAL:  # as in step
+            power_rhs(tmp, par, warped, K[stage])
+        else:
+            rhs(tmp, par, warped, K[stage])
     for c in range(n):
         delta = y[c] - y_old[c]
         F[0, c] = delta

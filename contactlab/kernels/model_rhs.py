@@ -12,13 +12,28 @@ choice is made here, once per evaluation; :func:`events` chooses the event funct
 same way (:mod:`contactlab.kernels.oblique_events` locates them for either model). Both
 are inlined into their callers: called, the choice cost the damped-Hertz DOP853 step 60 %
 (763-890 ns against 466-592 ns before the choice existed, measured in one run).
+
+Inlined, though, the choice costs the stepper too: numba binds the arguments of the
+inlined body to new variables, and their reference counts (``par`` and the stage array,
+six increments and decrements per call, which numba's pruning leaves around a call that
+can fail) are paid on every stage, 14 calls a step. The stepper therefore takes the model
+as a compile-time constant (``model``, :data:`NORMAL` or :data:`ANY_MODEL`): numba compiles
+it once per value and drops the untaken branch, so the normal contact's stages call
+:func:`contactlab.kernels.power.rhs` directly, with no reference-count traffic (as before
+the choice existed), while the oblique models' stages keep this choice.
 """
 
 from contactlab.compiled import njit
 from contactlab.kernels import elastic_cap_rhs, oblique_rhs
 from contactlab.kernels import power as power_rhs
 
-__all__ = ["events", "rhs"]
+__all__ = ["ANY_MODEL", "NORMAL", "events", "rhs"]
+
+NORMAL = int(power_rhs.NORMAL_MODEL)
+"""The stepper's ``model`` for the normal power-law contact (see the module docstring)."""
+
+ANY_MODEL = -1
+"""The stepper's ``model`` for the one the packed parameters name (:func:`rhs`)."""
 
 
 @njit(cache=True, error_model="numpy", inline="always")

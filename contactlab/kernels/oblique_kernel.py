@@ -19,7 +19,7 @@ from contactlab.compiled import njit
 from contactlab.kernels.brent import WORK_SIZE
 from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, interpolate, step
 from contactlab.kernels.elastic_cap_rhs import EVENTS, events
-from contactlab.kernels.model_rhs import rhs
+from contactlab.kernels.model_rhs import ANY_MODEL, rhs
 from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, sample, waits
 from contactlab.kernels.oblique_rhs import (
     FRICTION,
@@ -132,12 +132,14 @@ def _run(t, y0, h_try, end, rtol, atol, par, warped, store, keep):
     hit, hit_j, t_old, h = math.nan, -1, t, 0.0
     bound, retakes = end, 0
     while t < end:
-        ok, t_new, h_next, h = step(t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new)
+        ok, t_new, h_next, h = step(
+            t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new, ANY_MODEL
+        )
         if not ok:
             return STATUS_UNDERFLOW, t, y, (t_old, h, y_old, F), hit, hit_j, store
         t_old = t
         y_old[:] = y
-        interpolant(K, h, y_old, y_new, f_new, par, warped, F)
+        interpolant(K, h, y_old, y_new, f_new, par, warped, F, ANY_MODEL)
         sample(t_old, h, y_old, F, y_new, par, phase, times, rows, tmp)
         hit, hit_j = first_crossing(
             (t_old, h, y_old, F), count, armed, times, rows, par, phase, tmp, row, work, rising
@@ -241,7 +243,9 @@ def _touch_phase(y0, rtol, atol, par):
     rhs(y0, par, False, f0)
     probe = PROBE * initial_step(y0, f0, rtol, atol, par, False)
     K = np.empty((WORK_ROWS, n))
-    ok, _, _, _ = step(0.0, y0, f0, probe, probe, rtol, atol, par, False, K, y_new, f_new)
+    ok, _, _, _ = step(
+        0.0, y0, f0, probe, probe, rtol, atol, par, False, K, y_new, f_new, ANY_MODEL
+    )
     z = y_new if ok else y0
     tangential = trial_force(z[6], z[2] - z[0], slip(z, par), par)
     if abs(tangential) <= _cap(z, par, 1.0):

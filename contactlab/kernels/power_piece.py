@@ -19,7 +19,7 @@ import numpy as np
 from contactlab.compiled import njit
 from contactlab.kernels.brent import WORK_SIZE
 from contactlab.kernels.dop853 import WORK_ROWS, initial_step, interpolant, step
-from contactlab.kernels.model_rhs import events
+from contactlab.kernels.model_rhs import NORMAL, events
 from contactlab.kernels.oblique_events import SUBSTEPS, first_crossing, sample, waits
 from contactlab.kernels.power import force_floor, rhs
 
@@ -174,12 +174,14 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
     hit, count, last_start = math.nan, 0, t
     bound, retaken = end, 0
     while t < end:
-        ok, t_new, h_next, h = step(t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new)
+        ok, t_new, h_next, h = step(
+            t, y, f, h_try, bound, rtol, atol, par, warped, K, y_new, f_new, NORMAL
+        )
         if not ok:
             return STATUS_UNDERFLOW, count, t_old, hs, y_old, F, hit, t, y, last_start
         if count == t_old.size:
             t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
-        interpolant(K, h, y, y_new, f_new, par, warped, F[count])
+        interpolant(K, h, y, y_new, f_new, par, warped, F[count], NORMAL)
         if _pressed(F[count], y, par):
             rows[0, 0] = rows[SUBSTEPS, 0]
             events(y_new, par, 0.0, rows[SUBSTEPS])

@@ -9,7 +9,11 @@ and the ringing, larger than the step, counts for both levels at random. So:
 
 1. **Main lobe.** Samples whose one-period mean lies far from both levels (further than
    the step's height and :data:`~dem_check.campaign.steps.FAR_SIGMAS` of the period
-   means' noise), one period either side, are left out: no step can be placed on them.
+   means' noise; where none does, a lobe less than twice the step's height high, outside
+   the band between the levels by that noise), in the stretch around the largest
+   excursion, one period either side, are left out: no step can be placed on them. The
+   lobe's start is then moved to where the samples rise (:func:`rise`): before its
+   impact the sensor is at rest.
 2. **Fit.** The samples left are the level, the step, and from the lobe's end the
    sensor's free ringing (``exp(-a s) cos(b s)``, ``exp(-a s) sin(b s)``, ``s`` from the
    lobe's peak, the sensor's resonance and damping): least squares, for every place of
@@ -25,11 +29,12 @@ and the ringing, larger than the step, counts for both levels at random. So:
 """
 
 import numpy as np
-from scipy.ndimage import uniform_filter1d
+from scipy.ndimage import label, maximum_filter1d, uniform_filter1d
 
 from contactlab.inverse.local_baseline import _ringing
+from contactlab.signals import MAD_TO_SIGMA
 
-__all__ = ["SEPARABLE_SIGMAS", "place_across"]
+__all__ = ["SEPARABLE_SIGMAS", "place_across", "rise", "second_across"]
 
 SEPARABLE_SIGMAS = 4.0
 """A step fits better where it is placed than anywhere inside the main lobe when the
@@ -37,14 +42,102 @@ residual sum of squares is less by more than this many noise sigmas squared [-] 
 chi-squared change of one degree of freedom, at 4 sigma)."""
 
 
+QUIET_FRACTION = 0.25
+"""The samples before a main lobe that a rise is told on, a quarter of a sensor period
+[-] (:func:`rise`)."""
+
+RISE_SIGMAS = 4.0
+"""A rise leaves the band between the two levels by this many sample-noise sigmas [-]
+(:func:`rise`)."""
+
+
 def _lobe(x, level, height, period, far_noise):
     """``(start, stop)`` indices of the main lobe in ``x`` (module step 1), or None."""
     averaged = uniform_filter1d(x, period, mode="nearest")
+    low, high = sorted((level, level + height))
+    # outside the band between the two levels: a step moves the record within it, a
+    # lobe beyond it (a lobe of the step's sign less than twice the step's height high
+    # lies within the step's height of the new level: seed 83 of bench_steps)
+    outside = np.maximum(averaged - high, low - averaged)
+    # further than the step's height from both levels where a lobe is (the band's edges
+    # move with 1/f noise, hum and drift: a lobe so taken can reach into the ringing),
+    # else outside the band
     distance = np.minimum(np.abs(averaged - level), np.abs(averaged - level - height))
-    far = np.flatnonzero(distance > abs(height) + far_noise)
-    if not far.size:
+    far = distance > abs(height) + far_noise
+    far = far if far.any() else outside > far_noise
+    if not far.any():
         return None
-    return max(0, int(far[0]) - period), min(x.size, int(far[-1]) + period + 1)
+    # the far stretch around the largest excursion, gaps shorter than a period bridged
+    # (slow noise far from the levels elsewhere in the window is no lobe)
+    stretches = label(maximum_filter1d(far.astype(np.int8), period + 1, mode="constant"))[0]
+    peak = int(np.argmax(np.where(far, outside, -np.inf)))
+    inside = np.flatnonzero(far & (stretches == stretches[peak]))
+    start = max(0, int(inside[0]) - period)
+    return rise(x[:peak], start, (low, high), period), min(x.size, int(inside[-1]) + period + 1)
+
+
+def rise(x, start, band, period):
+    """Where the main lobe rises in ``x`` (the record up to the lobe's largest
+    excursion), searched from ``start`` (the period means' conservative start): the
+    first sample that leaves the ``band`` ``(low, high)`` between the two levels [N] by
+    more than :data:`RISE_SIGMAS` sample-noise sigmas or the median of the
+    :data:`QUIET_FRACTION` of a period before it by twice that, unless the samples from
+    it on settle as a step does (as many, within the band and spread over no more than
+    twice that), less half that stretch as a margin. Before its impact the sensor is at
+    rest, so the samples there place a step a period or more nearer the onset than the
+    period means do (a step 19 us before an onset at 1 MHz: seed 14 of the hard mix)."""
+    quiet = max(2, round(QUIET_FRACTION * period))
+    reach = RISE_SIGMAS * MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
+
+    def within(values):
+        return values.min() >= band[0] - reach and values.max() <= band[1] + reach
+
+    i = start + quiet
+    while i < x.size:
+        if not within(x[i : i + 1]) or abs(x[i] - np.median(x[i - quiet : i])) > 2.0 * reach:
+            ahead = x[i : i + quiet]
+            if ahead.size < quiet or np.ptp(ahead) > 2.0 * reach or not within(ahead):
+                return max(start, i - quiet // 2)
+            i += quiet  # a step: the level it settles at is the one to follow
+        i += 1
+    return max(start, x.size - quiet // 2)
+
+
+def _fit(x, kept, stop, peak, ring, fixed=()):
+    """The least-squares fit of the level and the free ringing from the lobe's end (and
+    steps at the ``fixed`` indices of ``kept``) on ``x[kept]``: its columns and
+    residual, and for a step at every place of ``kept`` the residual sum of squares it
+    takes off and the part of its column the other columns do not explain (module step
+    2)."""
+    sensor, dt = ring
+    columns = _ringing(np.clip(kept - peak, 0, None) * dt, sensor)[0]
+    columns[kept < stop] = 0.0  # the ringing is free from the lobe's end
+    steps = [(np.arange(kept.size) >= j).astype(float) for j in fixed]
+    m = np.column_stack([np.ones(kept.size), columns, *steps])
+    y = x[kept]
+    coefficients = np.linalg.lstsq(m, y, rcond=None)[0]
+    residual = y - m @ coefficients
+    # step column u_j: 1 from kept sample j on; its sums with the columns and the residual
+    tails = np.cumsum(m[::-1], axis=0)[::-1]
+    r_u = np.cumsum(residual[::-1])[::-1]
+    gram = np.linalg.pinv(m.T @ m)
+    u_u = (kept.size - np.arange(kept.size)) - np.einsum("ij,jk,ik->i", tails, gram, tails)
+    gain = np.zeros(kept.size)
+    valid = u_u > 1e-9 * kept.size
+    valid[0] = False  # u_0 is the constant column itself
+    gain[valid] = r_u[valid] ** 2 / u_u[valid]
+    return {
+        "coefficients": coefficients,
+        "residual": residual,
+        "gain": gain,
+        "r_u": r_u,
+        "valid": valid,
+    }
+
+
+def _kept(x, lobe):
+    start, stop = lobe
+    return np.r_[np.arange(start), np.arange(stop, x.size)]
 
 
 def place_across(x, level, height, period, far_noise, ring):
@@ -76,33 +169,73 @@ def place_across(x, level, height, period, far_noise, ring):
     if lobe is None:
         return None
     start, stop = lobe
-    kept = np.r_[np.arange(start), np.arange(stop, x.size)]
+    kept = _kept(x, lobe)
     if kept.size < 8:
         return None
     peak = start + int(np.argmax(np.abs(x[start:stop] - level)))
-    sensor, dt = ring
-    columns = _ringing(np.clip(kept - peak, 0, None) * dt, sensor)[0]
-    columns[kept < stop] = 0.0  # the ringing is free from the lobe's end
-    m = np.column_stack([np.ones(kept.size), columns])
-    y = x[kept]
-    residual = y - m @ np.linalg.lstsq(m, y, rcond=None)[0]
-    # step column u_j: 1 from kept sample j on; its sums with the columns and the residual
-    tails = np.cumsum(m[::-1], axis=0)[::-1]
-    r_u = np.cumsum(residual[::-1])[::-1]
-    gram = np.linalg.pinv(m.T @ m)
-    u_u = (kept.size - np.arange(kept.size)) - np.einsum("ij,jk,ik->i", tails, gram, tails)
-    gain = np.zeros(kept.size)
-    # u_0 is the constant column itself; a change of the other sign is no such step
-    valid = (u_u > 1e-9 * kept.size) & (np.sign(r_u) == np.sign(height))
-    valid[0] = False
+    fit = _fit(x, kept, stop, peak, ring)
+    gain, residual = fit["gain"], fit["residual"]
+    # a change of the other sign is no such step
+    valid = fit["valid"] & (np.sign(fit["r_u"]) == np.sign(height))
     if not valid.any():
         return None
-    gain[valid] = r_u[valid] ** 2 / u_u[valid]
+    gain[~valid] = 0.0
     j = int(np.argmax(gain))
     at_end = int(np.searchsorted(kept, stop))  # a step anywhere in the lobe
     if start > 0 and at_end < kept.size and valid[at_end]:
         rss = max(float(residual @ residual) - gain[j], 0.0)
-        variance = rss / max(kept.size - m.shape[1] - 1, 1)
+        variance = rss / max(kept.size - fit["coefficients"].size - 1, 1)
         if j == at_end or gain[j] - gain[at_end] <= SEPARABLE_SIGMAS**2 * variance:
             return (start + stop) // 2, lobe
     return int(kept[j]), None
+
+
+def second_across(x, level, height, period, far_noise, ring, index):
+    """A second step on the other side of the impact's main lobe from the step placed at
+    ``index`` (:func:`place_across`): two steps, one before an impact and one in its
+    ringing, make one level change across it (their sum), which places one of them.
+
+    Parameters
+    ----------
+    x, level, height, period, far_noise, ring
+        As for :func:`place_across`.
+    index : int
+        The first step's place in ``x`` (outside the main lobe).
+
+    Returns
+    -------
+    tuple or None
+        ``(index, heights, sides)``: the second step's first sample at the new level
+        (index in ``x``), the two steps' heights [N] fitted together (the first's,
+        then the second's) and, for each, how many samples of ``x`` outside the lobe lie
+        on either side of it within its stretch (before the lobe: from the window's
+        start to the lobe; after it: from the lobe's end to the window's end) [-]; None when
+        it would not be told from the impact (a place inside the lobe fits as well, by
+        :data:`SEPARABLE_SIGMAS`) or there is no room.
+    """
+    lobe = _lobe(x, level, height, period, far_noise)
+    if lobe is None:
+        return None
+    start, stop = lobe
+    kept = _kept(x, lobe)
+    at_end = int(np.searchsorted(kept, stop))
+    first = int(np.searchsorted(kept, index))
+    if start == 0 or at_end >= kept.size or first in (0, at_end):
+        return None
+    peak = start + int(np.argmax(np.abs(x[start:stop] - level)))
+    fit = _fit(x, kept, stop, peak, ring, fixed=(first,))
+    before = first >= at_end  # the first step lies after the lobe: look before it
+    side = np.arange(kept.size) < at_end if before else np.arange(kept.size) >= at_end
+    candidates = fit["valid"] & side
+    candidates[at_end] = False
+    if not candidates.any():
+        return None
+    gain = np.where(candidates, fit["gain"], 0.0)
+    j = int(np.argmax(gain))
+    rss = max(float(fit["residual"] @ fit["residual"]) - gain[j], 0.0)
+    variance = rss / max(kept.size - fit["coefficients"].size - 1, 1)
+    if fit["valid"][at_end] and gain[j] - fit["gain"][at_end] <= SEPARABLE_SIGMAS**2 * variance:
+        return None
+    both = _fit(x, kept, stop, peak, ring, fixed=(first, j))["coefficients"][-2:]
+    sides = [(i, at_end - i) if i < at_end else (i - at_end, kept.size - i) for i in (first, j)]
+    return int(kept[j]), (float(both[0]), float(both[1])), sides

@@ -27,7 +27,9 @@ of its neighbourhood.
    its piece) and :data:`~dem_check.campaign.steps.LEAST_HEIGHT` sample-noise sigmas.
 
 A step inside an impact's ringing is not such a run (the impact's lobe is left over):
-the period means find it across the masked impact.
+the period means find it across the masked impact. A step a few periods before an
+impact starts the impact's run: :func:`head_steps` reads it on the run's head, one flat
+level up to the lobe's rise.
 
 References
 ----------
@@ -44,6 +46,7 @@ import ruptures
 from scipy.ndimage import median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.step_ringing import rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
     LEAST_HEIGHT,
@@ -60,7 +63,7 @@ from dem_check.campaign.steps import (
     split,
 )
 
-__all__ = ["CONTEXT_PERIODS", "FLAT_SIGMAS", "run_steps", "search_steps"]
+__all__ = ["CONTEXT_PERIODS", "FLAT_SIGMAS", "head_steps", "run_steps", "search_steps"]
 
 CONTEXT_PERIODS = 8
 """Unmasked sensor periods on each side of a run that give its levels before and after
@@ -75,6 +78,11 @@ the white noise) by up to 5 of them over 0.5 ms; an impact's main lobe leaves 16
 
 DECIMATION = 8
 """Means per sensor period the change points are searched on [-]."""
+
+HEAD_PERIODS = 4
+"""Sensor periods at the head of a run that are one level when a step starts it [-]
+(:func:`head_steps`; a step closer to the impact is placed across it:
+:mod:`dem_check.campaign.step_ringing`)."""
 
 BOX_PERIODS = 6
 """Shortest time between two steps read on one run, in sensor periods [-] (0.15 ms at
@@ -207,6 +215,72 @@ def run_steps(values, runs, period, masked, slopes):
     return out
 
 
+def head_steps(values, runs, period, masked, slopes):
+    """Offset steps at the head of a run of the first pass: a step a few periods before
+    an impact starts the run (the running baseline follows neither), and the impact's
+    lobe follows. Its first :data:`HEAD_PERIODS` periods are then one level, as flat as
+    the quiet samples before the run (their standard deviation: a lobe raises it) and
+    off the level there by :data:`~dem_check.campaign.steps.STEP_SIGMAS` standard errors
+    of the two levels and :data:`~dem_check.campaign.steps.LEAST_HEIGHT` sample sigmas.
+    The level change across the impact does not see it under drift and hum (a 0.275 N
+    step 0.12 ms before an impact read 5.5 sigmas there: seed 14 of the hard mix of
+    ``benchmarks/bench_steps.py``); placed by the least-absolute-deviation split.
+
+    Parameters
+    ----------
+    values, runs, period, masked, slopes
+        As for :func:`run_steps`.
+
+    Returns
+    -------
+    list of OffsetStep
+    """
+    values = np.asarray(values, dtype=float)
+    noise = period_noise(values, period)
+    out = []
+    for first, last, lo, hi in runs:
+        start, stop = _context(masked, lo, hi, CONTEXT_PERIODS * period)
+        head = first + HEAD_PERIODS * period
+        if first - start < period or head > last:
+            continue
+        x = values[start:stop] - slopes[lo] * (np.arange(start, stop) - lo)
+        level, quiet = float(np.median(x[: first - start])), robust_noise(x[: first - start])
+        at = split(
+            x[: head - start],
+            level,
+            float(np.median(x[first - start : head - start])) - level,
+            quiet,
+        )[0]
+        new = float(np.median(x[at : at + HEAD_PERIODS * period]))
+        # the run may start a sample or two before the step; the head lasts to the rise
+        old, new = x[:at], x[at : rise(x, at, (new, new), period)]
+        if old.size < period or new.size < HEAD_PERIODS * period:
+            continue
+        height = float(np.median(new) - np.median(old))
+        error = np.hypot(*(level_error(noise, period, part.size) for part in (old, new)))
+        significance = abs(height) / max(error, np.finfo(float).tiny)
+        if np.std(new) > FLAT_RATIO * quiet or significance < STEP_SIGMAS:
+            continue
+        if abs(height) < LEAST_HEIGHT * quiet:
+            continue
+        # a head longer than BOX_PERIODS is a longer level than a contact's
+        if new.size < BOX_PERIODS * period and not _stays(x, hi - start, level, height):
+            continue
+        out.append(OffsetStep(start + at, height, float(significance), (start, head)))
+    return out
+
+
+def _stays(x, hi, level, height):
+    """Whether a head step's level stays after the run (``x[hi:]``, the drift taken off):
+    nearer the new level ``level + height`` than the old ``level`` [N]. A bounce of the
+    hard grain fits a box of 65 us with a top flat to the noise and returns to the
+    level (:data:`BOX_PERIODS`)."""
+    if x.size <= hi:
+        return False
+    after = float(np.median(x[hi:]))
+    return abs(after - level - height) < abs(after - level)
+
+
 def search_steps(values, runs, period, hold, ring=None):
     """Every offset step of a record, from its first pass's candidate runs: runs that
     are steps (:func:`run_steps`), steps on the period means outside the other runs
@@ -241,8 +315,11 @@ def search_steps(values, runs, period, hold, ring=None):
             if first >= period:  # a run from the start is edge_steps' to judge
                 following = runs[k + 1][0] - 2 * period if k + 1 < len(runs) else n
                 inner.append((first, last, lo, max(last + 1, min(hi, following))))
-    boxed = run_steps(values, inner, period, masked, drift_slopes(values, period, masked))
+    slopes = drift_slopes(values, period, masked)
+    boxed = run_steps(values, inner, period, masked, slopes)
     found = [step for _, steps in boxed for step in steps]
+    taken = [run for run, _ in boxed]
+    found += head_steps(values, [r for r in inner if r not in taken], period, masked, slopes)
     for (_, _, lo, hi), _ in boxed:
         masked[lo:hi] = False  # a level now, no impact
     rest = remove_steps(values, found)

@@ -49,7 +49,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
-from dem_check.campaign.step_ringing import place_across
+from dem_check.campaign.step_ringing import place_across, second_across
 
 __all__ = [
     "STEP_SIGMAS",
@@ -276,13 +276,37 @@ def _one_pass(values, period, masked, ring):
         if ring is not None and masked[window[0] : window[1]].any():  # across an impact
             first, stop = window
             x = values[first:stop] - change[1] * (np.arange(first, stop) - firsts[k + 1])
-            placed = place_across(x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring)
+            args = (x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring)
+            placed = place_across(*args)
             if placed is not None:
                 index = first + placed[0]
                 lobe = None if placed[1] is None else tuple(first + i for i in placed[1])
+            other = second_across(*args, index - first) if placed and not lobe else None
+            sigmas = _both(other, period, noise)
+            if sigmas:  # a step before the impact and one in its ringing
+                for at, h, sigma in zip((index, first + other[0]), other[1], sigmas, strict=True):
+                    found.append(OffsetStep(at, h, sigma, window))
+                continue
         height, sigmas = float(changes["height"][k]), float(significance[k])
         found.append(OffsetStep(index, height, sigmas, window, lobe))
     return found
+
+
+def _both(other, period, noise):
+    """The significances of the two steps of :func:`second_across` (each height over the
+    standard error of its two levels), or None unless both reach :data:`STEP_SIGMAS` of
+    those and :data:`LEAST_HEIGHT` sample sigmas (``noise``: of the period means and of
+    the samples [N])."""
+    if other is None:
+        return None
+    out = []
+    for height, sides in zip(other[1], other[2], strict=True):
+        error = np.hypot(*(level_error(noise[0], period, n) for n in sides))
+        sigmas = abs(height) / max(error, np.finfo(float).tiny)
+        if sigmas < STEP_SIGMAS or abs(height) < LEAST_HEIGHT * noise[1]:
+            return None
+        out.append(float(sigmas))
+    return out
 
 
 def find_steps(values, period, masked, ring=None):

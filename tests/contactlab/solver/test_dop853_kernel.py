@@ -7,6 +7,7 @@ from scipy.integrate import DOP853
 
 import contactlab as cl
 from contactlab.kernels import dop853 as kernel
+from contactlab.kernels.model_rhs import NORMAL
 from contactlab.kernels.power import pack, rhs
 from contactlab.laws import HertzDamped, HuntCrossley
 from contactlab.solver import adaptive
@@ -57,7 +58,9 @@ def test_one_step_as_the_python_stepper(paper_grain, law, y):
     python = Stepper(system.rhs(branch.force), 0.0, y, RTOL, ATOL, first_step=h_try)
     assert python.step(1.0)
     K, y_new, f_new = np.empty((kernel.WORK_ROWS, 4)), np.empty(4), np.empty(4)
-    ok, _, h_next, h = kernel.step(0.0, y, f, h_try, 1.0, RTOL, ATOL, par, False, K, y_new, f_new)
+    ok, _, h_next, h = kernel.step(
+        0.0, y, f, h_try, 1.0, RTOL, ATOL, par, False, K, y_new, f_new, NORMAL
+    )
     assert ok
     assert h == h_try == python.t  # accepted at once, by both: the step is the same number
     # a state is y plus 12 stage terms: rounding within 16 eps of y + h |f| per component
@@ -67,7 +70,7 @@ def test_one_step_as_the_python_stepper(paper_grain, law, y):
     allowed = error_rounding(K[: kernel.STAGES + 1], y, y_new) / 8.0 + 4 * EPS
     assert h_next == pytest.approx(python._h, rel=allowed)
     F = np.empty((7, 4))
-    kernel.interpolant(K, h, y, y_new, f_new, par, False, F)
+    kernel.interpolant(K, h, y, y_new, f_new, par, False, F, NORMAL)
     # rows 0-1 hold delta = y_new - y once: within 16 eps of the state's scale, as y_new;
     # row 2 holds 2 delta - h (f_new + f_old): twice that, plus 2 eps of the slopes'
     # term (measured 17.5 eps on one CPU); rows 3-6 sum 16 stages h D K, three of them

@@ -6,9 +6,11 @@ steps (:mod:`dem_check.campaign.step_runs`) on white noise.
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from contactlab.inverse.local_baseline import _ringing
-from dem_check.campaign.step_ringing import place_across
+from dem_check.campaign.step_ringing import place_across, second_across
 from dem_check.campaign.step_runs import run_steps
 from dem_check.campaign.steps import find_steps, remove_steps, split
 
@@ -77,6 +79,35 @@ def test_a_step_inside_the_main_lobe_is_flagged(hard_setup):
     # period either side
     assert lobe[0] < 400 < 600 < lobe[1]
     assert index == (lobe[0] + lobe[1]) // 2  # its middle: at most half the lobe off
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    before=st.integers(40, 300),
+    after=st.integers(700, 1500),
+    # their sum at most 0.6 N under the 2 N lobe: larger, the lobe is taken as where the
+    # period means lie further than the sum from both levels, its flanks are left to the
+    # fit, and the heights come out a few mN off (0.497 and 0.503 N for two of 0.5 N)
+    heights=st.tuples(st.floats(0.1, 0.3), st.floats(0.1, 0.3)),
+    sign=st.sampled_from([1.0, -1.0]),
+)
+def test_two_steps_either_side_of_the_lobe_are_placed_exactly_on_the_exact_model(
+    hard_setup, before, after, heights, sign
+):
+    # a step before the lobe (which the period means place from 325 on: half a period
+    # of averaging and a period either side) and one in the ringing; the level change
+    # across the impact is their sum, which place_across places as one step
+    sensor = hard_setup[1]
+    x, period = _window(sensor, before, height=sign * heights[0])
+    x[after:] += sign * heights[1]
+    total = sign * sum(heights)
+    index, lobe = place_across(x, 0.1, total, period, 0.05, (sensor, DT))
+    assert lobe is None
+    second, fitted, _ = second_across(x, 0.1, total, period, 0.05, (sensor, DT), index)
+    assert sorted([index, second]) == [before, after]  # the model is exact
+    truth = dict(zip((before, after), heights, strict=True))
+    # least squares on the exact model: the heights to rounding
+    assert fitted == pytest.approx((sign * truth[index], sign * truth[second]), abs=1e-9)
 
 
 def _levels(offsets, n=4000, noise=0.03, seed=1):
