@@ -110,7 +110,7 @@ def _rms(values, ddof):
     return math.sqrt(float(values @ values) / (values.size - ddof))
 
 
-def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
+def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, exclude=None):
     """Fit the local baseline of one impact and integrate its impulse (module docstring).
 
     Parameters
@@ -135,6 +135,10 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
         are fitted by generalised least squares and the noise from ``start`` to the
         post-contact window is predicted from both sides and taken off with the line
         (:func:`contactlab.inverse.noise_prediction.predict_gap`).
+    exclude : numpy.ndarray of bool, optional
+        Samples of the segment that hold another impact (its onset to its decayed
+        ringing): left out of both sides' fit and of the samples the noise under the
+        pulse is predicted from; what they hold is signal, not baseline or noise.
 
     Returns
     -------
@@ -149,8 +153,9 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
     if base[1] <= start:  # a baseline before the impact: its last PRE_PERIODS
         near = max(PRE_PERIODS * sensor.period, POST_MIN_SAMPLES * dt)
         base = (max(base[0], base[1] - near), base[1])
-    in_base = (t >= base[0]) & (t < base[1])
-    in_post = (t >= post[0]) & (t <= post[1]) & ~in_base
+    kept = np.ones(t.size, dtype=bool) if exclude is None else ~exclude
+    in_base = (t >= base[0]) & (t < base[1]) & kept
+    in_post = (t >= post[0]) & (t <= post[1]) & ~in_base & kept
     fitted = in_base | in_post
     centre = float(t[fitted].mean())
     scale = max(float(np.ptp(t[fitted])), dt)
@@ -158,7 +163,7 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
     # after the ringing) it would be extrapolated back over the ringing's decay, so a
     # constant is taken instead (on the real hammer records a line put the baseline
     # under the hit 0.1-0.2 N off, a constant within 0.03 N)
-    degree = DEGREE if base[1] <= start else 0
+    degree = DEGREE if base[1] <= start and in_base.any() else 0
     powers = np.vander((t - centre) / scale, degree + 1, increasing=True)
     columns = [powers]
     if resolved:
