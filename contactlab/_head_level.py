@@ -93,9 +93,6 @@ class HeadFit(NamedTuple):
     polynomial's origin) and the last sample fitted (indices)."""
     scale: float
     """Samples from ``head`` to just past the last sample fitted [-]."""
-    richer: np.ndarray = None
-    """With ``richer=True``: the coefficients of a polynomial one degree higher fitted
-    the same way on the same samples (how far the drift the fit leaves moves it)."""
 
     @property
     def degree(self):
@@ -115,12 +112,8 @@ class HeadFit(NamedTuple):
         powers = self._powers(index, self.coefficients.size)
         return np.sqrt(np.einsum("ij,jk,ik->i", powers, self.covariance, powers))
 
-    def richer_level(self, index):
-        """The level of the polynomial one degree higher at sample ``index``."""
-        return self._powers(index, self.richer.size) @ self.richer
 
-
-def head_fit(y, head, width, exclude=None, columns=None, richer=False):
+def head_fit(y, head, width, exclude=None, columns=None):
     """The level of a record's first ``head`` samples (a pulse at its start), fitted
     after them and extrapolated back (module docstring).
 
@@ -139,8 +132,6 @@ def head_fit(y, head, width, exclude=None, columns=None, richer=False):
     columns : numpy.ndarray, optional
         Regressors fitted together with the polynomial (``(y.size, m)``; e.g. the
         sensor's free ringing after a contact), not part of the level.
-    richer : bool, default False
-        Fit a polynomial one degree higher as well (:attr:`HeadFit.richer`).
 
     Returns
     -------
@@ -170,14 +161,12 @@ def head_fit(y, head, width, exclude=None, columns=None, richer=False):
     if abs(coefficients[degree]) < CURVATURE_SIGMAS * np.sqrt(covariance[degree, degree]):
         degree -= 1
         coefficients, covariance = _robust_fit(x, y[index], degree, extra)
-    higher = _robust_fit(x, y[index], degree + 1, extra)[0][: degree + 2] if richer else None
     return HeadFit(
         coefficients=coefficients[: degree + 1],
         covariance=covariance[: degree + 1, : degree + 1],
         extra=coefficients[degree + 1 :],
         window=(head, stop - 1),
         scale=scale,
-        richer=higher,
     )
 
 

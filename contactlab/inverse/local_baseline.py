@@ -116,8 +116,9 @@ class LocalBaseline:
     """Change of the baseline from the impact's start to ``post[0]`` [N] (signed); for a
     constant baseline (one side only), the change of a line through the fit's residual
     over the fitted samples: a drift the constant could not follow; for a head level
-    (:func:`head_baseline`), the largest change a polynomial one degree higher makes to
-    it under the pulse: a drift the fit did not follow."""
+    (:func:`head_baseline`), a line through what the fit leaves on the post-contact
+    window (its free ringing refitted there), extrapolated back to the record's first
+    sample: a drift near the pulse that the fit did not follow."""
     head: tuple = ()
     """For a head level: the samples it was fitted on ``[start, end]`` [s] and its
     degree, ``(start, end, degree)``; empty otherwise."""
@@ -275,8 +276,8 @@ def head_baseline(t, y, contact_end, end, sensor):
     -------
     LocalBaseline
         ``window`` empty at ``post[0]``, ``noise`` nan (nothing before the pulse),
-        ``drift`` the change a polynomial one degree higher makes under the pulse,
-        ``head`` the fit window and degree.
+        ``drift`` the residual's drift near the pulse extrapolated under it, ``head``
+        the fit window and degree.
 
     Raises
     ------
@@ -292,15 +293,13 @@ def head_baseline(t, y, contact_end, end, sensor):
         columns, a, b = _ringing(np.maximum(t - post[0], 0.0), sensor)
         columns[:head] = 0.0
     width = max(HEAD_MIN_SAMPLES, round(HEAD_PERIODS * sensor.period / dt))
-    fit = head_fit(y, head, width, columns=columns, richer=True)
-    index = np.arange(t.size)
-    level = fit.level(index)
+    fit = head_fit(y, head, width, columns=columns)
+    level = fit.level(np.arange(t.size))
     residual = y - level - (0.0 if columns is None else columns @ fit.extra)
     if resolved:
         total = impulse(t, y - level, float(t[0]), post[0]) + _tail(fit.extra, a, b, sensor)
     else:
         total = impulse(t, y - level, float(t[0]), end)
-    change = fit.richer_level(index[: head + 1]) - level[: head + 1]
     in_post = (t >= post[0]) & (t <= post[1])
     first, last = fit.window
     return LocalBaseline(
@@ -310,6 +309,19 @@ def head_baseline(t, y, contact_end, end, sensor):
         impulse=float(total),
         noise=math.nan,
         post_noise=_rms(residual[in_post], 2 if resolved else 0),
-        drift=float(change[np.argmax(np.abs(change))]),
+        drift=_residual_drift(t, residual, in_post, None if columns is None else columns[:, :2]),
         head=(float(t[first]), float(t[last]), fit.degree),
     )
+
+
+def _residual_drift(t, residual, in_post, ringing):
+    """A line through ``residual`` on the post-contact window (with the free ringing's
+    ``ringing`` columns refitted there, when resolved), at the record's first sample
+    [N]: how far a drift near the pulse that the head level did not follow moves the
+    baseline under it (white noise: about 0.1 noise sigmas)."""
+    centre = float(t[in_post].mean())
+    columns = [np.ones(int(in_post.sum())), t[in_post] - centre]
+    if ringing is not None:
+        columns += [ringing[in_post, 0], ringing[in_post, 1]]
+    coefficients, *_ = np.linalg.lstsq(np.column_stack(columns), residual[in_post], rcond=None)
+    return float(coefficients[0] + coefficients[1] * (float(t[0]) - centre))

@@ -65,8 +65,9 @@ DRIFT_SIGMAS = 1.0
 """A baseline that changes by more than this many noise standard deviations across the
 pulse is reported as drifting [-]: a constant baseline would then be off by more than
 the noise, and the line removed holds only if the drift is smooth over the fit. For a
-record that starts at its pulse, the change is the one a polynomial one degree higher
-than the head level's makes under the pulse: a drift the fit did not follow."""
+record that starts at its pulse, the change is that of the drift the head level left:
+a line through its residual after the contact, extrapolated back to the record's first
+sample (:attr:`~contactlab.inverse.local_baseline.LocalBaseline.drift`)."""
 
 DEGREE_NAMES = {1: "line", 2: "quadratic"}
 """Names of the head level's polynomial degrees, for the notes."""
@@ -94,8 +95,8 @@ class PulseBaseline:
     post: tuple
     """The post-contact window fitted with the sensor's free ringing ``[start, end]`` [s]."""
     drift: float
-    """The baseline's change across the pulse [N]; with a short pre-trigger, the largest
-    change a polynomial one degree higher than the head level makes under the pulse."""
+    """The baseline's change across the pulse [N]; with a short pre-trigger, the drift
+    the head level left, extrapolated back to the record's first sample."""
     post_noise: float
     """Residual of the free ringing and the line after the contact [N] (rms)."""
     status: str
@@ -200,11 +201,12 @@ def _describe(base, pre, contact, noise, sensor, reference):
     if abs(base.drift) > DRIFT_SIGMAS * noise and pre is None:
         flags.append("drifting baseline")
         notes.append(
-            f"a polynomial one degree higher, fitted on the same samples, moves the baseline "
-            f"under the pulse by up to {base.drift:+.3g} N ({abs(base.drift) / noise:.1f} noise "
-            f"sigmas): the drift after the contact is not smooth over {first:.6g} to "
-            f"{last:.6g} s, and with nothing before the pulse the figures can be off by about "
-            "that much: record a pre-trigger"
+            f"what the {DEGREE_NAMES[degree]} leaves after the contact still drifts: a line "
+            f"through it on {base.post[0]:.6g} to {base.post[1]:.6g} s moves the baseline at "
+            f"the record's start by {base.drift:+.3g} N ({abs(base.drift) / noise:.1f} noise "
+            f"sigmas); the drift is not a {DEGREE_NAMES[degree]} over {first:.6g} to "
+            f"{last:.6g} s (or a slow structure mode is left), and with nothing before the "
+            "pulse the figures can be off by that much or more: record a pre-trigger"
         )
     elif abs(base.drift) > DRIFT_SIGMAS * noise:
         flags.append("drifting baseline")

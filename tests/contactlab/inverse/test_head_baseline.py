@@ -83,8 +83,9 @@ def test_the_baseline_under_the_pulse_is_the_drift_within_a_noise_sigma(slope, c
     # 8 times the largest, and half the 2 % target on the peak signal (2 sigma)
     assert np.max(np.abs(found.values[under] - drift[under])) < sigma
     assert found.status.startswith("short pre-trigger")
-    # a polynomial drift is followed: what one degree more changes under the pulse is
-    # the scatter above (at most 0.2 sigma measured), under the one-sigma flag
+    # a polynomial drift is followed: the line through what the fit leaves after the
+    # contact, extrapolated to the start, is the noise's (at most 0.18 sigma measured
+    # over the 30 drifts), under the one-sigma flag
     assert "drifting baseline" not in found.status, found.notes
 
 
