@@ -85,9 +85,8 @@ def figures():
     has one (``_measure`` puts its ``benchmarks/`` first): its loop reads the results
     through that tree's API.
     """
-    import numpy as np
-
     import bench_batch
+    import numpy as np
 
     from contactlab.batch import hertz_impacts, linear_impacts
 

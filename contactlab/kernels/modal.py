@@ -230,22 +230,6 @@ def _read(event, y, par, track, values):
         values[4] = 0.0 if d < 0.0 else max(raw, 0.0)
 
 
-@njit(cache=True, error_model="numpy")
-def _lobe_peak(slope_kind, peak, value, between, piece, par, y, work, best):
-    """A maximum of the reading ``value`` between two scan points, refined
-    (:func:`_refine_peak`) where its slope (the reading beside it: ``value + 1`` for the
-    sensor signal, ``value - 1`` for the contact force) falls through zero and the
-    maximum may beat ``best[peak]``; ``between`` is ``(prev, cur, t_prev, tau, upto)``:
-    the readings at both points, their local times [s] and the event's (or ``tau``)."""
-    slope = value + 1 if slope_kind == _SENSOR_SLOPE else value - 1
-    prev, cur, t_prev, tau, upto = between
-    if falls(prev[slope], cur[slope]) and may_exceed(
-        prev[value], prev[slope], best[peak], tau - t_prev
-    ):
-        interval = (t_prev, prev[slope], tau, cur[slope], upto)
-        _refine_peak(slope_kind, peak, interval, piece, par, y, work, best)
-
-
 @njit(cache=True, error_model="numpy", inline="always")
 def may_exceed(value, slope, best, h):
     """Whether a local maximum inside a scan interval of length ``h`` [s] can beat ``best``.
@@ -320,11 +304,17 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     hit = _crossed_side(event, direction, hit, tau, piece, par, y)
             upto = tau if hit < 0.0 else hit
             h = tau - t_prev
-            between = (prev, cur, t_prev, tau, upto)
-            if track[0]:  # readings [1] the sensor signal, [2] its slope
-                _lobe_peak(_SENSOR_SLOPE, SENSOR_PEAK, 1, between, piece, par, y, work, best)
-            if track[1]:  # readings [4] the contact force, [3] its slope
-                _lobe_peak(_FORCE_SLOPE, CONTACT_PEAK, 4, between, piece, par, y, work, best)
+            # a maximum between the points, refined only where it may win: the checks stay
+            # here, in the hot loop (a helper taking the readings and the piece as
+            # arguments, even inlined, halved the batch's throughput: bench_core.py)
+            if track[0] and falls(prev[2], cur[2]):  # [1] the sensor signal, [2] its slope
+                if may_exceed(prev[1], prev[2], best[SENSOR_PEAK], h):
+                    interval = (t_prev, prev[2], tau, cur[2], upto)
+                    _refine_peak(_SENSOR_SLOPE, SENSOR_PEAK, interval, piece, par, y, work, best)
+            if track[1] and falls(prev[3], cur[3]):  # [4] the contact force, [3] its slope
+                if may_exceed(prev[4], prev[3], best[CONTACT_PEAK], h):
+                    interval = (t_prev, prev[3], tau, cur[3], upto)
+                    _refine_peak(_FORCE_SLOPE, CONTACT_PEAK, interval, piece, par, y, work, best)
             if track[0] and falls(prev[1], cur[1]):
                 t_end = _root(SENSOR, t_prev, prev[1], tau, cur[1], piece, par, y, work)
                 if t_end <= upto:

@@ -9,7 +9,9 @@ field says (:data:`~contactlab.kernels.power.NORMAL_MODEL`,
 :data:`~contactlab.kernels.elastic_cap_rhs.ELASTIC_CAP_MODEL`, set by the packers). A stepper that
 took its right-hand side as an argument could not be cached on disk by numba, so the
 choice is made here, once per evaluation; :func:`events` chooses the event functions the
-same way (:mod:`contactlab.kernels.oblique_events` locates them for either model).
+same way (:mod:`contactlab.kernels.oblique_events` locates them for either model). Both
+are inlined into their callers: called, the choice cost the damped-Hertz DOP853 step 60 %
+(763-890 ns against 466-592 ns before the choice existed, measured in one run).
 """
 
 from contactlab.compiled import njit
@@ -19,7 +21,7 @@ from contactlab.kernels import power as power_rhs
 __all__ = ["events", "rhs"]
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def rhs(z, par, warped, out):
     """Right-hand side into ``out`` (see the module docstring)."""
     model = par[power_rhs.MODEL]
@@ -31,7 +33,7 @@ def rhs(z, par, warped, out):
         power_rhs.rhs(z, par, warped, out)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def events(z, par, phase, out):
     """Event values into ``out``; returns how many the model has in ``phase``.
 

@@ -114,7 +114,7 @@ def _grow(t_old, h, y_old, F):
     return t2, h2, y2, F2
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _span(F, y_old, i, j):
     """Bounds ``(lo, hi)`` of ``z[j] - z[i]`` on a step's interpolant (``y_old``, ``F``).
 
@@ -134,7 +134,7 @@ def _span(F, y_old, i, j):
     return min(start, end) + 0.25 * min(lo, 0.0), max(start, end) + 0.25 * max(hi, 0.0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def _pressed(F, y_old, par):
     """Whether the contact force is bounded above zero on the whole step's interpolant
     (overlap and rate from :func:`_span`, the force from
@@ -181,7 +181,7 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
             t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
         interpolant(K, h, y, y_new, f_new, par, warped, F[count])
         if _pressed(F[count], y, par):
-            rows[0] = rows[SUBSTEPS]
+            rows[0, 0] = rows[SUBSTEPS, 0]
             events(y_new, par, 0.0, rows[SUBSTEPS])
             hit = math.nan
         else:
@@ -193,7 +193,7 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
         if not math.isnan(hit):
             again = retake_bound(t, hit, t_new, retaken)
             if not math.isnan(again):  # the step again from t, to just past the end
-                rows[SUBSTEPS] = rows[0]
+                rows[SUBSTEPS, 0] = rows[0, 0]
                 h_try, bound, retaken, hit = h_next, again, retaken + 1, math.nan
                 continue
         t_old[count], hs[count], y_old[count] = t, h, y
