@@ -83,6 +83,11 @@ noise, the impulse's rms error was 2.1 % with 8 periods, 3.1 % with 20)."""
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the free ringing to be fitted [-]."""
 
+DECAY_TIMES = 5.0
+"""Decay times ``1 / (zeta w)`` of the sensor's ringing after the contact from which
+:func:`head_baseline` fits a record too coarse to resolve it [-] (``exp(-5)``: under 1 %
+of its amplitude is left)."""
+
 HEAD_PERIODS = 64.0
 """Fit window of :func:`head_baseline` after the contact [sensor periods] (at least
 :data:`~contactlab._head_level.HEAD_MIN_SAMPLES` samples): the campaign's block
@@ -260,7 +265,10 @@ def head_baseline(t, y, contact_end, end, sensor):
     :data:`HEAD_PERIODS` sensor periods from the post-contact window's start, with the
     ringing's two columns there; past the fit window the polynomial is extrapolated
     (only the pulse and the post-contact window are read on it). On a record too coarse
-    to resolve the ringing the fit starts where it has decayed (``end``), without it.
+    to resolve the ringing it is fitted without it, from :data:`DECAY_TIMES` decay
+    times after ``contact_end`` (an aliased ringing is not zero-mean: fitted from the
+    contact at 3 samples a period, a quadratic took it for drift, 4.6 noise sigmas off),
+    and the impulse integrated to ``end``.
 
     Parameters
     ----------
@@ -287,6 +295,10 @@ def head_baseline(t, y, contact_end, end, sensor):
     """
     dt = float(t[1] - t[0])
     resolved, post = _post_window(t, contact_end, end, sensor)
+    if not resolved:  # from where the unresolved ringing has decayed
+        decayed = contact_end + DECAY_TIMES / (sensor.damping_ratio * sensor.angular_frequency)
+        decayed = min(decayed, float(t[-1]) - HEAD_MIN_SAMPLES * dt)
+        post = (decayed, min(decayed + post[1] - post[0], float(t[-1])))
     head = int(np.searchsorted(t, post[0]))
     columns = None
     if resolved:

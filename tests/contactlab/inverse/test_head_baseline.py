@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import contactlab as cl
-from contactlab.errors import ParameterError
+from contactlab.errors import ParameterError, ResolutionWarning
 from contactlab.inverse import synthetic_trace
 from contactlab.inverse.local_baseline import head_baseline
 from contactlab.inverse.pulse import pulse_baseline
@@ -117,3 +117,30 @@ def test_a_record_too_short_after_its_pulse_is_refused_with_the_reason():
     keep = t <= 1.5 * contact_time + 30 / RATE  # 30 samples after the contact
     with pytest.raises(ParameterError, match="record a pre-trigger"):
         head_baseline(t[keep], signal[keep], 1.5 * contact_time, float(t[keep][-1]), SENSOR)
+
+
+def test_a_record_too_coarse_for_the_ringing_is_fitted_after_it_has_decayed():
+    """At 120 kHz (3 samples a sensor period) the ringing is not fitted: the level is
+    fitted from 5 decay times after the contact, where it has decayed."""
+    with pytest.warns(ResolutionWarning):  # the simulation says the rate is coarse
+        t, signal, truth = synthetic_trace(
+            GRAIN,
+            SENSOR,
+            LAW,
+            2.0,
+            duration=10e-3,
+            sample_rate=1.2e5,
+            pre_trigger=0.0,
+            noise=0.0,
+        )
+    sigma = 0.01 * truth.peak_sensor_force
+    drift = _drift(t, 50.0, 0.0)
+    noisy = signal + drift + np.random.default_rng(1).normal(0.0, sigma, t.size)
+    found = pulse_baseline(t, noisy, SENSOR, first_touch=False)
+    # 1 ms (5 decay times of 0.2 ms) after the contact's end at 0.1 ms
+    assert found.head[0] == pytest.approx(1.1e-3, abs=2 / 1.2e5)
+    under = t <= found.post[0]
+    # measured 0.13 sigma (fitted from the contact, where the aliased ringing is not
+    # zero-mean, a quadratic was 4.6 sigma off); one sigma as above
+    assert np.max(np.abs(found.values[under] - drift[under])) < sigma
+    assert found.status == "short pre-trigger"
