@@ -29,7 +29,6 @@ COMPILED_MODULES = (
     "contactlab.kernels.linear_impact",
     "contactlab.kernels.hertz_impact",
     "contactlab.kernels.impact_loop",
-    "contactlab.kernels.model_rhs",
     "contactlab.kernels.oblique_rhs",
     "contactlab.kernels.oblique_events",
     "contactlab.kernels.oblique_kernel",
@@ -37,7 +36,9 @@ COMPILED_MODULES = (
     "contactlab.kernels.oblique_sample",
     "contactlab.batch.oblique_kernel",
 )
-"""Modules with ``numba.njit(cache=True)`` functions."""
+"""Modules with ``numba.njit(cache=True)`` functions compiled on their own (and so cached
+beside their source). ``contactlab.kernels.model_rhs`` is not one: its two functions are
+inlined into their callers (``inline="always"``) and cached with them."""
 
 
 def cache_is_warm():

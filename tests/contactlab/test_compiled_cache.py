@@ -17,6 +17,8 @@ from pathlib import Path
 
 import pytest
 
+from contactlab.batch.warm_up import COMPILED_MODULES
+
 ROOT = Path(__file__).resolve().parents[2]
 
 SCRIPT = """
@@ -89,3 +91,23 @@ def test_every_cached_compiled_function_uses_the_rebuilding_njit():
                     if path.name != "compiled.py":
                         offenders.append(str(path.relative_to(ROOT)))
     assert not offenders, f"use 'from contactlab.compiled import njit' in {offenders}"
+
+
+def _compiles_on_its_own(decorator):
+    """Whether a decorator is ``njit(..., cache=True)`` without ``inline="always"``."""
+    if not (isinstance(decorator, ast.Call) and getattr(decorator.func, "id", "") == "njit"):
+        return False
+    keywords = {k.arg: getattr(k.value, "value", None) for k in decorator.keywords}
+    return keywords.get("cache") is True and keywords.get("inline") != "always"
+
+
+@pytest.mark.parametrize("name", COMPILED_MODULES)
+def test_every_module_the_warm_check_reads_caches_a_function_of_its_own(name):
+    """``cache_is_warm`` looks for each listed module's ``*.nbi`` files: a module whose
+    functions are all inlined into their callers never writes one, and the check would
+    call a warm cache cold forever (the command lines then announce a compile on every
+    run; found when model_rhs's functions were inlined)."""
+    source = ROOT / (name.replace(".", "/") + ".py")
+    tree = ast.parse(source.read_text(encoding="utf-8"))
+    functions = [n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)]
+    assert any(_compiles_on_its_own(d) for f in functions for d in f.decorator_list), name
