@@ -10,7 +10,10 @@ the model's first touch, by significance (peak over the random noise): the detec
 5-sigma crossing (``crossing``) and the whole-lobe fit with the contact family read per
 record (``lobe``, what ``find_impacts`` reports), largest and 95th-percentile errors in
 samples and microseconds, and the median Cramér-Rao bound of the onset under the
-record's white noise (``bound``; its 1/f noise adds to it), also scaled to 30 sigma.
+record's white noise (``bound``; its 1/f noise adds to it), also scaled to 30 sigma; the
+median stated uncertainty (``uncertainty``: the fitted onset's standard deviation under
+the record's white and 1/f noise, the campaign's ``onset_uncertainty [s]``) and the
+fraction of errors within two of it (``within 2``).
 
 ``--law``, ``--rate``: a subset; ``--noise-model white``: the lobe fit without whitening
 (as before it; the bound is then the white noise's).
@@ -31,6 +34,7 @@ from contactlab.inverse.lobe_onset import fit_lobe
 from contactlab.inverse.noise_colour import NOISE_MODELS
 from dem_check.campaign import find_impacts, onsets
 from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.local import record_noise
 from dem_check.campaign.onsets import _lobe, record_onsets
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -56,9 +60,10 @@ def errors(record, sensor, rate):
     significance."""
     found = find_impacts(record.trace, sensor, fit_onsets=False)
     analysed = [w for w in found.impacts if w.status in ANALYSED]
-    fitted, notes, family, damping = record_onsets(found, analysed, sensor)
+    noise = record_noise(found, sensor)
+    fitted, notes, family, damping, spreads = record_onsets(found, analysed, sensor, noise)
     truth, rows = record.truth, []
-    for window, onset, note in zip(analysed, fitted, notes, strict=True):
+    for window, onset, note, spread in zip(analysed, fitted, notes, spreads, strict=True):
         gap = np.abs(truth["onset [s]"] - window.onset)
         if gap.min() > MATCH:
             continue
@@ -74,6 +79,7 @@ def errors(record, sensor, rate):
                 "crossing": (window.onset - true["onset [s]"]) * rate,
                 "lobe": (onset - true["onset [s]"]) * rate,
                 "bound": bound,
+                "uncertainty": spread * rate,
                 "fallback": bool(note),
                 "family": f"{family} {damping}",
             }
@@ -125,6 +131,11 @@ def main():
                 [table[k] for k in keys], observed=True
             ).median()
             shown["fallbacks"] = table.groupby(keys, observed=True)["fallback"].sum()
+            grouping = table.groupby(keys, observed=True)
+            shown["uncertainty (median)"] = grouping["uncertainty"].median()
+            ratio = (table["lobe"] / table["uncertainty"]).abs()
+            within = (ratio <= 2.0).groupby([table[k] for k in keys], observed=True)
+            shown["within 2"] = within.mean()
         print(shown.round(2).to_string())
         print(f"{name} |error| [us]:")
         print((worst / megahertz).round(3).to_string())

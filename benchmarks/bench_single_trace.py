@@ -24,10 +24,10 @@ run, which the public functions do not expose).
 
 ``--noise-model white`` measures the reconstruction with the white-noise model it had
 before the coloured-noise one (``contactlab.inverse.reconstruct.DEFAULT_NOISE_MODEL``);
-``--effect NAME`` (repeatable) runs those lines only.
+``--effect NAME`` and ``--onset {1 ms,start}`` (repeatable) run those lines only.
 
 Run: ``.venv/bin/python benchmarks/bench_single_trace.py [--seeds N] [--no-crosstalk]
-[--noise-model white] [--effect NAME]``
+[--noise-model white] [--effect NAME] [--onset start]``
 """
 
 import argparse
@@ -144,6 +144,7 @@ def main():
         help="the reconstruction's noise model (white: before the coloured-noise model)",
     )
     parser.add_argument("--effect", action="append", choices=list(EFFECTS))
+    parser.add_argument("--onset", action="append", choices=list(ONSETS))
     args = parser.parse_args()
     reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
     if args.no_crosstalk:
@@ -157,6 +158,8 @@ def main():
     )
     print("|---|---|---|---|")
     for onset_name, onset in ONSETS.items():
+        if args.onset and onset_name not in args.onset:
+            continue
         for name, effects in EFFECTS.items():
             if args.effect and name not in args.effect:
                 continue

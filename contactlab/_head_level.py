@@ -14,7 +14,14 @@ blocks of samples after the pulse and its ringing (past other pulses left out), 
 extrapolated back to the record's first sample. Its standard error, from the fit's
 covariance with the residual's autocorrelation time counted, is returned so a threshold
 can take it in.
+
+The same fit gives the single-trace paths their baseline under a pulse at a record's
+start (:func:`contactlab.inverse.local_baseline.head_baseline`): there the window starts
+at the contact's end and the sensor's free ringing is fitted with the polynomial
+(:func:`head_fit`'s ``columns``), as the local baseline fits it with its line.
 """
+
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -22,7 +29,15 @@ from scipy.stats import median_abs_deviation
 
 from contactlab.errors import ParameterError
 
-__all__ = ["CURVATURE_SIGMAS", "HEAD_DEGREE", "HEAD_FIT_BLOCKS", "HEAD_MIN_SAMPLES", "head_level"]
+__all__ = [
+    "CURVATURE_SIGMAS",
+    "HEAD_DEGREE",
+    "HEAD_FIT_BLOCKS",
+    "HEAD_MIN_SAMPLES",
+    "HeadFit",
+    "head_fit",
+    "head_level",
+]
 
 HEAD_DEGREE = 2
 """Highest degree of the polynomial fitted after the pulse [-]: a drift that curves over
@@ -41,11 +56,14 @@ HEAD_MIN_SAMPLES = 64
 """Fewest quiet samples the fit needs [-] (16 per coefficient and more)."""
 
 
-def _robust_fit(x, values, degree):
-    """Coefficients of a polynomial of ``degree`` in ``x`` fitted with the ``soft_l1``
-    loss, and their covariance: the robust noise of the residual, times its integrated
-    autocorrelation time (1/f noise leaves fewer independent samples than there are)."""
+def _robust_fit(x, values, degree, columns=None):
+    """Coefficients of a polynomial of ``degree`` in ``x`` (then of ``columns``, fitted
+    with it) fitted with the ``soft_l1`` loss, and their covariance: the robust noise of
+    the residual, times its integrated autocorrelation time (1/f noise leaves fewer
+    independent samples than there are)."""
     design = np.vander(x, degree + 1, increasing=True)
+    if columns is not None:
+        design = np.concatenate([design, columns], axis=1)
     start, *_ = np.linalg.lstsq(design, values, rcond=None)
     noise = float(median_abs_deviation(values - design @ start, scale="normal"))
     if noise > 0.0:  # an exactly constant stretch is its own level
@@ -59,10 +77,103 @@ def _robust_fit(x, values, degree):
     return start, noise**2 * time * np.linalg.inv(design.T @ design)
 
 
+class HeadFit(NamedTuple):
+    """The level fitted after a pulse at a record's start (:func:`head_fit`); its
+    methods evaluate it at sample indices (extrapolated back over the pulse, and on past
+    the fit window)."""
+
+    coefficients: np.ndarray
+    """The polynomial's coefficients, lowest power first, in ``(index - head) / scale``."""
+    covariance: np.ndarray
+    """Their covariance (the residual's autocorrelation time counted)."""
+    extra: np.ndarray
+    """Coefficients of the ``columns`` fitted with it (empty without)."""
+    window: tuple
+    """The fit window ``(head, last)``: the first sample after the pulse (the
+    polynomial's origin) and the last sample fitted (indices)."""
+    scale: float
+    """Samples from ``head`` to just past the last sample fitted [-]."""
+
+    @property
+    def degree(self):
+        """Degree of the polynomial kept (1 or :data:`HEAD_DEGREE`) [-]."""
+        return self.coefficients.size - 1
+
+    def _powers(self, index, size):
+        at = (np.asarray(index, dtype=float) - self.window[0]) / self.scale
+        return np.vander(at, size, increasing=True)
+
+    def level(self, index):
+        """The level at sample ``index`` (array) [unit of y]."""
+        return self._powers(index, self.coefficients.size) @ self.coefficients
+
+    def error(self, index):
+        """The level's standard error at sample ``index`` [unit of y]."""
+        powers = self._powers(index, self.coefficients.size)
+        return np.sqrt(np.einsum("ij,jk,ik->i", powers, self.covariance, powers))
+
+
+def head_fit(y, head, width, exclude=None, columns=None):
+    """The level of a record's first ``head`` samples (a pulse at its start), fitted
+    after them and extrapolated back (module docstring).
+
+    Parameters
+    ----------
+    y : numpy.ndarray
+        Finite samples (any unit), checked by the caller.
+    head : int
+        Samples at the record's start that hold the pulse (and its ringing unless
+        ``columns`` fit it), >= 1.
+    width : int
+        Block length of the running baseline [samples]: the fit window holds
+        :data:`HEAD_FIT_BLOCKS` of them after ``head``.
+    exclude : numpy.ndarray of bool, optional
+        Samples left out of the fit (other pulses): the window reaches past them.
+    columns : numpy.ndarray, optional
+        Regressors fitted together with the polynomial (``(y.size, m)``; e.g. the
+        sensor's free ringing after a contact), not part of the level.
+
+    Returns
+    -------
+    HeadFit
+
+    Raises
+    ------
+    ParameterError
+        Fewer than :data:`HEAD_MIN_SAMPLES` samples after the pulse, ``exclude`` left out.
+    """
+    index = np.arange(head, y.size)
+    if exclude is not None:  # the window reaches past other pulses to hold its samples
+        index = index[~exclude[head:]]
+    index = index[: max(HEAD_MIN_SAMPLES, round(HEAD_FIT_BLOCKS * width))]
+    if index.size < HEAD_MIN_SAMPLES:
+        raise ParameterError(
+            f"only {index.size} quiet samples after the pulse at the record's start (head = "
+            f"{head} samples; need {HEAD_MIN_SAMPLES}): no baseline to extrapolate under it; "
+            "record a pre-trigger"
+        )
+    stop = int(index[-1]) + 1
+    scale = float(stop - head)
+    x = (index - head) / scale
+    extra = None if columns is None else columns[index]
+    degree = HEAD_DEGREE
+    coefficients, covariance = _robust_fit(x, y[index], degree, extra)
+    if abs(coefficients[degree]) < CURVATURE_SIGMAS * np.sqrt(covariance[degree, degree]):
+        degree -= 1
+        coefficients, covariance = _robust_fit(x, y[index], degree, extra)
+    return HeadFit(
+        coefficients=coefficients[: degree + 1],
+        covariance=covariance[: degree + 1, : degree + 1],
+        extra=coefficients[degree + 1 :],
+        window=(head, stop - 1),
+        scale=scale,
+    )
+
+
 def head_level(y, head, width, exclude, level, residual):
     """Put the level of the first ``head`` samples (a pulse at the record's start) and of
     the fit window after them into ``level``, and ``y`` less it into ``residual``; return
-    its standard error (module docstring).
+    its standard error (module docstring; :func:`head_fit`).
 
     Parameters
     ----------
@@ -90,25 +201,10 @@ def head_level(y, head, width, exclude, level, residual):
     ParameterError
         Fewer than :data:`HEAD_MIN_SAMPLES` samples after the pulse, ``exclude`` left out.
     """
-    index = np.arange(head, y.size)
-    if exclude is not None:  # the window reaches past other pulses to hold its samples
-        index = index[~exclude[head:]]
-    index = index[: max(HEAD_MIN_SAMPLES, round(HEAD_FIT_BLOCKS * width))]
-    if index.size < HEAD_MIN_SAMPLES:
-        raise ParameterError(
-            f"only {index.size} quiet samples after the pulse at the record's start (head = "
-            f"{head} samples; need {HEAD_MIN_SAMPLES}): no baseline to extrapolate under it; "
-            "record a pre-trigger"
-        )
-    stop = int(index[-1]) + 1
-    scale = float(stop - head)
-    x = (index - head) / scale
-    coefficients, covariance = _robust_fit(x, y[index], HEAD_DEGREE)
-    if abs(coefficients[-1]) < CURVATURE_SIGMAS * np.sqrt(covariance[-1, -1]):
-        coefficients, covariance = _robust_fit(x, y[index], HEAD_DEGREE - 1)
-    whole = np.vander((np.arange(stop) - head) / scale, coefficients.size, increasing=True)
-    level[:stop] = whole @ coefficients
+    fit = head_fit(y, head, width, exclude)
+    stop = fit.window[1] + 1
+    level[:stop] = fit.level(np.arange(stop))
     residual[:stop] = y[:stop] - level[:stop]
     error = np.zeros(y.size)
-    error[:stop] = np.sqrt(np.einsum("ij,jk,ik->i", whole, covariance, whole))
+    error[:stop] = fit.error(np.arange(stop))
     return error

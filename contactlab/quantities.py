@@ -103,6 +103,7 @@ QUANTITIES = _vocabulary(
     ("force_error", "%", "peak_sensor_force over peak_contact_force, minus one"),
     # a measured impact (campaigns)
     ("onset", "s", "time the signal leaves its baseline noise"),
+    ("onset_uncertainty", "s", "standard deviation of a fitted onset under the record's noise"),
     ("noise", "N", "standard deviation of the signal's baseline"),
     ("significance", "-", "peak signal over baseline noise"),
     ("velocity_change", "m/s", "impulse over grain mass: (1 + e) v"),

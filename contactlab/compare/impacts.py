@@ -168,7 +168,8 @@ def compare_trace(
     pre-trigger, or the samples before the pulse it finds) and, with the sensor's free
     ringing, on the samples after the contact, so a drift or wander is removed as well
     (:func:`contactlab.inverse.pulse.pulse_baseline`; a trace that starts at the impact
-    takes a constant fitted after the contact). Both sensor signals are then read at
+    takes a line or quadratic fitted with the ringing after the contact and extrapolated
+    back). Both sensor signals are then read at
     ``k`` times the trace's noise, so the measurement and the model are read alike. A
     lobe ends at its last crossing of that level before the signal is back at the
     baseline (hysteresis equal to the threshold), so noise on a slow rise or fall cannot

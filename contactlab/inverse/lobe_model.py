@@ -15,7 +15,7 @@ import functools
 import math
 
 import numpy as np
-from scipy import integrate, signal
+from scipy import integrate, linalg, signal
 
 from contactlab.errors import ParameterError
 
@@ -180,11 +180,10 @@ class LobeModel:
         line = np.linalg.lstsq(self.line_w, self.y_w - amplitude * r, rcond=None)[0]
         return np.array([*line, amplitude]), rss
 
-    def bound(self, t0, tau, noise, damping_free):
-        """Cramér-Rao bound of ``t0`` [s] for noise of standard deviation ``noise`` [N]
-        (the whitened noise's: the innovation's with a noise model), central differences
-        of a tenth of a sample; with ``damping_free`` the damping ratio is a nuisance
-        parameter too, its derivative one-sided over 0.01."""
+    def _jacobian(self, t0, tau, damping_free):
+        """Derivatives of the model at the fit (unwhitened): ``t0`` per sample, ``tau``
+        relative, [the damping ratio,] the line and the amplitude; central differences
+        of a tenth of a sample, the damping's one-sided over 0.01."""
         coefficients, _ = self.solve(t0, tau)
         ht, htau = 0.1 * self.dt, 1e-3 * tau
         d_t0 = (self.response(t0 + ht, tau) - self.response(t0 - ht, tau)) / (2.0 * ht)
@@ -195,9 +194,77 @@ class LobeModel:
             other = self.unit(tau, force_shape(self.family, self.damping + 0.01))
             d_zeta = (self.response(t0, tau, other) - self.response(t0, tau)) / 0.01
             columns.insert(2, a * d_zeta)
-        jacobian = self.whiten(np.column_stack(columns))
+        return np.column_stack(columns)
+
+    def bound(self, t0, tau, noise, damping_free):
+        """Cramér-Rao bound of ``t0`` [s] for noise of standard deviation ``noise`` [N]
+        (the whitened noise's: the innovation's with a noise model), with the damping
+        ratio a nuisance parameter too where ``damping_free``."""
+        jacobian = self.whiten(self._jacobian(t0, tau, damping_free))
         try:
             covariance = np.linalg.inv(jacobian.T @ jacobian)
         except np.linalg.LinAlgError:  # no rise in the window: no information on t0
             return math.inf
         return float(math.sqrt(max(covariance[0, 0], 0.0)) * noise * self.dt)
+
+    def onset_spread(self, t0, tau, autocovariance):
+        """Standard deviation of the fitted ``t0`` [s] under Gaussian noise of the given
+        autocovariance (lags ``0, 1, ...`` samples, at least the window's length)
+        [N**2], the damping known: the fit as it is made (least squares, whitened with
+        the model's noise model if it has one), linearised at ``(t0, tau)``.
+
+        ``t0 - t0_true ~ g' e`` for the noise ``e`` on the window, with ``g = W' A
+        (A' A)**-1 u`` (``W`` the whitening, ``A = W J`` the whitened derivatives,
+        ``u`` the unit vector of ``t0``), so its variance is ``g' S g`` with ``S`` the
+        noise's Toeplitz covariance (the sandwich of least squares under a covariance
+        it does not weigh by; the Cramér-Rao bound under ``S`` when ``W' W = S**-1``).
+        """
+        whitened = self.whiten(self._jacobian(t0, tau, False))
+        try:
+            row = np.linalg.solve(whitened.T @ whitened, np.eye(whitened.shape[1])[0])
+        except np.linalg.LinAlgError:  # no rise in the window: no information on t0
+            return math.inf
+        influence = self._whiten_adjoint(whitened @ row)
+        n = influence.size
+        covariance_times = linalg.matmul_toeplitz(np.asarray(autocovariance)[:n], influence)
+        return float(math.sqrt(max(float(influence @ covariance_times), 0.0)) * self.dt)
+
+    def damping_terms(self, t0, tau, autocovariance):
+        """What an error of the damping ratio, read on several impacts of a record, adds
+        to the onset's variance (:func:`dem_check.campaign.onsets.record_onsets` sums
+        them): ``(shift, information, noise, cross)``.
+
+        With the damping fixed ``d`` too high, the fit's onset moves by ``-shift * d``
+        (``shift`` [s] per unit damping ratio, the other parameters refitted). A damping
+        read by least squares on impacts ``F`` errs by ``d = sum_F u_W' e / sum_F
+        information``, ``u`` the whitened damping column made orthogonal to the fit's
+        others, ``u_W = W' u``, ``information = u' u`` [N**2]; ``noise = u_W' S u_W``
+        [N**4] is the variance of its numerator's term, ``cross = g' S u_W`` [s N**2] its
+        covariance with this impact's onset error ``g' e`` (:meth:`onset_spread`).
+        Linearised at the fit; the damping's derivative one-sided over 0.01.
+        """
+        whitened = self.whiten(self._jacobian(t0, tau, True))
+        zeta = whitened[:, 2]
+        known = np.delete(whitened, 2, axis=1)
+        normal = known.T @ known
+        back = np.linalg.solve(normal, known.T @ zeta)
+        row = np.linalg.solve(normal, np.eye(known.shape[1])[0])
+        u = zeta - known @ back
+        influence, u_w = self._whiten_adjoint(known @ row), self._whiten_adjoint(u)
+        s_u = linalg.matmul_toeplitz(np.asarray(autocovariance)[: u_w.size], u_w)
+        return (
+            float(back[0]) * self.dt,
+            float(u @ u),
+            float(u_w @ s_u),
+            float(influence @ s_u) * self.dt,
+        )
+
+    def _whiten_adjoint(self, values):
+        """``W' v``: the adjoint of :attr:`whiten` (``W`` drops the first ``p`` rows and
+        subtracts ``a_k`` times the samples ``k`` before)."""
+        p = self.ar.size
+        out = np.zeros(values.size + p)
+        out[p:] += values
+        for k, a in enumerate(self.ar, start=1):
+            out[p - k : out.size - k] -= a * values
+        return out

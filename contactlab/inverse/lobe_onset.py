@@ -115,6 +115,14 @@ class LobeFit:
     bound: float
     """Cramér-Rao bound of ``onset`` [s] under the noise given (white of its sigma, or
     the noise model), with the damping known or (``damping_free``) unknown."""
+    uncertainty: float = math.nan
+    """Standard deviation of ``onset`` [s] under the noise covariance given
+    (``autocovariance``; :meth:`contactlab.inverse.lobe_model.LobeModel.onset_spread`),
+    the family and damping known; ``nan`` without one."""
+    damping_terms: tuple | None = None
+    """What an error of the damping read adds to that variance
+    (:meth:`contactlab.inverse.lobe_model.LobeModel.damping_terms`, under the same
+    covariance); None without one."""
 
 
 def _scan(model, lo, hi, length):
@@ -144,6 +152,7 @@ def fit_lobe(
     damping_free=False,
     noise_model=None,
     start=None,
+    autocovariance=None,
 ):
     """The onset of one impact: a contact family's force through the sensor, fitted on
     the impact's first lobe.
@@ -178,6 +187,11 @@ def fit_lobe(
         An onset [s] and a duration [s] near the fit's (another damping's fit on the
         same lobe): the first scan is skipped and the simplex starts there, a sample and
         :data:`START_DURATION` wide.
+    autocovariance : numpy.ndarray, optional
+        The record's noise autocovariance at lags ``0, 1, ...`` samples [N**2] (e.g.
+        :meth:`contactlab.inverse.noise_prediction.ColouredNoise.autocovariance`, at
+        least as many lags as the window fitted): gives :attr:`LobeFit.uncertainty` and
+        :attr:`LobeFit.damping_terms`.
 
     Returns
     -------
@@ -245,6 +259,12 @@ def fit_lobe(
         chi_squared=rss / sigma**2,
         samples=int(model.t.size),
         bound=model.bound(t0, tau, sigma, damping_free),
+        uncertainty=math.nan
+        if autocovariance is None
+        else model.onset_spread(t0, tau, autocovariance),
+        damping_terms=None
+        if autocovariance is None
+        else model.damping_terms(t0, tau, autocovariance),
     )
 
 

@@ -32,6 +32,13 @@ post-contact window the sensor's free ringing leaves unexplained (``post_noise``
 ``noise``: structural crosstalk, a bounce or a wrong sensor model leave more than noise).
 Used by the campaign (:mod:`dem_check.campaign.analysis`) and the single-trace paths
 (:mod:`contactlab.inverse.pulse`).
+
+A single trace that starts at its pulse has nothing before it: :func:`head_baseline`
+fits the campaign's head level (:func:`contactlab._head_level.head_fit`: a line, or a
+quadratic where its curvature is significant, robust loss) together with the free
+ringing on :data:`HEAD_PERIODS` sensor periods after the contact and extrapolates it
+back under the pulse; a constant there was 9.6-9.8 noise sigmas off under a drift of
+100 sigmas over 4 ms (``docs/campaign.md``, "Single-trace paths").
 """
 
 import math
@@ -39,10 +46,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactlab._head_level import HEAD_MIN_SAMPLES, head_fit
 from contactlab.inverse.noise_prediction import BLOCK_PER_PERIOD, predict_gap
 from contactlab.metrics import impulse
 
-__all__ = ["DEGREE", "POST_PERIODS", "PRE_PERIODS", "LocalBaseline", "local_baseline"]
+__all__ = [
+    "DEGREE",
+    "HEAD_PERIODS",
+    "POST_PERIODS",
+    "PRE_PERIODS",
+    "LocalBaseline",
+    "head_baseline",
+    "local_baseline",
+]
 
 DEGREE = 1
 """Degree of the local baseline polynomial [-]: a line through the quiet samples before
@@ -66,6 +82,18 @@ noise, the impulse's rms error was 2.1 % with 8 periods, 3.1 % with 20)."""
 
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the free ringing to be fitted [-]."""
+
+DECAY_TIMES = 5.0
+"""Decay times ``1 / (zeta w)`` of the sensor's ringing after the contact from which
+:func:`head_baseline` fits a record too coarse to resolve it [-] (``exp(-5)``: under 1 %
+of its amplitude is left)."""
+
+HEAD_PERIODS = 64.0
+"""Fit window of :func:`head_baseline` after the contact [sensor periods] (at least
+:data:`~contactlab._head_level.HEAD_MIN_SAMPLES` samples): the campaign's block
+(``dem_check.campaign.noise.BLOCK_PERIODS``, one of which its head fit spans), 1.6 ms
+for a 40 kHz sensor: 16 times a 100 us contact, so the level is extrapolated back over
+a short stretch, and short against thermal and charge-amplifier drift."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -92,7 +120,13 @@ class LocalBaseline:
     drift: float
     """Change of the baseline from the impact's start to ``post[0]`` [N] (signed); for a
     constant baseline (one side only), the change of a line through the fit's residual
-    over the fitted samples: a drift the constant could not follow."""
+    over the fitted samples: a drift the constant could not follow; for a head level
+    (:func:`head_baseline`), a line through what the fit leaves on the post-contact
+    window (its free ringing refitted there), extrapolated back to the record's first
+    sample: a drift near the pulse that the fit did not follow."""
+    head: tuple = ()
+    """For a head level: the samples it was fitted on ``[start, end]`` [s] and its
+    degree, ``(start, end, degree)``; empty otherwise."""
 
 
 def _ringing(s, sensor):
@@ -110,7 +144,27 @@ def _rms(values, ddof):
     return math.sqrt(float(values @ values) / (values.size - ddof))
 
 
-def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
+def _post_window(t, contact_end, end, sensor):
+    """Whether the sensor's ringing is resolved, and the post-contact window ``[start,
+    end]`` [s]: :data:`POST_PERIODS` from ``contact_end`` (from ``end``, the decayed
+    ringing, on a coarse record), at least :data:`POST_MIN_SAMPLES` before the record's
+    end."""
+    dt = float(t[1] - t[0])
+    resolved = sensor.period / dt >= RESOLVED_PERIOD_SAMPLES
+    length = max(POST_MIN_SAMPLES * dt, POST_PERIODS * sensor.period)
+    post_start = contact_end if resolved else end
+    post_start = min(post_start, float(t[-1]) - POST_MIN_SAMPLES * dt)
+    return resolved, (post_start, min(post_start + length, float(t[-1])))
+
+
+def _tail(amplitudes, a, b, sensor):
+    """Integral of the free ringing ``exp(-a s) (A cos(b s) + B sin(b s))`` from its
+    start to infinity [N*s] (module docstring)."""
+    amplitude_cos, amplitude_sin = amplitudes
+    return (amplitude_cos * a + amplitude_sin * b) / sensor.angular_frequency**2
+
+
+def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, exclude=None):
     """Fit the local baseline of one impact and integrate its impulse (module docstring).
 
     Parameters
@@ -135,22 +189,23 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
         are fitted by generalised least squares and the noise from ``start`` to the
         post-contact window is predicted from both sides and taken off with the line
         (:func:`contactlab.inverse.noise_prediction.predict_gap`).
+    exclude : numpy.ndarray of bool, optional
+        Samples of the segment that hold another impact (its onset to its decayed
+        ringing): left out of both sides' fit and of the samples the noise under the
+        pulse is predicted from; what they hold is signal, not baseline or noise.
 
     Returns
     -------
     LocalBaseline
     """
     dt = float(t[1] - t[0])
-    resolved = sensor.period / dt >= RESOLVED_PERIOD_SAMPLES
-    length = max(POST_MIN_SAMPLES * dt, POST_PERIODS * sensor.period)
-    post_start = contact_end if resolved else end
-    post_start = min(post_start, float(t[-1]) - POST_MIN_SAMPLES * dt)
-    post = (post_start, min(post_start + length, float(t[-1])))
+    resolved, post = _post_window(t, contact_end, end, sensor)
     if base[1] <= start:  # a baseline before the impact: its last PRE_PERIODS
         near = max(PRE_PERIODS * sensor.period, POST_MIN_SAMPLES * dt)
         base = (max(base[0], base[1] - near), base[1])
-    in_base = (t >= base[0]) & (t < base[1])
-    in_post = (t >= post[0]) & (t <= post[1]) & ~in_base
+    kept = np.ones(t.size, dtype=bool) if exclude is None else ~exclude
+    in_base = (t >= base[0]) & (t < base[1]) & kept
+    in_post = (t >= post[0]) & (t <= post[1]) & ~in_base & kept
     fitted = in_base | in_post
     centre = float(t[fitted].mean())
     scale = max(float(np.ptp(t[fitted])), dt)
@@ -158,7 +213,7 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
     # after the ringing) it would be extrapolated back over the ringing's decay, so a
     # constant is taken instead (on the real hammer records a line put the baseline
     # under the hit 0.1-0.2 N off, a constant within 0.03 N)
-    degree = DEGREE if base[1] <= start else 0
+    degree = DEGREE if base[1] <= start and in_base.any() else 0
     powers = np.vander((t - centre) / scale, degree + 1, increasing=True)
     columns = [powers]
     if resolved:
@@ -185,8 +240,7 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
     line = powers @ coefficients[: degree + 1]
     residual = y - design @ coefficients
     if resolved:
-        amplitude_cos, amplitude_sin = coefficients[degree + 1 :]
-        tail = (amplitude_cos * a + amplitude_sin * b) / sensor.angular_frequency**2
+        tail = _tail(coefficients[degree + 1 :], a, b, sensor)
         total = impulse(t, y - line - predicted, start, post[0]) + tail
     else:
         total = impulse(t, y - line, start, end)
@@ -204,3 +258,87 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None):
         post_noise=_rms(residual[in_post], 2 if resolved else 0),
         drift=drift,
     )
+
+
+def head_baseline(t, y, contact_end, end, sensor):
+    """The local baseline of a pulse at the record's first sample (short pre-trigger):
+    the head level fitted with the sensor's free ringing after the contact, extrapolated
+    back under the pulse (module docstring), and the impulse.
+
+    The fit is :func:`contactlab._head_level.head_fit`, the campaign's (a line, or a
+    quadratic where its curvature is 3 standard errors; ``soft_l1`` loss), on
+    :data:`HEAD_PERIODS` sensor periods from the post-contact window's start, with the
+    ringing's two columns there; past the fit window the polynomial is extrapolated
+    (only the pulse and the post-contact window are read on it). On a record too coarse
+    to resolve the ringing it is fitted without it, from :data:`DECAY_TIMES` decay
+    times after ``contact_end`` (an aliased ringing is not zero-mean: fitted from the
+    contact at 3 samples a period, a quadratic took it for drift, 4.6 noise sigmas off),
+    and the impulse integrated to ``end``.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        The record from its first sample: time [s] and signal [N].
+    contact_end : float
+        A time after the contact has ended [s] (the post-contact window starts there).
+    end : float
+        When the ringing had decayed [s] (the integral's end on a coarse record).
+    sensor : Sensor
+
+    Returns
+    -------
+    LocalBaseline
+        ``window`` empty at ``post[0]``, ``noise`` nan (nothing before the pulse),
+        ``drift`` the residual's drift near the pulse extrapolated under it, ``head``
+        the fit window and degree.
+
+    Raises
+    ------
+    ParameterError
+        Fewer than :data:`~contactlab._head_level.HEAD_MIN_SAMPLES` samples after the
+        contact.
+    """
+    dt = float(t[1] - t[0])
+    resolved, post = _post_window(t, contact_end, end, sensor)
+    if not resolved:  # from where the unresolved ringing has decayed
+        decayed = contact_end + DECAY_TIMES / (sensor.damping_ratio * sensor.angular_frequency)
+        decayed = min(decayed, float(t[-1]) - HEAD_MIN_SAMPLES * dt)
+        post = (decayed, min(decayed + post[1] - post[0], float(t[-1])))
+    head = int(np.searchsorted(t, post[0]))
+    columns = None
+    if resolved:
+        columns, a, b = _ringing(np.maximum(t - post[0], 0.0), sensor)
+        columns[:head] = 0.0
+    width = max(HEAD_MIN_SAMPLES, round(HEAD_PERIODS * sensor.period / dt))
+    fit = head_fit(y, head, width, columns=columns)
+    level = fit.level(np.arange(t.size))
+    residual = y - level - (0.0 if columns is None else columns @ fit.extra)
+    if resolved:
+        total = impulse(t, y - level, float(t[0]), post[0]) + _tail(fit.extra, a, b, sensor)
+    else:
+        total = impulse(t, y - level, float(t[0]), end)
+    in_post = (t >= post[0]) & (t <= post[1])
+    first, last = fit.window
+    return LocalBaseline(
+        window=(post[0], post[0]),
+        values=level,
+        post=post,
+        impulse=float(total),
+        noise=math.nan,
+        post_noise=_rms(residual[in_post], 2 if resolved else 0),
+        drift=_residual_drift(t, residual, in_post, None if columns is None else columns[:, :2]),
+        head=(float(t[first]), float(t[last]), fit.degree),
+    )
+
+
+def _residual_drift(t, residual, in_post, ringing):
+    """A line through ``residual`` on the post-contact window (with the free ringing's
+    ``ringing`` columns refitted there, when resolved), at the record's first sample
+    [N]: how far a drift near the pulse that the head level did not follow moves the
+    baseline under it (white noise: about 0.1 noise sigmas)."""
+    centre = float(t[in_post].mean())
+    columns = [np.ones(int(in_post.sum())), t[in_post] - centre]
+    if ringing is not None:
+        columns += [ringing[in_post, 0], ringing[in_post, 1]]
+    coefficients, *_ = np.linalg.lstsq(np.column_stack(columns), residual[in_post], rcond=None)
+    return float(coefficients[0] + coefficients[1] * (float(t[0]) - centre))

@@ -173,13 +173,15 @@ def estimate_coloured_noise(y, quiet, dt, record_length, period):
 
 
 def _blocks(indices, q, backward):
-    """First indices of blocks of ``q`` samples of a contiguous run (from its end if
-    ``backward``: the block next to the pulse is whole)."""
-    n = indices.size // q
-    if n == 0:
-        return np.zeros(0, dtype=int)
-    first = indices[-n * q] if backward else indices[0]
-    return first + q * np.arange(n)
+    """First indices of blocks of ``q`` samples of each contiguous run of ``indices``
+    (from a run's end if ``backward``: the block next to the pulse is whole)."""
+    starts = [np.zeros(0, dtype=int)]
+    for run in np.split(indices, np.flatnonzero(np.diff(indices) > 1) + 1):
+        n = run.size // q
+        if n:
+            first = run[-n * q] if backward else run[0]
+            starts.append(first + q * np.arange(n))
+    return np.concatenate(starts)
 
 
 def _box(c, q):
@@ -202,12 +204,15 @@ def predict_gap(autocovariance, y, design, before, after, inside, q):
     design : numpy.ndarray
         ``(len(y), m)`` baseline model (zero inside where a column is signal).
     before, after : numpy.ndarray of int
-        Contiguous sample indices outside the pulse, before and after it.
+        Sample indices outside the pulse, before and after it, increasing: contiguous,
+        or several contiguous runs where samples between them are left out (another
+        impact's); each run is averaged in blocks of its own.
     inside : numpy.ndarray of int
         Sample indices where the noise is predicted.
     q : int
-        Samples per block mean of the outside samples (the first samples of ``before``
-        and last of ``after`` that fill no block are left out).
+        Samples per block mean of the outside samples (the first samples of each run of
+        ``before`` and the last of each run of ``after`` that fill no block are left
+        out).
 
     Returns
     -------

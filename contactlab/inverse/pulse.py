@@ -6,7 +6,10 @@ pre-trigger: it drifts, wanders and hums, and the structure the sensor is mounte
 rings after the hit. :func:`pulse_baseline` finds the pulse, fits its local baseline
 (:func:`contactlab.inverse.local_baseline.local_baseline`: a line through the quiet
 samples just before it and, with the sensor's free ringing, the samples after its
-contact) and says in words what it did and what it could not vouch for.
+contact; for a record that starts at its pulse,
+:func:`contactlab.inverse.local_baseline.head_baseline`: the campaign's head level, a
+line or a quadratic fitted with the free ringing after the contact and extrapolated
+back) and says in words what it did and what it could not vouch for.
 
 Why a status and notes in the result, not a warning: a warning is printed once and
 lost in a batch, a JSON summary or a notebook that filters it, and the test suite turns
@@ -32,7 +35,7 @@ from contactlab.inverse._signal import (
 )
 from contactlab.inverse.crosstalk import single_impact_crosstalk
 from contactlab.inverse.lobe_onset import single_onset
-from contactlab.inverse.local_baseline import PRE_PERIODS, local_baseline
+from contactlab.inverse.local_baseline import PRE_PERIODS, head_baseline, local_baseline
 from contactlab.signals import SPREAD_MIN_SAMPLES
 
 __all__ = [
@@ -61,7 +64,13 @@ from, in a record without a pre-trigger [-]."""
 DRIFT_SIGMAS = 1.0
 """A baseline that changes by more than this many noise standard deviations across the
 pulse is reported as drifting [-]: a constant baseline would then be off by more than
-the noise, and the line removed holds only if the drift is smooth over the fit."""
+the noise, and the line removed holds only if the drift is smooth over the fit. For a
+record that starts at its pulse, the change is that of the drift the head level left:
+a line through its residual after the contact, extrapolated back to the record's first
+sample (:attr:`~contactlab.inverse.local_baseline.LocalBaseline.drift`)."""
+
+DEGREE_NAMES = {1: "line", 2: "quadratic"}
+"""Names of the head level's polynomial degrees, for the notes."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -86,7 +95,8 @@ class PulseBaseline:
     post: tuple
     """The post-contact window fitted with the sensor's free ringing ``[start, end]`` [s]."""
     drift: float
-    """The baseline's change across the pulse [N]."""
+    """The baseline's change across the pulse [N]; with a short pre-trigger, the drift
+    the head level left, extrapolated back to the record's first sample."""
     post_noise: float
     """Residual of the free ringing and the line after the contact [N] (rms)."""
     status: str
@@ -102,6 +112,10 @@ class PulseBaseline:
     crosstalk: object = None
     """The :class:`~contactlab.inverse.crosstalk.Crosstalk` removed (included in
     ``values``), or None when its removal was off or the ringing too short."""
+    head: tuple = ()
+    """With a short pre-trigger: the head level's fit window and degree ``(start [s],
+    end [s], degree)`` (:attr:`~contactlab.inverse.local_baseline.LocalBaseline.head`);
+    empty otherwise."""
     first_touch: object = None
     """The :class:`~contactlab.inverse.lobe_onset.FirstTouch`: the pulse's first touch
     [s] fitted on its whole lobe with the contact family read on it (its Cramér-Rao
@@ -122,13 +136,17 @@ def _onset_back(t, distance, level, peak):
 
 
 def _pulse_without_pretrigger(t, y, sensor):
-    """The largest pulse of a record without a pre-trigger: its peak (sample) and the
-    start of its lobe [s], and the level the lobe is read from.
+    """The largest pulse of a record without a pre-trigger: its peak (sample), the start
+    of its lobe [s] and the running baseline's level at every sample.
 
     The peak is the largest residual of the running baseline
     (:func:`contactlab.signals.running_baseline`, which follows drift); the lobe is the
     run of samples on one side of the median of :data:`LOCAL_PERIODS` sensor periods on
     either side of it (mostly baseline and the ringing, which is symmetric about it).
+    The running baseline's level (every sample) is returned as well: a pulse at the
+    record's start has its lobe read about it, since a median leaves a drift's change
+    over those periods in the lobe (a drift of 100 noise sigmas over 2.5 ms, curving,
+    held the signal on the pulse's side of the median to the record's end).
     """
     dt = float(t[1] - t[0])
     width = min(max(16, round(BLOCK_PERIODS * sensor.period / dt)), t.size // 2)
@@ -137,25 +155,27 @@ def _pulse_without_pretrigger(t, y, sensor):
             f"the record holds {t.size} samples, too few to find its baseline without a "
             "pre-trigger; record a pre-trigger or pass baseline_window=(start, end) [s]"
         )
-    peak = int(np.argmax(np.abs(signals.running_baseline(y, width).residual)))
+    running = signals.running_baseline(y, width)
+    peak = int(np.argmax(np.abs(running.residual)))
     half = LOCAL_PERIODS * sensor.period
     near = (t >= t[peak] - half) & (t <= t[peak] + half)
     level = float(np.median(y[near]))
     start, _ = lobe_around_peak(t[near], y[near], level)
-    return peak, start, level
+    return peak, start, running.level
 
 
 def _windows(t, y, sensor, window, k):
     """Baseline window before the pulse (None if too short), onset [s] and the level the
-    pulse's lobe is read from."""
+    pulse's lobe is read from (a pulse at the record's start: the running baseline's, at
+    every sample)."""
     margin = ONSET_MARGIN * sensor.period
     if window is None and int(signals.in_window(t, (float(t[0]), 0.0)).sum()) < (
         BASELINE_MIN_SAMPLES
     ):
-        peak, start, level = _pulse_without_pretrigger(t, y, sensor)
+        peak, start, running = _pulse_without_pretrigger(t, y, sensor)
         pre = (max(float(t[0]), start - margin - PRE_PERIODS * sensor.period), start - margin)
         if int(signals.in_window(t, pre).sum()) < BASELINE_MIN_SAMPLES:
-            return None, start, level
+            return None, start, running
         mean, noise, _ = signals.baseline(t, y, pre, name="baseline_window")
         return pre, _onset_back(t, np.abs(y - mean), k * noise, peak), mean
     mean, _, onset, pre = baseline(t, y, window, k)
@@ -171,19 +191,22 @@ def _describe(base, pre, contact, noise, sensor, reference):
     noise the post-contact residual is judged against [N]."""
     flags, notes = [], []
     if pre is None:
+        first, last, degree = base.head
         flags.append("short pre-trigger")
         notes.append(
-            f"fewer than {BASELINE_MIN_SAMPLES} samples before the pulse: the baseline is a "
-            f"constant fitted with the sensor's free ringing on {base.post[0]:.6g} to "
-            f"{base.post[1]:.6g} s, after the contact; a drift under the pulse is not seen"
+            f"fewer than {BASELINE_MIN_SAMPLES} samples before the pulse: the baseline under "
+            f"it is a {DEGREE_NAMES[degree]} fitted with the sensor's free ringing on "
+            f"{first:.6g} to {last:.6g} s, after the contact, and extrapolated back"
         )
     if abs(base.drift) > DRIFT_SIGMAS * noise and pre is None:
         flags.append("drifting baseline")
         notes.append(
-            f"the baseline changes by {base.drift:+.3g} N ({abs(base.drift) / noise:.1f} noise "
-            f"sigmas) over {base.post[0]:.6g} to {base.post[1]:.6g} s after the contact; with "
-            "nothing before the pulse it is removed as a constant, so the figures can be off "
-            "by about that much: record a pre-trigger"
+            f"what the {DEGREE_NAMES[degree]} leaves after the contact still drifts: a line "
+            f"through it on {base.post[0]:.6g} to {base.post[1]:.6g} s moves the baseline at "
+            f"the record's start by {base.drift:+.3g} N ({abs(base.drift) / noise:.1f} noise "
+            f"sigmas); the drift is not a {DEGREE_NAMES[degree]} over {first:.6g} to "
+            f"{last:.6g} s (or a slow structure mode is left), and with nothing before the "
+            "pulse the figures can be off by that much or more: record a pre-trigger"
         )
     elif abs(base.drift) > DRIFT_SIGMAS * noise:
         flags.append("drifting baseline")
@@ -240,8 +263,10 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0, *, crosstalk=True, first_to
         Default: the samples before ``t = 0`` up to a quarter period before the onset;
         a record with fewer than 16 of them (no pre-trigger) takes the
         :data:`~contactlab.inverse.local_baseline.PRE_PERIODS` periods before the pulse
-        it finds on its running baseline, and a record that starts at the pulse a
-        constant fitted after the contact (status ``short pre-trigger``).
+        it finds on its running baseline, and a record that starts at the pulse the
+        head level fitted after the contact and extrapolated back
+        (:func:`~contactlab.inverse.local_baseline.head_baseline`; status ``short
+        pre-trigger``).
     k : float, default 5
         Onset threshold in noise standard deviations [-].
     crosstalk : bool, default True
@@ -280,8 +305,10 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0, *, crosstalk=True, first_to
         end = pre[1] if pre else None
         removed = single_impact_crosstalk(t, y, sensor, onset, end, contact[1])
     clean = y if removed is None else y - removed.values
-    after = (contact[1], contact[1])  # short pre-trigger: the post window alone
-    base = local_baseline(t, clean, pre or after, contact[0], contact[1], float(t[-1]), sensor)
+    if pre is None:  # nothing before the pulse: the head level, fitted after it
+        base = head_baseline(t, clean, contact[1], float(t[-1]), sensor)
+    else:
+        base = local_baseline(t, clean, pre, contact[0], contact[1], float(t[-1]), sensor)
     noise = base.noise if pre else base.post_noise
     if not noise > 0.0:
         raise ParameterError(
@@ -310,16 +337,18 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0, *, crosstalk=True, first_to
         status=status,
         notes=notes + more,
         crosstalk=removed,
+        head=base.head,
         first_touch=touch,
     )
 
 
 def describe_window(pulse):
     """One line saying which samples gave the baseline (for a comparison's notes)."""
-    if pulse.status.startswith("short pre-trigger"):
+    if pulse.head:
+        first, last, degree = pulse.head
         return (
-            f"a constant fitted with the free ringing on {pulse.post[0]:.6g} to "
-            f"{pulse.post[1]:.6g} s (no pre-trigger)"
+            f"a {DEGREE_NAMES[degree]} fitted with the free ringing on {first:.6g} to "
+            f"{last:.6g} s and extrapolated back under the pulse (no pre-trigger)"
         )
     return (
         f"a line fitted on {pulse.window[0]:.6g} to {pulse.window[1]:.6g} s before the pulse "

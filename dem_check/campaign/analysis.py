@@ -3,13 +3,17 @@
 Each impact found by :func:`dem_check.campaign.detection.find_impacts` is read on its
 segment (local baseline, impact, decayed ringing), less its own baseline: a line fitted
 before the impact and on the sensor's free ringing after its contact
-(:mod:`dem_check.campaign.local`), so that drift, wander, hum and the slow part of 1/f
-noise are read on both sides of it. With the record's white and 1/f noise levels
+(:mod:`dem_check.campaign.local`; the samples of the record's other impacts held out),
+so that drift, wander, hum and the slow part of 1/f noise are read on both sides of it.
+With the record's white and 1/f noise levels
 (:func:`dem_check.campaign.local.record_noise`, estimated once per record) the line and
 ringing are fitted by generalised least squares and the noise under the pulse is
 predicted from both sides (its conditional mean, :mod:`contactlab.inverse.noise_prediction`)
 and taken off with the line before the peak signal and the impulse are read:
 
+- ``onset_uncertainty [s]``: the standard deviation of the fitted onset under the
+  record's white and 1/f noise, with the damping ratio read on the record
+  (:mod:`dem_check.campaign.onsets`; NaN for a crossing, and the reason says why);
 - ``sensor_response_time [s]``: the first lobe of the Gaussian-smoothed signal read with
   :func:`contactlab.metrics.first_lobe` at the onset level (five sigma of the local
   noise), with the same hysteresis so that only a return to zero ends it;
@@ -17,7 +21,7 @@ and taken off with the line before the peak signal and the impulse are read:
   that lobe;
 - ``impulse [N*s]``: the integral of the signal from the local baseline's end (a tenth
   of a sensor period before the onset) to a sensor period after the reconstructed
-  contact's end, plus the fitted free ringing's
+  contact's end (or a later contact's, which flags an ``"overlap"``), plus the fitted free ringing's
   integral from there in closed form. The sensor returns to rest, so this is the impulse
   of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
@@ -43,7 +47,8 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.inverse.reconstruct import DEFAULT_MAX_UNKNOWNS
-from contactlab.metrics import first_lobe
+from contactlab.metrics import first_lobe, impulse
+from contactlab.quantities import column
 from dem_check.campaign.detection import ONSET_SIGMAS
 from dem_check.campaign.local import local_baseline, record_noise
 from dem_check.campaign.plausibility import physics_status
@@ -99,6 +104,10 @@ lobe."""
 NOT_GIVEN = object()
 """Default of ``analyse_impact``'s ``noise``: estimate it (``None`` means none)."""
 
+ONSET_UNCERTAINTY = column("onset_uncertainty")
+"""Column of an onset's standard deviation under the record's noise [s]
+(:mod:`dem_check.campaign.onsets`)."""
+
 GALLERY_PERIODS = 3.0
 """Sensor periods kept for the report's gallery before the reconstruction window and
 after it [-]."""
@@ -121,6 +130,19 @@ def window_row(window):
     return {"status": window.status, "reason": window.reason, "onset [s]": window.onset}
 
 
+def _onset_uncertainty(window):
+    """The ``onset_uncertainty [s]`` column of an analysed impact, and where its onset
+    is a crossing (nothing fitted, so no uncertainty), a note in its reason that says so."""
+    columns = {ONSET_UNCERTAINTY: window.onset_uncertainty}
+    if math.isfinite(window.onset_uncertainty) or "crossing" in window.reason:
+        return columns  # fitted, or the crossing's reason is there already
+    note = (
+        "onset: the 5-sigma crossing, not fitted (fewer than 4 samples per sensor period, "
+        "or fit_onsets=False): no onset uncertainty"
+    )
+    return {**columns, "reason": "; ".join(r for r in (window.reason, note) if r)}
+
+
 def _main_lobe_start(y, level):
     """Index from which the first lobe is read: the last sample under ``level`` before
     the signal first reaches half its largest value. Wiggles before the impact that
@@ -131,9 +153,9 @@ def _main_lobe_start(y, level):
     return int(under[-1]) if under.size else 0
 
 
-def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise):
+def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise, held):
     """Peak, response time and impulse of the signal (module docstring), and the record
-    less its local baseline."""
+    less its local baseline (``held``: the samples of other impacts, :func:`_held`)."""
     base = window.baseline_window
     in_base = (t >= base[0]) & (t < base[1])
     level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
@@ -144,10 +166,10 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise):
     # a contact cannot outlast one lobe-length after the signal's first lobe
     # (contactlab.inverse.reconstruct_force's window)
     contact_end = 2.0 * lobe[1] - lobe[0]
-    local = _local(t, record, window, contact_end, sensor, noise)
+    local = _local(t, record, window, contact_end, sensor, noise, held=held)
     # the reconstruction reads its noise model on the detection's baseline window: it
     # gets the record less the line fitted there
-    detrended = record - _local(t, record, window, contact_end, sensor, near_onset=False).values
+    detrended = record - _local(t, record, window, contact_end, sensor, None, False, held).values
     # the low-passed record less the local baseline: ``flat`` is the low-passed record
     # less the running baseline (record - raw), which the low-pass leaves unchanged
     lowpassed = flat + (record - raw) - local.values
@@ -161,21 +183,50 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise):
     return numbers, detrended, contact_end
 
 
-def _local(t, record, window, contact_end, sensor, noise=None, near_onset=True):
+def _local(t, record, window, contact_end, sensor, noise=None, near_onset=True, held=None):
     """The impact's local baseline (:func:`dem_check.campaign.local.local_baseline`),
     its ringing fitted from ``contact_end`` [s]; a baseline before the impact is read up
     to :data:`ONSET_MARGIN` periods before the onset, where the impulse integral starts
     (``near_onset=False``: to the detection's baseline window's end). With the record's
     ``noise`` (:func:`dem_check.campaign.local.record_noise`) the noise under the pulse
-    is predicted from both sides and taken off with the line."""
+    is predicted from both sides and taken off with the line. ``held``: samples of other
+    impacts (:func:`_held`), left out of the fit and of the prediction."""
     base = window.baseline_window
     if near_onset and base[1] <= window.onset:
         end = max(base[1], window.onset - ONSET_MARGIN * sensor.period)
         return local_baseline(
-            t, record, (base[0], end), end, contact_end, window.end, sensor, noise
+            t, record, (base[0], end), end, contact_end, window.end, sensor, noise, held
         )
     start = base[1] if window.start is None else window.start
-    return local_baseline(t, record, base, start, contact_end, window.end, sensor)
+    return local_baseline(t, record, base, start, contact_end, window.end, sensor, exclude=held)
+
+
+def _held(detection, window, t, sensor):
+    """Samples of the segment ``t`` that hold another impact of the record: from a
+    sensor period before its onset (an impact not analysed keeps its crossing, which
+    lags the touch) to its decayed ringing, as :func:`dem_check.campaign.local.record_noise`
+    leaves them out of the quiet samples. Another impact's ringing is signal: a
+    baseline fitted on it, or noise predicted from it, reads it into this impact."""
+    held = np.zeros(t.size, dtype=bool)
+    for other in detection.impacts:
+        if other is not window:
+            held |= (t >= other.onset - sensor.period) & (t <= other.end)
+    return held
+
+
+def _last_force(rec):
+    """End of the last contact the reconstruction holds [s]: of its run of force above
+    the significance threshold that lies after the contact and carries at least
+    :data:`IMPULSE_EXCESS` of its impulse (a second contact the impulse check is for;
+    a shorter excursion of noise read as force is not one), else the contact's end."""
+    above = np.flatnonzero(rec.force > rec.parameters["threshold [N]"])
+    last = rec.metrics.end
+    for run in np.split(above, np.flatnonzero(np.diff(above) > 1) + 1):
+        if run.size > 1 and rec.t[run[0]] > rec.metrics.end:
+            carried = impulse(rec.t[run], rec.force[run])
+            if carried >= IMPULSE_EXCESS * rec.metrics.impulse:
+                last = float(rec.t[run[-1]])
+    return last
 
 
 def _reconstruction_part(t, base, end, sensor):
@@ -279,10 +330,12 @@ def analyse_impact(
     record = np.asarray(detection.record.values[part], dtype=float)
     base = window.baseline_window
     row = {**window_row(window), "significance [-]": window.significance}
+    row.update(_onset_uncertainty(window))
     if noise is NOT_GIVEN:
         noise = record_noise(detection, sensor)
+    held = _held(detection, window, t, sensor)
     numbers, detrended, contact_end = _signal_numbers(
-        t, record, raw, smooth, flat, window, sensor, noise
+        t, record, raw, smooth, flat, window, sensor, noise, held
     )
     if crosstalk:
         if modes is None:
@@ -293,7 +346,7 @@ def analyse_impact(
         if found.modes:
             record, raw, smooth, flat = (v - found.values for v in (record, raw, smooth, flat))
             numbers, detrended, contact_end = _signal_numbers(
-                t, record, raw, smooth, flat, window, sensor, noise
+                t, record, raw, smooth, flat, window, sensor, noise, held
             )
     row.update(numbers)
     if grain is not None:
@@ -323,23 +376,28 @@ def analyse_impact(
         return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration
-    # the impulse to the first lobe's bound holds a second contact that began within it
+    # the impulse to a period past the last force the reconstruction holds: its contact's
+    # end, or that of a second contact which began within the first lobe (the ringing
+    # check cannot see it, the impulse check below does); the post-contact window then
+    # holds free ringing only. A post-contact window that starts inside a second contact
+    # fits its force as ringing and misses the rest of its impulse (120 us after a 100 us
+    # contact, with the window from the first lobe's bound: 1.83 times the contact's
+    # impulse instead of 2). A period past the contact's end also spans less 1/f noise
+    # than the first lobe's bound (about 130 us against 200 us for a 100 us contact)
+    last = _last_force(rec)
+    row["impulse [N*s]"] = _local(
+        t, record, window, last + sensor.period, sensor, noise, held=held
+    ).impulse
+    if grain is not None:
+        row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
     if not abs(excess) <= IMPULSE_EXCESS:
         reason = (
             f"the segment's impulse is {excess + 1.0:.3g} times that of the reconstructed "
-            "contact: a second impact (or contact) follows within the first one's main "
-            "lobe, so neither is analysed alone"
+            f"contact (its force is significant until {last:.6g} s): a second impact (or "
+            "contact) follows within the first one's main lobe, so neither is analysed alone"
         )
         return {**window_row(window), "status": "overlap", "reason": reason}, None
-    if rec.metrics.end + sensor.period < contact_end:
-        # the contact's end is known now: integrating to a period past it spans less 1/f
-        # noise than to the first lobe's bound (about 130 us against 200 us for a 100 us
-        # contact on a 40 kHz sensor)
-        end = rec.metrics.end + sensor.period
-        row["impulse [N*s]"] = _local(t, record, window, end, sensor, noise).impulse
-        if grain is not None:
-            row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     start, end = rec.parameters["window [s]"]
     keep = (rec.t >= start - GALLERY_PERIODS * sensor.period) & (
         rec.t <= end + GALLERY_PERIODS * sensor.period

@@ -148,6 +148,8 @@ class ImpactWindow:
     start: float | None = None
     """Where the impulse integral starts [s]: the baseline's end, or the segment's first
     sample for a ``"short pre-trigger"``."""
+    onset_uncertainty: float = float("nan")
+    """Standard deviation of a fitted ``onset`` [s] (:mod:`dem_check.campaign.onsets`)."""
 
 
 @dataclass(frozen=True, eq=False)
@@ -327,7 +329,7 @@ def _step_row(step, t):
         f"({step.significance:.3g} sigma of a level change): a DC offset step, not an "
         "impact (an impact's signal returns to its level after the contact and the "
         "sensor's ringing); the record after it was shifted back before impacts were "
-        "looked for"
+        f"looked for{step.note}"
     )
     if step.lobe is not None:
         reason += (
@@ -355,23 +357,18 @@ def _apply_limits(windows, min_force, min_separation):
     for w in windows:
         if min_force is not None and not abs(w.peak) >= min_force:
             reason = f"peak {w.peak:.4g} N below min_force = {min_force:.4g} N"
-            w = _replace(w, "below min_force", reason)
+            w = dataclasses.replace(w, status="below min_force", reason=reason)
         elif min_separation is not None and previous is not None:
             if w.onset - previous < min_separation:
                 reason = (
                     f"onset {w.onset - previous:.4g} s after the impact at {previous:.6g} s, "
                     f"closer than min_separation = {min_separation:.4g} s"
                 )
-                w = _replace(w, "too close", reason)
+                w = dataclasses.replace(w, status="too close", reason=reason)
         if w.status not in ("below min_force", "too close"):
             previous = w.onset
         out.append(w)
     return out
-
-
-def _replace(window, status, reason):
-    fields = {**window.__dict__, "status": status, "reason": reason}
-    return ImpactWindow(**fields)
 
 
 def _local_baseline(ratio, candidate, scales):

@@ -7,6 +7,12 @@ family's force pushed through the sensor; the family and its damping are chosen 
 record on its most significant impacts, since every impact of a record has the same
 contact law (:func:`contactlab.inverse.lobe_onset.lobe_family`). Where an impact's fit
 fails it keeps the crossing, and its ``reason`` says why.
+
+Each fitted onset carries its uncertainty: the standard deviation of the fit's onset
+under the record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`,
+the covariance the local baselines use; :attr:`contactlab.inverse.lobe_onset.LobeFit.uncertainty`),
+or under white noise of the baseline window's spread where the record has too few quiet
+samples to estimate it; ``nan`` for a crossing.
 """
 
 import dataclasses
@@ -16,6 +22,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse.lobe_onset import fit_lobe, lobe_family
 from contactlab.inverse.noise_colour import fit_ar_noise
+from dem_check.campaign.local import record_noise
 
 __all__ = [
     "FAMILY_IMPACTS",
@@ -92,8 +99,19 @@ def _lobe(detection, window, sensor):
     return t, y, (latest, length), noise, noise_model
 
 
-def record_onsets(detection, windows, sensor):
-    """The fitted onsets of ``windows``, and the contact family they share.
+def record_onsets(detection, windows, sensor, noise=None):
+    """The fitted onsets of ``windows``, their uncertainties, and the contact family
+    they share.
+
+    Parameters
+    ----------
+    detection : Detection
+    windows : list of ImpactWindow
+    sensor : Sensor
+    noise : ColouredNoise, optional
+        The record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`):
+        each onset's uncertainty under it; None: under white noise of the impact's
+        baseline window's standard deviation.
 
     Returns
     -------
@@ -106,6 +124,8 @@ def record_onsets(detection, windows, sensor):
         when none could be fitted: every impact keeps its crossing).
     damping : float or None
         Its damping ratio [-].
+    uncertainties : list of float
+        Standard deviation of each fitted onset [s] (``nan`` for a crossing).
     """
     lobes, failed = [], {}
     for k, window in enumerate(windows):
@@ -122,37 +142,92 @@ def record_onsets(detection, windows, sensor):
         family, damping = lobe_family([lobes[k] for k in strongest], sensor)
     except ParameterError as error:  # no lobe could be fitted: every impact keeps its crossing
         note = f"onset: the 5-sigma crossing (no lobe of the record could be fitted: {error})"
-        return [w.onset for w in windows], [note] * len(windows), None, None
-    onsets, notes = [], []
+        count = len(windows)
+        return [w.onset for w in windows], [note] * count, None, None, [np.nan] * count
+    onsets, notes, fits = [], [], []
     for k, (window, lobe) in enumerate(zip(windows, lobes, strict=True)):
         try:
             if lobe is None:
                 raise ParameterError(failed[k])
-            t, y, guess, noise, noise_model = lobe
-            fit = fit_lobe(t, y, sensor, guess, noise, family, damping, noise_model=noise_model)
+            t, y, guess, spread, noise_model = lobe
+            if noise is None:  # white noise of the baseline window's spread
+                covariance = np.zeros(t.size)
+                covariance[0] = spread**2
+            else:
+                covariance = noise.autocovariance(t.size)
+            fit = fit_lobe(
+                t,
+                y,
+                sensor,
+                guess,
+                spread,
+                family,
+                damping,
+                noise_model=noise_model,
+                autocovariance=covariance,
+            )
             onsets.append(fit.onset)
             notes.append("")
+            fits.append(fit)
         except ParameterError as error:
             onsets.append(window.onset)
-            notes.append(f"onset: the 5-sigma crossing (its lobe fit failed: {error})")
-    return onsets, notes, family, damping
+            notes.append(
+                f"onset: the 5-sigma crossing (its lobe fit failed: {error}); no onset "
+                "uncertainty is given for a crossing"
+            )
+            fits.append(None)
+    return onsets, notes, family, damping, _uncertainties(fits, strongest)
+
+
+def _uncertainties(fits, read_on):
+    """Each fitted onset's standard deviation [s] (``nan`` where not fitted): its own
+    noise's (the damping known) and that of the damping ratio read on the impacts
+    ``read_on`` (indices), which moves every onset of the record the same way
+    (:meth:`contactlab.inverse.lobe_model.LobeModel.damping_terms`: ``var = s**2 +
+    shift**2 var(d) - 2 shift cov``, ``var(d) = sum noise / (sum information)**2``,
+    ``cov = cross / sum information`` for an impact the damping was read on)."""
+    shared = [fits[k].damping_terms for k in read_on if fits[k] is not None]
+    information = sum(terms[1] for terms in shared)
+    if not information > 0.0:  # no impact the damping was read on was fitted
+        shared = []
+    damping_variance = sum(terms[2] for terms in shared) / information**2 if shared else 0.0
+    out = []
+    for k, fit in enumerate(fits):
+        if fit is None:
+            out.append(np.nan)
+            continue
+        shift, _, _, cross = fit.damping_terms
+        together = cross / information if k in read_on and shared else 0.0
+        variance = fit.uncertainty**2 + shift**2 * damping_variance - 2.0 * shift * together
+        out.append(float(np.sqrt(max(variance, 0.0))))  # a variance: >= 0 but for rounding
+    return out
 
 
 def first_touches(detection, sensor, statuses):
     """The detection's impacts, those with a status of ``statuses`` with their onset
-    fitted (:func:`record_onsets`); where the fit failed, the crossing is kept and the
-    impact's ``reason`` says so. Returned as the :class:`Detection` fields ``impacts`` and
-    ``contact_family``: the record's family and damping ratio ``(name, zeta [-])`` (None
-    where none was read), with which the reconstruction reads its contact's edges
-    (:mod:`dem_check.campaign.analysis`)."""
+    fitted (:func:`record_onsets`) and its ``onset_uncertainty`` [s] under the record's
+    noise (:func:`dem_check.campaign.local.record_noise`); where the fit failed, the
+    crossing is kept and the impact's ``reason`` says so. Returned as the
+    :class:`Detection` fields ``impacts`` and ``contact_family``: the record's family and
+    damping ratio ``(name, zeta [-])`` (None where none was read), with which the
+    reconstruction reads its contact's edges (:mod:`dem_check.campaign.analysis`)."""
     chosen = [k for k, w in enumerate(detection.impacts) if w.status in statuses]
     if not chosen:
         return {"impacts": list(detection.impacts), "contact_family": None}
-    onsets, notes, family, damping = record_onsets(
-        detection, [detection.impacts[k] for k in chosen], sensor
+    noise = record_noise(detection, sensor)
+    onsets, notes, family, damping, uncertainties = record_onsets(
+        detection, [detection.impacts[k] for k in chosen], sensor, noise
     )
+    if noise is None:
+        white = (
+            "onset uncertainty: under white noise of the baseline's spread (too few quiet "
+            "samples in the record to estimate its 1/f noise)"
+        )
+        notes = [note or white for note in notes]
     impacts = list(detection.impacts)
-    for k, onset, note in zip(chosen, onsets, notes, strict=True):
+    for k, onset, note, spread in zip(chosen, onsets, notes, uncertainties, strict=True):
         reason = "; ".join(r for r in (impacts[k].reason, note) if r)
-        impacts[k] = dataclasses.replace(impacts[k], onset=onset, reason=reason)
+        impacts[k] = dataclasses.replace(
+            impacts[k], onset=onset, reason=reason, onset_uncertainty=spread
+        )
     return {"impacts": impacts, "contact_family": None if family is None else (family, damping)}

@@ -116,6 +116,7 @@ _CANDIDATE_COLUMNS = (
     "impact",
     "status",
     "onset [s]",
+    "onset_uncertainty [s]",
     "significance [-]",
     "peak_sensor_force [N]",
     "reason",

@@ -296,7 +296,8 @@ def search_steps(values, runs, period, hold, ring=None):
         ``reach`` of :func:`~dem_check.campaign.steps.edge_steps`).
     ring : tuple, optional
         ``(sensor, dt)``, for steps found across an impact
-        (:func:`dem_check.campaign.steps.find_steps`).
+        (:func:`dem_check.campaign.steps.find_steps`) and at the record's edges
+        (:func:`dem_check.campaign.steps.edge_steps`).
 
     Returns
     -------
@@ -324,7 +325,7 @@ def search_steps(values, runs, period, hold, ring=None):
         masked[lo:hi] = False  # a level now, no impact
     rest = remove_steps(values, found)
     levels = {run[0] for run, _ in boxed}
-    edges = edge_steps(rest, [r for r in runs if r[0] not in levels], period, hold)
+    edges = edge_steps(rest, [r for r in runs if r[0] not in levels], period, hold, ring)
     # an edge step's height is read on all the samples on its edge's side: it replaces
     # a step found on the period means' shortened windows there
     near = [(e.window[0] - period, e.window[1] + period) for e in edges]

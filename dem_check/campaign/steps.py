@@ -49,6 +49,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.edge_models import end_fit, start_fit
 from dem_check.campaign.step_ringing import place_across, second_across
 
 __all__ = [
@@ -113,6 +114,9 @@ class OffsetStep:
     """``(first, stop)`` sample indices of the impact's main lobe it lies in, somewhere,
     when it cannot be told from the impact there (placed at the lobe's middle); else
     None (:mod:`dem_check.campaign.step_ringing`)."""
+    note: str = ""
+    """How it was told from an impact, when that needed a model (``"; ..."``, appended
+    to its row's reason; :mod:`dem_check.campaign.edge_models`)."""
 
 
 def _window_medians(levels, size):
@@ -353,7 +357,7 @@ def drift_slopes(values, period, masked):
     return np.interp(np.arange(len(values)), firsts[1:], slope)
 
 
-def edge_steps(values, runs, period, reach):
+def edge_steps(values, runs, period, reach, ring=None):
     """Steps that the first pass read as a run to the record's last sample, or from its
     first: on one side of the step the record stays at one level, as flat as the noise on
     the other side, where an impact's main lobe and ringing are not.
@@ -373,6 +377,12 @@ def edge_steps(values, runs, period, reach):
         The sensor's period [samples].
     reach : int
         Samples past a run's last one that still belong to it (its quiet hold).
+    ring : tuple, optional
+        ``(sensor, dt)``: the sensor and the sampling interval [s]. A step at the start,
+        or within a sensor period of the end, is then told from an impact's lobe by
+        fitting both (:mod:`dem_check.campaign.edge_models`) instead of by the
+        flatness of its side (and at the end without the :data:`STEP_SIGMAS` test, which
+        so few samples cannot pass: the run reached the detection threshold).
 
     Returns
     -------
@@ -382,13 +392,21 @@ def edge_steps(values, runs, period, reach):
     values = np.asarray(values, dtype=float)
     n = values.size
     noise = period_noise(values, period)
-    found = _end_steps(values, runs, period, reach, noise)
+    found = _end_steps(values, runs, period, reach, noise, ring=ring, all_runs=runs)
     # a step near the start is one near the end of the record read backwards: its index
     # there is where the old level ends, and its height changes sign
     mirrored = [(n - 1 - last, n - 1 - first) for first, last in runs]
-    for step in _end_steps(values[::-1], mirrored, period, reach, noise, start_side=True):
-        window = (0, n - step.window[0])
-        found.append(OffsetStep(n - step.index, -step.height, step.significance, window))
+    for step in _end_steps(
+        values[::-1], mirrored, period, reach, noise, start_side=True, ring=ring
+    ):
+        window, index, note = (0, n - step.window[0]), n - step.index, ""
+        if ring is not None:
+            fit = start_fit(values, index, runs, reach, ring)
+            if not fit.step:
+                continue  # an impact's lobe: the run is left to the impacts
+            index = fit.index  # placed by the fit, under the record's noise model
+            note = f"; {fit.reason()}: a level change within one sample is no sensor's response"
+        found.append(OffsetStep(index, -step.height, step.significance, window, note=note))
     return sorted(found, key=lambda step: step.index)
 
 
@@ -408,8 +426,10 @@ def level_error(noise, period, samples):
     return noise * np.sqrt(period / samples)
 
 
-def _end_steps(values, runs, period, reach, noise, start_side=False):
-    """:func:`edge_steps` at the record's end: runs to its last sample."""
+def _end_steps(values, runs, period, reach, noise, start_side=False, ring=None, all_runs=()):
+    """:func:`edge_steps` at the record's end: runs to its last sample (``start_side``:
+    the record read backwards, the flatness left to :func:`edge_steps` when ``ring`` is
+    given)."""
     size = WINDOW_PERIODS * period
     found = []
     for first, last in runs:
@@ -422,6 +442,14 @@ def _end_steps(values, runs, period, reach, noise, start_side=False):
         level = float(np.median(before))
         at = start + split(run, level, tail - level, np.inf)[0]
         new, old = values[at:], values[max(0, at - size) : at]
+        if ring is not None and not start_side:  # a step in the last sensor period?
+            fit = end_fit(values, at, first, all_runs, reach, ring)
+            if fit.step:
+                step = (fit.index, fit.height, fit.significance, (first, values.size))
+                found.append(OffsetStep(*step, note=fit.note))
+                continue
+            if new.size < period:
+                continue  # the start of a lobe: left to the impacts
         if new.size < 2 or old.size < period:
             continue
         # before a step at the start, the few samples are a level, not a main lobe (an
@@ -431,7 +459,7 @@ def _end_steps(values, runs, period, reach, noise, start_side=False):
         height = float(np.median(new) - np.median(old))
         error = np.hypot(*(level_error(noise, period, x.size) for x in (new, old)))
         significance = abs(height) / max(error, np.finfo(float).tiny)
-        flat = spread[0] <= FLAT_RATIO * spread[1]
+        flat = (start_side and ring is not None) or spread[0] <= FLAT_RATIO * spread[1]
         if flat and significance >= STEP_SIGMAS:
             found.append(OffsetStep(at, height, significance, (first, values.size)))
     return found
@@ -453,8 +481,9 @@ def merge_steps(steps, reach):
         if out and step.index - out[-1].index <= reach:
             last = out[-1]
             significance = max(last.significance, step.significance)
+            height = last.height + step.height
             out[-1] = OffsetStep(
-                last.index, last.height + step.height, significance, last.window, last.lobe
+                last.index, height, significance, last.window, last.lobe, last.note
             )
         else:
             out.append(step)

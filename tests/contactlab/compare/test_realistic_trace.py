@@ -31,7 +31,7 @@ def test_a_record_that_starts_at_the_impact_is_compared():
     offset = 0.3  # [N] a DC offset the baseline must remove
     trace = record.trace.derive({"step": "offset"}, values=np.asarray(record.trace.values) + offset)
     result = compare_trace(trace, config)
-    # no sample before the impact: a constant fitted with the ringing after the contact
+    # no sample before the impact: the head level fitted with the ringing after the contact
     assert result.notes["baseline status"] == "short pre-trigger"
     assert "no pre-trigger" in result.notes["baseline"]
     measured = float(np.max(result.a.values))

@@ -5,7 +5,7 @@ error variance against the exact one, invariants, and the noise levels' estimate
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from pink_noise import pink_by_phases
 from scipy.linalg import cholesky, toeplitz
@@ -49,6 +49,70 @@ def test_ar1_gap_is_the_markov_bridge_in_closed_form(phi, gap, position):
     # 0.98, measured 1e-12)
     assert found[k - first] == pytest.approx(expected, rel=1e-8, abs=1e-10)
     assert beta.size == 0
+
+
+@settings(deadline=None)  # a few ms an example; timings are no part of the check
+@given(
+    phi=st.floats(0.05, 0.98),
+    gap=st.integers(1, 30),
+    left_out=st.integers(1, 30),
+    far=st.integers(1, 20),
+    position=st.floats(0.0, 1.0),
+)
+def test_samples_left_out_next_to_the_gap_move_the_bridge_to_the_next_sample_kept(
+    phi, gap, left_out, far, position
+):
+    """AR(1) noise with samples left out of the conditioning set (another impact's):
+    ``left_out`` samples right after the gap and ``far`` samples inside the run before
+    it. Only the nearest samples kept on each side count (Markov), so the conditional
+    mean is the bridge of the closed form between the last sample kept before the gap,
+    ``a``, and the first kept after it, ``c = b + left_out``: the left-out samples are
+    neither noise to condition on nor signal to predict; the far run left out changes
+    nothing."""
+    n, first = 160, 50
+    last = first + gap
+    index = np.arange(n)
+    before = index[: first - 20 - far].tolist() + index[first - 20 : first].tolist()
+    after = index[last + left_out :]
+    inside = index[first:last]
+    y = np.random.default_rng(6).normal(size=n)
+    autocovariance = phi ** np.arange(n)
+    _, found = predict_gap(autocovariance, y, np.zeros((n, 0)), np.array(before), after, inside, 1)
+    a, c = first - 1, last + left_out
+    k = inside[min(int(position * gap), gap - 1)]
+    expected = (
+        phi ** (k - a) * (1.0 - phi ** (2 * (c - k))) * y[a]
+        + phi ** (c - k) * (1.0 - phi ** (2 * (k - a))) * y[c]
+    ) / (1.0 - phi ** (2 * (c - a)))
+    # Cholesky solve against the closed form: rounding (as the gap's test above)
+    assert found[k - first] == pytest.approx(expected, rel=1e-8, abs=1e-10)
+
+
+def test_runs_are_averaged_in_blocks_of_their_own():
+    """With blocks of 3 samples and a run of ``after`` cut by samples left out, the
+    reading equals one made on the two runs' block means by hand: each run's blocks
+    start at its first sample (before: end at its last), none straddles the gap."""
+    n, q = 120, 3
+    index = np.arange(n)
+    before = index[10:40]
+    after = np.concatenate([index[60:71], index[80:100]])  # 11 = 3 blocks + 2 left over
+    inside = index[40:60]
+    y = np.random.default_rng(9).normal(size=n)
+    autocovariance = 0.8 ** np.arange(n) + np.eye(1, n)[0]
+    design = np.column_stack([np.ones(n), index / n])
+    beta, found = predict_gap(autocovariance, y, design, before, after, inside, q)
+    starts = np.concatenate([np.arange(10, 40, q), np.arange(60, 69, q), np.arange(80, 98, q)])
+    members = starts[:, None] + np.arange(q)
+    full = toeplitz(autocovariance)
+    within = np.array([[full[np.ix_(m, p)].mean() for p in members] for m in members])
+    cross = np.array([[full[k, m].mean() for m in members] for k in inside])
+    block_y, block_x = y[members].mean(axis=1), design[members].mean(axis=1)
+    weights = np.linalg.solve(within, block_x)
+    expected_beta = np.linalg.solve(block_x.T @ weights, weights.T @ block_y)
+    expected = cross @ np.linalg.solve(within, block_y - block_x @ expected_beta)
+    # the same linear algebra by dense matrices: rounding (measured 1e-13)
+    np.testing.assert_allclose(beta, expected_beta, rtol=1e-9)
+    np.testing.assert_allclose(found, expected, rtol=1e-9, atol=1e-12)
 
 
 def test_prediction_ignores_the_baseline_and_reproduces_it():

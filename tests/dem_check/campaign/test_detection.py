@@ -61,17 +61,11 @@ def test_overlapping_impacts_are_flagged_not_merged(hard_setup, gap):
     assert f"{first.onset:.6g} s" in second.reason
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="open (issue 22, found after the noise under the pulse was predicted from both "
-    "sides): the overlap is flagged, but the segment's impulse reads 1.77 times the "
-    "contact's (1.83 with the ordinary line, noise=None; the two impacts are equal, so "
-    "about 2): the prediction conditions on samples after the segment that hold the "
-    "second impact's ringing, and the segment's impulse reads low; not traced further",
-)
 def test_a_second_contact_right_after_the_first_lobe_is_flagged(hard_setup):
     """120 us after a 100 us contact: too early for the ringing check, caught by the
-    impulse check of the analysis (the segment holds twice the contact's impulse)."""
+    impulse check of the analysis (the segment holds twice the contact's impulse: read
+    to a period past the second contact's end, which the reconstruction shows; 1.77
+    when the post-contact window started inside the second contact)."""
     from dem_check.campaign.analysis import analyse_impact
 
     grain, sensor, _ = hard_setup

@@ -61,13 +61,11 @@ def _arrays(record):
 
 
 def _cases(effects):
-    """Every effect 1 ms into the record, and at its start those a record that starts at
-    its impact can hold (a drift of 100 sigma there is the known limit, below)."""
+    """Every effect 1 ms into the record and at its start."""
     return [
         pytest.param(effect, onset, id=f"{name}, {where}")
         for where, onset in ONSETS.items()
         for name, effect in effects.items()
-        if onset > 0.0 or effect.drift < 100 * NOISE
     ]
 
 
@@ -112,20 +110,66 @@ def test_reconstruction_meets_the_targets_on_a_realistic_record(hard_setup, effe
     assert f"status={rec.status!r}" in repr(rec)  # what the command line prints
 
 
-def test_a_record_that_starts_at_its_impact_under_fast_drift_says_so(hard_setup):
-    record = _record(hard_setup, Effects(drift=100 * NOISE), onset=0.0)
-    rec = reconstruct_force(*_arrays(record), hard_setup[1])
-    # nothing before the impact: the baseline is a constant read after the contact, and
-    # a drift of 100 sigma over 4 ms (a ramp of ~750 N/s here) puts it 0.26 N off under
-    # the pulse (peak +12 %, contact time +86 % measured): the result says that the
-    # baseline drifts after the contact (3.3 noise sigmas over the 0.4 ms fitted), that
-    # a constant could not follow it, and that the constant and the ringing leave 2.9
-    # times the record's sample-to-sample noise there, which no structure mode explains
-    assert rec.status == (
-        "short pre-trigger, drifting baseline, not free ringing, no structure mode"
+DRIFTS = {
+    "line 20 sigma": (20 * NOISE, 1),
+    "line 100 sigma": (100 * NOISE, 1),
+    "quadratic 20 sigma": (20 * NOISE, 2),
+    "quadratic 100 sigma": (100 * NOISE, 2),
+}
+"""Drifts added to a record that starts at its impact: their change over the 4 ms
+record [N] and degree. The quadratic ``x (2 - x)`` (``x`` the time over the record's
+length) starts twice as steep as the line and flattens, as a charge amplifier settles:
+1500 N/s at 100 sigma, twice the realistic records' drift at its fastest."""
+
+
+def _drifting_start(hard_setup, size, degree):
+    """The record at its impact (white noise only), its arrays with the drift added, and
+    the drift [N]."""
+    record = _record(hard_setup, Effects(), onset=0.0)
+    t, y = _arrays(record)
+    x = (t - t[0]) / (t[-1] - t[0])
+    drift = size * (x if degree == 1 else x * (2.0 - x))
+    return record, t, y + drift, drift
+
+
+@pytest.mark.parametrize(("size", "degree"), DRIFTS.values(), ids=DRIFTS.keys())
+def test_the_four_commands_at_the_start_under_line_and_quadratic_drift(hard_setup, size, degree):
+    grain, sensor, law = hard_setup
+    record, t, y, drift = _drifting_start(hard_setup, size, degree)
+    truth = record.truth.iloc[0]
+    rec = reconstruct_force(t, y, sensor)
+    # nothing before the impact: the baseline under it is the head level (a line or
+    # quadratic fitted with the ringing after the contact), extrapolated back; the drift
+    # is followed, so only the missing pre-trigger is said. Before (a constant after the
+    # contact) the realistic drift of 100 sigma gave peak +11 % and contact time +86 %
+    assert rec.status == "short pre-trigger"
+    assert "extrapolated back" in rec.notes[0]
+    # the baseline at the onset is the drift to a noise sigma (the extrapolation's
+    # scatter, 0.1-0.3 sigma: tests/contactlab/inverse/test_head_baseline.py)
+    assert rec.parameters["baseline [N]"] == pytest.approx(
+        np.interp(rec.parameters["onset [s]"], t, drift), abs=NOISE
     )
-    assert "a drift under the pulse is not seen" in rec.notes[0]
-    assert "record a pre-trigger" in rec.notes[1]
+    # the issue's targets: 5 % where a contact holds at least 20 samples (here 200)
+    assert rec.metrics.peak == pytest.approx(truth["peak_contact_force [N]"], rel=0.05)
+    assert rec.metrics.duration == pytest.approx(truth["contact_time [s]"], rel=0.05)
+    # compare: the peak signal against the model's within the issue's 2 %; the largest
+    # sample near a noisy peak overshoots by up to 2-3 noise sigmas, so it is checked
+    # against the same record without the drift as well: the drift adds under a sigma
+    config = replace(load_config(ROOT / "data" / "traces" / "model_hard.toml"), law=law)
+    result = compare_trace(record.trace.derive({"step": "drift"}, values=y), config)
+    plain = compare_trace(record.trace, config)
+    assert result.notes["baseline status"] == "short pre-trigger"
+    row = result.table.set_index("quantity").loc["peak_sensor_force"]
+    still = plain.table.set_index("quantity").loc["peak_sensor_force"]
+    assert abs(row["rel_error"]) < 0.02
+    assert abs(row["a"] - still["a"]) < NOISE
+    # identify-sensor reads the ringing on a line: as under every effect above
+    found = identify_sensor(t, y)
+    assert found.resonance == pytest.approx(sensor.resonance, rel=2e-3)
+    assert found.damping_ratio == pytest.approx(sensor.damping_ratio, rel=0.05)
+    # fit judges its chi-squared against noise read before the pulse: it says why not
+    with pytest.raises(ParameterError, match="record a pre-trigger or pass baseline_window"):
+        fit_contact(t, y, grain, sensor, "linear", velocity=2.0)
 
 
 @pytest.mark.parametrize("onset", ONSETS.values(), ids=ONSETS.keys())

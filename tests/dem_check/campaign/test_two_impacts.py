@@ -1,0 +1,109 @@
+"""Two impacts close together (issue 22): the impulse read next to another impact, against
+the truth of the record model (dem_check.campaign.realistic_record, one truth row per
+impact).
+
+The hard grain (100 us contact) on the 40 kHz sensor at 2 MHz, white noise of 1 % of the
+3 N peak and 1/f noise as large as it; a second impact 0.12, 0.2 or 0.5 ms after the
+first, as strong or at half its velocity (for this linear contact the impulse is
+proportional to the velocity). The model superposes the two responses (exact for the
+signal, not for the physics of a sensor hit while it rings: docs/campaign.md, Limits), so
+the segment's impulse is the two truths' sum.
+"""
+
+import re
+
+import numpy as np
+import pytest
+
+from contactlab.inverse.local_baseline import local_baseline
+from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign.analysis import ONSET_MARGIN, analyse_impact
+from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.local import record_noise
+
+NOISE = 0.03
+"""White noise [N] (and 1/f noise of the same standard deviation)."""
+
+
+def _pair(hard_setup, gap, ratio, seed=0):
+    grain, sensor, law = hard_setup
+    return realistic_record(
+        grain,
+        sensor,
+        law,
+        [2.0, 2.0 * ratio],
+        [1e-3, 1e-3 + gap],
+        length=4e-3,
+        sample_rate=2e6,
+        noise=NOISE,
+        effects=Effects(pink=NOISE),
+        seed=seed,
+    )
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.5])
+@pytest.mark.parametrize("gap", [120e-6, 200e-6, 500e-6])
+def test_a_close_pair_is_never_read_as_one_impact(hard_setup, gap, ratio):
+    """Flagged ``overlap`` either way: by the ringing check (0.2 and 0.5 ms: both listed,
+    each naming the other's onset) or, for a second contact that begins within a period
+    of the first lobe's end (0.12 ms), by the impulse check of the analysis, whose stated
+    ratio is the truth's: the segment's impulse (both contacts) over the first's."""
+    grain, sensor, _ = hard_setup
+    record = _pair(hard_setup, gap, ratio)
+    truth = record.truth["impulse [N*s]"].to_numpy()
+    found = find_impacts(record.trace, sensor)
+    rows = []
+    for window in found.impacts:
+        if window.status in ANALYSED:
+            rows.append(analyse_impact(found, window, sensor, grain)[0])
+        else:
+            rows.append({"status": window.status, "reason": window.reason})
+    assert [r["status"] for r in rows] == ["overlap"] * (1 if gap < 150e-6 else 2)
+    if gap < 150e-6:
+        stated = float(re.search(r"impulse is ([0-9.]+) times", rows[0]["reason"]).group(1))
+        # measured 2.00 and 1.52 on this seed (2.0 and 1.5 true), 1.97-2.17 and
+        # 1.47-1.53 over 3 seeds and gaps of 110-130 us; 0.1 is twice the impulse
+        # reader's spread at this significance under 1/f noise, doubled for two contacts.
+        # Before the post-contact window moved past the second contact: 1.77 and 1.41
+        assert stated == pytest.approx(truth.sum() / truth[0], abs=0.1)
+    else:
+        first, second = found.impacts
+        assert f"{second.onset:.6g} s" in first.reason
+        assert f"{first.onset:.6g} s" in second.reason
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.5])
+@pytest.mark.parametrize("gap", [200e-6, 500e-6])
+def test_the_first_impulse_with_the_neighbour_held_out(hard_setup, gap, ratio):
+    """The first impact's local baseline (a line before it and the free ringing after its
+    contact, with the noise under the pulse predicted from both sides) with the second
+    impact's samples held out (a period before its onset to its decayed ringing, as the
+    campaign holds out every other impact's): its impulse is the first truth's. Fitted on
+    them, the post-contact window reads the second impact's force as the first one's
+    ringing."""
+    sensor = hard_setup[1]
+    record = _pair(hard_setup, gap, ratio)
+    true = float(record.truth["impulse [N*s]"].iloc[0])
+    found = find_impacts(record.trace, sensor)
+    first, second = found.impacts
+    part = slice(first.first, first.stop)
+    t = np.asarray(found.record.t[part])
+    y = np.asarray(found.record.values[part], dtype=float)
+    start = first.onset - ONSET_MARGIN * sensor.period  # the campaign's integral start
+    base = (first.baseline_window[0], start)
+    contact_end = first.onset + 100e-6 + sensor.period  # a period past the true contact
+    held = (t >= second.onset - sensor.period) & (t <= second.end)
+    noise = record_noise(found, sensor)
+
+    def impulse(exclude):
+        return local_baseline(
+            t, y, base, start, contact_end, first.end, sensor, noise, exclude
+        ).impulse
+
+    # measured -0.4 % (0.2 ms) and -0.3 % (0.5 ms) on this seed, within 1.1 % over 3
+    # seeds and gaps of 0.2-0.5 ms: the reader's spread at about 100 sigma under 1/f
+    # noise as large as the white noise is about 1 % (docs/campaign.md); 2.5 % is 2.5 of it
+    assert impulse(held) == pytest.approx(true, rel=0.025)
+    if gap < 300e-6:  # the second impact inside the post-contact window: read with it
+        # measured -13 % (equal impacts) and -6.6 % (half the velocity) on this seed
+        assert abs(impulse(None) / true - 1.0) > 0.05
