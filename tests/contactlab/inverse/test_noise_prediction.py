@@ -26,6 +26,16 @@ def _gap(n, first, last):
     return index[:first], index[first:last], index[last:]
 
 
+def _bridge(phi, y, a, k, b):
+    """AR(1) noise of coefficient ``phi`` at sample ``k`` given samples ``a < k < b`` of
+    ``y``: the conditional mean, in closed form (the Markov property: only the nearest
+    sample on each side counts)."""
+    return (
+        phi ** (k - a) * (1.0 - phi ** (2 * (b - k))) * y[a]
+        + phi ** (b - k) * (1.0 - phi ** (2 * (k - a))) * y[b]
+    ) / (1.0 - phi ** (2 * (b - a)))
+
+
 @given(phi=st.floats(0.05, 0.98), gap=st.integers(1, 40), position=st.floats(0.0, 1.0))
 def test_ar1_gap_is_the_markov_bridge_in_closed_form(phi, gap, position):
     """AR(1) noise ``C(k) = phi**|k|`` with no baseline: given every sample outside the
@@ -41,10 +51,7 @@ def test_ar1_gap_is_the_markov_bridge_in_closed_form(phi, gap, position):
     beta, found = predict_gap(autocovariance, y, np.zeros((n, 0)), before, after, inside, 1)
     a, b = first - 1, last
     k = inside[min(int(position * gap), gap - 1)]
-    expected = (
-        phi ** (k - a) * (1.0 - phi ** (2 * (b - k))) * y[a]
-        + phi ** (b - k) * (1.0 - phi ** (2 * (k - a))) * y[b]
-    ) / (1.0 - phi ** (2 * (b - a)))
+    expected = _bridge(phi, y, a, k, b)
     # Cholesky solve against the closed form: rounding (conditioning up to ~1e4 at phi
     # 0.98, measured 1e-12)
     assert found[k - first] == pytest.approx(expected, rel=1e-8, abs=1e-10)
@@ -80,10 +87,7 @@ def test_samples_left_out_next_to_the_gap_move_the_bridge_to_the_next_sample_kep
     _, found = predict_gap(autocovariance, y, np.zeros((n, 0)), np.array(before), after, inside, 1)
     a, c = first - 1, last + left_out
     k = inside[min(int(position * gap), gap - 1)]
-    expected = (
-        phi ** (k - a) * (1.0 - phi ** (2 * (c - k))) * y[a]
-        + phi ** (c - k) * (1.0 - phi ** (2 * (k - a))) * y[c]
-    ) / (1.0 - phi ** (2 * (c - a)))
+    expected = _bridge(phi, y, a, k, c)
     # Cholesky solve against the closed form: rounding (as the gap's test above)
     assert found[k - first] == pytest.approx(expected, rel=1e-8, abs=1e-10)
 
