@@ -52,7 +52,7 @@ from scipy import optimize
 from contactlab.errors import ParameterError
 from contactlab.inverse.lobe_model import LobeModel
 from contactlab.inverse.noise_colour import fit_ar_noise
-from contactlab.signals import robust_noise
+from contactlab.inverse.pulse import difference_noise
 
 __all__ = [
     "DURATIONS",
@@ -140,7 +140,7 @@ def edge_noise(values, quiet, period):
     ARNoise or float
         The autoregressive model (:func:`contactlab.inverse.noise_colour.fit_ar_noise`),
         or, with fewer than ``quiet`` samples, the white noise's standard deviation [N]
-        on first differences of the record.
+        on first differences of the record (:func:`contactlab.inverse.pulse.difference_noise`).
     """
     values = np.asarray(values, dtype=float)
     if values.size >= max(quiet, 2 * period):
@@ -150,7 +150,7 @@ def edge_noise(values, quiet, period):
             return fit_ar_noise(levelled)
         except ParameterError:  # constant samples
             pass
-    return robust_noise(np.diff(values)) / math.sqrt(2.0) if values.size > 2 else math.nan
+    return difference_noise(values) if values.size > 2 else math.nan
 
 
 class _Projector:

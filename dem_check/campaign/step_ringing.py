@@ -34,12 +34,20 @@ from scipy.ndimage import label, maximum_filter1d, uniform_filter1d
 from contactlab.inverse.local_baseline import _ringing
 from contactlab.signals import MAD_TO_SIGMA
 
-__all__ = ["SEPARABLE_SIGMAS", "place_across", "rise", "second_across"]
+__all__ = ["SEPARABLE_SIGMAS", "difference_sigma", "place_across", "rise", "second_across"]
 
 SEPARABLE_SIGMAS = 4.0
 """A step fits better where it is placed than anywhere inside the main lobe when the
 residual sum of squares is less by more than this many noise sigmas squared [-] (a
 chi-squared change of one degree of freedom, at 4 sigma)."""
+
+
+def difference_sigma(x):
+    """Noise standard deviation of the samples ``x`` [N] read on their first differences:
+    :data:`~contactlab.signals.MAD_TO_SIGMA` times the median absolute difference over
+    ``sqrt(2)`` (a difference holds two samples' noise; drift and steps move few of
+    them)."""
+    return MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
 
 
 QUIET_FRACTION = 0.25
@@ -87,7 +95,7 @@ def rise(x, start, band, period):
     rest, so the samples there place a step a period or more nearer the onset than the
     period means do (a step 19 us before an onset at 1 MHz: seed 14 of the hard mix)."""
     quiet = max(2, round(QUIET_FRACTION * period))
-    reach = RISE_SIGMAS * MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
+    reach = RISE_SIGMAS * difference_sigma(x)
 
     def within(values):
         return values.min() >= band[0] - reach and values.max() <= band[1] + reach

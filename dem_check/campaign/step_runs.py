@@ -45,8 +45,8 @@ import numpy as np
 import ruptures
 from scipy.ndimage import median_filter, uniform_filter1d
 
-from contactlab.signals import MAD_TO_SIGMA, robust_noise
-from dem_check.campaign.step_ringing import rise
+from contactlab.signals import robust_noise
+from dem_check.campaign.step_ringing import difference_sigma, rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
     LEAST_HEIGHT,
@@ -122,7 +122,7 @@ def _fit(x, period, changes):
         return None
     coarse = ruptures.KernelCPD(kernel="linear", min_size=1).fit(means)
     cuts = [0, *(q * b for b in coarse.predict(n_bkps=changes)[:-1]), x.size]
-    noise = MAD_TO_SIGMA * np.median(np.abs(np.diff(x))) / np.sqrt(2.0)
+    noise = difference_sigma(x)
     for k in range(1, len(cuts) - 1):  # on the samples, between the two levels
         lo, hi = max(cuts[k - 1] + 1, cuts[k] - q), min(cuts[k + 1] - 1, cuts[k] + q)
         level = np.median(x[cuts[k - 1] : cuts[k]])

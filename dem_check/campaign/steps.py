@@ -50,7 +50,7 @@ from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
 from dem_check.campaign.edge_models import end_fit, start_fit
-from dem_check.campaign.step_ringing import place_across, second_across
+from dem_check.campaign.step_ringing import difference_sigma, place_across, second_across
 
 __all__ = [
     "STEP_SIGMAS",
@@ -260,10 +260,7 @@ def _one_pass(values, period, masked, ring):
     significance = changes["significance"]
     size = WINDOW_PERIODS
     largest = significance == maximum_filter1d(significance, 2 * size + 1, mode="constant")
-    noise = (  # of the period means and of the samples, on first differences
-        MAD_TO_SIGMA * np.median(np.abs(np.diff(levels))) / np.sqrt(2.0),
-        MAD_TO_SIGMA * np.median(np.abs(np.diff(values))) / np.sqrt(2.0),
-    )
+    noise = (difference_sigma(levels), difference_sigma(values))  # period means, samples
     found = []
     high = np.abs(changes["height"]) >= LEAST_HEIGHT * noise[1]
     chosen = []  # medians tie: equal largest changes at neighbouring boundaries are one
@@ -416,7 +413,7 @@ def period_noise(values, period):
     means = uniform_filter1d(values, period, mode="nearest")[period // 2 :: period]
     if means.size < 3:
         return robust_noise(values)
-    return MAD_TO_SIGMA * float(np.median(np.abs(np.diff(means)))) / np.sqrt(2.0)
+    return float(difference_sigma(means))
 
 
 def level_error(noise, period, samples):
