@@ -127,9 +127,10 @@ def test_processes_give_the_serial_result_bit_for_bit(setup, serial):
 @pytest.fixture(scope="module")
 def dask_cluster():
     distributed = pytest.importorskip("dask.distributed")
-    # threads in this process: quick to start; dashboard off (no port to bind)
+    # threads in this process: quick to start; the dashboard on a free port (``None``
+    # binds distributed's default 8787, where two test workers' clusters collided)
     with distributed.LocalCluster(
-        n_workers=1, threads_per_worker=2, processes=False, dashboard_address=None
+        n_workers=1, threads_per_worker=2, processes=False, dashboard_address=":0"
     ) as cluster:
         yield cluster
 
