@@ -28,12 +28,16 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   ``bench_bounds.py``). ``--law hertz``: the records with a Hertz contact (:data:`HERTZ`)
   instead of the linear one; ``--linear-flanks``: the reconstructed contact's edges read
   with a line on each flank whatever the contact family the onset fit read on the record
-  (as before the family was passed to the reconstruction).
+  (as before the family was passed to the reconstruction); ``--largest-value``: the
+  reconstructed peak as the regularised force's largest value and the contact time from
+  its significance edges (``read_family=False``: as before the peak and contact were
+  read from the family fitted to the signal).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 [--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
 [--no-prediction] [--records N]
-[--noise-model white] [--contact-edges level] [--law hertz] [--linear-flanks]``
+[--noise-model white] [--contact-edges level] [--law hertz] [--linear-flanks]
+[--largest-value]``
 """
 
 import argparse
@@ -287,15 +291,21 @@ def main():
         help="the reconstructed contact's edges read with a line on each flank whatever the "
         "record's contact family (as before the family was passed)",
     )
+    parser.add_argument(
+        "--largest-value",
+        action="store_true",
+        help="the reconstructed peak as the force's largest value, the contact from its "
+        "significance edges (as before the family's fit read them)",
+    )
     args = parser.parse_args()
-    if args.linear_flanks:
+    changed = {"contact_family": None} if args.linear_flanks else {}
+    changed.update({"read_family": False} if args.largest_value else {})
+    if changed:
 
-        def linear_flanks(*given, **options):  # the campaign's call without its family
-            return reconstruct_module.reconstruct_force(
-                *given, **{**options, "contact_family": None}
-            )
+        def campaign_call(*given, **options):  # the campaign's call, changed
+            return reconstruct_module.reconstruct_force(*given, **{**options, **changed})
 
-        analysis_module.reconstruct_force = linear_flanks
+        analysis_module.reconstruct_force = campaign_call
     reconstruct_module.DEFAULT_NOISE_MODEL = args.noise_model
     reconstruct_module.DEFAULT_CONTACT_EDGES = args.contact_edges
     print(f"noise model {args.noise_model}, contact edges {args.contact_edges}")
@@ -307,6 +317,7 @@ def main():
             names = [n for n in names or CONFIGURATIONS if CONFIGURATIONS[n][1]["crosstalk"]]
         law = HERTZ if args.law == "hertz" else None
         print(f"contact law {args.law}, flanks {'linear' if args.linear_flanks else 'family'}")
+        print(f"peak and contact: {'largest value' if args.largest_value else 'family fit'}")
         accuracy(
             names,
             crosstalk=not args.no_crosstalk,

@@ -46,16 +46,13 @@ from contactlab.inverse.noise_colour import (
     whiten_problem,
 )
 from contactlab.inverse.pulse import pulse_baseline
+from contactlab.inverse.reconstruct_family import family_reading
+from contactlab.inverse.reconstruct_inverse import band_limited_inverse
 from contactlab.inverse.reconstruction import ForceReconstruction
 from contactlab.inverse.regularization import CRITERIA, StandardForm
 from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = ["CONTACT_EDGES", "CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
-
-DEFAULT_CUTOFF_FACTOR = 2.0
-"""Default cutoff of the inverse filter in units of the resonance. The inverse's gain
-grows as ``(f / f1)**2`` above resonance, so at ``2 f1`` white noise is amplified about
-four times; a contact long enough to be resolved has little content above it."""
 
 DEFAULT_MAX_UNKNOWNS = 400
 """Default largest number of force values in the Tikhonov problem (sets the grid step)."""
@@ -181,36 +178,7 @@ def _tikhonov(t, y, dt, sensor, noise, window, options):
     return force, params, std
 
 
-def _inverse(t, y, dt, sensor, noise, window, options):
-    from scipy.signal import cont2discrete, lfilter
-
-    cutoff = options["cutoff"]
-    if cutoff is None:
-        cutoff = DEFAULT_CUTOFF_FACTOR * sensor.resonance
-    smooth = signals.lowpass(y, dt, cutoff)
-    lag_time = 2.0 * sensor.damping_ratio / sensor.angular_frequency
-    if lag_time > 0.0:
-        # x1 = S1 / (c1 s + k1), up to the factor 1/k1: a first-order lag, exact for
-        # piecewise-linear input (first-order hold). It starts on the lag's steady
-        # response to the signal's initial ramp, u = S1 - tau S1': a cold start leaves a
-        # transient whose curvature the inverse amplifies by 1 / (4 zeta**2).
-        num, den, _ = cont2discrete(([1.0], [lag_time, 1.0]), dt, method="foh")
-        num = np.ravel(num)
-        ramp_output = smooth[0] - lag_time * (smooth[1] - smooth[0]) / dt
-        start = [ramp_output - num[0] * smooth[0]]
-        lagged = lfilter(num, den, smooth, zi=start)[0]
-    else:
-        lagged = smooth
-    curvature = np.empty_like(lagged)
-    curvature[1:-1] = (lagged[2:] - 2.0 * lagged[1:-1] + lagged[:-2]) / dt**2
-    # the 3-point stencil needs both neighbours: the end samples take their neighbour's
-    curvature[0], curvature[-1] = curvature[1], curvature[-2]
-    force = smooth + curvature / sensor.angular_frequency**2
-    params = {"cutoff [Hz]": float(cutoff), "filter": "Butterworth order 4, zero-phase"}
-    return force, params, None  # a stationary filter: its spread is read on the baseline
-
-
-METHODS = {"tikhonov": _tikhonov, "inverse": _inverse}
+METHODS = {"tikhonov": _tikhonov, "inverse": band_limited_inverse}
 """Reconstruction methods: name -> implementation."""
 
 CONTACT_EDGES = ("significance", "level")
@@ -274,6 +242,7 @@ def reconstruct_force(
     flank_exponent=1.0,
     contact_family=None,
     first_touch=True,
+    read_family=True,
 ):
     """Estimate the contact force S2(t) from the sensor signal S1(t).
 
@@ -313,7 +282,7 @@ def reconstruct_force(
         62 % over 8 noise seeds, against at most 3.9 % with GCV).
     cutoff : float, optional
         Low-pass cutoff [Hz] of the inverse filter (inverse only); default twice the
-        resonance (:data:`DEFAULT_CUTOFF_FACTOR`). Zero-phase Butterworth of order 4.
+        resonance (:data:`contactlab.inverse.reconstruct_inverse.DEFAULT_CUTOFF_FACTOR`). Zero-phase Butterworth of order 4.
     max_unknowns : int, optional
         Largest number of force values, >= 2 (Tikhonov only; default
         :data:`DEFAULT_MAX_UNKNOWNS` = 400); the signal is averaged over blocks of ``q``
@@ -331,6 +300,8 @@ def reconstruct_force(
         (:func:`contactlab.inverse.lobe_onset.single_onset`; 0.6 s of CPU) and report it
         as ``first_touch [s]``, ``first_touch_bound [s]`` and ``first_touch_shape``; off
         where the onset is fitted elsewhere (a campaign's, per record).
+    read_family : bool, default True
+        With ``contact_family``: read the peak and the contact from the family's fit.
     noise_model : {"ar", "white"}, optional
         The noise the Tikhonov estimate assumes (default :data:`DEFAULT_NOISE_MODEL`,
         ``"ar"``). ``"ar"``: an autoregressive model of the block means over the
@@ -366,7 +337,10 @@ def reconstruct_force(
         with its onsets) (``"significance"`` only): the flanks' power laws and the
         force's jump at the touch from the family's force
         (:func:`contactlab.inverse.contact_edges.family_flanks`), instead of
-        ``flank_exponent``: a damped contact's start at half its force's jump.
+        ``flank_exponent``: a damped contact's start at half its force's jump. With
+        ``read_family`` (default) the metrics' peak, edges and duration are then the
+        family's force fitted to the signal (:mod:`contactlab.inverse.reconstruct_family`;
+        ``parameters["peak_reading"]`` says which was used).
 
     Returns
     -------
@@ -468,6 +442,9 @@ def reconstruct_force(
         metrics = significant_edges(t, force, std, **flanks)
         # the level the force's peak had to pass; the edges are the flanks' lines at zero
         threshold = SIGNIFICANCE_SIGMAS * float(std[np.argmax(force)])
+        if contact_family is not None and read_family:
+            metrics, read = family_reading(t, y, sensor, contact_family, metrics, noise, quiet)
+            params.update(read)
     else:
         if threshold is None:
             threshold = max(THRESHOLD_FRACTION * float(force.max()), THRESHOLD_SIGMAS * spread)

@@ -1,4 +1,5 @@
-"""How well the peak signal and the impulse can be read under a realistic record's noise.
+"""How well an impact's numbers can be read under a realistic record's noise: the peak
+signal and the impulse, and the contact's peak force and contact time.
 
 The best linear unbiased estimator (BLUE) of a linear function ``c' beta`` of the
 parameters of a linear model ``y = X beta + e``, ``Cov(e) = Sigma``, is generalised least
@@ -15,13 +16,19 @@ signal, from the most to the least informed:
 
 - ``"law"``: the signal of the true contact law with unknown velocity, stiffness,
   damping and first touch (:func:`law_design`): the bound for an estimator that knows
-  the law's family (the fit);
+  the law's family (the fit); the only model here that bounds the contact time, and
+  the lowest bound of the peak contact force;
 - ``"band"``: any signal whose spectrum over the contact window lies below a cutoff
   (a cosine series, :func:`band_design`), then the sensor's free ringing: the bound for
   an unbiased reading of the low-passed record;
 - ``"free"``: any signal in the contact window (:func:`free_variance`): the bound for an
   estimator that assumes nothing of the pulse (the impulse only: a peak read on one
   free sample averages nothing).
+
+For the contact force, ``"force band"`` (:func:`force_band_design`): any contact force
+below a cutoff in the contact window (a cosine series), its signal that force through
+the sensor: the bound for an unbiased reading of the peak force by a deconvolution of
+that bandwidth that does not know the law.
 
 References
 ----------
@@ -39,12 +46,18 @@ from contactlab.inverse.noise_prediction import pink_autocovariance
 from contactlab.solver.impact import simulate_impact
 
 __all__ = [
+    "LAW_READINGS",
     "band_design",
     "blue_variance",
+    "force_band_design",
     "free_variance",
     "law_design",
     "noise_autocovariance",
 ]
+
+
+LAW_READINGS = ("peak_sensor_force", "impulse", "peak_contact_force", "contact_time")
+"""The readings whose gradients :func:`law_design` returns, in its columns' order."""
 
 
 def noise_autocovariance(count, dt, white, effects, record_length):
@@ -144,17 +157,19 @@ def free_variance(autocovariance, outside, free, design, weights, tail):
 
 def _signal(grain, sensor, law, velocity, t, onset):
     """The sensor signal at ``t`` [s] of an impact touching at ``onset`` [s] (linear
-    interpolation on a grid 32 times finer than ``t``), its peak and impulse."""
+    interpolation on a grid 32 times finer than ``t``) and its :data:`LAW_READINGS`
+    (peak signal [N], impulse [N*s], peak contact force [N], contact time [s]: the
+    exact solver's readings, not the grid's)."""
     dt = float(t[1] - t[0])
     window = float(t[-1] - onset) + dt
     result = simulate_impact(grain, sensor, law, velocity, duration=window, sample_rate=32.0 / dt)
     values = np.interp(t - onset, result.t, result.sensor_force, left=0.0, right=0.0)
-    return values, result.peak_sensor_force, result.impulse
+    return values, np.array([getattr(result, name) for name in LAW_READINGS])
 
 
 def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
-    """Columns of the linearised law model at the truth, and the gradients of the peak
-    signal and impulse (``"law"`` model of the module docstring).
+    """Columns of the linearised law model at the truth, and the gradients of the
+    :data:`LAW_READINGS` (``"law"`` model of the module docstring).
 
     Parameters
     ----------
@@ -163,7 +178,9 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
         Its ``stiffness`` [N/m] and ``damping`` [N*s/m] are parameters (central
         differences of relative ``step``).
     velocity : float
-        Impact velocity [m/s] (the signal is proportional to it).
+        Impact velocity [m/s]. The law is linear: the signal, the peak signal, the
+        impulse and the peak contact force are proportional to it, the contact time
+        does not depend on it.
     t : numpy.ndarray
         Sample times [s] of the segment read.
     onset : float
@@ -176,13 +193,14 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
     design : numpy.ndarray
         ``(n, 6)``: d/dvelocity, d/dstiffness, d/ddamping, d/donset, then a line.
     functionals : numpy.ndarray
-        ``(6, 2)``: gradients of the peak signal [N] and impulse [N*s].
-    truth : (float, float)
-        The peak signal [N] and impulse [N*s].
+        ``(6, 4)``: gradients of the peak signal [N], impulse [N*s], peak contact force
+        [N] and contact time [s].
+    truth : numpy.ndarray
+        The four readings.
     """
-    values, peak, impulse = _signal(grain, sensor, law, velocity, t, onset)
+    values, truth = _signal(grain, sensor, law, velocity, t, onset)
     columns = [values / velocity]
-    gradients = [(peak / velocity, impulse / velocity)]
+    gradients = [truth * np.array([1.0, 1.0, 1.0, 0.0]) / velocity]
     for name in ("stiffness", "damping"):
         size = step * getattr(law, name)
         shifted = []
@@ -190,15 +208,15 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
             changed = type(law)(**{**_law_parameters(law), name: getattr(law, name) + sign * size})
             shifted.append(_signal(grain, sensor, changed, velocity, t, onset))
         columns.append((shifted[0][0] - shifted[1][0]) / (2.0 * size))
-        gradients.append(tuple((shifted[0][k] - shifted[1][k]) / (2.0 * size) for k in (1, 2)))
+        gradients.append((shifted[0][1] - shifted[1][1]) / (2.0 * size))
     dt = float(t[1] - t[0])
     later = _signal(grain, sensor, law, velocity, t, onset + 0.5 * step * dt)[0]
     earlier = _signal(grain, sensor, law, velocity, t, onset - 0.5 * step * dt)[0]
     columns.append((later - earlier) / (step * dt))
-    gradients.append((0.0, 0.0))
+    gradients.append(np.zeros(len(LAW_READINGS)))
     design = np.column_stack([*columns, np.ones(t.size), (t - t.mean()) / np.ptp(t)])
-    functionals = np.vstack([np.array(gradients), np.zeros((2, 2))])
-    return design, functionals, (peak, impulse)
+    functionals = np.vstack([np.array(gradients), np.zeros((2, len(LAW_READINGS)))])
+    return design, functionals, truth
 
 
 def _law_parameters(law):
@@ -227,3 +245,35 @@ def band_design(t, window, cutoff, sensor):
     ringing[t < window[1]] = 0.0
     line = np.column_stack([np.ones(t.size), (t - t.mean()) / np.ptp(t)])
     return np.column_stack([cosines, ringing, line]), terms
+
+
+def force_band_design(t, window, cutoff, sensor):
+    """Columns of the ``"force band"`` model: the sensor's signal of each contact force of
+    a cosine series up to ``cutoff`` [Hz] on ``window`` ``[start, end)`` [s] (zero
+    elsewhere; through the sensor's transfer function ``(c1 p + k1) / (m1 p**2 + c1 p +
+    k1)`` by :func:`scipy.signal.lsim`, the force linear between samples), and a line.
+
+    Returns
+    -------
+    design : numpy.ndarray
+        ``(n, terms + 2)``: the signals of the cosine forces, the line.
+    forces : numpy.ndarray
+        ``(n, terms)``: the cosine forces themselves (the peak force's functional is
+        their row at the force's top).
+    """
+    from scipy.signal import lsim  # scipy.signal is slow to import: only here
+
+    span = window[1] - window[0]
+    terms = math.ceil(2.0 * cutoff * span) + 1
+    inside = (t >= window[0]) & (t < window[1])
+    phase = (t - window[0]) / span
+    forces = np.cos(math.pi * np.outer(phase, np.arange(terms)))
+    forces[~inside] = 0.0
+    w, zeta = sensor.angular_frequency, sensor.damping_ratio
+    system = ([2.0 * zeta * w, w**2], [1.0, 2.0 * zeta * w, w**2])
+    start = int(np.argmax(inside))
+    signals = np.zeros_like(forces)
+    for k in range(terms):
+        signals[start:, k] = lsim(system, forces[start:, k], t[start:] - t[start])[1]
+    line = np.column_stack([np.ones(t.size), (t - t.mean()) / np.ptp(t)])
+    return np.column_stack([signals, line]), forces

@@ -1,6 +1,7 @@
-"""The accuracy bounds of the peak signal and the impulse (dem_check.campaign.bounds)
-against closed forms, an independent dense computation, and a Monte Carlo of the
-campaign's own impulse estimator on noise drawn independently of ``records.py``."""
+"""The accuracy bounds of the peak signal, the impulse, the peak contact force and the
+contact time (dem_check.campaign.bounds) against closed forms, an independent dense
+computation, and a Monte Carlo of the campaign's own impulse estimator on noise drawn
+independently of ``records.py``."""
 
 import math
 
@@ -10,12 +11,17 @@ from hypothesis import given
 from hypothesis import strategies as st
 from pink_noise import pink_by_phases
 from scipy.linalg import toeplitz
+from scipy.optimize import minimize_scalar
+
+import contactlab as cl
 
 from contactlab.inverse.noise_prediction import estimate_coloured_noise
 from dem_check.campaign import Effects
 from dem_check.campaign.bounds import (
     band_design,
     blue_variance,
+    LAW_READINGS,
+    force_band_design,
     free_variance,
     law_design,
     noise_autocovariance,
@@ -124,7 +130,7 @@ def test_law_onset_column_is_minus_the_signals_slope(hard_setup):
     grain, sensor, law = hard_setup
     dt = 2e-7
     t = np.arange(2000) * dt
-    design, functionals, (peak, impulse) = law_design(grain, sensor, law, 1.5, t, 5e-5)
+    design, functionals, (peak, impulse, _, _) = law_design(grain, sensor, law, 1.5, t, 5e-5)
     values = design[:, 0] * 1.5
     slope = np.gradient(values, dt)
     inside = (t > 6e-5) & (t < 3e-4)  # away from the touch, where the slope jumps
@@ -134,6 +140,93 @@ def test_law_onset_column_is_minus_the_signals_slope(hard_setup):
     # the signal and impulse are proportional to the velocity (a linear law)
     assert functionals[0, 0] == pytest.approx(peak / 1.5, rel=1e-12)  # exact by construction
     assert functionals[0, 1] == pytest.approx(impulse / 1.5, rel=1e-12)
+
+
+def _rigid_wall(mass, stiffness, damping, velocity):
+    """Peak force [N] and contact time [s] of a linear spring-dashpot on a rigid wall in
+    closed form: ``x = v / wd exp(-zeta w0 s) sin(wd s)``, ``F = k x + c x'``, the grain
+    leaving where ``F`` returns to zero (``tan(wd s) = -2 zeta sqrt(1 - zeta**2) / (1 -
+    2 zeta**2)``); the peak by a bounded scalar search of ``F``."""
+    w0 = math.sqrt(stiffness / mass)
+    zeta = damping / (2.0 * math.sqrt(stiffness * mass))
+    wd = w0 * math.sqrt(1.0 - zeta**2)
+
+    def force(s):
+        decay = math.exp(-zeta * w0 * s)
+        x = velocity * decay * math.sin(wd * s) / wd
+        v = velocity * decay * (math.cos(wd * s) - zeta * w0 * math.sin(wd * s) / wd)
+        return stiffness * x + damping * v
+
+    leave = (math.pi + math.atan(-2.0 * zeta * math.sqrt(1.0 - zeta**2) / (1.0 - 2.0 * zeta**2))) / wd
+    top = minimize_scalar(lambda s: -force(s), bounds=(0.0, leave), method="bounded",
+                          options={"xatol": 1e-14})
+    return -top.fun, leave
+
+
+def test_law_gradients_of_the_contact_against_the_rigid_wall_closed_form(hard_setup):
+    """The gradients of the peak contact force and the contact time (central differences
+    through the exact two-mass solver) against those of the spring-dashpot on a rigid
+    wall in closed form (central differences of the closed form), and against the
+    law's linearity in the velocity (a difference in it through the solver)."""
+    grain, sensor, law = hard_setup
+    dt = 1e-6
+    t = np.arange(400) * dt
+    _, functionals, truth = law_design(grain, sensor, law, 1.5, t, 5e-5)
+    assert LAW_READINGS[2:] == ("peak_contact_force", "contact_time")
+    closed = np.array(_rigid_wall(grain.mass, law.stiffness, law.damping, 1.5))
+    # the sensor is 2000 times stiffer than the contact and 25 times heavier than the
+    # grain: its compliance moves the readings by about 1e-3 (measured MEASURE1)
+    np.testing.assert_allclose(truth[2:], closed, rtol=TOL1)
+    for row, name in ((1, "stiffness"), (2, "damping")):
+        size = 1e-4 * getattr(law, name)
+        parameters = {"stiffness": law.stiffness, "damping": law.damping}
+        up = _rigid_wall(grain.mass, **{**parameters, name: parameters[name] + size}, velocity=1.5)
+        down = _rigid_wall(grain.mass, **{**parameters, name: parameters[name] - size}, velocity=1.5)
+        expected = (np.array(up) - np.array(down)) / (2.0 * size)
+        # the same compliance, on the derivatives (measured MEASURE2)
+        np.testing.assert_allclose(functionals[row, 2:], expected, rtol=TOL2)
+    faster = cl.simulate_impact(grain, sensor, law, 1.5 * (1.0 + 1e-3))
+    slower = cl.simulate_impact(grain, sensor, law, 1.5 * (1.0 - 1e-3))
+    by_velocity = [
+        (getattr(faster, n) - getattr(slower, n)) / (2e-3 * 1.5) for n in LAW_READINGS[2:]
+    ]
+    # a linear law: the peak force is proportional to the velocity, the contact time
+    # independent of it (the solver's event times: rounding, measured MEASURE3)
+    assert by_velocity[0] == pytest.approx(functionals[0, 2], rel=1e-6)
+    assert abs(by_velocity[1]) < 1e-9 * truth[3] / 1.5
+
+
+def test_force_band_columns_are_the_sensors_step_response(hard_setup):
+    """The force band's first column (a constant force over the window) through the
+    sensor against the closed-form step response of ``(2 zeta w s + w**2) / (s**2 + 2
+    zeta w s + w**2)``: ``1 - exp(-zeta w s) (cos(wd s) - zeta w / wd sin(wd s))``, then
+    its free decay after the window; the forces are the cosines themselves."""
+    _, sensor, _ = hard_setup
+    dt = 2e-7
+    t = np.arange(1500) * dt
+    window = (4e-5, 1.6e-4)
+    design, forces = force_band_design(t, window, 2.0 * sensor.resonance, sensor)
+    w, zeta = sensor.angular_frequency, sensor.damping_ratio
+    wd = w * math.sqrt(1.0 - zeta**2)
+
+    def step(s):
+        s = np.maximum(s, 0.0)
+        return np.where(
+            s > 0.0,
+            1.0 - np.exp(-zeta * w * s) * (np.cos(wd * s) - zeta * w / wd * np.sin(wd * s)),
+            0.0,
+        )
+
+    start = t[np.argmax(t >= window[0])]
+    end = t[np.argmax(t >= window[1])]
+    expected = step(t - start) - step(t - end)
+    # lsim's exact discretisation against the closed form; the force's fall at the
+    # window's end is a ramp over one sample in lsim (linear between samples), a step in
+    # the closed form: a sample's worth of the response's slope (measured MEASURE4)
+    np.testing.assert_allclose(design[:, 0], expected, atol=TOL4)
+    inside = (t >= window[0]) & (t < window[1])
+    assert np.all(forces[~inside] == 0.0)
+    np.testing.assert_allclose(forces[inside, 0], 1.0)  # cos(0): exact
 
 
 def test_the_campaign_impulse_is_no_better_than_its_bound(hard_setup):
