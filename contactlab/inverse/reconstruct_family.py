@@ -75,7 +75,14 @@ def family_metrics(t, y, sensor, family, metrics, noise, quiet):
     # the touch cannot follow the force's top; the fit starts at the reconstruction's
     guess = (metrics.peak_time, metrics.duration)
     fit = fit_lobe(
-        t, y, sensor, guess, noise, name, damping, noise_model=model,
+        t,
+        y,
+        sensor,
+        guess,
+        noise,
+        name,
+        damping,
+        noise_model=model,
         start=(metrics.start, metrics.duration),
     )
     u, h = force_shape(name, float(damping))

@@ -27,7 +27,9 @@ def _spring_dashpot(s):
 
     def unit(u):
         decay = np.exp(-ZETA * u)
-        return decay * (np.sin(wd * u) / wd + 2.0 * ZETA * (np.cos(wd * u) - ZETA * np.sin(wd * u) / wd))
+        return decay * (
+            np.sin(wd * u) / wd + 2.0 * ZETA * (np.cos(wd * u) - ZETA * np.sin(wd * u) / wd)
+        )
 
     leave = (math.pi + math.atan(-2.0 * ZETA * wd / (1.0 - 2.0 * ZETA**2))) / wd
     top = math.atan(wd * (1.0 - 4.0 * ZETA**2) / (ZETA * (3.0 - 4.0 * ZETA**2))) / wd
@@ -72,23 +74,26 @@ def _signal(force, rate, touch=0.3e-6):
 
 
 @pytest.mark.parametrize("rate", [1e6, 2e6])
-def test_noise_free_forces_are_read_to_their_truth(rate):
-    """Without noise the family's fit reads the closed-form spring-dashpot's and the
-    integrated Hertz impact's peak and contact time, where the regularised solution's
-    largest value is rounded down by its smoothing."""
+def test_nearly_noise_free_forces_are_read_to_their_truth(rate):
+    """At 10 000 sigma (a record needs some noise) the family's fit reads the closed-form
+    spring-dashpot's and the integrated Hertz impact's peak and contact time."""
     for family, force, truth in (
         (("linear", ZETA), _spring_dashpot, (PEAK, CONTACT)),
         (("hertz", 0.0), lambda s: _hertz(s)[0], _hertz(np.zeros(1))[1]),
     ):
         t, y = _signal(force, rate)
+        y = y + 1e-4 * PEAK * np.random.default_rng(0).normal(size=t.size)
         rec = reconstruct_force(t, y, SENSOR, contact_family=family, first_touch=False)
         assert rec.parameters["peak_reading"] == "family fit"
-        # the family's shape, integrated on 4096 points and pushed through the sensor on
-        # a 1/128-period grid, against lsim of the force linear between samples 0.05-0.1
-        # us apart: measured MEASURED_A
-        assert rec.metrics.peak == pytest.approx(truth[0], rel=TOL_A)
-        assert rec.metrics.duration == pytest.approx(truth[1], rel=TOL_A)
-        assert rec.metrics.start == pytest.approx(0.3e-6, abs=TOL_START)
+        # the family's shape (4096 points, through the sensor on a 1/128-period grid)
+        # against lsim of the force linear between samples 0.05-0.1 us apart, where the
+        # spring-dashpot's force jumps at the touch: measured at most 0.072 % (Hertz,
+        # which does not jump, 1e-5); the largest value of the regularised force reads
+        # the spring-dashpot's peak 1.0 % high and Hertz's contact 1.4 % long
+        assert rec.metrics.peak == pytest.approx(truth[0], rel=2e-3)
+        assert rec.metrics.duration == pytest.approx(truth[1], rel=2e-3)
+        # the touch: measured within 0.045 us (a tenth of a sample at 1 MHz)
+        assert rec.metrics.start == pytest.approx(0.3e-6, abs=0.1e-6)
 
 
 def test_under_noise_the_family_reads_the_peak_closer_than_the_largest_value():
@@ -98,26 +103,33 @@ def test_under_noise_the_family_reads_the_peak_closer_than_the_largest_value():
     same reconstruction, ``read_family=False``)."""
     t, clean = _signal(_spring_dashpot, 1e6)
     errors = {True: [], False: []}
-    for seed in range(SEEDS):
+    for seed in range(6):
         w = np.random.default_rng(seed).normal(size=t.size + 2000)
         noise = sg.lfilter([1.0], [1.0, -0.9], w)[2000:]
         y = clean + 0.05 * PEAK * noise / noise.std()
         for family_read in (True, False):
             m = reconstruct_force(
-                t, y, SENSOR, contact_family=("linear", ZETA), first_touch=False,
+                t,
+                y,
+                SENSOR,
+                contact_family=("linear", ZETA),
+                first_touch=False,
                 read_family=family_read,
             ).metrics
             errors[family_read].append((m.peak / PEAK - 1.0, m.duration / CONTACT - 1.0))
     rms = {k: np.sqrt(np.mean(np.square(v), axis=0)) for k, v in errors.items()}
-    # measured MEASURED_B
-    assert rms[True][0] < RATIO_PEAK * rms[False][0]
-    assert rms[True][1] < RATIO_TIME * rms[False][1]
+    # measured over these 6 seeds: peak 2.7 % against 4.3 % (0.63 times), contact time
+    # 0.74 % against 2.5 % (0.30 times); over 12 seeds 0.74 and 0.22 times; under white
+    # noise of 5 % 0.37 and 0.37 times. The margins leave room for the draws
+    assert rms[True][0] < 0.8 * rms[False][0]
+    assert rms[True][1] < 0.5 * rms[False][1]
 
 
 def test_a_failed_fit_keeps_the_largest_value_and_says_why(monkeypatch):
     """Where the family's fit fails the reconstruction's own reading is kept, and
     ``peak_reading`` names the fit's error."""
     t, y = _signal(_spring_dashpot, 1e6)
+    y = y + 0.02 * PEAK * np.random.default_rng(0).normal(size=t.size)
 
     def failing(*args, **kwargs):
         raise ParameterError("no contact fitted (test)")
