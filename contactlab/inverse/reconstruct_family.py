@@ -107,7 +107,8 @@ def family_reading(t, y, sensor, family, metrics, noise, quiet):
     parameters : dict
         ``peak_reading`` (``"family fit"``, or ``"largest value"`` with the reason the
         fit failed), ``largest_value [N]`` (the regularised force's largest value), and
-        for a fit its ``family_chi_squared [-]`` and ``family_samples [-]``.
+        for a fit ``regularised_contact [s]`` (the regularised force's own contact,
+        ``[start, end]``), its ``family_chi_squared [-]`` and ``family_samples [-]``.
     """
     out = {"largest_value [N]": float(metrics.peak)}
     try:
@@ -116,6 +117,7 @@ def family_reading(t, y, sensor, family, metrics, noise, quiet):
         return metrics, {**out, "peak_reading": f"largest value (the family's fit failed: {exc})"}
     return read, {
         **out,
+        "regularised_contact [s]": [float(metrics.start), float(metrics.end)],
         "peak_reading": "family fit",
         "family_chi_squared [-]": fit.chi_squared,
         "family_samples [-]": fit.samples,

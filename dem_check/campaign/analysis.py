@@ -220,9 +220,12 @@ def _last_force(rec):
     :data:`IMPULSE_EXCESS` of its impulse (a second contact the impulse check is for;
     a shorter excursion of noise read as force is not one), else the contact's end."""
     above = np.flatnonzero(rec.force > rec.parameters["threshold [N]"])
-    last = rec.metrics.end
+    # the regularised force's own contact where the family's fit read the metrics' (with
+    # the fit's end, the impulse at 1 and 2 MHz, 10-30 sigma: 5.1 -> 6.0 %, 8.9 -> 9.7 %)
+    end = rec.parameters.get("regularised_contact [s]", (None, rec.metrics.end))[1]
+    last = end
     for run in np.split(above, np.flatnonzero(np.diff(above) > 1) + 1):
-        if run.size > 1 and rec.t[run[0]] > rec.metrics.end:
+        if run.size > 1 and rec.t[run[0]] > end:
             carried = impulse(rec.t[run], rec.force[run])
             if carried >= IMPULSE_EXCESS * rec.metrics.impulse:
                 last = float(rec.t[run[-1]])
