@@ -99,7 +99,7 @@ def bounds(rate, pink):
     effects = Effects.everything(WHITE, 3.0, pink=pink * WHITE)
     autocovariance = noise_autocovariance(t.size, dt, WHITE, effects, RECORD)
     design, functionals, truth = law_design(grain, sensor, law, VELOCITY, t, onset)
-    peak, impulse = truth[:2]
+    peak = truth[0]
     law_sd = np.sqrt(blue_variance(autocovariance, design, functionals))
     top = int(np.argmin(np.abs(design[:, 0] * VELOCITY - peak)))  # the sample nearest the peak
     band, terms = band_design(t, window, 2.0 * sensor.resonance, sensor)

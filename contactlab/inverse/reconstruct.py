@@ -282,7 +282,8 @@ def reconstruct_force(
         62 % over 8 noise seeds, against at most 3.9 % with GCV).
     cutoff : float, optional
         Low-pass cutoff [Hz] of the inverse filter (inverse only); default twice the
-        resonance (:data:`contactlab.inverse.reconstruct_inverse.DEFAULT_CUTOFF_FACTOR`). Zero-phase Butterworth of order 4.
+        resonance (:data:`contactlab.inverse.reconstruct_inverse.DEFAULT_CUTOFF_FACTOR`).
+        Zero-phase Butterworth of order 4.
     max_unknowns : int, optional
         Largest number of force values, >= 2 (Tikhonov only; default
         :data:`DEFAULT_MAX_UNKNOWNS` = 400); the signal is averaged over blocks of ``q``

@@ -214,7 +214,7 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
     earlier = _signal(grain, sensor, law, velocity, t, onset - 0.5 * step * dt)[0]
     columns.append((later - earlier) / (step * dt))
     gradients.append(np.zeros(len(LAW_READINGS)))
-    design = np.column_stack([*columns, np.ones(t.size), (t - t.mean()) / np.ptp(t)])
+    design = np.column_stack([*columns, _line(t)])
     functionals = np.vstack([np.array(gradients), np.zeros((2, len(LAW_READINGS)))])
     return design, functionals, truth
 
@@ -235,16 +235,25 @@ def band_design(t, window, cutoff, sensor):
     terms : int
         Number of cosines.
     """
-    span = window[1] - window[0]
-    terms = math.ceil(2.0 * cutoff * span) + 1
-    inside = (t >= window[0]) & (t < window[1])
-    phase = (t - window[0]) / span
-    cosines = np.cos(math.pi * np.outer(phase, np.arange(terms)))
-    cosines[~inside] = 0.0
+    cosines = _cosines(t, window, cutoff)
     ringing, _, _ = _ringing(np.maximum(t - window[1], 0.0), sensor)
     ringing[t < window[1]] = 0.0
-    line = np.column_stack([np.ones(t.size), (t - t.mean()) / np.ptp(t)])
-    return np.column_stack([cosines, ringing, line]), terms
+    return np.column_stack([cosines, ringing, _line(t)]), cosines.shape[1]
+
+
+def _cosines(t, window, cutoff):
+    """A cosine series up to ``cutoff`` [Hz] on ``window`` ``[start, end)`` [s], zero
+    elsewhere: ``(n, terms)``."""
+    span = window[1] - window[0]
+    terms = math.ceil(2.0 * cutoff * span) + 1
+    cosines = np.cos(math.pi * np.outer((t - window[0]) / span, np.arange(terms)))
+    cosines[(t < window[0]) | (t >= window[1])] = 0.0
+    return cosines
+
+
+def _line(t):
+    """The baseline's two columns: a constant and a slope over the segment."""
+    return np.column_stack([np.ones(t.size), (t - t.mean()) / np.ptp(t)])
 
 
 def force_band_design(t, window, cutoff, sensor):
@@ -263,17 +272,11 @@ def force_band_design(t, window, cutoff, sensor):
     """
     from scipy.signal import lsim  # scipy.signal is slow to import: only here
 
-    span = window[1] - window[0]
-    terms = math.ceil(2.0 * cutoff * span) + 1
-    inside = (t >= window[0]) & (t < window[1])
-    phase = (t - window[0]) / span
-    forces = np.cos(math.pi * np.outer(phase, np.arange(terms)))
-    forces[~inside] = 0.0
+    forces = _cosines(t, window, cutoff)
     w, zeta = sensor.angular_frequency, sensor.damping_ratio
     system = ([2.0 * zeta * w, w**2], [1.0, 2.0 * zeta * w, w**2])
-    start = int(np.argmax(inside))
+    start = int(np.argmax(t >= window[0]))
     signals = np.zeros_like(forces)
-    for k in range(terms):
+    for k in range(forces.shape[1]):
         signals[start:, k] = lsim(system, forces[start:, k], t[start:] - t[start])[1]
-    line = np.column_stack([np.ones(t.size), (t - t.mean()) / np.ptp(t)])
-    return np.column_stack([signals, line]), forces
+    return np.column_stack([signals, _line(t)]), forces

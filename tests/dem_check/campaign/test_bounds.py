@@ -15,7 +15,6 @@ from scipy.linalg import toeplitz
 from scipy.optimize import minimize_scalar
 
 import contactlab as cl
-
 from contactlab.inverse.noise_prediction import estimate_coloured_noise
 from dem_check.campaign import Effects
 from dem_check.campaign.bounds import (
