@@ -28,8 +28,9 @@ and taken off with the line before the peak signal and the impulse are read:
   by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV on the problem
   whitened with the noise's AR model read on the baseline, a force value per twentieth
   of a sensor period) on the segment, its contact's edges read with the shape of the
-  contact family the onset fit read on the record (:attr:`Detection.contact_family`:
-  a damped contact's start at half its force's jump at the touch);
+  contact family the onset fit read on the record (:attr:`Detection.contact_family`),
+  the peak and the contact (start, duration) read from that family's force fitted to
+  the signal (:mod:`contactlab.inverse.reconstruct_family`);
 - with a grain, ``velocity_change [m/s]`` = impulse / grain mass (``(1 + e) v`` for an
   impact at speed ``v`` and restitution ``e``: the impulse alone cannot separate them);
 - with ``fit=`` a law name, :func:`contactlab.inverse.fit_contact` on the segment: each
