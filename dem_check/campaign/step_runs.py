@@ -46,6 +46,7 @@ import ruptures
 from scipy.ndimage import median_filter, uniform_filter1d
 
 from contactlab.signals import robust_noise
+from dem_check.campaign.edge_models import tail_fit
 from dem_check.campaign.step_ringing import difference_sigma, rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
@@ -406,4 +407,11 @@ def search_steps(values, runs, period, hold, ring=None):
     near = [(e.window[0] - period, e.window[1] + period) for e in edges]
     means = find_steps(rest, period, masked, ring)
     means = [s for s in means if not any(lo <= s.index < hi for lo, hi in near)]
+    if ends and ring is not None:  # in a run to the end: a step, or an impact cut there?
+        tail = ends[-1][0] - period
+        means = [
+            s
+            for s in means
+            if s.index < tail or tail_fit(rest, s.index, ends[-1][0], runs, hold, ring).step
+        ]
     return sorted(found + means + edges, key=lambda step: step.index)
