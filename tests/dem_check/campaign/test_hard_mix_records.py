@@ -8,6 +8,8 @@ force, a 16-bit ADC), drift of 20-50 sigma, bounces, and two offset steps.
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from dem_check.campaign import Effects, find_impacts, realistic_record, synthetic_record
 from dem_check.campaign.detection import _growths
@@ -218,6 +220,30 @@ def test_free_ringing_on_a_moved_level_does_not_grow(jump_at):
     ratio = np.abs(z) / 0.018  # local sigma of the record's smoothed residual [N]
     levels = (3 * 0.0207, 7.0)  # the noise floor [N] and the detection sigmas there
     assert _growths(z, ratio, 0, n - 1, period, levels) == []
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    amplitude=st.floats(0.05, 2.0),
+    decay=st.floats(3.0, 20.0),
+    phase=st.floats(0.0, 2.0 * np.pi),
+    at=st.floats(2.0, 30.0),
+    jump=st.floats(-1.0, 0.9),
+)
+def test_no_growth_from_a_level_that_moves_under_free_ringing(amplitude, decay, phase, at, jump):
+    # free ringing (any amplitude [N], decay [periods], phase) on a level that jumps at
+    # any place ``at`` [periods] and stays: by ``jump`` times the ringing's amplitude
+    # there when it moves away from the first lobe's side (a plate's swing or a block
+    # level, which no force makes), or by up to 0.9 of the detection threshold towards it
+    # (a level is a force's when it stands at the threshold). The ringing about its
+    # running mean leaves at most half a jump; none of these is a later impact
+    period, n, local = 125, 40 * 125, 0.02  # [samples], [samples], local sigma [N]
+    levels = (3 * local, 7.0)  # the noise floor [N] and the detection sigmas
+    s = np.arange(n) / period
+    z = amplitude * np.exp(-s / decay) * np.cos(2.0 * np.pi * s + phase)
+    there = amplitude * np.exp(-at / decay)
+    z[s >= at] += -abs(jump) * there if jump < 0 else jump * levels[1] * local
+    assert _growths(z, np.abs(z) / local, 0, n - 1, period, levels) == []
 
 
 @pytest.mark.parametrize(("velocity", "gap"), [(0.2, 250e-6), (0.5, 150e-6)])
