@@ -92,6 +92,22 @@ SEED_1 = {
 }
 
 
+SEED_15 = {
+    # a box of steps of -0.72 N at 0.091 ms and +0.85 N at 0.167 ms over a 0.54 m/s
+    # impact at the first sample, 5 MHz: neither the edge's step nor its lobe model fits
+    # (chi-squared 13482 and 8633 on 952 samples); a 'negative' impact of -0.98 N is
+    # read at 0.091 ms and the true impact missed
+    "seed": 15,
+    "rate": 5e6,
+    "length": 16.775281e-3,
+    "velocities": [0.53636448, 1.8531742, 0.99431996],
+    "onsets": [0.0, 4.393047e-3, 10.775281e-3],
+    "drift": 0.3,
+    "full_scale": 5.2114143,
+    "offsets": ((0.091401935e-3, -0.72298748), (0.16653432e-3, 0.85271330)),
+    "bounce_delay": 2.7237257e-3,
+}
+
 SEED_48 = {
     # a -0.72 N step at 13.628 ms and a 0.16 N step 76 us later, 0.12 ms before the end
     # of the record, 1 MHz: closer than BOX_PERIODS (an impact's lobe fits such a pair),
@@ -121,22 +137,10 @@ def test_two_steps_are_two_steps(hard_setup, case):
     assert len(found.steps) == 2
     for step, at in zip(found.steps, np.sort(record.step_times), strict=True):
         assert abs(step.onset - at) <= 5e-6  # the split within a period: a few samples
-        # heights read as the medians of the pieces, which the plate's swing moves
-        # (0.13 N over seed 1's box): measured 0.744 and -0.642 N for 0.729 and -0.700
+        # the medians of the pieces, which the plate's swing moves (0.13 N over seed 1's
+        # box): measured 0.744 and -0.642 N for 0.729 and -0.700
         assert step.peak == pytest.approx(heights[np.argmin(np.abs(times - at))], abs=0.07)
 
-
-SEED_15 = {
-    "seed": 15,
-    "rate": 5e6,
-    "length": 16.775281e-3,
-    "velocities": [0.53636448, 1.8531742, 0.99431996],
-    "onsets": [0.0, 4.393047e-3, 10.775281e-3],
-    "drift": 0.3,
-    "full_scale": 5.2114143,
-    "offsets": ((0.091401935e-3, -0.72298748), (0.16653432e-3, 0.85271330)),
-    "bounce_delay": 2.7237257e-3,
-}
 
 SEED_28 = {
     "seed": 28,
@@ -165,7 +169,7 @@ SEED_53 = {
 OPEN = {
     15: "known limit (issue 22): a box of steps of -0.72 N at 0.091 ms and +0.85 N at 0.167 "
     "ms over a 0.54 m/s impact at the first sample, 5 MHz: neither the edge's step nor its "
-    "lobe model fits (chi-squared 11358 and 7478 on 952 samples); a 'negative' impact of "
+    "lobe model fits (chi-squared 13482 and 8633 on 952 samples); a 'negative' impact of "
     "-0.98 N is read at 0.091 ms and the true impact is missed",
     28: "known limit (issue 22): the plate's response to a 2.21 m/s impact (3.59 N, three "
     "modes of 2 %) swings from +0.026 to -0.130 N within 0.1 ms, 0.95 ms after it, 2 MHz: "
