@@ -12,7 +12,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from dem_check.campaign import Effects, find_impacts, realistic_record, synthetic_record
-from dem_check.campaign.detection import _growths
+from dem_check.campaign.growths import later_impacts
 
 NOISE = 0.03
 """White noise of the records [N], as in the hard mix."""
@@ -223,7 +223,7 @@ def test_free_ringing_on_a_moved_level_does_not_grow(jump_at):
     z[lo : lo + 5 * period] -= 0.12
     ratio = np.abs(z) / 0.018  # local sigma of the record's smoothed residual [N]
     levels = (3 * 0.0207, 7.0)  # the noise floor [N] and the detection sigmas there
-    assert _growths(z, ratio, 0, n - 1, period, levels) == []
+    assert later_impacts(z, ratio, 0, n - 1, period, levels) == []
 
 
 @settings(max_examples=300, deadline=None)
@@ -247,7 +247,7 @@ def test_no_growth_from_a_level_that_moves_under_free_ringing(amplitude, decay, 
     z = amplitude * np.exp(-s / decay) * np.cos(2.0 * np.pi * s + phase)
     there = amplitude * np.exp(-at / decay)
     z[s >= at] += -abs(jump) * there if jump < 0 else jump * levels[1] * local
-    assert _growths(z, np.abs(z) / local, 0, n - 1, period, levels) == []
+    assert later_impacts(z, np.abs(z) / local, 0, n - 1, period, levels) == []
 
 
 @pytest.mark.parametrize(("velocity", "gap"), [(0.2, 250e-6), (0.5, 150e-6)])
