@@ -20,6 +20,8 @@ from dem_check.campaign import Effects, find_impacts, realistic_record
 from dem_check.campaign.analysis import ONSET_MARGIN, analyse_impact
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.local import record_noise
+from dem_check.campaign.overlaps import HELD_OUT, SUBTRACTED, separate_overlaps
+from dem_check.campaign.structure import record_modes
 
 NOISE = 0.03
 """White noise [N] (and 1/f noise of the same standard deviation)."""
@@ -107,3 +109,39 @@ def test_the_first_impulse_with_the_neighbour_held_out(hard_setup, gap, ratio):
     if gap < 300e-6:  # the second impact inside the post-contact window: read with it
         # measured -13 % (equal impacts) and -6.6 % (half the velocity) on this seed
         assert abs(impulse(None) / true - 1.0) > 0.05
+
+
+TARGETS = {
+    "peak_sensor_force [N]": 0.02,
+    "impulse [N*s]": 0.05,
+    "peak_contact_force [N]": 0.05,
+    "contact_time [s]": 0.05,
+}
+"""Issue 22's targets for one impact, relative [-] (onsets: 2 samples)."""
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.5])
+@pytest.mark.parametrize("gap", [200e-6, 500e-6])
+def test_a_pair_in_the_ringing_is_read_apart(hard_setup, gap, ratio):
+    """Both impacts of a pair the ringing check flags are analysed: the first on the
+    record up to two periods before the second's onset (the second held out), the
+    second on the record less the first's free ringing fitted after its contact. Each
+    meets the issue's targets against its own truth (the model's impact alone)."""
+    grain, sensor, _ = hard_setup
+    record = _pair(hard_setup, gap, ratio)
+    found = find_impacts(record.trace, sensor)
+    assert [w.status for w in found.impacts] == ["overlap", "overlap"]
+    modes = record_modes(found, sensor)
+    read = separate_overlaps(found, sensor, grain, None, True, modes, record_noise(found, sensor))
+    rows = [read[k][0] for k in range(2)]
+    assert [r["status"] for r in rows] == [HELD_OUT, SUBTRACTED]
+    assert all(status in ANALYSED for status in (HELD_OUT, SUBTRACTED))
+    assert f"{found.impacts[1].onset:.6g} s held out" in rows[0]["reason"]
+    assert "free ringing of the impact at" in rows[1]["reason"]
+    dt = 1.0 / 2e6
+    for row, (_, true) in zip(rows, record.truth.iterrows(), strict=True):
+        # the issue's targets (onset 2 samples, peak signal 2 %, the rest 5 %); measured
+        # errors over 3 seeds are in docs/campaign.md ("Overlaps read apart")
+        assert abs(row["onset [s]"] - true["onset [s]"]) <= 2.0 * dt
+        for column, target in TARGETS.items():
+            assert row[column] == pytest.approx(true[column], rel=target), column
