@@ -70,7 +70,9 @@ def main():
     for name, effects in EFFECTS.items():
         for seed in args.seeds:
             for where, onset in (("at the start", 0.0), ("1 ms in", 1e-3)):
-                rows.append({"effect": name, "seed": seed, "pulse": where, **_fit(effects, onset, seed)})
+                rows.append(
+                    {"effect": name, "seed": seed, "pulse": where, **_fit(effects, onset, seed)}
+                )
     table = pd.DataFrame(rows)
     pd.set_option("display.width", 200)
     print(table.round(4).to_string())

@@ -65,7 +65,10 @@ def _errors(row, truth, rate):
     if gap.min() > MATCH:
         return None
     true = truth.iloc[int(gap.argmin())]
-    out = {"true #": int(gap.argmin()), "onset [samples]": (row["onset [s]"] - true["onset [s]"]) * rate}
+    out = {
+        "true #": int(gap.argmin()),
+        "onset [samples]": (row["onset [s]"] - true["onset [s]"]) * rate,
+    }
     for column, name in COLUMNS.items():
         out[name] = row.get(column, np.nan) / true[column] - 1.0
     return out
@@ -92,8 +95,13 @@ def pairs(seeds):
                 for row in _rows(record, sensor, grain):
                     errors = _errors(row, record.truth, 2e6) or {}
                     table.append(
-                        {"gap [us]": gap * 1e6, "ratio": ratio, "seed": seed,
-                         "status": row["status"], **errors}
+                        {
+                            "gap [us]": gap * 1e6,
+                            "ratio": ratio,
+                            "seed": seed,
+                            "status": row["status"],
+                            **errors,
+                        }
                     )
     table = pd.DataFrame(table)
     pd.set_option("display.width", 200)
@@ -151,7 +159,9 @@ def main():
         pairs(args.seeds)
     if args.mixes:
         mixes()
-    print(f"CPU {time.process_time() - started:.1f} s, load average after: {os.getloadavg()[0]:.1f}")
+    print(
+        f"CPU {time.process_time() - started:.1f} s, load average after: {os.getloadavg()[0]:.1f}"
+    )
 
 
 if __name__ == "__main__":

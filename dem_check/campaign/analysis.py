@@ -368,7 +368,11 @@ def read_impact(
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     dt = float(t[1] - t[0])
     if not row["sensor_response_time [s]"] >= MIN_SAMPLES_PER_CONTACT * dt:
-        return _too_coarse(row, row["sensor_response_time [s]"], dt, "signal's first lobe"), None, None
+        return (
+            _too_coarse(row, row["sensor_response_time [s]"], dt, "signal's first lobe"),
+            None,
+            None,
+        )
     part = _reconstruction_part(t, base, window.end, sensor)
     try:
         rec = reconstruct_force(

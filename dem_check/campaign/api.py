@@ -216,7 +216,9 @@ def _analyse_file(path, options, timings, progress):
         if k in separated:  # an overlapping impact, read apart or flagged with why not
             row, traces = separated[k]
         elif window.status in detection.ANALYSED:
-            row, traces = analyse_impact(found, window, sensor, grain, fit, crosstalk, modes, levels)
+            row, traces = analyse_impact(
+                found, window, sensor, grain, fit, crosstalk, modes, levels
+            )
         else:
             row, traces = {**window_row(window), "significance [-]": window.significance}, None
         if traces is not None:

@@ -151,8 +151,7 @@ def _detection(result):
         "<em>largest_threshold</em> where it is largest (hum, crosstalk, ringing), "
         "<em>wander</em> the range of the running baseline. A candidate is a run of the "
         "smoothed signal above the threshold; <em>significance</em> is its peak over the "
-        "local noise. Every candidate is listed with its status and reason.</p>"
-        + STATUS_LEGEND
+        "local noise. Every candidate is listed with its status and reason.</p>" + STATUS_LEGEND
     )
     return (
         note
