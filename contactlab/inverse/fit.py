@@ -160,9 +160,10 @@ def _pulse(t, y, sensor, baseline_window, crosstalk):
 
 def _noise_after(t, clean, pulse, sensor):
     """Noise [N], window [s] and samples [N] of a record that starts at its pulse: what
-    a line and the sensor's free ringing leave (:func:`~contactlab.inverse.noise_colour.ringing_residual`)
-    on the :data:`NOISE_AFTER_PERIODS` sensor periods after the fit's window (which ends
-    with the post-contact window), so that the fit's residuals are judged against noise
+    a line and the sensor's free ringing leave
+    (:func:`~contactlab.inverse.noise_colour.ringing_residual`) on the
+    :data:`NOISE_AFTER_PERIODS` sensor periods after the fit's window (which ends with
+    the post-contact window), so that the fit's residuals are judged against noise
     samples it was not fitted on, as against a pre-trigger."""
     length = NOISE_AFTER_PERIODS * sensor.period
     window = (pulse.post[1], min(pulse.post[1] + length, float(t[-1])))

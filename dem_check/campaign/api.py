@@ -15,9 +15,9 @@ from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise, onsets
 from dem_check.campaign.analysis import analyse_impact, window_row
-from dem_check.campaign.overlaps import separate_overlaps
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.local import record_noise
+from dem_check.campaign.overlaps import separate_overlaps
 from dem_check.campaign.result import CampaignResult
 from dem_check.campaign.statistics import (
     join_metadata,

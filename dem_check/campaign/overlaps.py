@@ -5,18 +5,22 @@ step 5), a second impact began in it: both are flagged ``"overlap"``. Their cont
 not overlap (the second began after the first one's main lobe), so each is read alone,
 in time order, with the ordinary analysis (:func:`dem_check.campaign.analysis.read_impact`):
 
-- an impact's segment ends :data:`HOLD_PERIODS` sensor periods before the next impact's
-  onset (which, not analysed, is where the ringing grew: it lags the touch): the next
-  impact's signal is **held out**. Its own local baseline is the line before it and its
-  free ringing after its contact, fitted on the samples left between the two;
-- from the second impact on, the free ringing of the impact before (fitted there, with
-  the sensor's resonance and damping ratio, :attr:`contactlab.inverse.local_baseline.LocalBaseline.ringing`)
-  is **subtracted** from the record and from its smoothed and low-passed traces (the
-  same filters, :func:`dem_check.campaign.noise.record_filters`); the impact's baseline
-  window is the stretch between the previous contact's end (a period after it) and its
-  own onset, where the record less that ringing is the baseline and noise;
-- each onset is fitted as an analysed impact's (:func:`dem_check.campaign.onsets.record_onsets`,
-  with the record's contact family when it was read).
+- the next impact is **held out**: from :data:`HOLD_PERIODS` sensor periods before its
+  onset (which, not analysed, is where the ringing grew: it lags the touch) the record
+  is replaced by this impact's line and free ringing, fitted on the line before it and
+  from :data:`POST_MARGIN` periods after its first lobe to the held-out samples
+  (:func:`contactlab.inverse.local_baseline.local_baseline`). Where that leaves the
+  reconstruction mostly modelled samples (its window spans two lobe-lengths), it can
+  fail: the impact then keeps its signal's numbers and its reason says so;
+- from the second impact on, the free ringing of the impact before (that fit's,
+  :attr:`contactlab.inverse.local_baseline.LocalBaseline.ringing`) is **subtracted**
+  from the record and from its smoothed and low-passed traces (the same filters,
+  :func:`dem_check.campaign.noise.record_filters`); the impact's baseline window is the
+  stretch between the previous impact's ringing fit's start and its own onset, where
+  the record less that ringing is the baseline and noise;
+- each onset is fitted as an analysed impact's
+  (:func:`dem_check.campaign.onsets.record_onsets`, with the record's contact family
+  when it was read).
 
 The first impact of a group gets status ``"overlap, neighbour held out"``, each later one
 ``"overlap, ringing subtracted"``, with a reason that says what was held out or taken
@@ -94,9 +98,10 @@ def _less(detection, ringing):
 def _held_out(detection, window, hold, sensor, noise):
     """The detection with the samples of ``window``'s segment from index ``hold`` on (the
     next impact's) replaced by this impact's line and free ringing, fitted before it and
-    from its first lobe's end to ``hold`` (:func:`contactlab.inverse.local_baseline.local_baseline`):
-    the analysis then reads a record that holds this impact alone; and that fit (its
-    free ringing is what is taken off the next impact)."""
+    from :data:`POST_MARGIN` periods after its first lobe to ``hold``
+    (:func:`contactlab.inverse.local_baseline.local_baseline`): the analysis then reads
+    a record that holds this impact alone; and that fit (its free ringing is what is
+    taken off the next impact)."""
     part = slice(window.first, window.stop)
     t = np.asarray(detection.record.t[part])
     y = np.asarray(detection.record.values[part], dtype=float)
