@@ -41,9 +41,12 @@ COLUMNS = {
 }
 
 
-def _rows(record, sensor, grain):
-    """Every impact row of a record (overlaps read apart) with its onset."""
+def _rows(record, sensor, grain, everything=True):
+    """Every impact row of a record (overlaps read apart) with its onset and the
+    detection's status; ``everything=False``: only the impacts flagged ``overlap``."""
     found = find_impacts(record.trace, sensor)
+    if not everything and not any(w.status == "overlap" for w in found.impacts):
+        return []
     modes = record_modes(found, sensor)
     noise = record_noise(found, sensor)
     separated = separate_overlaps(found, sensor, grain, None, True, modes, noise)
@@ -51,6 +54,8 @@ def _rows(record, sensor, grain):
     for k, window in enumerate(found.impacts):
         if k in separated:
             row = separated[k][0]
+        elif not everything:
+            continue
         elif window.status in ANALYSED:
             row = analyse_impact(found, window, sensor, grain, None, True, modes, noise)[0]
         else:
@@ -117,19 +122,23 @@ def pairs(seeds):
 def _mix(records, label, rate_of):
     grain, sensor, _ = hard()
     flagged = read = with_numbers = 0
-    errors = []
+    errors, reasons = [], []
     for record in records:
-        for row in _rows(record, sensor, grain):
+        for row in _rows(record, sensor, grain, everything=False):
             if row["flagged"] != "overlap":
                 continue
             flagged += 1
-            if row["status"] in ANALYSED:
+            if row["status"] not in ANALYSED:
+                reasons.append(f"{row['status']}: {row['reason'][-160:]}")
+            else:
                 read += 1
-                with_numbers += np.isfinite(row.get("impulse [N*s]", np.nan))
+                with_numbers += bool(np.isfinite(row.get("impulse [N*s]", np.nan)))
                 found = _errors(row, record.truth, rate_of(record))
                 if found is not None:
                     errors.append({"status": row["status"], **found})
     print(f"{label}: {flagged} overlap rows, {read} read apart, {with_numbers} with numbers")
+    for row in reasons:
+        print("  not read apart:", row)
     if errors:
         print(pd.DataFrame(errors).round(4).to_string())
 
