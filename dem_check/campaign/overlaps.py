@@ -36,6 +36,7 @@ import dataclasses
 
 import numpy as np
 
+from contactlab.errors import ParameterError
 from contactlab.inverse.local_baseline import free_ringing, local_baseline
 from dem_check.campaign.analysis import ONSET_MARGIN, read_impact, window_row
 from dem_check.campaign.detection import BASELINE_MIN_SAMPLES
@@ -178,12 +179,18 @@ def _read_group(detection, group, sensor, options):
         if alone is None:
             break
         alone = dataclasses.replace(alone, stop=window.stop, end=window.end)
-        reading, local = current, None
-        if later is not None:
-            reading, local = _held_out(current, alone, hold, sensor, options["noise"])
-        row, traces, _ = read_impact(
-            dataclasses.replace(reading, impacts=[alone]), alone, sensor, **options
-        )
+        try:
+            reading, local = current, None
+            if later is not None:
+                reading, local = _held_out(current, alone, hold, sensor, options["noise"])
+            row, traces, _ = read_impact(
+                dataclasses.replace(reading, impacts=[alone]), alone, sensor, **options
+            )
+        except (ParameterError, ValueError, np.linalg.LinAlgError) as error:
+            # a reading the ordinary analysis was not built for (a window with no
+            # samples between the contact and the held-out ones): flagged, with the error
+            why = f"reading it alone failed ({type(error).__name__}: {error})"
+            break
         parts, status = [], HELD_OUT
         if before is not None:
             status = SUBTRACTED
