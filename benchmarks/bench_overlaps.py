@@ -158,11 +158,6 @@ def mixes():
     _mix((hard_mix(seed)[0] for seed in range(100)), "bench_steps hard mix", rate)
 
 
-def hard_mix_only():
-    """The hard mix alone (``--mixes`` without the accuracy records)."""
-    _mix((hard_mix(seed)[0] for seed in range(100)), "bench_steps hard mix", _rate)
-
-
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--pairs", action="store_true")
