@@ -124,7 +124,7 @@ MISSED = pytest.mark.xfail(
     strict=True,
     reason=(
         "the second impact at half the velocity 0.2 ms after the first, read on the record "
-        "less the first one's free ringing fitted on the 55 us between them: peak signal "
+        "less the first one's free ringing fitted on the 37 us between them: peak signal "
         "+6.2 %, impulse +8.0 %, reconstructed peak +4.9 %, contact time +7.1 % on this "
         "seed (+4.7 %, +5.5 %, +1.4 %, +4.9 % and -0.9 %, +0.6 %, +0.7 %, +1.7 % on seeds "
         "1 and 2): the ringing extrapolated from two periods; docs/campaign.md, Limits"
