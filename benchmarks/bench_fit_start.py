@@ -14,39 +14,27 @@ Run: ``.venv/bin/python benchmarks/bench_fit_start.py [--seeds 3 4 5 6]``
 
 import argparse
 import os
+import sys
 import time
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 from bench_realistic import hard
 
 from contactlab.inverse import fit_contact
-from dem_check.campaign import Effects, realistic_record
 
-NOISE = 0.03  # [N]
-EFFECTS = {
-    "drift 20 sigma": Effects(drift=20 * NOISE),
-    "drift 100 sigma": Effects(drift=100 * NOISE),
-    "crosstalk 2 %": Effects(crosstalk=0.02),
-    "1/f 1 sigma": Effects(pink=NOISE),
-}
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "dem_check" / "campaign"))
+from test_realistic_single_trace import START_EFFECTS
+from test_realistic_single_trace import _record as single  # the test's records
+
+EFFECTS = {name: effects for name, (effects, _) in START_EFFECTS.items()}
 
 
 def _fit(effects, onset, seed):
     grain, sensor, law = hard()
-    record = realistic_record(
-        grain,
-        sensor,
-        law,
-        [2.0],
-        [onset],
-        length=4e-3,
-        sample_rate=2e6,
-        noise=NOISE,
-        effects=effects,
-        seed=seed,
-    )
+    record = single((grain, sensor, law), effects, onset, seed)
     t, y = np.asarray(record.trace.t), np.asarray(record.trace.values)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

@@ -16,21 +16,25 @@ Run: ``.venv/bin/python benchmarks/bench_overlaps.py [--pairs] [--mixes] [--seed
 
 import argparse
 import os
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 from bench_realistic import CONFIGURATIONS, RECORDS, _records, hard  # beside this script
 from bench_steps import hard_mix
 
-from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign import find_impacts
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.local import record_noise
 from dem_check.campaign.overlaps import separate_overlaps
 from dem_check.campaign.structure import record_modes
 
-NOISE = 0.03  # [N]
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "dem_check" / "campaign"))
+from test_two_impacts import _pair as pair  # the test's records
+
 MATCH = 60e-6  # [s]
 GAPS = (110e-6, 120e-6, 130e-6, 200e-6, 300e-6, 500e-6)  # [s]
 COLUMNS = {
@@ -85,18 +89,7 @@ def pairs(seeds):
     for gap in GAPS:
         for ratio in (1.0, 0.5):
             for seed in range(seeds):
-                record = realistic_record(
-                    grain,
-                    sensor,
-                    law,
-                    [2.0, 2.0 * ratio],
-                    [1e-3, 1e-3 + gap],
-                    length=4e-3,
-                    sample_rate=2e6,
-                    noise=NOISE,
-                    effects=Effects(pink=NOISE),
-                    seed=seed,
-                )
+                record = pair((grain, sensor, law), gap, ratio, seed)
                 for row in _rows(record, sensor, grain):
                     errors = _errors(row, record.truth, 2e6) or {}
                     table.append(
