@@ -168,9 +168,12 @@ def test_the_four_commands_at_the_start_under_line_and_quadratic_drift(hard_setu
     found = identify_sensor(t, y)
     assert found.resonance == pytest.approx(sensor.resonance, rel=2e-3)
     assert found.damping_ratio == pytest.approx(sensor.damping_ratio, rel=0.05)
-    # fit judges its chi-squared against noise read before the pulse: it says why not
-    with pytest.raises(ParameterError, match="record a pre-trigger or pass baseline_window"):
-        fit_contact(t, y, grain, sensor, "linear", velocity=2.0)
+    # fit: on the head level, its noise read after its window (before: refused); 1 % is
+    # the campaign's figure for a linear fit at 1 % noise (docs/campaign.md)
+    fit = fit_contact(t, y, grain, sensor, "linear", velocity=2.0)
+    assert fit.baseline_status.startswith("short pre-trigger")
+    assert fit.parameters["stiffness"].value == pytest.approx(law.stiffness, rel=0.01)
+    assert fit.parameters["damping"].value == pytest.approx(law.damping, rel=0.01)
 
 
 @pytest.mark.parametrize("onset", ONSETS.values(), ids=ONSETS.keys())
