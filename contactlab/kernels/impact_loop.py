@@ -166,7 +166,8 @@ def solve_impact(par, linear, v0, rtol, window, out, pieces):
     """
     rigid = par[RIGID] > 0.0
     free_modes, cond = _free_modes(par)
-    modes, contact_cond = contact_modes(par) if linear else _free_modes(par)
+    # a power law's pieces take no modes: the free sensor's stand in, not computed again
+    modes, contact_cond = contact_modes(par) if linear else (free_modes, cond)
     if not max(cond, contact_cond if linear else 0.0) < COND_LIMIT:
         return STATUS_FALLBACK
     setup = power_setup(par, v0, rtol)

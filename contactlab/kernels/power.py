@@ -105,34 +105,43 @@ def pack(form, m1, k1, c1, m2, rigid):
     )
 
 
-@njit(cache=True, error_model="numpy")
-def power(d, ad, p, signed):
-    """``|d|**p``, or ``sign(d) |d|**p`` if signed, with the common exponents by roots."""
+@njit(cache=True, error_model="numpy", inline="always")
+def _rooted(d, ad, root, p, signed):
+    """:func:`power` given ``root = sqrt(|d|)``, which the common exponents share."""
     if p == 0.0:
         value = 1.0
     elif p == 1.0:
         value = ad
     elif p == 0.5:
-        value = math.sqrt(ad)
+        value = root
     elif p == 0.25:
-        value = math.sqrt(math.sqrt(ad))
+        value = math.sqrt(root)
     elif p == 1.5:
-        value = ad * math.sqrt(ad)
+        value = ad * root
     else:
         value = ad**p
     return math.copysign(value, d) if signed else value
 
 
 @njit(cache=True, error_model="numpy")
+def power(d, ad, p, signed):
+    """``|d|**p``, or ``sign(d) |d|**p`` if signed, with the common exponents by roots."""
+    return _rooted(d, ad, math.sqrt(ad), p, signed)
+
+
+@njit(cache=True, error_model="numpy")
 def force(d, r, par):
     """Contact-force formula [N] at overlap ``d`` [m] and rate ``r`` [m/s], not clipped
-    (it turns negative where the contact would pull: the contact ends there)."""
+    (it turns negative where the contact would pull: the contact ends there). The two
+    powers share one square root of the overlap (Hertz ``d**1.5`` with ``d**0.25`` or
+    ``d**0.5`` damping: two roots a call where there were three)."""
     ad = abs(d)
-    elastic = par[STIFFNESS] * power(d, ad, par[EXPONENT], True)
+    root = math.sqrt(ad)
+    elastic = par[STIFFNESS] * _rooted(d, ad, root, par[EXPONENT], True)
     if par[DAMPING] == 0.0:
         return elastic
     signed = par[SIGNED_DAMPING] > 0.0
-    return elastic + par[DAMPING] * power(d, ad, par[DAMPING_EXPONENT], signed) * r
+    return elastic + par[DAMPING] * _rooted(d, ad, root, par[DAMPING_EXPONENT], signed) * r
 
 
 @njit(cache=True, error_model="numpy")

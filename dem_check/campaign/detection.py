@@ -93,8 +93,9 @@ __all__ = [
     "noise_floor",
 ]
 
-ANALYSED = ("ok", "short pre-trigger")
-"""Impact statuses that are analysed (signal numbers, reconstruction, fit)."""
+ANALYSED = ("ok", "short pre-trigger", "overlap, neighbour held out", "overlap, ringing subtracted")
+"""Impact statuses that are analysed (signal numbers, reconstruction, fit); the last two
+are impacts flagged ``"overlap"`` here and read apart by :mod:`dem_check.campaign.overlaps`."""
 
 TAIL_PERIODS = 16.0
 """Quiet sensor periods kept after an impact's ringing has decayed (up to the next
