@@ -265,11 +265,15 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     band = (1.0 / longest, BAND_FRACTION * sensor.resonance)
     candidates = _in_band(np.log(z) / bands[0][2], *band, growing=refine)
     if refine and candidates:
-        poles = [pole for *_, pole in candidates]
-        refined = refine_poles([b[:2] for b in bands], poles, (MIN_DAMPING, MAX_DAMPING))
-        # a pole held at the largest damping ratio wanted more: noise, not a mode
-        held = np.isclose(-refined.real / np.abs(refined), MAX_DAMPING, rtol=1e-6, atol=0.0)
-        candidates = _in_band(refined[~held], *band)
+        poles = np.array([pole for *_, pole in candidates])
+        while poles.size:
+            refined = refine_poles([b[:2] for b in bands], poles, (MIN_DAMPING, MAX_DAMPING))
+            # a pole held at the largest damping ratio wanted more: noise, not a mode
+            held = np.isclose(-refined.real / np.abs(refined), MAX_DAMPING, rtol=1e-6, atol=0.0)
+            poles = refined[~held]
+            if not held.any():
+                break
+        candidates = _in_band(poles, *band)
     candidates = sorted(candidates)
     if not candidates:
         return [], empty
