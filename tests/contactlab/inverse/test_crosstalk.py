@@ -145,7 +145,7 @@ def test_a_pole_held_at_the_damping_bound_is_refined_away_from_the_modes():
     # 1/f noise alone at 1 MHz, seed 10: refined once with every pencil pole, a noise
     # pole left at the 0.06 damping bound had taken part of the 1890 Hz mode, which came
     # out at 1939 Hz, damping 1e-4 (the bound below); refined again without the held
-    # pole (crosstalk._refined), 1896 Hz. 1.5 %: the largest 1890 Hz error of the
+    # pole (ringdown.refine_unheld), 1896 Hz. 1.5 %: the largest 1890 Hz error of the
     # refined poles over 12 seeds (test above)
     windows = plate_windows(10, white=0.0, flicker_sigma=0.01)
     candidates, significant = joint_structure_modes(windows, SENSOR)
