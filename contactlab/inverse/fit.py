@@ -25,6 +25,7 @@ from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, unifo
 from contactlab.inverse.fit_models import FIT_MODELS, TRANSFORMS, FitModel
 from contactlab.inverse.fit_quality import FitQuality, FitQualityWarning, judge_fit
 from contactlab.inverse.fit_result import ContactFit, FittedParameter
+from contactlab.inverse.noise_colour import ringing_residual
 from contactlab.inverse.noise_window import clean_noise_window
 from contactlab.inverse.pulse import pulse_baseline
 from contactlab.inverse.reconstruct import reconstruct_force
@@ -57,6 +58,16 @@ OVERSAMPLE = 4
 """The model is simulated at this multiple of the trace's sample rate and interpolated
 linearly to the sample times (interpolation error ~ (w dt / 4)**2 / 8 of the amplitude:
 8e-4 at 20 trace samples per period, a tenth of a 1 % noise)."""
+
+NOISE_AFTER_PERIODS = 16.0
+"""Sensor periods after the fit's window on which the noise of a record that starts at
+its pulse is read [-] (as long as the post-contact window: 800 samples at 2 MHz for a
+40 kHz sensor, the noise's variance to 5 %)."""
+
+RINGING_TERMS = 4
+"""Quantities :func:`~contactlab.inverse.noise_colour.ringing_residual` fits (a line and
+the ringing's two amplitudes) [-]: the noise's degrees of freedom are the samples less
+these."""
 
 BOUND = math.log(100.0)
 """Fitted coordinates stay within +-ln(100) of the guess (a factor 100 for ln p)."""
@@ -134,18 +145,39 @@ class _Problem:
 def _pulse(t, y, sensor, baseline_window, crosstalk):
     """The pulse's local baseline (:func:`contactlab.inverse.pulse.pulse_baseline`) on
     the noise window (default: the clean one before the pulse, or in a record without
-    a pre-trigger the samples before the pulse it finds)."""
+    a pre-trigger the samples before the pulse it finds), the noise [N], the noise
+    window [s] and its samples less the baseline [N] (:func:`_noise_after`, after the
+    fit's window, for a record that starts at its pulse)."""
     if baseline_window is None and np.count_nonzero(t < 0.0) >= BASELINE_MIN_SAMPLES:
         baseline_window = clean_noise_window(t, y)
     # the law's fit adjusts its own onset on the whole pulse: no first touch needed here
     pulse = pulse_baseline(t, y, sensor, baseline_window, crosstalk=crosstalk, first_touch=False)
     if pulse.status.startswith("short pre-trigger"):
+        return (pulse, *_noise_after(t, y - pulse.values, pulse, sensor))
+    samples = (y - pulse.values)[signals.in_window(t, pulse.window)]
+    return pulse, pulse.noise, pulse.window, samples
+
+
+def _noise_after(t, clean, pulse, sensor):
+    """Noise [N], window [s] and samples [N] of a record that starts at its pulse: what
+    a line and the sensor's free ringing leave
+    (:func:`~contactlab.inverse.noise_colour.ringing_residual`) on the
+    :data:`NOISE_AFTER_PERIODS` sensor periods after the fit's window (which ends with
+    the post-contact window), so that the fit's residuals are judged against noise
+    samples it was not fitted on, as against a pre-trigger."""
+    length = NOISE_AFTER_PERIODS * sensor.period
+    window = (pulse.post[1], min(pulse.post[1] + length, float(t[-1])))
+    samples = ringing_residual(t, clean, window, sensor)
+    if samples.size < BASELINE_MIN_SAMPLES + RINGING_TERMS:
         raise ParameterError(
             f"the pulse starts at {pulse.onset:.6g} s, with fewer than {BASELINE_MIN_SAMPLES} "
-            "samples before it: the fit judges its residuals against noise samples read "
-            "before the pulse; record a pre-trigger or pass baseline_window=(start, end) [s]"
+            f"samples before it, and the record ends at {t[-1]:.6g} s, leaving "
+            f"{samples.size} samples after the fit's window to read the noise on (need "
+            f"{BASELINE_MIN_SAMPLES + RINGING_TERMS}); record a pre-trigger or a longer "
+            "tail, or pass baseline_window=(start, end) [s]"
         )
-    return pulse
+    noise = math.sqrt(float(samples @ samples) / (samples.size - RINGING_TERMS))
+    return noise, window, samples
 
 
 def _starting_values(spec, grain, t, y, sensor, velocity, window):
@@ -274,8 +306,11 @@ def fit_contact(
         pulse it finds. The baseline removed is the pulse's local one
         (:func:`contactlab.inverse.pulse.pulse_baseline`: a line on the window's last 8
         sensor periods and on the free ringing after the contact; its noise is read
-        there); a record that starts at the pulse is refused (no noise to judge the fit
-        against).
+        there); a record that starts at the pulse takes the head level
+        (:func:`~contactlab.inverse.local_baseline.head_baseline`) and its noise is read
+        after the fit's window, on what a line and the sensor's free ringing leave
+        (:data:`NOISE_AFTER_PERIODS` sensor periods; the fit's quality is judged against
+        those samples, reported as its noise window).
     window : (float, float), optional
         Samples fitted [s]. Default: from half a contact time before the
         reconstructed onset to the end of the pulse's post-contact window (16 sensor
@@ -299,7 +334,8 @@ def fit_contact(
     Raises
     ------
     ParameterError
-        Bad arguments, fewer than 16 samples before the pulse, or no pulse in the trace.
+        Bad arguments, no pulse in the trace, or a record that starts at its pulse and
+        ends fewer than 20 samples after the fit's window (no noise to judge it on).
 
     Warns
     -----
@@ -344,10 +380,12 @@ def fit_contact(
     if window is not None:
         window = check_window("window", window)
     t, y, dt = uniform_signal(t, signal)
-    pulse = _pulse(t, y, sensor, baseline_window, crosstalk)
+    pulse, noise, baseline_window, noise_samples = _pulse(t, y, sensor, baseline_window, crosstalk)
     y = y - pulse.values
-    noise, baseline_window = pulse.noise, pulse.window
-    start = _starting_values(spec, grain, t, y, sensor, velocity, baseline_window)
+    # a record that starts at its pulse: the reconstruction finds the pulse (and its
+    # noise after the contact) itself
+    before = None if pulse.status.startswith("short pre-trigger") else baseline_window
+    start = _starting_values(spec, grain, t, y, sensor, velocity, before)
     start.update(fixed)
     if window is None:
         window = (start["onset"] - 0.5 * start["contact_time"], pulse.post[1])
@@ -406,7 +444,7 @@ def fit_contact(
     quality = judge_fit(
         residual / noise,
         n_par,
-        y[signals.in_window(t, baseline_window)],
+        noise_samples,
         baseline_window,
         goodness["converged"],
     )

@@ -56,6 +56,7 @@ __all__ = [
     "POST_PERIODS",
     "PRE_PERIODS",
     "LocalBaseline",
+    "free_ringing",
     "head_baseline",
     "local_baseline",
 ]
@@ -127,6 +128,10 @@ class LocalBaseline:
     head: tuple = ()
     """For a head level: the samples it was fitted on ``[start, end]`` [s] and its
     degree, ``(start, end, degree)``; empty otherwise."""
+    ringing: tuple = ()
+    """The fitted free ringing's amplitudes ``(A, B)`` [N] at ``post[0]``
+    (``exp(-a s) (A cos(b s) + B sin(b s))``, ``s = t - post[0]``; :func:`free_ringing`
+    gives its values); empty when the ringing is not resolved."""
 
 
 def _ringing(s, sensor):
@@ -135,6 +140,15 @@ def _ringing(s, sensor):
     a, b = zeta * w, w * math.sqrt(max(1.0 - zeta**2, 0.0))
     decay = np.exp(-a * s)
     return np.stack([decay * np.cos(b * s), decay * np.sin(b * s)], axis=1), a, b
+
+
+def free_ringing(t, start, amplitudes, sensor):
+    """The sensor's free ringing ``exp(-a s) (A cos(b s) + B sin(b s))``, ``s = t -
+    start``, at the times ``t`` [s] (:attr:`LocalBaseline.ringing`'s amplitudes ``(A,
+    B)`` [N] at ``start`` [s]); extrapolated before ``start`` too (it is free ringing only
+    after the contact: the caller keeps the samples where it is)."""
+    columns, _, _ = _ringing(np.asarray(t, dtype=float) - start, sensor)
+    return columns @ np.asarray(amplitudes, dtype=float)
 
 
 def _rms(values, ddof):
@@ -257,6 +271,7 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, excl
         noise=_rms(residual[in_base] - residual[in_base].mean(), 1) if in_base.any() else math.nan,
         post_noise=_rms(residual[in_post], 2 if resolved else 0),
         drift=drift,
+        ringing=tuple(float(v) for v in coefficients[degree + 1 :]) if resolved else (),
     )
 
 

@@ -59,6 +59,7 @@ __all__ = [
     "MIN_SAMPLES_PER_CONTACT",
     "ImpactTraces",
     "analyse_impact",
+    "read_impact",
     "window_row",
 ]
 
@@ -288,7 +289,16 @@ def _fit(t, raw, base, grain, sensor, law):
 def analyse_impact(
     detection, window, sensor, grain=None, fit=None, crosstalk=True, modes=None, noise=NOT_GIVEN
 ):
-    """The table row and gallery traces of one ``"ok"`` impact.
+    """The table row and gallery traces of one ``"ok"`` impact (:func:`read_impact`
+    without its local baseline)."""
+    row, traces, _ = read_impact(detection, window, sensor, grain, fit, crosstalk, modes, noise)
+    return row, traces
+
+
+def read_impact(
+    detection, window, sensor, grain=None, fit=None, crosstalk=True, modes=None, noise=NOT_GIVEN
+):
+    """The table row, gallery traces and local baseline of one ``"ok"`` impact.
 
     Parameters
     ----------
@@ -321,6 +331,11 @@ def analyse_impact(
         ``"reconstruction failed"`` / ``"fit failed"`` with the error in ``reason``.
     traces : ImpactTraces or None
         For the gallery (``None`` when the reconstruction failed).
+    baseline : LocalBaseline or None
+        The local baseline the impulse was read with (its post-contact window and the
+        sensor's free ringing fitted there: :mod:`dem_check.campaign.overlaps` takes
+        that ringing off a later impact); ``None`` where no impulse was read after the
+        reconstruction.
     """
     part = slice(window.first, window.stop)
     t = np.asarray(detection.signal.t[part])
@@ -353,7 +368,11 @@ def analyse_impact(
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     dt = float(t[1] - t[0])
     if not row["sensor_response_time [s]"] >= MIN_SAMPLES_PER_CONTACT * dt:
-        return _too_coarse(row, row["sensor_response_time [s]"], dt, "signal's first lobe"), None
+        return (
+            _too_coarse(row, row["sensor_response_time [s]"], dt, "signal's first lobe"),
+            None,
+            None,
+        )
     part = _reconstruction_part(t, base, window.end, sensor)
     try:
         rec = reconstruct_force(
@@ -371,9 +390,9 @@ def analyse_impact(
         )
     except ParameterError as exc:
         row.update(status="reconstruction failed", reason=str(exc))
-        return row, None
+        return row, None, None
     if not rec.metrics.duration >= MIN_SAMPLES_PER_CONTACT * dt:
-        return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None
+        return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None, None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration
     # the impulse to a period past the last force the reconstruction holds: its contact's
@@ -385,9 +404,8 @@ def analyse_impact(
     # impulse instead of 2). A period past the contact's end also spans less 1/f noise
     # than the first lobe's bound (about 130 us against 200 us for a 100 us contact)
     last = _last_force(rec)
-    row["impulse [N*s]"] = _local(
-        t, record, window, last + sensor.period, sensor, noise, held=held
-    ).impulse
+    local = _local(t, record, window, last + sensor.period, sensor, noise, held=held)
+    row["impulse [N*s]"] = local.impulse
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
@@ -397,7 +415,7 @@ def analyse_impact(
             f"contact (its force is significant until {last:.6g} s): a second impact (or "
             "contact) follows within the first one's main lobe, so neither is analysed alone"
         )
-        return {**window_row(window), "status": "overlap", "reason": reason}, None
+        return {**window_row(window), "status": "overlap", "reason": reason}, None, local
     start, end = rec.parameters["window [s]"]
     keep = (rec.t >= start - GALLERY_PERIODS * sensor.period) & (
         rec.t <= end + GALLERY_PERIODS * sensor.period
@@ -417,4 +435,4 @@ def analyse_impact(
             reason="the reconstructed force does not return below its threshold in the segment",
         )
     row.update(physics_status(row, grain))
-    return row, traces
+    return row, traces, local

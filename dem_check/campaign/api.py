@@ -17,6 +17,7 @@ from dem_check.campaign import detection, noise, onsets
 from dem_check.campaign.analysis import analyse_impact, window_row
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.local import record_noise
+from dem_check.campaign.overlaps import separate_overlaps
 from dem_check.campaign.result import CampaignResult
 from dem_check.campaign.statistics import (
     join_metadata,
@@ -208,17 +209,20 @@ def _analyse_file(path, options, timings, progress):
     started = time.perf_counter()
     modes = record_modes(found, sensor) if options["crosstalk"] else []
     levels = record_noise(found, sensor)  # white and 1/f noise, once per record
+    crosstalk = options["crosstalk"]
+    separated = separate_overlaps(found, sensor, grain, fit, crosstalk, modes, levels)
     for k, window in enumerate(found.impacts):
         progress.impact(path, k, len(found.impacts))
-        if window.status in detection.ANALYSED:
+        if k in separated:  # an overlapping impact, read apart or flagged with why not
+            row, traces = separated[k]
+        elif window.status in detection.ANALYSED:
             row, traces = analyse_impact(
-                found, window, sensor, grain, fit, options["crosstalk"], modes, levels
+                found, window, sensor, grain, fit, crosstalk, modes, levels
             )
-            if traces is not None:
-                gallery[(path, k)] = traces
         else:
-            row = window_row(window)
-            row["significance [-]"] = window.significance
+            row, traces = {**window_row(window), "significance [-]": window.significance}, None
+        if traces is not None:
+            gallery[(path, k)] = traces
         rows.append({"file": path, "impact": k, **row})
     for k, step in enumerate(found.steps, start=len(found.impacts)):  # listed, not analysed
         rows.append(

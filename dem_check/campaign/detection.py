@@ -39,8 +39,10 @@ in newtons:
    whole first lobe), which the crossing lags.
 5. **Overlaps.** Free ringing only decays. Where the envelope after the first lobe
    (largest value per sensor period) grows by more than :data:`GROWTH_FACTOR` (plus the
-   noise floor) to the detection threshold, a second impact started in the first one's
-   ringing. Both are flagged ``"overlap"``, never merged. Not with fewer than
+   noise floor) to the detection threshold, and the growth is a force's (the ringing
+   about its running mean grows so too, or that mean stands at the threshold), a second
+   impact started in the first one's ringing (:mod:`dem_check.campaign.growths`). Both are
+   flagged ``"overlap"``, never merged. Not with fewer than
    :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period (ringing not resolved).
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
    inside an impact flag it ``"clipped"``: its peak is a lower bound.
@@ -59,6 +61,7 @@ from contactlab.traces import Trace
 from contactlab.traces.prepare import check_trace
 from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
+from dem_check.campaign.growths import GROWTH_FACTOR, later_impacts
 from dem_check.campaign.noise import (
     CUTOFF_FACTOR,
     FALSE_ALARMS,
@@ -80,6 +83,7 @@ __all__ = [
     "CUTOFF_FACTOR",
     "FALSE_ALARMS",
     "FLOOR_SIGMAS",
+    "GROWTH_FACTOR",
     "ONSET_SIGMAS",
     "Detection",
     "ImpactWindow",
@@ -89,8 +93,9 @@ __all__ = [
     "noise_floor",
 ]
 
-ANALYSED = ("ok", "short pre-trigger")
-"""Impact statuses that are analysed (signal numbers, reconstruction, fit)."""
+ANALYSED = ("ok", "short pre-trigger", "overlap, neighbour held out", "overlap, ringing subtracted")
+"""Impact statuses that are analysed (signal numbers, reconstruction, fit); the last two
+are impacts flagged ``"overlap"`` here and read apart by :mod:`dem_check.campaign.overlaps`."""
 
 TAIL_PERIODS = 16.0
 """Quiet sensor periods kept after an impact's ringing has decayed (up to the next
@@ -110,10 +115,6 @@ RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the ringing envelope to be followed (overlap
 check, step 5) and for offset steps to be looked for (step 0) [-]; a coarser record
 cannot show the ringing grow, nor average it out over a period."""
-
-GROWTH_FACTOR = 1.5
-"""Largest growth of the ringing envelope from one sensor period to the next that is
-not a new impact: free ringing shrinks by ``exp(-2 pi zeta)`` per period."""
 
 
 @dataclass(frozen=True)
@@ -175,24 +176,6 @@ class Detection:
     step"``, ``peak`` the height [N]), in time order."""
     contact_family: tuple = None
     """``(name, damping ratio [-])`` the onset fit read (:mod:`dem_check.campaign.onsets`)."""
-
-
-def _growths(z, ratio, first_lobe_end, last, period, levels):
-    """Where the ringing envelope grows to the detection threshold: later impacts."""
-    start = first_lobe_end + period  # the free ringing is under way one period later
-    windows = (last + 1 - start) // period
-    if windows < 2:
-        return []
-    envelope = np.abs(z[start : start + windows * period]).reshape(windows, period).max(axis=1)
-    reached = ratio[start : start + windows * period].reshape(windows, period).max(axis=1)
-    grows = (reached[1:] >= levels[1]) & (envelope[1:] > GROWTH_FACTOR * envelope[:-1] + levels[0])
-    runs = np.flatnonzero(grows & ~np.concatenate([[False], grows[:-1]])) + 1
-    found = []
-    for k in runs:
-        level = GROWTH_FACTOR * envelope[k - 1] + levels[0]
-        segment = np.abs(z[start + k * period : start + (k + 1) * period])
-        found.append(start + k * period + int(np.argmax(segment > level)))
-    return found
 
 
 def _samples(periods, sensor, dt, minimum):
@@ -473,7 +456,7 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
     resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
     growths = resolved and lobe_end > detected
     levels = (FLOOR_SIGMAS * floor.smoothed_noise, floor.sigmas)  # [N], [local sigmas]
-    later = _growths(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
+    later = later_impacts(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
     if not later:
         if after:
             reason = (

@@ -64,6 +64,7 @@ __all__ = [
     "end_fit",
     "judge_edge",
     "start_fit",
+    "tail_fit",
 ]
 
 EDGE_FAMILIES = (("linear", 0.0), ("linear", 0.25), ("linear", 0.5), ("hertz", 0.0))
@@ -396,3 +397,20 @@ def end_fit(values, at, first, runs, reach, ring):
         "within one sample does not"
     )
     return dataclasses.replace(fit, step=fit.step and n - fit.index < period, note=note)
+
+
+def tail_fit(values, index, first, runs, reach, ring):
+    """:func:`judge_edge` for a step the period means placed at ``index``, in a run from
+    ``first`` to the record's last sample: an impact cut by the record's end moves the
+    period means' shortened windows there as a step does (a 1 m/s impact 30-150 us
+    before the end read as one to four steps, white noise alone). The window holds the
+    run and four sensor periods before it, the noise model is fitted on the quiet record
+    before that, and the lobe begins between a period before the run and the last
+    sample (as :func:`end_fit`'s)."""
+    period = max(1, round(ring[0].period / ring[1]))
+    n = len(values)
+    lo = max(0, min(first, index) - 4 * period)
+    quiet = (max(0, lo - round(QUIET_PERIODS * period)), lo)
+    noise = _side_noise(values, quiet, (lo, index), runs, reach, period)
+    earliest = max(0, first - lo - period)
+    return judge_edge(values, (lo, n), index, ring, noise, (earliest, n - 1 - lo))

@@ -47,6 +47,7 @@ __all__ = [
     "NoiseFloor",
     "candidate_runs",
     "noise_floor",
+    "record_filters",
 ]
 
 CUTOFF_FACTOR = 2.0
@@ -223,6 +224,20 @@ def _lowpassed(trace, cutoff, dt):
     values[:edge], values[values.size - edge :] = np.nan, np.nan
     step = {"step": "edges_unread", "samples": edge}
     return filtered.derive(step, values=values)
+
+
+def record_filters(trace, floor):
+    """``trace`` [N] through the record's two filters: the Gaussian kernel and the
+    low-pass of ``floor`` (:class:`NoiseFloor`), as :func:`noise_floor` filtered the
+    record (the low-passed trace's edges unread). Both are linear, so a modelled part
+    of the record taken off it is taken off its filtered traces with these.
+
+    Returns
+    -------
+    smoothed, lowpassed : Trace
+    """
+    dt = uniform_interval(trace, "filtering needs uniform sampling")
+    return _gaussian(trace, floor.kernel, dt), _lowpassed(trace, floor.cutoff, dt)
 
 
 def block_samples(trace_length, period, dt):

@@ -99,7 +99,7 @@ def _lobe(detection, window, sensor):
     return t, y, (latest, length), noise, noise_model
 
 
-def record_onsets(detection, windows, sensor, noise=None):
+def record_onsets(detection, windows, sensor, noise=None, family=None):
     """The fitted onsets of ``windows``, their uncertainties, and the contact family
     they share.
 
@@ -112,6 +112,10 @@ def record_onsets(detection, windows, sensor, noise=None):
         The record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`):
         each onset's uncertainty under it; None: under white noise of the impact's
         baseline window's standard deviation.
+    family : (str, float), optional
+        The contact family and damping ratio read already on the record's other impacts
+        (:attr:`Detection.contact_family`): not read again on ``windows``, and the
+        uncertainties leave out the damping's error (it was read on other impacts).
 
     Returns
     -------
@@ -139,7 +143,10 @@ def record_onsets(detection, windows, sensor, noise=None):
         key=lambda k: -windows[k].significance,
     )[:FAMILY_IMPACTS]
     try:
-        family, damping = lobe_family([lobes[k] for k in strongest], sensor)
+        if family is not None:
+            (family, damping), strongest = family, []
+        else:
+            family, damping = lobe_family([lobes[k] for k in strongest], sensor)
     except ParameterError as error:  # no lobe could be fitted: every impact keeps its crossing
         note = f"onset: the 5-sigma crossing (no lobe of the record could be fitted: {error})"
         count = len(windows)

@@ -33,6 +33,21 @@ pre { background: #f6f6f6; padding: 0.8em; overflow-x: auto; }
 """
 
 
+STATUS_LEGEND = (
+    "<p>Analysed: <em>ok</em>; <em>short pre-trigger</em> (its baseline read after its "
+    "ringing); <em>overlap, neighbour held out</em> (an impact another one followed in its "
+    "ringing, read up to two sensor periods before that one); <em>overlap, ringing "
+    "subtracted</em> (an impact that began in another's ringing, read on the record less "
+    "that impact's free ringing fitted after its contact). Not analysed: <em>overlap</em> "
+    "(two impacts that could not be read apart: the reason says why), <em>truncated</em>, "
+    "<em>no baseline</em>, <em>negative</em>, <em>overrange</em>, <em>clipped</em>, "
+    "<em>below min_force</em>, <em>too close</em>, <em>offset step</em>; and the analysis's "
+    "<em>reconstruction failed</em>, <em>fit failed</em>, <em>implausible</em> "
+    "(docs/campaign.md, Per impact).</p>"
+)
+"""What each impact status means, under the candidates' table."""
+
+
 def _table(frame, digits=5):
     if not len(frame):
         return "<p>(none)</p>"
@@ -136,7 +151,7 @@ def _detection(result):
         "<em>largest_threshold</em> where it is largest (hum, crosstalk, ringing), "
         "<em>wander</em> the range of the running baseline. A candidate is a run of the "
         "smoothed signal above the threshold; <em>significance</em> is its peak over the "
-        "local noise. Every candidate is listed with its status and reason.</p>"
+        "local noise. Every candidate is listed with its status and reason.</p>" + STATUS_LEGEND
     )
     return (
         note

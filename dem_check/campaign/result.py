@@ -70,8 +70,8 @@ class CampaignResult:
 
     @property
     def ok(self):
-        """The analysed impacts: status ``"ok"`` or ``"short pre-trigger"``
-        (:data:`dem_check.campaign.detection.ANALYSED`)."""
+        """The analysed impacts: status ``"ok"``, ``"short pre-trigger"`` or an overlap
+        read apart (:data:`dem_check.campaign.detection.ANALYSED`)."""
         return self.impacts[self.impacts["status"].isin(ANALYSED)]
 
     def summary(self):

@@ -46,6 +46,7 @@ import ruptures
 from scipy.ndimage import median_filter, uniform_filter1d
 
 from contactlab.signals import robust_noise
+from dem_check.campaign.edge_models import tail_fit
 from dem_check.campaign.step_ringing import difference_sigma, rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
@@ -63,7 +64,14 @@ from dem_check.campaign.steps import (
     split,
 )
 
-__all__ = ["CONTEXT_PERIODS", "FLAT_SIGMAS", "head_steps", "run_steps", "search_steps"]
+__all__ = [
+    "CONTEXT_PERIODS",
+    "FLAT_SIGMAS",
+    "end_pairs",
+    "head_steps",
+    "run_steps",
+    "search_steps",
+]
 
 CONTEXT_PERIODS = 8
 """Unmasked sensor periods on each side of a run that give its levels before and after
@@ -75,6 +83,11 @@ of the record's period means about their running median (:func:`_period_spread`)
 1/f noise and hum wander the period means of a box of two steps (1/f noise as large as
 the white noise) by up to 5 of them over 0.5 ms; an impact's main lobe leaves 16-44
 (measured on the hard mix of ``benchmarks/bench_steps.py``)."""
+
+LOCAL_WINDOWS = 2
+"""Windows (:data:`~dem_check.campaign.steps.WINDOW_PERIODS` periods each) on each side of
+a run over which the period means' spread is read as well [-] (0.8 ms at 40 kHz, less
+than the plate modes' decay)."""
 
 DECIMATION = 8
 """Means per sensor period the change points are searched on [-]."""
@@ -135,9 +148,11 @@ def _fit(x, period, changes):
     return cuts, pieces, fitted
 
 
-def _steps_of(x, start, period, fit, quiet):
+def _steps_of(x, start, period, fit, quiet, settles=False):
     """The fit's change points as :class:`OffsetStep` if they explain the record
-    (module steps 3 and 4), else None."""
+    (module steps 3 and 4), else None; ``settles``: two changes closer than
+    :data:`BOX_PERIODS` are steps too when the last level is not the first (an impact's
+    lobe returns to its level)."""
     cuts, pieces, fitted = fit
     spread = uniform_filter1d(x - fitted, period, mode="nearest")
     if np.max(np.abs(spread)) > FLAT_SIGMAS * quiet["periods"]:
@@ -147,7 +162,8 @@ def _steps_of(x, start, period, fit, quiet):
         return None
     found = []
     if len(pieces) == 3 and pieces[1].size < BOX_PERIODS * period:
-        return None  # an impact's main lobe as well
+        if not settles or _net(pieces, period, quiet["noise"]) < STEP_SIGMAS:
+            return None  # an impact's main lobe as well
     for k in range(1, len(cuts) - 1):
         old, new = pieces[k - 1], pieces[k]
         height = float(np.median(new) - np.median(old))
@@ -158,6 +174,54 @@ def _steps_of(x, start, period, fit, quiet):
         window = (start + cuts[k - 1], start + cuts[k + 1])
         found.append(OffsetStep(start + cuts[k], height, float(significance), window))
     return found
+
+
+def _net(pieces, period, noise):
+    """The last piece's level less the first's over its standard error [-]."""
+    first, last = pieces[0], pieces[-1]
+    error = np.hypot(*(level_error(noise, period, p.size) for p in (first, last)))
+    return abs(float(np.median(last) - np.median(first))) / max(error, np.finfo(float).tiny)
+
+
+def end_pairs(values, runs, period, masked, slopes):
+    """Two offset steps in a run to the record's last sample, closer than
+    :data:`BOX_PERIODS` (which a single step's test at the edge,
+    :func:`dem_check.campaign.steps.edge_steps`, does not read): the change point model
+    with two changes on the run and the unmasked periods before it, the level at the end
+    not the one before the run (seed 48 of the hard mix of ``benchmarks/bench_steps.py``:
+    steps of -0.72 and 0.16 N 76 us apart, 0.12 ms before the end at 1 MHz, read as a
+    ``negative`` impact).
+
+    Parameters
+    ----------
+    values, period, masked, slopes
+        As for :func:`run_steps`.
+    runs : list of tuple
+        ``(first, last)`` of the runs to the record's end.
+
+    Returns
+    -------
+    list of OffsetStep
+    """
+    values = np.asarray(values, dtype=float)
+    noise = period_noise(values, period)
+    out = []
+    for first, _ in runs:
+        start = _context(masked, first, first, CONTEXT_PERIODS * period)[0]
+        if first - start < period:
+            continue
+        x = values[start:] - slopes[first] * (np.arange(start, values.size) - first)
+        side = x[: first - start]
+        quiet = {
+            "noise": noise,
+            "samples": robust_noise(side - np.median(side)),
+            "periods": max(_period_spread(values, period, masked), noise),
+            "before": first - start,
+            "after": 0,
+        }
+        fit = _fit(x, period, 2)
+        out += (_steps_of(x, start, period, fit, quiet, settles=True) if fit else None) or []
+    return out
 
 
 def run_steps(values, runs, period, masked, slopes):
@@ -192,6 +256,15 @@ def run_steps(values, runs, period, masked, slopes):
     for run in runs:
         _, _, lo, hi = run
         start, stop = _context(masked, lo, hi, size)
+        # the period means' spread around the run too, where larger: a strong impact's
+        # plate modes swing the level there for milliseconds (1890 Hz on seed 1 of the
+        # hard mix: 0.13 N over a 0.22 ms box, the neighbourhood's spread 0.035 N
+        # against the record's 0.0185)
+        near = slice(
+            max(0, lo - LOCAL_WINDOWS * WINDOW_PERIODS * period),
+            hi + LOCAL_WINDOWS * WINDOW_PERIODS * period,
+        )
+        local = max(spread, _period_spread(values[near], period, masked[near]))
         # the quiet hold after the run (up to the next run's mask) is a level too
         if lo - start < period or stop - hi + hi - run[1] < period:
             continue
@@ -202,7 +275,7 @@ def run_steps(values, runs, period, masked, slopes):
         quiet = {
             "noise": noise,
             "samples": robust_noise(levelled),
-            "periods": spread,
+            "periods": local,
             "before": lo - start,
             "after": stop - hi,
         }
@@ -326,9 +399,19 @@ def search_steps(values, runs, period, hold, ring=None):
     rest = remove_steps(values, found)
     levels = {run[0] for run, _ in boxed}
     edges = edge_steps(rest, [r for r in runs if r[0] not in levels], period, hold, ring)
+    ends = [r for r in runs if r[0] >= period and r[1] + hold >= n]
+    if ends and not any(e.index >= ends[-1][0] - period for e in edges):
+        edges += end_pairs(rest, ends[-1:], period, masked, slopes)
     # an edge step's height is read on all the samples on its edge's side: it replaces
     # a step found on the period means' shortened windows there
     near = [(e.window[0] - period, e.window[1] + period) for e in edges]
     means = find_steps(rest, period, masked, ring)
     means = [s for s in means if not any(lo <= s.index < hi for lo, hi in near)]
+    if ends and ring is not None:  # in a run to the end: a step, or an impact cut there?
+        tail = ends[-1][0] - period
+        means = [
+            s
+            for s in means
+            if s.index < tail or tail_fit(rest, s.index, ends[-1][0], runs, hold, ring).step
+        ]
     return sorted(found + means + edges, key=lambda step: step.index)

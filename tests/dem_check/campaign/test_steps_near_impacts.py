@@ -63,15 +63,15 @@ def test_a_step_in_the_ringing_of_a_lobe_less_than_twice_its_height(hard_setup, 
     assert np.abs(onsets - truth).max() <= MATCH
 
 
+BEFORE_AND_IN_RINGING = (
+    "known limit (issue 22): on seed 4 (1, 2, 3, 5, 6 pass) neither step is listed and the "
+    "bounce at 3 ms is not found (only the impact at 1.0001 ms, 'ok'); not traced"
+)
+
+
 @pytest.mark.parametrize(
     "seed",
-    _seeds(
-        (1, 2, 3),
-        "known limit (issue 22, found when the record model's crosstalk became the plate's "
-        "response to the force, after this test was written): the 0.254 N step at 1.163 ms "
-        "is placed at 1.131 ms and an impact is invented at 1.151 ms, so the true impact and "
-        "it are both flagged 'overlap' (seeds 1, 2, 5, 6 pass)",
-    ),
+    [1, 2, 3, pytest.param(4, marks=pytest.mark.xfail(strict=True, reason=BEFORE_AND_IN_RINGING))],
 )
 def test_a_step_before_an_impact_and_one_in_its_ringing(hard_setup, seed):
     # seed 33 of the hard mix: a 1.03 m/s impact (1.66 N) at 5 MHz, steps of 0.181 N 73 us

@@ -20,6 +20,8 @@ from dem_check.campaign import Effects, find_impacts, realistic_record
 from dem_check.campaign.analysis import ONSET_MARGIN, analyse_impact
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.local import record_noise
+from dem_check.campaign.overlaps import HELD_OUT, SUBTRACTED, separate_overlaps
+from dem_check.campaign.structure import record_modes
 
 NOISE = 0.03
 """White noise [N] (and 1/f noise of the same standard deviation)."""
@@ -107,3 +109,74 @@ def test_the_first_impulse_with_the_neighbour_held_out(hard_setup, gap, ratio):
     if gap < 300e-6:  # the second impact inside the post-contact window: read with it
         # measured -13 % (equal impacts) and -6.6 % (half the velocity) on this seed
         assert abs(impulse(None) / true - 1.0) > 0.05
+
+
+TARGETS = {
+    "peak_sensor_force [N]": 0.02,
+    "impulse [N*s]": 0.05,
+    "peak_contact_force [N]": 0.05,
+    "contact_time [s]": 0.05,
+}
+"""Issue 22's targets for one impact, relative [-] (onsets: 2 samples)."""
+
+
+MISSED = pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "the second impact at half the velocity 0.2 ms after the first, read on the record "
+        "less the first one's free ringing fitted on the 37 us between them: peak signal "
+        "+6.2 %, impulse +8.0 %, reconstructed peak +4.9 %, contact time +7.1 % on this "
+        "seed (+4.7 %, +5.5 %, +1.4 %, +4.9 % and -0.9 %, +0.6 %, +0.7 %, +1.7 % on seeds "
+        "1 and 2): the ringing extrapolated from two periods; docs/campaign.md, Limits"
+    ),
+)
+
+
+@pytest.mark.parametrize(
+    ("gap", "ratio"),
+    [
+        (200e-6, 1.0),
+        pytest.param(200e-6, 0.5, marks=MISSED),
+        (300e-6, 1.0),
+        (300e-6, 0.5),
+        (500e-6, 1.0),
+        (500e-6, 0.5),
+    ],
+)
+def test_a_pair_in_the_ringing_is_read_apart(hard_setup, gap, ratio):
+    """Both impacts of a pair the ringing check flags are analysed: the first with the
+    second held out (from two periods before its onset the record is the first one's
+    line and free ringing), the second on the record less the first's free ringing
+    fitted after its contact. Each meets the issue's targets against its own truth (the
+    model's impact alone); at 0.2 ms the first's reconstruction would read mostly
+    held-out samples, and it gives its signal's numbers only."""
+    grain, sensor, _ = hard_setup
+    record = _pair(hard_setup, gap, ratio)
+    found = find_impacts(record.trace, sensor)
+    assert [w.status for w in found.impacts] == ["overlap", "overlap"]
+    modes = record_modes(found, sensor)
+    read = separate_overlaps(found, sensor, grain, None, True, modes, record_noise(found, sensor))
+    rows = [read[k][0] for k in range(2)]
+    assert [r["status"] for r in rows] == [HELD_OUT, SUBTRACTED]
+    assert all(status in ANALYSED for status in (HELD_OUT, SUBTRACTED))
+    assert f"the impact at {found.impacts[1].onset:.6g} s held out" in rows[0]["reason"]
+    assert "free ringing of the impact at" in rows[1]["reason"]
+    reconstructed = gap > 250e-6
+    if not reconstructed:
+        assert "no contact force or contact time" in rows[0]["reason"]
+    dt = 1.0 / 2e6
+    for k, (row, (_, true)) in enumerate(zip(rows, record.truth.iterrows(), strict=True)):
+        # the issue's targets (onset 2 samples, peak signal 2 %, the rest 5 %); measured
+        # on this seed: onsets within 0.21 samples, the first impact's peak signal and
+        # impulse within 0.3 and 0.4 %, the second's within 1.9 and 1.3 %, contact
+        # times within 4.1 % (3 seeds: docs/campaign.md, "Overlaps read apart")
+        assert abs(row["onset [s]"] - true["onset [s]"]) <= 2.0 * dt
+        for column, target in TARGETS.items():
+            if (
+                k == 0
+                and not reconstructed
+                and column in ("peak_contact_force [N]", "contact_time [s]")
+            ):
+                assert column not in row
+                continue
+            assert row[column] == pytest.approx(true[column], rel=target), column

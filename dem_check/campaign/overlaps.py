@@ -1,0 +1,261 @@
+"""Impacts the ringing check flagged ``"overlap"``, read apart (issue 22).
+
+Where the envelope of an impact's ringing grows (:mod:`dem_check.campaign.detection`,
+step 5), a second impact began in it: both are flagged ``"overlap"``. Their contacts do
+not overlap (the second began after the first one's main lobe), so each is read alone,
+in time order, with the ordinary analysis (:func:`dem_check.campaign.analysis.read_impact`):
+
+- the next impact is **held out**: from :data:`HOLD_PERIODS` sensor periods before its
+  onset (which, not analysed, is where the ringing grew: it lags the touch) the record
+  is replaced by this impact's line and free ringing, fitted on the line before it and
+  from :data:`POST_MARGIN` periods after its first lobe to the held-out samples
+  (:func:`contactlab.inverse.local_baseline.local_baseline`). Where that leaves the
+  reconstruction mostly modelled samples (its window spans two lobe-lengths), it can
+  fail: the impact then keeps its signal's numbers and its reason says so;
+- from the second impact on, the free ringing of the impact before (that fit's,
+  :attr:`contactlab.inverse.local_baseline.LocalBaseline.ringing`) is **subtracted**
+  from the record and from its smoothed and low-passed traces (the same filters,
+  :func:`dem_check.campaign.noise.record_filters`); the impact's baseline window is the
+  stretch between the previous impact's ringing fit's start and its own onset, where
+  the record less that ringing is the baseline and noise;
+- each onset is fitted as an analysed impact's
+  (:func:`dem_check.campaign.onsets.record_onsets`, with the record's contact family
+  when it was read).
+
+The first impact of a group gets status ``"overlap, neighbour held out"``, each later one
+``"overlap, ringing subtracted"``, with a reason that says what was held out or taken
+off; both are analysed (:data:`dem_check.campaign.detection.ANALYSED`). An impact that
+cannot be read apart keeps ``"overlap"`` and its reason says why: too few quiet samples
+between the previous contact and its onset, or an impact before it that could not be
+read (the analysis flagged it, or the record is too coarse for its ringing to be
+fitted). A second contact that starts within a period of the first lobe's end is not
+seen by the ringing check (the analysis flags it by its impulse) and is not read apart.
+"""
+
+import dataclasses
+
+import numpy as np
+
+from contactlab.errors import ParameterError
+from contactlab.inverse.local_baseline import free_ringing, local_baseline
+from dem_check.campaign.analysis import ONSET_MARGIN, read_impact, window_row
+from dem_check.campaign.detection import BASELINE_MIN_SAMPLES
+from dem_check.campaign.noise import record_filters
+from dem_check.campaign.onsets import record_onsets
+
+__all__ = ["HELD_OUT", "HOLD_PERIODS", "SUBTRACTED", "separate_overlaps"]
+
+HELD_OUT = "overlap, neighbour held out"
+"""Status of the first impact of an overlapping group, read apart (analysed)."""
+
+SUBTRACTED = "overlap, ringing subtracted"
+"""Status of a later impact of an overlapping group, read on the record less the
+previous impact's fitted free ringing (analysed)."""
+
+HOLD_PERIODS = 2.0
+"""Sensor periods before a later impact's detected onset from which its signal is held
+out [-]. Its onset is where the ringing envelope grew, the first sample above the
+growth level in a sensor period's window of a grid: the touch can lie up to that window
+and the one before it earlier."""
+
+
+POST_MARGIN = 1.0
+"""Sensor periods after an impact's first lobe (the smoothed signal back at its
+baseline) from which its free ringing is fitted before a later impact [-]: the lobe
+can end a little before the contact does (a period, as the analysis reads the impulse
+past its contact's end). Measured on a pair 0.2 ms apart (1:0.5, one seed): from the lobe's end the
+second impact's impulse was 10 % high, from a period after it 8 %."""
+
+
+def _groups(detection):
+    """Indices of the impacts of each overlapping group (the windows of one run share
+    its segment), in time order."""
+    groups = {}
+    for k, window in enumerate(detection.impacts):
+        if window.status == "overlap":
+            groups.setdefault((window.first, window.stop), []).append(k)
+    return [ks for ks in groups.values() if len(ks) > 1]
+
+
+def _less(detection, ringing):
+    """The detection with the modelled ``ringing`` [N] (every sample of the record)
+    taken off its record and its levelled, smoothed and low-passed traces."""
+    step = {"step": "overlap_ringing_subtracted"}
+    trace = detection.record.derive(step, values=ringing)
+    smoothed, lowpassed = record_filters(trace, detection.floor)
+    return dataclasses.replace(
+        detection,
+        record=detection.record.derive(step, values=detection.record.values - ringing),
+        signal=detection.signal.derive(step, values=detection.signal.values - ringing),
+        smoothed=detection.smoothed.derive(
+            step, values=detection.smoothed.values - smoothed.values
+        ),
+        lowpassed=detection.lowpassed.derive(
+            step, values=detection.lowpassed.values - lowpassed.values
+        ),
+    )
+
+
+def _held_out(detection, window, hold, sensor, noise):
+    """The detection with the samples of ``window``'s segment from index ``hold`` on (the
+    next impact's) replaced by this impact's line and free ringing, fitted before it and
+    from :data:`POST_MARGIN` periods after its first lobe to ``hold``
+    (:func:`contactlab.inverse.local_baseline.local_baseline`): the analysis then reads
+    a record that holds this impact alone; and that fit (its free ringing is what is
+    taken off the next impact)."""
+    part = slice(window.first, window.stop)
+    t = np.asarray(detection.record.t[part])
+    y = np.asarray(detection.record.values[part], dtype=float)
+    smooth = np.asarray(detection.smoothed.values[part])
+    cut = hold - window.first
+    base = window.baseline_window
+    level = float(np.mean(smooth[(t >= base[0]) & (t < base[1])]))
+    top = int(np.argmax(smooth[:cut]))
+    lobe_end = float(t[top + int(np.argmax(smooth[top:cut] <= level))])  # back to the baseline
+    start = window.onset - ONSET_MARGIN * sensor.period
+    held = np.arange(t.size) >= cut
+    post = lobe_end + POST_MARGIN * sensor.period
+    fitted = local_baseline(t, y, base, start, post, t[-1], sensor, noise, held)
+    model = fitted.values + free_ringing(
+        t, fitted.post[0], fitted.ringing or (0.0, 0.0), sensor
+    ) * (t >= fitted.post[0])
+    other = np.zeros(np.asarray(detection.record.t).size)
+    other[window.first + cut : window.stop] = (y - model)[cut:]
+    return _less(detection, other), fitted
+
+
+def _window(detection, window, first, stop, base, sensor, noise):
+    """The impact as one alone on ``[first, stop)``: its peak and significance read
+    there, its onset fitted, its baseline ending before that onset; or the reason it
+    cannot be read."""
+    t = np.asarray(detection.record.t)
+    smooth = np.asarray(detection.smoothed.values)
+    at = first + int(np.searchsorted(t[first:stop], window.onset))
+    top = at + int(np.argmax(smooth[at:stop]))
+    alone = dataclasses.replace(
+        window,
+        first=first,
+        stop=stop,
+        end=min(window.end, float(t[stop - 1])),
+        baseline_window=base,
+        start=base[1],
+        status="ok",
+        reason="",
+        peak=float(smooth[top]),
+        significance=float(smooth[top] / detection.local_noise[top]),
+    )
+    family = detection.contact_family
+    onsets, notes, *_, spreads = record_onsets(detection, [alone], sensor, noise, family)
+    end = min(base[1], onsets[0] - ONSET_MARGIN * sensor.period)
+    quiet = int(np.count_nonzero((t >= base[0]) & (t < end)))
+    if quiet < BASELINE_MIN_SAMPLES:
+        return None, (
+            f"only {quiet} quiet samples between {base[0]:.6g} s and its onset "
+            f"{onsets[0]:.6g} s (need {BASELINE_MIN_SAMPLES})"
+        )
+    return dataclasses.replace(
+        alone,
+        onset=onsets[0],
+        onset_uncertainty=spreads[0],
+        reason=notes[0],
+        baseline_window=(base[0], end),
+        start=end,
+    ), ""
+
+
+def _read_group(detection, group, sensor, options):
+    """Rows (and gallery traces) of one overlapping group, read in time order."""
+    t = np.asarray(detection.record.t)
+    dt = float(t[1] - t[0])
+    windows = [detection.impacts[k] for k in group]
+    out, current, base, before = {}, detection, windows[0].baseline_window, None
+    first = windows[0].first
+    for j, (k, window) in enumerate(zip(group, windows, strict=True)):
+        later = windows[j + 1] if j + 1 < len(windows) else None
+        hold = window.stop
+        if later is not None:
+            hold = int(np.searchsorted(t, later.onset - HOLD_PERIODS * sensor.period))
+        alone, why = _window(current, window, first, hold, base, sensor, options["noise"])
+        if alone is None:
+            break
+        alone = dataclasses.replace(alone, stop=window.stop, end=window.end)
+        try:
+            reading, local = current, None
+            if later is not None:
+                reading, local = _held_out(current, alone, hold, sensor, options["noise"])
+            row, traces, _ = read_impact(
+                dataclasses.replace(reading, impacts=[alone]), alone, sensor, **options
+            )
+        except (ParameterError, ValueError, np.linalg.LinAlgError) as error:
+            # a reading the ordinary analysis was not built for (a window with no
+            # samples between the contact and the held-out ones): flagged, with the error
+            why = f"reading it alone failed ({type(error).__name__}: {error})"
+            break
+        parts, status = [], HELD_OUT
+        if before is not None:
+            status = SUBTRACTED
+            parts.append(
+                f"the free ringing of the impact at {before[0]:.6g} s (fitted from "
+                f"{before[1]:.6g} s) subtracted, the baseline read from "
+                f"{alone.baseline_window[0]:.6g} to {alone.baseline_window[1]:.6g} s"
+            )
+        if later is not None:
+            parts.append(
+                f"the impact at {later.onset:.6g} s held out: from {t[hold]:.6g} s the record "
+                "is this impact's line and free ringing, fitted before it"
+            )
+        how = "; ".join(parts)
+        note = f"overlap read apart: {how}"
+        if row["status"] == "reconstruction failed" and later is not None:
+            # the held-out samples (the model, without noise) fill most of the record
+            # the reconstruction reads: its signal numbers stand, its contact is not given
+            row["reason"] = f"no contact force or contact time: {row['reason']}"
+            row["status"] = "ok"
+        if row["status"] == "ok":
+            row["status"] = status
+        row["reason"] = "; ".join(r for r in (note, row["reason"]) if r)
+        out[k] = (row, traces)
+        if later is None or not (row["status"] == status and local.ringing):
+            why = "the impact before it was not read apart"
+            break
+        ringing = np.zeros(t.size)
+        free = t >= local.post[0] - sensor.period  # a period after the contact's end
+        ringing[free] = free_ringing(t[free], local.post[0], local.ringing, sensor)
+        current = _less(current, ringing)
+        first = int(np.searchsorted(t, local.post[0]))
+        base = (float(t[first]), later.onset - HOLD_PERIODS * sensor.period + dt)
+        before = (alone.onset, local.post[0])
+    for k, window in zip(group, windows, strict=True):
+        if k not in out:
+            row = window_row(window)
+            reason = f"{row['reason']}; not read apart: {why}"
+            out[k] = ({**row, "significance [-]": window.significance, "reason": reason}, None)
+    return out
+
+
+def separate_overlaps(
+    detection, sensor, grain=None, fit=None, crosstalk=True, modes=None, noise=None
+):
+    """Read the record's overlapping impacts apart (module docstring).
+
+    Parameters
+    ----------
+    detection : Detection
+    sensor : Sensor
+    grain, fit, crosstalk, modes, noise
+        As for :func:`dem_check.campaign.analysis.analyse_impact` (``noise``: the
+        record's, :func:`dem_check.campaign.local.record_noise`, or None).
+
+    Returns
+    -------
+    dict
+        ``{index in detection.impacts: (row, traces)}`` for every impact of an
+        overlapping group (status :data:`HELD_OUT`, :data:`SUBTRACTED`, another the
+        analysis gave, or ``"overlap"`` with why it was not read apart); ``traces`` for
+        the gallery, or None.
+    """
+    options = {"grain": grain, "fit": fit, "crosstalk": crosstalk, "modes": modes, "noise": noise}
+    out = {}
+    for group in _groups(detection):
+        out.update(_read_group(detection, group, sensor, options))
+    return out
