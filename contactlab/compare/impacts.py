@@ -195,7 +195,7 @@ def compare_trace(
         Lobe threshold [N] instead of ``k`` times the noise.
     crosstalk : bool, default True
         Remove the structure's crosstalk with the baseline (modes found on the ringing
-        after the contact, :func:`contactlab.inverse.crosstalk.single_impact_crosstalk`;
+        after the contact, :func:`contactlab.inverse.single_crosstalk.single_impact_crosstalk`;
         ``baseline note N`` names the modes removed); False keeps it in the measured
         signal (a rigid sensor's trace has no local baseline and is not affected).
 

@@ -46,10 +46,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import linalg, signal
 
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse.identify import matrix_pencil
 from contactlab.inverse.local_baseline import _ringing
-from contactlab.inverse.ringdown import MIN_DAMPING, free_ringing_residual, refine_poles
+from contactlab.inverse.ringdown import MIN_DAMPING, free_ringing_residual, refine_unheld
 from contactlab.signals import lowpass
 from contactlab.validation import check_count, check_samples
 
@@ -61,7 +62,6 @@ __all__ = [
     "StructureMode",
     "fit_crosstalk",
     "joint_structure_modes",
-    "single_impact_crosstalk",
     "structure_modes",
 ]
 
@@ -94,15 +94,6 @@ SIGNIFICANCE = 5.0
 """A mode is removed only when its response amplitude is this many standard errors
 above zero [-] (the standard error assumes white noise: 1/f noise makes it optimistic,
 hence five rather than three)."""
-
-SINGLE_SPAN = 2e-3
-"""Longest window a single trace's crosstalk is fitted on, on each side of its pulse [s]
-(as the campaign's ``dem_check.campaign.structure.SPAN``): long against the modes'
-periods, short against drift and 1/f noise (a quadratic follows them)."""
-
-SINGLE_IDENTIFICATION_SPAN = 5e-3
-"""Longest window after a single trace's contact its modes are identified on [s] (as the
-campaign's): a mode is sought from one period in it."""
 
 
 @dataclass(frozen=True)
@@ -146,7 +137,7 @@ def _sensor_ringing(t, start, sensor):
     return columns * (t >= start)[:, None]
 
 
-def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):
+def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None, refine=False):
     """Candidate structure modes in a window of ringing after a contact.
 
     Parameters
@@ -166,13 +157,22 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):
         the larger of that and the white-noise one is used. 1/f noise puts more power
         near a low-frequency pole than the window's residual shows, and the pencil can
         fit it as a mode.
+    refine : bool, default False
+        Refine the pencil's poles in the band, growing ones included, on the window's
+        block means less a line (:func:`~contactlab.inverse.ringdown.refine_unheld`), as
+        :func:`joint_structure_modes` does: on two to three periods the pencil can read a
+        mode growing (a record that starts at its impact: 730 Hz at damping -0.006,
+        dropped). :func:`~contactlab.inverse.single_crosstalk.single_impact_crosstalk`
+        refines; the campaign's window-by-window
+        identification does not (its joint pencil does).
 
     Returns
     -------
     list of (float, float)
         ``(frequency [Hz], damping ratio [-])`` of each oscillating pole of the window
-        between one period per window and :data:`BAND_FRACTION` of the sensor resonance,
-        damping ratio in ``(0, MAX_DAMPING)``.
+        (refined with ``refine``) between one period per window and
+        :data:`BAND_FRACTION` of the sensor resonance, damping ratio in ``(0,
+        MAX_DAMPING)``.
 
     Raises
     ------
@@ -184,8 +184,9 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):
     max_modes = check_count("max_modes", max_modes)
     if t.shape != y.shape or t.size < 16:
         raise ParameterError(f"t and y must be equal 1-D windows of >= 16 samples; got {t.size}")
+    refine = check_flag("refine", refine)
     order = 2 * max_modes + SLOW_POLES
-    tau, decimated, step = _band(t, y, sensor, degree=2)
+    tau, decimated, step = _band(t, y, sensor, degree=1 if refine else 2, blocks=refine)
     if t.size // round(step / float(t[1] - t[0])) < 3 * order:
         raise ParameterError(
             f"the window of {np.ptp(t):.3g} s is too short to identify {max_modes} structure "
@@ -193,7 +194,12 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None):
             "pencil order)"
         )
     poles = matrix_pencil(decimated, step, order)
-    candidates = _in_band(poles, 1.0 / float(np.ptp(t)), BAND_FRACTION * sensor.resonance)
+    band = (1.0 / float(np.ptp(t)), BAND_FRACTION * sensor.resonance)
+    candidates = _in_band(poles, *band, growing=refine)
+    if refine and candidates:
+        poles = [pole for *_, pole in candidates]
+        poles = refine_unheld([(tau, decimated)], poles, (MIN_DAMPING, MAX_DAMPING))
+        candidates = _in_band(poles, *band)
     autocovariance = None if noise is None else _autocovariance(noise, sensor, decimated.size)
     keep = _significant(tau, decimated, candidates, degree=0, autocovariance=autocovariance)
     return sorted((f, z) for (f, z, _), k in zip(candidates, keep, strict=True) if k)
@@ -214,10 +220,10 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
 
     With ``refine`` the pencil's poles in the band, growing ones included (noise on
     windows of one to three periods biases them: ``docs/campaign.md``, "Crosstalk"), are
-    refined on every window (:func:`contactlab.inverse.ringdown.refine_poles`); those
-    left at :data:`MAX_DAMPING` are dropped. Each candidate's amplitude is then fitted
-    with the others', a constant and a line on each window, and tested as in
-    :func:`structure_modes`.
+    refined on every window (:func:`contactlab.inverse.ringdown.refine_unheld`: those
+    left at :data:`MAX_DAMPING` dropped, the rest refined again without them). Each
+    candidate's amplitude is then fitted with the others', a constant and a line on each
+    window, and tested as in :func:`structure_modes`.
 
     Parameters
     ----------
@@ -266,10 +272,8 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     candidates = _in_band(np.log(z) / bands[0][2], *band, growing=refine)
     if refine and candidates:
         poles = [pole for *_, pole in candidates]
-        refined = refine_poles([b[:2] for b in bands], poles, (MIN_DAMPING, MAX_DAMPING))
-        # a pole held at the largest damping ratio wanted more: noise, not a mode
-        held = np.isclose(-refined.real / np.abs(refined), MAX_DAMPING, rtol=1e-6, atol=0.0)
-        candidates = _in_band(refined[~held], *band)
+        poles = refine_unheld([b[:2] for b in bands], poles, (MIN_DAMPING, MAX_DAMPING))
+        candidates = _in_band(poles, *band)
     candidates = sorted(candidates)
     if not candidates:
         return [], empty
@@ -444,57 +448,3 @@ def fit_crosstalk(t, y, sensor, onset, pulse, fitted, post_start, modes):
             crosstalk = design[:, base.shape[1] :] @ coefficients[base.shape[1] :]
             return Crosstalk(tuple(found), crosstalk)
         kept = [mode for mode, keep in zip(kept, significant, strict=True) if keep]
-
-
-def single_impact_crosstalk(t, y, sensor, onset, pre_end, contact_end):
-    """The crosstalk of the one impact of a single trace, its modes found on its own ringing.
-
-    With one record there is one impact: the modes are those :func:`structure_modes`
-    finds on the ringing after its contact (from ``contact_end`` to the record's end, at
-    most :data:`SINGLE_IDENTIFICATION_SPAN`), kept by :func:`fit_crosstalk` when their
-    response to this pulse is significant. The campaign instead keeps the modes found
-    after half of a record's impacts, which a single trace cannot do; a candidate must
-    instead also be significant under the noise of the pre-trigger (``noise=`` of
-    :func:`structure_modes`), which drops the poles the pencil fits to 1/f noise.
-
-    Parameters
-    ----------
-    t, y : numpy.ndarray
-        The record: uniform times [s] and the signal [N].
-    sensor : Sensor
-    onset : float
-        The pulse's onset [s].
-    pre_end : float or None
-        End of the baseline window before the pulse [s] (its samples before it, at most
-        :data:`SINGLE_SPAN`, are fitted), or None when the record starts at the pulse.
-    contact_end : float
-        A time after the contact has ended [s].
-
-    Returns
-    -------
-    Crosstalk or None
-        On every sample of the record (zero outside the fitted stretch); None when the
-        ringing after the contact is too short to identify modes on.
-    """
-    after = (t >= contact_end) & (t <= contact_end + SINGLE_IDENTIFICATION_SPAN)
-    noise = None
-    if pre_end is not None:
-        quiet = (t < min(pre_end, onset)) & (t >= pre_end - SINGLE_IDENTIFICATION_SPAN)
-        noise = (t[quiet], y[quiet]) if quiet.sum() >= 16 else None
-    try:
-        modes = structure_modes(t[after], y[after], sensor, noise=noise)
-    except ParameterError:  # too short a window after the contact
-        return None
-    values = np.zeros(t.size)
-    if not modes:
-        return Crosstalk((), values)
-    post_start = contact_end + sensor.period
-    start = onset if pre_end is None else pre_end
-    first = onset - SINGLE_SPAN if pre_end is not None else start
-    stretch = (t >= first) & (t <= post_start + SINGLE_SPAN)
-    tt, yy = t[stretch], y[stretch]
-    fitted = ((tt < start) & (pre_end is not None)) | (tt >= post_start)
-    pulse = (tt >= start) & (tt < contact_end)
-    found = fit_crosstalk(tt, yy, sensor, onset, pulse, fitted, post_start, modes)
-    values[stretch] = found.values
-    return Crosstalk(found.modes, values)

@@ -33,9 +33,9 @@ from contactlab.inverse._signal import (
     difference_noise,
     lobe_around_peak,
 )
-from contactlab.inverse.crosstalk import single_impact_crosstalk
 from contactlab.inverse.lobe_onset import single_onset
 from contactlab.inverse.local_baseline import PRE_PERIODS, head_baseline, local_baseline
+from contactlab.inverse.single_crosstalk import single_impact_crosstalk
 from contactlab.signals import SPREAD_MIN_SAMPLES
 
 __all__ = [
@@ -271,7 +271,7 @@ def pulse_baseline(t, y, sensor, window=None, k=5.0, *, crosstalk=True, first_to
         Onset threshold in noise standard deviations [-].
     crosstalk : bool, default True
         Remove the structure's crosstalk first
-        (:func:`~contactlab.inverse.crosstalk.single_impact_crosstalk`: modes found on
+        (:func:`~contactlab.inverse.single_crosstalk.single_impact_crosstalk`: modes found on
         the ringing after the contact, their response to the pulse fitted before it and
         after the contact); the modes removed are named in ``notes``.
     first_touch : bool, default True

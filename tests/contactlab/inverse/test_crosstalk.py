@@ -139,3 +139,63 @@ def test_refined_joint_poles_under_1f_noise():
     # pencil's 20 % and 7 %); ~30 decimated samples per period of 1/f noise the line
     # of each window does not follow
     assert np.nanmax(refined[:, 0]) < 0.04 and np.nanmax(refined[:, 1]) < 0.015
+
+
+def test_a_pole_held_at_the_damping_bound_is_refined_away_from_the_modes():
+    # 1/f noise alone at 1 MHz, seed 10: refined once with every pencil pole, a noise
+    # pole left at the 0.06 damping bound had taken part of the 1890 Hz mode, which came
+    # out at 1939 Hz, damping 1e-4 (the bound below); refined again without the held
+    # pole (ringdown.refine_unheld), 1896 Hz. 1.5 %: the largest 1890 Hz error of the
+    # refined poles over 12 seeds (test above)
+    windows = plate_windows(10, white=0.0, flicker_sigma=0.01)
+    candidates, significant = joint_structure_modes(windows, SENSOR)
+    assert mode_error(candidates, significant, 1890.0) < 0.015
+    # 4 %: as for the 730 Hz mode above (0.1 % here)
+    assert mode_error(candidates, significant, 730.0) < 0.04
+
+
+def _single_window(seed, length):
+    """The ringing after one contact in closed form (not the record model): an offset and
+    a line, the sensor's ringing, the plate's 730 Hz and 1890 Hz modes at 0.04 N, white
+    noise of 0.03 N (the single-trace benchmark's)."""
+    t = np.arange(round(length * RATE)) / RATE
+    rng = np.random.default_rng(seed)
+    y = 0.1 + 2.0 * t + 0.5 * damped(t + 1e-4, SENSOR.resonance, SENSOR.damping_ratio)
+    y = y + 0.04 * damped(t + 2e-4, 730.0, 0.01) + 0.04 * damped(t + 1e-4, 1890.0, 0.02)
+    return t, y + rng.normal(0.0, 0.03, t.size)
+
+
+def _scipy_frequency(t, y, frequency, zeta):
+    """The mode near ``frequency`` [Hz] fitted by scipy's ``curve_fit`` on the whole
+    window: a line, the sensor's free ringing and both plate modes, each mode's amplitude,
+    phase, frequency and damping ratio free, started from the truth (an independent
+    fit, not the pencil's or the variable projection's)."""
+    from scipy.optimize import curve_fit
+
+    def model(t, c0, c1, s, r, a1, p1, f1, z1, a2, p2, f2, z2):
+        ringing = s * damped(t + r, SENSOR.resonance, SENSOR.damping_ratio)
+        return c0 + c1 * t + ringing + a1 * damped(t + p1, f1, z1) + a2 * damped(t + p2, f2, z2)
+
+    start = [0.1, 2.0, 0.5, 1e-4, 0.04, 2e-4, frequency, zeta, 0.04, 1e-4, 1890.0, 0.02]
+    fitted, _ = curve_fit(model, t, y, p0=start)
+    return fitted[6]
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_a_single_window_s_growing_pencil_pole_is_refined_into_the_mode(seed):
+    # 2.8 ms after a contact (a 4 ms record that starts 1 ms before its impact), two
+    # periods of the 730 Hz mode: the pencil reads it growing and drops it (seeds 1, 2)
+    # or 3-6 % low (696-707 Hz); refined on the window's block means, 725-734 Hz over 12
+    # seeds, and 1888-1899 Hz for the 1890 Hz mode
+    t, y = _single_window(seed, 2.8e-3)
+    pencil = structure_modes(t, y, SENSOR)
+    refined = structure_modes(t, y, SENSOR, refine=True)
+    assert not any(abs(f / 730.0 - 1.0) < 0.02 for f, _ in pencil), pencil
+    near = [f for f, z in refined if abs(f / 730.0 - 1.0) < 0.02 and 0.0 < z < 0.06]
+    # 1 %: the largest error over 12 seeds was 0.7 %
+    assert len(near) == 1 and near[0] == pytest.approx(730.0, rel=0.01), refined
+    # against scipy's least squares of the whole model on the same samples: the same
+    # mode to 1 % (both are least squares on these samples; the refinement's on block
+    # means of the band less a line, so they differ by the noise of what each fits)
+    assert near[0] == pytest.approx(_scipy_frequency(t, y, 730.0, 0.01), rel=0.01)
+    assert any(abs(f / 1890.0 - 1.0) < 0.01 for f, _ in refined), refined  # 0.5 % measured
