@@ -27,6 +27,7 @@ from scipy.optimize import nnls
 
 from contactlab import signals
 from contactlab.bodies import Sensor
+from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
 from contactlab.inverse.contact_edges import (
@@ -385,6 +386,7 @@ def reconstruct_force(
     t, y, dt = uniform_signal(t, signal)
     sensor = _check_sensor(sensor)
     method = check_choice("method", method, tuple(METHODS))
+    read_family = check_flag("read_family", read_family)
     for name, value, owner in (
         ("cutoff", cutoff, "inverse"),
         ("regularization", regularization, "tikhonov"),
