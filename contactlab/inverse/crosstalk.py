@@ -124,6 +124,14 @@ class Crosstalk:
     values: np.ndarray
     """The crosstalk at every sample of the stretch (responses to this impact and free
     ringing from earlier ones), to be subtracted (unit of the record)."""
+    columns: np.ndarray = None
+    """``(samples, k)``: each fitted column of the crosstalk's model on the stretch
+    (``values = columns @ coefficients``); None when no mode was removed."""
+    coefficients: np.ndarray = None
+    """``(k,)``: the columns' fitted coefficients; None when no mode was removed."""
+    covariance: np.ndarray = None
+    """``(k, k)``: their covariance under the noise (unit of the record squared); None
+    when no mode was removed."""
 
     def describe(self):
         """``"730 Hz (zeta 0.010): 0.041 N; ..."``, or ``""`` when no mode was removed."""
@@ -131,6 +139,34 @@ class Crosstalk:
             f"{m.frequency:.0f} Hz (zeta {m.damping_ratio:.3f}): {m.amplitude:.3g} N"
             for m in self.modes
         )
+
+    def share(self, readings):
+        """What the crosstalk adds to a linear reading of the record, and that share's
+        standard error under the noise of its fit.
+
+        Parameters
+        ----------
+        readings : array_like
+            ``(k,)``: a linear reading of the record (e.g. its impulse [N*s] read with a
+            local baseline) applied to each of :attr:`columns`.
+
+        Returns
+        -------
+        (float, float)
+            The reading of :attr:`values`, ``g @ coefficients``, and its standard error
+            ``sqrt(g' C g)`` (``g`` the readings, ``C`` :attr:`covariance`; exact for a
+            linear reading); ``(0, 0)`` when no mode was removed.
+        """
+        if self.columns is None:
+            return 0.0, 0.0
+        g = np.asarray(readings, dtype=float)
+        variance = float(g @ self.covariance @ g)
+        return float(g @ self.coefficients), math.sqrt(max(variance, 0.0))
+
+    def cropped(self, part):
+        """The crosstalk on ``part`` (a slice) of its stretch."""
+        columns = None if self.columns is None else self.columns[part]
+        return Crosstalk(self.modes, self.values[part], columns, self.coefficients, self.covariance)
 
 
 def _quadratic(t):
@@ -402,7 +438,9 @@ def _free(t, onset, pole):
     return np.stack([decay * np.cos(pole.imag * s), decay * np.sin(pole.imag * s)], axis=1)
 
 
-def fit_crosstalk(t, y, sensor, onset, pulse, fitted, post_start, modes):
+def fit_crosstalk(
+    t, y, sensor, onset, pulse, fitted, post_start, modes, *, drop=True, autocovariance=None
+):
     """The crosstalk of the given structure modes in a stretch of a record.
 
     Parameters
@@ -425,6 +463,18 @@ def fit_crosstalk(t, y, sensor, onset, pulse, fitted, post_start, modes):
         there).
     modes : list of (float, float)
         ``(frequency [Hz], damping ratio [-])`` (e.g. from :func:`structure_modes`).
+    drop : bool, default True
+        Drop the modes whose response is not :data:`SIGNIFICANCE` standard errors above
+        zero and refit the others (modes found on this impact's ringing alone); False:
+        fit and remove every mode given (modes found after several impacts: a mode left
+        out of the fit biases the others' amplitudes where their columns overlap on
+        windows of a few periods, ``docs/campaign.md``, "Crosstalk").
+    autocovariance : array_like, optional
+        The noise's autocovariance at lags of ``0, 1, ...`` samples, at least as many as
+        the stretch's (unit of the record squared): the coefficients' covariance
+        (:attr:`Crosstalk.covariance`) is then that of least squares under this
+        stationary noise, ``(X'X)^-1 X' R X (X'X)^-1``; otherwise that of a white
+        residual. The significance test uses the white one either way.
 
     Returns
     -------
@@ -453,7 +503,12 @@ def fit_crosstalk(t, y, sensor, onset, pulse, fitted, post_start, modes):
             significant.append(enough)
             found.append(StructureMode(frequency, zeta, gain * norm))
             index += 4 if free else 2
-        if all(significant):
-            crosstalk = design[:, base.shape[1] :] @ coefficients[base.shape[1] :]
-            return Crosstalk(tuple(found), crosstalk)
+        if all(significant) or not drop:
+            if autocovariance is not None:
+                rows = np.where(fitted[:, None], design, 0.0)
+                covariance = _coloured(rows, np.asarray(autocovariance, float)[: t.size])
+            own = slice(base.shape[1], None)
+            columns = design[:, own]
+            values = columns @ coefficients[own]
+            return Crosstalk(tuple(found), values, columns, coefficients[own], covariance[own, own])
         kept = [mode for mode, keep in zip(kept, significant, strict=True) if keep]

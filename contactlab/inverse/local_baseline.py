@@ -132,6 +132,9 @@ class LocalBaseline:
     """The fitted free ringing's amplitudes ``(A, B)`` [N] at ``post[0]``
     (``exp(-a s) (A cos(b s) + B sin(b s))``, ``s = t - post[0]``; :func:`free_ringing`
     gives its values); empty when the ringing is not resolved."""
+    impulses: tuple = ()
+    """Impulses of the further records given as ``also`` [N*s], read with this fit
+    (:func:`local_baseline`); empty when none was given."""
 
 
 def _ringing(s, sensor):
@@ -178,7 +181,9 @@ def _tail(amplitudes, a, b, sensor):
     return (amplitude_cos * a + amplitude_sin * b) / sensor.angular_frequency**2
 
 
-def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, exclude=None):
+def local_baseline(
+    t, y, base, start, contact_end, end, sensor, noise=None, exclude=None, also=None
+):
     """Fit the local baseline of one impact and integrate its impulse (module docstring).
 
     Parameters
@@ -207,6 +212,11 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, excl
         Samples of the segment that hold another impact (its onset to its decayed
         ringing): left out of both sides' fit and of the samples the noise under the
         pulse is predicted from; what they hold is signal, not baseline or noise.
+    also : numpy.ndarray, optional
+        ``(len(t), k)``: further records whose impulses are read with this fit's
+        windows and noise model (:attr:`LocalBaseline.impulses`); the impulse is linear
+        in the record, so the columns of a fitted model give its share of the impulse
+        (``contactlab.inverse.crosstalk.Crosstalk.share``) at the cost of one fit.
 
     Returns
     -------
@@ -235,14 +245,15 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, excl
         ringing[~in_post] = 0.0
         columns.append(ringing)
     design = np.concatenate(columns, axis=1)
-    predicted = np.zeros(t.size)
+    records = (y if also is None else np.column_stack([y, also])).reshape(t.size, -1)
+    predicted = np.zeros(records.shape)
     if noise is not None and resolved and degree > 0:
         # GLS on both sides and the noise under the pulse predicted from them
         q = max(1, round(sensor.period / dt / BLOCK_PER_PERIOD))
         under = np.flatnonzero((t >= start) & (t <= post[0]))
         coefficients, predicted[under] = predict_gap(
             noise.autocovariance(t.size),
-            y,
+            records,
             design,
             np.flatnonzero(in_base),
             np.flatnonzero(in_post),
@@ -250,14 +261,20 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, excl
             q,
         )
     else:
-        coefficients, *_ = np.linalg.lstsq(design[fitted], y[fitted], rcond=None)
-    line = powers @ coefficients[: degree + 1]
+        coefficients, *_ = np.linalg.lstsq(design[fitted], records[fitted], rcond=None)
+    lines = powers @ coefficients[: degree + 1]
+
+    def integral(k):  # the impulse of record k (its line, prediction and ringing)
+        if not resolved:
+            return float(impulse(t, records[:, k] - lines[:, k], start, end))
+        tail = _tail(coefficients[degree + 1 :, k], a, b, sensor)
+        return float(
+            impulse(t, records[:, k] - lines[:, k] - predicted[:, k], start, post[0]) + tail
+        )
+
+    total, impulses = integral(0), tuple(integral(k) for k in range(1, records.shape[1]))
+    coefficients, predicted, line = coefficients[:, 0], predicted[:, 0], lines[:, 0]
     residual = y - design @ coefficients
-    if resolved:
-        tail = _tail(coefficients[degree + 1 :], a, b, sensor)
-        total = impulse(t, y - line - predicted, start, post[0]) + tail
-    else:
-        total = impulse(t, y - line, start, end)
     if degree > 0:
         drift = float(np.interp(post[0], t, line) - np.interp(start, t, line))
     else:  # a constant: how far a line through what it leaves moves over the fitted span
@@ -267,7 +284,8 @@ def local_baseline(t, y, base, start, contact_end, end, sensor, noise=None, excl
         window=tuple(base),
         values=line + predicted,
         post=post,
-        impulse=float(total),
+        impulse=total,
+        impulses=impulses,
         noise=_rms(residual[in_base] - residual[in_base].mean(), 1) if in_base.any() else math.nan,
         post_noise=_rms(residual[in_post], 2 if resolved else 0),
         drift=drift,

@@ -53,7 +53,7 @@ from contactlab.quantities import column
 from dem_check.campaign.detection import ONSET_SIGMAS
 from dem_check.campaign.local import local_baseline, record_noise
 from dem_check.campaign.plausibility import physics_status
-from dem_check.campaign.structure import impact_crosstalk, record_modes
+from dem_check.campaign.structure import impact_crosstalk, record_modes, removed_from_impulse
 
 __all__ = [
     "GALLERY_PERIODS",
@@ -185,22 +185,43 @@ def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise, held):
     return numbers, detrended, contact_end
 
 
-def _local(t, record, window, contact_end, sensor, noise=None, near_onset=True, held=None):
+def _local(
+    t, record, window, contact_end, sensor, noise=None, near_onset=True, held=None, also=None
+):
     """The impact's local baseline (:func:`dem_check.campaign.local.local_baseline`),
     its ringing fitted from ``contact_end`` [s]; a baseline before the impact is read up
     to :data:`ONSET_MARGIN` periods before the onset, where the impulse integral starts
     (``near_onset=False``: to the detection's baseline window's end). With the record's
     ``noise`` (:func:`dem_check.campaign.local.record_noise`) the noise under the pulse
     is predicted from both sides and taken off with the line. ``held``: samples of other
-    impacts (:func:`_held`), left out of the fit and of the prediction."""
+    impacts (:func:`_held`), left out of the fit and of the prediction. ``also``: further
+    records whose impulses are read with the same fit (``LocalBaseline.impulses``)."""
     base = window.baseline_window
     if near_onset and base[1] <= window.onset:
         end = max(base[1], window.onset - ONSET_MARGIN * sensor.period)
         return local_baseline(
-            t, record, (base[0], end), end, contact_end, window.end, sensor, noise, held
+            t, record, (base[0], end), end, contact_end, window.end, sensor, noise, held, also
         )
     start = base[1] if window.start is None else window.start
-    return local_baseline(t, record, base, start, contact_end, window.end, sensor, exclude=held)
+    return local_baseline(
+        t, record, base, start, contact_end, window.end, sensor, exclude=held, also=also
+    )
+
+
+def _crosstalk_impulse(found, local):
+    """The crosstalk's share of the impulse ``local`` read with it removed (``also``:
+    its columns read with the same fit), that share's standard error and, where
+    removing it adds more error than it takes off
+    (:func:`dem_check.campaign.structure.removed_from_impulse`), the impulse with the
+    share left in (the reconstruction keeps the removal)."""
+    share, error = found.share(local.impulses)
+    removed = removed_from_impulse(share, error)
+    return {
+        "impulse [N*s]": local.impulse if removed else local.impulse + share,
+        "crosstalk_impulse [N*s]": share,
+        "crosstalk_impulse_error [N*s]": error,
+        "crosstalk_impulse_removed": removed,
+    }
 
 
 def _held(detection, window, t, sensor):
@@ -359,7 +380,7 @@ def read_impact(
     if crosstalk:
         if modes is None:
             modes = record_modes(detection, sensor)
-        found = impact_crosstalk(detection, window, sensor, contact_end, part, modes)
+        found = impact_crosstalk(detection, window, sensor, contact_end, part, modes, noise)
         row["crosstalk [N]"] = sum(m.amplitude for m in found.modes)
         row["crosstalk_modes"] = found.describe()
         if found.modes:
@@ -408,8 +429,11 @@ def read_impact(
     # impulse instead of 2). A period past the contact's end also spans less 1/f noise
     # than the first lobe's bound (about 130 us against 200 us for a 100 us contact)
     last = _last_force(rec)
-    local = _local(t, record, window, last + sensor.period, sensor, noise, held=held)
+    columns = found.columns if crosstalk and found.modes else None
+    local = _local(t, record, window, last + sensor.period, sensor, noise, held=held, also=columns)
     row["impulse [N*s]"] = local.impulse
+    if columns is not None:
+        row.update(_crosstalk_impulse(found, local))
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass
     excess = row["impulse [N*s]"] / rec.metrics.impulse - 1.0
