@@ -23,7 +23,11 @@ and taken off with the line before the peak signal and the impulse are read:
   of a sensor period before the onset) to a sensor period after the reconstructed
   contact's end (or a later contact's, which flags an ``"overlap"``), plus the fitted free ringing's
   integral from there in closed form. The sensor returns to rest, so this is the impulse
-  of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``);
+  of the true contact force (``integral S1 dt = integral S2 dt - m1 v1(end)``). With
+  the crosstalk removed, its share of the impulse is left in where removing it adds
+  more error than it takes off (:func:`dem_check.campaign.structure.removed_from_impulse`;
+  columns ``crosstalk_impulse [N*s]``, ``crosstalk_impulse_error [N*s]``,
+  ``crosstalk_impulse_removed``);
 - ``peak_contact_force [N]`` and ``contact_time [s]``: from the true force reconstructed
   by :func:`contactlab.inverse.reconstruct_force` (Tikhonov, GCV on the problem
   whitened with the noise's AR model read on the baseline, a force value per twentieth
