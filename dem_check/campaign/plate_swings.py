@@ -1,0 +1,224 @@
+"""The structure's free ringing after an impact, fitted around a later candidate: does it
+explain the candidate?
+
+A force sensor stands on a plate; a strong hit rings the plate's modes (a few hundred
+hertz to a few kilohertz) for milliseconds, and their sum swings the record's level by a
+tenth of a newton within a tenth of a millisecond (issue 22: the 1890 and 4100 Hz modes
+of a 3.6 N impact, 2 % crosstalk). The running baseline's blocks (1.6 ms for a 40 kHz
+sensor) do not follow such a swing, so its trough, with a noise excursion on it, can
+reach the detection threshold: a ``negative`` impact 0.95 ms after a 3.59 N one
+(``benchmarks/bench_steps.py``, seed 28). A compressive force sensor gives no negative
+main lobe; the plate's ringing does. So a negative candidate after an impact is judged
+against the plate's model:
+
+1. **Window.** From a sensor period after the earlier impact's first lobe (its contact
+   is over) to :data:`SPAN` after the candidate (or a sensor period before the next
+   impact, or the record's end); the candidate's own samples (its run, with
+   :data:`MARGIN_PERIODS` sensor periods either side) are left out of every fit.
+2. **Modes.** The structure's modes of the window
+   (:func:`contactlab.inverse.crosstalk.structure_modes`, refined), their poles
+   refined again on the samples left (:func:`contactlab.inverse.ringdown.refine_unheld`:
+   variable projection, the candidate's samples out).
+3. **Fit.** A quadratic (drift, slow wander), the sensor's free ringing from the
+   window's start and each mode's free ringing, by least squares on the samples left.
+4. **Judged.** The record less this model, smoothed as for detection, over the
+   candidate's run: when it stays under the detection threshold (the same local sigmas
+   the candidate passed), the plate's ringing predicted from both sides of the candidate
+   explains it, and it is listed with status :data:`STATUS` and the numbers in its
+   reason, not as an impact. Otherwise it stays ``negative``.
+
+On seed 28 the window holds 1.8 ms on each side; the modes found are 729, 1876 and 4119
+Hz (the record's model: 730, 1890 and 4100 Hz) and the candidate's -0.140 N (7.06 local
+sigmas) is left at -0.042 N (2.1) by the model.
+"""
+
+import math
+
+import numpy as np
+from scipy.ndimage import gaussian_filter1d
+
+from contactlab.inverse.crosstalk import BAND_FRACTION, MAX_DAMPING
+from contactlab.inverse.local_baseline import free_ringing
+from contactlab.inverse.ringdown import MIN_DAMPING, refine_unheld
+
+__all__ = ["MARGIN_PERIODS", "SPAN", "STATUS", "PlateFit", "plate_fit"]
+
+SPAN = 2e-3
+"""Longest stretch of the window on each side of the candidate [s]: two periods of a
+1 kHz plate mode, so that the pencil resolves the modes (it needs 1.6 ms for a 40 kHz
+sensor); a quadratic follows drift and 1/f noise over it."""
+
+MARGIN_PERIODS = 2.0
+"""Sensor periods left out on each side of the candidate's run [-]: the smoothing's
+reach and the onset before the run's first sample above the floor."""
+
+STATUS = "structure ringing"
+"""Status of a candidate the plate's ringing explains (listed, not analysed)."""
+
+
+class PlateFit:
+    """The plate's ringing fitted on a window, the candidate's samples left out."""
+
+    def __init__(self, t, residual, modes):
+        self.t = t
+        """Times of the window [s]."""
+        self.residual = residual
+        """The record less the model, on every sample of the window [N]."""
+        self.modes = modes
+        """``(frequency [Hz], damping ratio [-])`` of the modes fitted."""
+
+    def describe(self):
+        """``"729 Hz, 1876 Hz"`` or ``"no mode"``."""
+        return ", ".join(f"{f:.0f} Hz" for f, _ in self.modes) or "no mode"
+
+
+def _poles(modes):
+    return [2.0 * math.pi * f * complex(-z / math.sqrt(1.0 - z * z), 1.0) for f, z in modes]
+
+
+def _period_means(tau, y, keep, sensor):
+    """``(tau [s], y)`` of the means of consecutive blocks of one sensor period whose
+    samples are all kept: the sensor's ringing averages out, and a damped sinusoid of the
+    band stays one, with the same pole (the pencil's blocks in
+    :mod:`contactlab.inverse.crosstalk`)."""
+    size = max(1, round(sensor.period / float(tau[1] - tau[0])))
+    count = tau.size // size
+    whole = keep[: count * size].reshape(count, size).all(axis=1)
+    means = y[: count * size].reshape(count, size).mean(axis=1)
+    centres = tau[: count * size].reshape(count, size).mean(axis=1)
+    return centres[whole], means[whole]
+
+
+def plate_fit(t, y, start, left_out, sensor):
+    """The plate's ringing after an impact, fitted on a window of the record (module
+    steps 1-3).
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        The window: uniformly spaced times [s] and the record [N]; it starts after the
+        earlier impact's contact.
+    start : float
+        Where the sensor's free ringing starts [s] (a sensor period after the earlier
+        impact's first lobe).
+    left_out : numpy.ndarray of bool
+        Samples not fitted (the candidate's).
+    sensor : Sensor
+
+    Returns
+    -------
+    PlateFit
+    """
+    keep = ~left_out
+    tau = t - t[0]
+    low, high = 1.0 / float(tau[-1]), BAND_FRACTION * sensor.resonance
+    count = max(1, math.ceil(math.log2(high / low)))
+    grid = low * (high / low) ** ((np.arange(count) + 0.5) / count)
+    poles = _poles([(f, 0.01) for f in grid])
+    poles = refine_unheld([_period_means(tau, y, keep, sensor)], poles, (MIN_DAMPING, MAX_DAMPING))
+    scaled = tau / max(float(tau[-1]), 1e-300) - 0.5
+    columns = [np.vander(scaled, 3, increasing=True)]
+    columns += [free_ringing(t, start, unit, sensor)[:, None] for unit in ((1, 0), (0, 1))]
+    for pole in poles:
+        decay, phase = np.exp(pole.real * tau), pole.imag * tau
+        columns.append(np.stack([decay * np.cos(phase), decay * np.sin(phase)], axis=1))
+    design = np.concatenate(columns, axis=1)
+    coefficients, *_ = np.linalg.lstsq(design[keep], y[keep], rcond=None)
+    modes = [(p.imag / (2.0 * math.pi), -p.real / abs(p)) for p in poles]
+    return PlateFit(t, y - design @ coefficients, modes)
+
+
+def explained(record, detection_arrays, sigmas, run, earlier, following, sensor):
+    """Whether the plate's ringing after the ``earlier`` impact explains a candidate run
+    (module step 4), and the reason to list it with.
+
+    Parameters
+    ----------
+    record : Trace
+        The record [N] (its offset steps taken off).
+    detection_arrays : (float, numpy.ndarray, numpy.ndarray)
+        Standard deviation of the detection's Gaussian kernel [s] (0: not smoothed), the
+        smoothed residual [N] and its local noise [N] at every sample.
+    sigmas : float
+        Detection threshold [local sigmas].
+    run : (int, int)
+        First and last sample of the candidate's run.
+    earlier : (float, int)
+        The earlier impact's onset [s] and the index where its first lobe ends.
+    following : float
+        Onset of the next impact [s] (``inf`` when none).
+    sensor : Sensor
+
+    Returns
+    -------
+    str or None
+        The reason when explained, else None.
+    """
+    t = np.asarray(record.t)
+    dt = float(t[1] - t[0])
+    kernel, smoothed, local = detection_arrays
+    first, last = run
+    z = smoothed[first : last + 1] / local[first : last + 1]
+    peak = float(smoothed[first + int(np.argmax(np.abs(z)))])
+    margin = max(1, round(MARGIN_PERIODS * sensor.period / dt))
+    start = float(t[earlier[1]]) + sensor.period
+    end = min(float(t[last]) + SPAN, following - sensor.period, float(t[-1]))
+    lo = max(int(np.searchsorted(t, start)), int(np.searchsorted(t, float(t[first]) - SPAN)))
+    hi = int(np.searchsorted(t, end, side="right"))
+    if first - margin <= lo or hi - lo < 64:
+        return None  # no samples of the ringing before the candidate
+    left_out = np.zeros(hi - lo, dtype=bool)
+    left_out[first - margin - lo : last + margin + 1 - lo] = True
+    values = np.asarray(record.values[lo:hi], dtype=float)
+    fit = plate_fit(t[lo:hi], values, start, left_out, sensor)
+    width = kernel / dt
+    rest = gaussian_filter1d(fit.residual, width) if width >= 0.5 else fit.residual
+    inside = slice(first - lo, last + 1 - lo)
+    ratio = np.abs(rest[inside]) / local[first : last + 1]
+    if not ratio.max() < sigmas:
+        return None
+    return (
+        f"a negative lobe ({peak:.4g} N, {np.max(np.abs(z)):.3g} local sigmas) "
+        f"{float(t[first]) - earlier[0]:.4g} s after the impact at {earlier[0]:.6g} s: the "
+        f"structure's free ringing ({fit.describe()}, a quadratic and the sensor's ringing, "
+        f"fitted from {float(t[lo]):.6g} to {float(t[hi - 1]):.6g} s without its samples) "
+        f"predicts it to {ratio.max():.3g} local sigmas, under the detection threshold "
+        f"({sigmas:.3g}): the plate's ringing, not an impact"
+    )
+
+
+def negative_swing(record, stage, run, earlier_windows, following, sensor):
+    """The reason to list a ``negative`` candidate run as :data:`STATUS`, or None: the
+    plate's ringing after the last impact before it with a positive main lobe explains
+    it (:func:`explained`; None when there is no such impact).
+
+    Parameters
+    ----------
+    record : Trace
+        The record [N] (its offset steps taken off).
+    stage : dict
+        The detection's ``floor`` (NoiseFloor), ``smoothed`` (Trace) and ``local``
+        (local noise [N] at every sample).
+    run : (int, int)
+        First and last sample of the candidate's run.
+    earlier_windows : list of ImpactWindow
+        The candidates before it.
+    following : int
+        First sample of the next run (the record's length when none).
+    sensor : Sensor
+    """
+    t = np.asarray(record.t)
+    z = np.asarray(stage["smoothed"].values, dtype=float)
+    before = [w for w in earlier_windows if w.peak > 0.0 and w.onset < float(t[run[0]])]
+    if not before:
+        return None
+    onset = before[-1].onset
+    lo, hi = np.searchsorted(t, [onset, t[run[0]]])
+    if hi - lo < 2:
+        return None
+    top = lo + int(np.argmax(z[lo:hi]))
+    lobe_end = top + int(np.argmax(z[top:hi] <= 0.0))
+    arrays = (stage["floor"].kernel, z, stage["local"])
+    after = float(t[following]) if following < t.size else math.inf
+    sigmas = stage["floor"].sigmas
+    return explained(record, arrays, sigmas, run, (onset, lobe_end), after, sensor)
