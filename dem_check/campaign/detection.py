@@ -140,7 +140,8 @@ class ImpactWindow:
     status: str
     """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``, ``"no baseline"``,
     ``"negative"``, ``"overrange"``, ``"clipped"``, ``"below min_force"``, ``"too close"`` or
-    ``"offset step"`` (a row of :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
+    ``"offset step"`` (a row of :attr:`Detection.steps`) or ``"structure ringing"`` (a row
+    of :attr:`Detection.swings`): those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is), and for an analysed impact
     whose onset could not be fitted, that it is the crossing and why."""
