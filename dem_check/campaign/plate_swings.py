@@ -32,14 +32,16 @@ Hz (the record's model: 730, 1890 and 4100 Hz) and the candidate's -0.140 N (7.0
 sigmas) is left at -0.042 N (2.1) by the model.
 """
 
+import dataclasses
 import math
 
 import numpy as np
-from scipy.ndimage import gaussian_filter1d
+from scipy.ndimage import gaussian_filter1d, uniform_filter1d
 
 from contactlab.inverse.crosstalk import BAND_FRACTION, MAX_DAMPING
 from contactlab.inverse.local_baseline import free_ringing
 from contactlab.inverse.ringdown import MIN_DAMPING, refine_unheld
+from dem_check.campaign.steps import remove_steps
 
 __all__ = ["MARGIN_PERIODS", "SPAN", "STATUS", "PlateFit", "plate_fit"]
 
@@ -52,6 +54,15 @@ MARGIN_PERIODS = 2.0
 """Sensor periods left out on each side of the candidate's run [-]: the smoothing's
 reach and the onset before the run's first sample above the floor."""
 
+SIDE_PERIODS = 8.0
+"""Fewest sensor periods of the window on each side of a step for it to be judged
+(:func:`judged_steps`) [-]: half the period means' window
+(:data:`~dem_check.campaign.steps.WINDOW_PERIODS`), which found it."""
+
+LOBE_PERIODS = 16.0
+"""Longest main lobe looked for after a run's start [sensor periods] (0.4 ms for a 40
+kHz sensor, longer than the contacts of the toolkit's grains)."""
+
 STATUS = "structure ringing"
 """Status of a candidate the plate's ringing explains (listed, not analysed)."""
 
@@ -59,21 +70,45 @@ STATUS = "structure ringing"
 class PlateFit:
     """The plate's ringing fitted on a window, the candidate's samples left out."""
 
-    def __init__(self, t, residual, modes):
+    def __init__(self, t, residual, poles):
         self.t = t
         """Times of the window [s]."""
         self.residual = residual
         """The record less the model, on every sample of the window [N]."""
-        self.modes = modes
-        """``(frequency [Hz], damping ratio [-])`` of the modes fitted."""
+        self.poles = poles
+        """The modes' poles fitted [1/s]."""
 
     def describe(self):
         """``"729 Hz, 1876 Hz"`` or ``"no mode"``."""
-        return ", ".join(f"{f:.0f} Hz" for f, _ in self.modes) or "no mode"
+        return _describe(self.poles)
 
 
-def _poles(modes):
-    return [2.0 * math.pi * f * complex(-z / math.sqrt(1.0 - z * z), 1.0) for f, z in modes]
+def _refined(tau, y, keep, sensor):
+    """The plate's poles [1/s] on a window: a grid of one pole an octave (damping ratio
+    0.01) from one period over the window to
+    :data:`~contactlab.inverse.crosstalk.BAND_FRACTION` of the sensor resonance, refined
+    on the period means of the samples kept (the sensor's ringing averages out), those
+    that want more damping than a structure has dropped
+    (:func:`~contactlab.inverse.ringdown.refine_unheld`)."""
+    low, high = 1.0 / float(tau[-1]), BAND_FRACTION * sensor.resonance
+    count = max(1, math.ceil(math.log2(high / low)))
+    grid = low * (high / low) ** ((np.arange(count) + 0.5) / count)
+    poles = [2.0 * math.pi * f * complex(-0.01 / math.sqrt(1.0 - 0.01**2), 1.0) for f in grid]
+    means = _period_means(tau, y, keep, sensor)
+    return refine_unheld([means], poles, (MIN_DAMPING, MAX_DAMPING))
+
+
+def _columns(tau, poles):
+    """A quadratic over the window and each pole's free ringing (two columns each)."""
+    columns = [np.vander(tau / max(float(tau[-1]), 1e-300) - 0.5, 3, increasing=True)]
+    for pole in poles:
+        decay, phase = np.exp(pole.real * tau), pole.imag * tau
+        columns.append(np.stack([decay * np.cos(phase), decay * np.sin(phase)], axis=1))
+    return columns
+
+
+def _describe(poles):
+    return ", ".join(f"{p.imag / (2.0 * math.pi):.0f} Hz" for p in poles) or "no mode"
 
 
 def _period_means(tau, y, keep, sensor):
@@ -111,21 +146,12 @@ def plate_fit(t, y, start, left_out, sensor):
     """
     keep = ~left_out
     tau = t - t[0]
-    low, high = 1.0 / float(tau[-1]), BAND_FRACTION * sensor.resonance
-    count = max(1, math.ceil(math.log2(high / low)))
-    grid = low * (high / low) ** ((np.arange(count) + 0.5) / count)
-    poles = _poles([(f, 0.01) for f in grid])
-    poles = refine_unheld([_period_means(tau, y, keep, sensor)], poles, (MIN_DAMPING, MAX_DAMPING))
-    scaled = tau / max(float(tau[-1]), 1e-300) - 0.5
-    columns = [np.vander(scaled, 3, increasing=True)]
+    poles = _refined(tau, y, keep, sensor)
+    columns = _columns(tau, poles)
     columns += [free_ringing(t, start, unit, sensor)[:, None] for unit in ((1, 0), (0, 1))]
-    for pole in poles:
-        decay, phase = np.exp(pole.real * tau), pole.imag * tau
-        columns.append(np.stack([decay * np.cos(phase), decay * np.sin(phase)], axis=1))
     design = np.concatenate(columns, axis=1)
     coefficients, *_ = np.linalg.lstsq(design[keep], y[keep], rcond=None)
-    modes = [(p.imag / (2.0 * math.pi), -p.real / abs(p)) for p in poles]
-    return PlateFit(t, y - design @ coefficients, modes)
+    return PlateFit(t, y - design @ coefficients, poles)
 
 
 def explained(record, detection_arrays, sigmas, run, earlier, following, sensor):
@@ -222,3 +248,123 @@ def negative_swing(record, stage, run, earlier_windows, following, sensor):
     after = float(t[following]) if following < t.size else math.inf
     sigmas = stage["floor"].sigmas
     return explained(record, arrays, sigmas, run, (onset, lobe_end), after, sensor)
+
+
+def step_or_swing(values, index, height, window, sensor, dt):
+    """Whether an offset step after an impact is a step, or the plate's ringing.
+
+    On the window (after the impact's first lobe, past the step), the period means of
+    the record as it is and of the record with the step taken off are each fitted with
+    a quadratic and the plate's free ringing (:func:`plate_fit`'s modes, refined on
+    each); the second with the step's unit column too. The model with the lower
+    Akaike criterion (Gaussian: ``n log(RSS / n) + 2 k``; ``k``: the quadratic's 3, 4 per
+    mode, the step's place and height 2) is taken.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The record [N], its other steps taken off.
+    index : int
+        The step's first sample at the new level.
+    height : float
+        Its height [N].
+    window : (int, int)
+        ``[lo, hi)`` sample indices of the window.
+    sensor : Sensor
+    dt : float
+        Sampling interval [s].
+
+    Returns
+    -------
+    (bool, str)
+        Whether it is a step, and the comparison in words.
+    """
+    lo, hi = window
+    t = np.arange(hi - lo) * dt
+    unit = (np.arange(lo, hi) >= index).astype(float)
+    keep = np.ones(hi - lo, dtype=bool)
+    scores, described = [], []
+    for h, with_step in ((0.0, False), (height, True)):
+        y = np.asarray(values[lo:hi], dtype=float) - h * unit
+        means_t, means = _period_means(t, y, keep, sensor)
+        _, column = _period_means(t, unit, keep, sensor)
+        poles = _refined(t, y, keep, sensor)
+        columns = _columns(means_t, poles)
+        if with_step:
+            columns.append(column[:, None])
+        design = np.concatenate(columns, axis=1)
+        coefficients, *_ = np.linalg.lstsq(design, means, rcond=None)
+        rss = float(np.sum((means - design @ coefficients) ** 2))
+        k = 3 + 4 * len(poles) + (2 if with_step else 0)
+        scores.append(means.size * math.log(max(rss, 1e-300) / means.size) + 2 * k)
+        fitted = h + (coefficients[-1] if with_step else 0.0)
+        described.append((_describe(poles), math.sqrt(rss / means.size), fitted))
+    step = scores[1] < scores[0]
+    (modes0, rms0, _), (modes1, rms1, fitted) = described
+    reason = (
+        f"on {float(t[-1]):.3g} s after the impact's lobe, the plate's free ringing "
+        f"({modes0}) fits the period means to {rms0:.3g} N rms without a step (Akaike "
+        f"{scores[0]:.1f}), with a step of {fitted:.4g} N ({modes1}) to {rms1:.3g} N "
+        f"({scores[1]:.1f})"
+    )
+    return step, reason
+
+
+def _lobe_end(values, first, period):
+    """The end of a run's main lobe [index]: twice its rise after the run's first sample
+    (a contact's force falls about as fast as it rose), the top read on the record
+    averaged over a sensor period (no ringing) against its level a period before the
+    run, at most :data:`LOBE_PERIODS` sensor
+    periods after the run's start."""
+    reach, lead = round(LOBE_PERIODS * period), min(first, period)
+    averaged = uniform_filter1d(values[first - lead : first + reach], period)
+    x = averaged[lead:] - averaged[0]  # from the level a period before the run
+    top = int(np.argmax(x)) if x.max() >= -x.min() else int(np.argmin(x))
+    return first + 2 * top
+
+
+def judged_steps(values, steps, runs, period, ring):
+    """The offset steps found on the period means less those that lie in an impact's
+    ringing and that the plate's free ringing explains better (:func:`step_or_swing`).
+
+    A step is judged when it lies within :data:`SPAN` after a first-pass run's start
+    and the window (from a sensor period after that run's main lobe to :data:`SPAN` past
+    the step, or two periods before the next run) holds at least
+    :data:`SIDE_PERIODS` sensor periods on each side of it; others are kept as found.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The record [N] (the steps of other kinds taken off).
+    steps : list of OffsetStep
+    runs : list of (int, int)
+        The first pass's candidate runs.
+    period : int
+        The sensor's period [samples].
+    ring : (Sensor, float)
+        The sensor and the sampling interval [s].
+
+    Returns
+    -------
+    list of OffsetStep
+        Those kept, each judged one with the comparison in its ``note``.
+    """
+    sensor, dt = ring
+    span, side = round(SPAN / dt), round(SIDE_PERIODS * period)
+    kept = []
+    for step in steps:
+        before = [r for r in runs if r[0] < step.index <= r[0] + span]
+        later = [r[0] for r in runs if r[0] > step.index]
+        if not before:
+            kept.append(step)
+            continue
+        lo = _lobe_end(values, before[-1][0], period) + period
+        hi = min(step.index + span, later[0] - 2 * period if later else values.size)
+        if step.index - lo < side or hi - step.index < side:
+            kept.append(step)
+            continue
+        rest = remove_steps(values, [other for other in steps if other is not step])
+        is_step, reason = step_or_swing(rest, step.index, step.height, (lo, hi), sensor, dt)
+        if is_step:
+            kept.append(dataclasses.replace(step, note=f"{step.note}; {reason}"))
+    return kept
