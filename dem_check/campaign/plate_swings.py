@@ -63,6 +63,10 @@ LOBE_PERIODS = 16.0
 """Longest main lobe looked for after a run's start [sensor periods] (0.4 ms for a 40
 kHz sensor, longer than the contacts of the toolkit's grains)."""
 
+GRIDS = 3
+"""Starting grids of the poles' refinement [-], a third of an octave apart
+(:func:`_refined`)."""
+
 STATUS = "structure ringing"
 """Status of a candidate the plate's ringing explains (listed, not analysed)."""
 
@@ -84,18 +88,28 @@ class PlateFit:
 
 
 def _refined(tau, y, keep, sensor):
-    """The plate's poles [1/s] on a window: a grid of one pole an octave (damping ratio
+    """The plate's poles [1/s] on a window: grids of one pole an octave (damping ratio
     0.01) from one period over the window to
-    :data:`~contactlab.inverse.crosstalk.BAND_FRACTION` of the sensor resonance, refined
-    on the period means of the samples kept (the sensor's ringing averages out), those
-    that want more damping than a structure has dropped
-    (:func:`~contactlab.inverse.ringdown.refine_unheld`)."""
+    :data:`~contactlab.inverse.crosstalk.BAND_FRACTION` of the sensor resonance, each
+    refined on the period means of the samples kept (the sensor's ringing averages out),
+    those that want more damping than a structure has dropped
+    (:func:`~contactlab.inverse.ringdown.refine_unheld`); of the :data:`GRIDS` grids
+    (shifted by a fraction of an octave: a refinement can stop in a local minimum that
+    leaves a mode out), the one whose poles leave the least residual."""
+    means_t, means = _period_means(tau, y, keep, sensor)
     low, high = 1.0 / float(tau[-1]), BAND_FRACTION * sensor.resonance
     count = max(1, math.ceil(math.log2(high / low)))
-    grid = low * (high / low) ** ((np.arange(count) + 0.5) / count)
-    poles = [2.0 * math.pi * f * complex(-0.01 / math.sqrt(1.0 - 0.01**2), 1.0) for f in grid]
-    means = _period_means(tau, y, keep, sensor)
-    return refine_unheld([means], poles, (MIN_DAMPING, MAX_DAMPING))
+    best, least = [], math.inf
+    for shift in (np.arange(GRIDS) + 0.5) / GRIDS:
+        grid = low * (high / low) ** ((np.arange(count) + shift) / count)
+        poles = [2.0 * math.pi * f * complex(-0.01 / math.sqrt(1.0 - 0.01**2), 1.0) for f in grid]
+        poles = refine_unheld([(means_t, means)], poles, (MIN_DAMPING, MAX_DAMPING))
+        design = np.concatenate(_columns(means_t, poles), axis=1)
+        coefficients, *_ = np.linalg.lstsq(design, means, rcond=None)
+        rss = float(np.sum((means - design @ coefficients) ** 2))
+        if rss < least:
+            best, least = poles, rss
+    return best
 
 
 def _columns(tau, poles):
