@@ -7,29 +7,38 @@ tenth of a newton within a tenth of a millisecond (issue 22: the 1890 and 4100 H
 of a 3.6 N impact, 2 % crosstalk). The running baseline's blocks (1.6 ms for a 40 kHz
 sensor) do not follow such a swing, so its trough, with a noise excursion on it, can
 reach the detection threshold: a ``negative`` impact 0.95 ms after a 3.59 N one
-(``benchmarks/bench_steps.py``, seed 28). A compressive force sensor gives no negative
-main lobe; the plate's ringing does. So a negative candidate after an impact is judged
+(``benchmarks/bench_steps.py``, seed 28), and the period means a level change across
+an impact (a -0.125 N step 0.41 ms after a 3.8 N impact, seed 53). A compressive force
+sensor gives no negative main lobe and a plate's ringing is no step; both are judged
 against the plate's model:
 
-1. **Window.** From a sensor period after the earlier impact's first lobe (its contact
-   is over) to :data:`SPAN` after the candidate (or a sensor period before the next
-   impact, or the record's end); the candidate's own samples (its run, with
-   :data:`MARGIN_PERIODS` sensor periods either side) are left out of every fit.
-2. **Modes.** The structure's modes of the window
-   (:func:`contactlab.inverse.crosstalk.structure_modes`, refined), their poles
-   refined again on the samples left (:func:`contactlab.inverse.ringdown.refine_unheld`:
-   variable projection, the candidate's samples out).
+1. **Window.** From a sensor period after the earlier impact's main lobe (its contact
+   is over) to :data:`SPAN` after the candidate (or before the next impact, or the
+   record's end).
+2. **Modes.** Damped sinusoids in the structure's band, their poles started on grids of
+   one an octave and refined by variable projection on the window's period means
+   (:func:`_refined`, :func:`contactlab.inverse.ringdown.refine_unheld`): no mode need
+   be known (``dem_check.campaign.structure.record_modes`` finds none on records whose
+   hits are 1-3 ms apart).
 3. **Fit.** A quadratic (drift, slow wander), the sensor's free ringing from the
-   window's start and each mode's free ringing, by least squares on the samples left.
-4. **Judged.** The record less this model, smoothed as for detection, over the
-   candidate's run: when it stays under the detection threshold (the same local sigmas
-   the candidate passed), the plate's ringing predicted from both sides of the candidate
-   explains it, and it is listed with status :data:`STATUS` and the numbers in its
-   reason, not as an impact. Otherwise it stays ``negative``.
+   window's start and each mode's free ringing, by least squares.
+4. **A negative candidate** (:func:`negative_swing`): the fit leaves out its run with
+   :data:`MARGIN_PERIODS` sensor periods either side; when the record less the model,
+   smoothed as for detection, stays under the detection threshold over the run, the
+   plate's ringing predicted from both sides of it explains it, and it is listed with
+   status :data:`STATUS` and the numbers in its reason, not as an impact. Otherwise it
+   stays ``negative``.
+5. **A step in an impact's ringing** (:func:`judged_steps`): the ringing alone against
+   the ringing and the step, by Akaike's criterion (:func:`step_or_swing`).
 
-On seed 28 the window holds 1.8 ms on each side; the modes found are 729, 1876 and 4119
-Hz (the record's model: 730, 1890 and 4100 Hz) and the candidate's -0.140 N (7.06 local
-sigmas) is left at -0.042 N (2.1) by the model.
+Seed 28: modes of 734, 1885 and 4113 Hz found (the record's model: 730, 1890 and 4100
+Hz); the candidate's -0.140 N (7.06 local sigmas) is left at 2.3 local sigmas. Seed 53:
+the period means fitted to 0.013 N rms by the ringing alone, 0.045 N with the step.
+
+References
+----------
+Akaike, H. (1974) A new look at the statistical model identification. IEEE Trans.
+Autom. Control 19, 716-723.
 """
 
 import dataclasses
@@ -43,7 +52,17 @@ from contactlab.inverse.local_baseline import free_ringing
 from contactlab.inverse.ringdown import MIN_DAMPING, refine_unheld
 from dem_check.campaign.steps import remove_steps
 
-__all__ = ["MARGIN_PERIODS", "SPAN", "STATUS", "PlateFit", "plate_fit"]
+__all__ = [
+    "MARGIN_PERIODS",
+    "SPAN",
+    "STATUS",
+    "PlateFit",
+    "explained",
+    "judged_steps",
+    "negative_swing",
+    "plate_fit",
+    "step_or_swing",
+]
 
 SPAN = 2e-3
 """Longest stretch of the window on each side of the candidate [s]: two periods of a
@@ -71,16 +90,16 @@ STATUS = "structure ringing"
 """Status of a candidate the plate's ringing explains (listed, not analysed)."""
 
 
+@dataclasses.dataclass(frozen=True, eq=False)
 class PlateFit:
     """The plate's ringing fitted on a window, the candidate's samples left out."""
 
-    def __init__(self, t, residual, poles):
-        self.t = t
-        """Times of the window [s]."""
-        self.residual = residual
-        """The record less the model, on every sample of the window [N]."""
-        self.poles = poles
-        """The modes' poles fitted [1/s]."""
+    t: np.ndarray
+    """Times of the window [s]."""
+    residual: np.ndarray
+    """The record less the model, on every sample of the window [N]."""
+    poles: list
+    """The modes' poles fitted [1/s]."""
 
     def describe(self):
         """``"729 Hz, 1876 Hz"`` or ``"no mode"``."""
@@ -269,8 +288,8 @@ def step_or_swing(values, index, height, window, sensor, dt):
 
     On the window (after the impact's first lobe, past the step), the period means of
     the record as it is and of the record with the step taken off are each fitted with
-    a quadratic and the plate's free ringing (:func:`plate_fit`'s modes, refined on
-    each); the second with the step's unit column too. The model with the lower
+    a quadratic and the plate's free ringing (modes refined on each, :func:`_refined`);
+    the second with the step's unit column too. The model with the lower
     Akaike criterion (Gaussian: ``n log(RSS / n) + 2 k``; ``k``: the quadratic's 3, 4 per
     mode, the step's place and height 2) is taken.
 
@@ -328,8 +347,7 @@ def _lobe_end(values, first, period):
     """The end of a run's main lobe [index]: twice its rise after the run's first sample
     (a contact's force falls about as fast as it rose), the top read on the record
     averaged over a sensor period (no ringing) against its level a period before the
-    run, at most :data:`LOBE_PERIODS` sensor
-    periods after the run's start."""
+    run, at most :data:`LOBE_PERIODS` sensor periods after the run's start."""
     reach, lead = round(LOBE_PERIODS * period), min(first, period)
     averaged = uniform_filter1d(values[first - lead : first + reach], period)
     x = averaged[lead:] - averaged[0]  # from the level a period before the run
