@@ -34,11 +34,8 @@ against the plate's model:
 Seed 28: modes of 734, 1885 and 4113 Hz found (the record's model: 730, 1890 and 4100
 Hz); the candidate's -0.140 N (7.06 local sigmas) is left at 2.3 local sigmas. Seed 53:
 the period means fitted to 0.013 N rms by the ringing alone, 0.045 N with the step.
-
-References
-----------
-Akaike, H. (1974) A new look at the statistical model identification. IEEE Trans.
-Autom. Control 19, 716-723.
+Akaike's criterion as in :mod:`dem_check.campaign.edge_models` (Akaike 1974, cited
+there).
 """
 
 import dataclasses

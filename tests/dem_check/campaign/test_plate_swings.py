@@ -25,6 +25,13 @@ MODES = ((730.0, 0.01), (1890.0, 0.02), (4100.0, 0.015))
 KERNEL = 1.66e-6
 """The detection's Gaussian kernel for a 40 kHz sensor [s] (``NoiseFloor.kernel``)."""
 
+AMPLITUDES = st.floats(0.02, 0.15)
+"""Each plate mode's amplitude [N]: the record model's 1-2 % of a 1-3.9 N peak (0.01-0.08
+N), up to twice the largest."""
+
+PHASES = st.tuples(*[st.floats(0.0, 2.0 * math.pi)] * 3)
+"""The three modes' phases [rad]."""
+
 
 def _window(amplitude, phases, slope, seed, length=4e-3):
     """A window of the plate's free ringing (every mode at ``amplitude`` [N] with its
@@ -65,8 +72,8 @@ def test_the_plate_ringing_is_predicted_across_a_gap(hard_setup):
 
 @settings(max_examples=12, deadline=None)
 @given(
-    amplitude=st.floats(0.02, 0.15),
-    phases=st.tuples(*[st.floats(0.0, 2.0 * math.pi)] * 3),
+    amplitude=AMPLITUDES,
+    phases=PHASES,
     at=st.floats(1.2e-3, 2.6e-3),
     sigmas=st.floats(10.0, 30.0),
 )
@@ -86,8 +93,8 @@ def test_a_pulse_in_the_ringing_is_not_predicted(hard_setup, amplitude, phases, 
 
 @settings(max_examples=12, deadline=None)
 @given(
-    amplitude=st.floats(0.02, 0.15),
-    phases=st.tuples(*[st.floats(0.0, 2.0 * math.pi)] * 3),
+    amplitude=AMPLITUDES,
+    phases=PHASES,
     at=st.floats(1.0e-3, 3.0e-3),
     sigmas=st.floats(8.0, 30.0),
     sign=st.sampled_from((-1.0, 1.0)),
@@ -108,22 +115,20 @@ def test_a_step_in_the_ringing_is_a_step_and_the_ringing_alone_is_not(
     assert not step_or_swing(y, index, height, window, hard_setup[1], dt)[0]
 
 
+def _strong_impact(hard_setup, seed):
+    """A 2.3 m/s impact at 1 ms with 2 % crosstalk and white noise, 2 MHz, 5 ms."""
+    effects = Effects(crosstalk=0.02)
+    sampling = {"length": 5e-3, "sample_rate": RATE, "noise": NOISE}
+    return realistic_record(*hard_setup, [2.3], [1e-3], **sampling, effects=effects, seed=seed)
+
+
 @pytest.mark.parametrize("velocity", [0.2, 0.3, 0.5])
 @pytest.mark.parametrize("seed", [0, 1])
 def test_a_negative_pulse_in_a_strong_impacts_ringing_stays_negative(hard_setup, velocity, seed):
     # a 2.3 m/s impact with 2 % crosstalk, and 0.95 ms later a contact's signal with its
     # sign turned (0.32-0.81 N, 11-30 local sigmas, measured): the plate's model fitted
     # around it does not explain it; it is listed as 'negative', not as the ringing
-    record = realistic_record(
-        *hard_setup,
-        [2.3],
-        [1e-3],
-        length=5e-3,
-        sample_rate=RATE,
-        noise=NOISE,
-        effects=Effects(crosstalk=0.02),
-        seed=seed,
-    )
+    record = _strong_impact(hard_setup, seed)
     second, _ = synthetic_record(
         *hard_setup, [velocity], [1.95e-3], length=5e-3, sample_rate=RATE, noise=0.0
     )
@@ -136,16 +141,7 @@ def test_a_negative_pulse_in_a_strong_impacts_ringing_stays_negative(hard_setup,
 
 def test_a_record_with_its_polarity_turned_keeps_its_negative_impact(hard_setup):
     # no impact with a positive lobe before it: nothing to judge it against
-    record = realistic_record(
-        *hard_setup,
-        [2.3],
-        [1e-3],
-        length=5e-3,
-        sample_rate=RATE,
-        noise=NOISE,
-        effects=Effects(crosstalk=0.02),
-        seed=0,
-    )
+    record = _strong_impact(hard_setup, 0)
     flipped = record.trace.derive({"step": "flipped"}, values=-np.asarray(record.trace.values))
     found = find_impacts(flipped, hard_setup[1])
     assert [w.status for w in found.impacts] == ["negative"]
