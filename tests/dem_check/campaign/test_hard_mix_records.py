@@ -11,7 +11,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from dem_check.campaign import Effects, find_impacts, realistic_record, synthetic_record
+from dem_check import write_trace
+from dem_check.campaign import (
+    Effects,
+    find_impacts,
+    realistic_record,
+    run_campaign,
+    synthetic_record,
+)
 from dem_check.campaign.growths import later_impacts
 
 NOISE = 0.03
@@ -222,6 +229,22 @@ def test_a_plate_swing_after_a_strong_impact_is_its_ringing_not_an_impact(hard_s
     assert swing.peak < 0.0 and "free ringing" in swing.reason
     assert len(found.steps) == 1  # the -0.75 N step at 5.2 ms, as before
     assert abs(found.steps[0].onset - record.step_times[0]) <= 5e-6
+
+
+def test_the_plate_swing_is_a_row_of_the_campaigns_table(tmp_path, hard_setup):
+    # seed 28 through a file and run_campaign: the swing is listed with its status and
+    # the fit in its reason (nothing dropped), after the impacts and the offset step, and
+    # it is not counted as an impact
+    record = _hard_mix_record(hard_setup, SEED_28)
+    write_trace(tmp_path / "seed28.csv", record.trace, "generic")
+    result = run_campaign(tmp_path / "seed28.csv", hard_setup[1], hard_setup[0], gallery=0)
+    statuses = result.impacts["status"].tolist()
+    assert statuses == ["ok"] * 8 + ["offset step", "structure ringing"]
+    swing = result.impacts.iloc[-1]
+    assert swing["onset [s]"] == pytest.approx(1.953e-3, abs=5e-6)
+    assert "free ringing" in swing["reason"] and "not an impact" in swing["reason"]
+    (row,) = result.files.to_dict("records")
+    assert row["impacts"] == 8 and row["impacts_ok"] == 8
 
 
 def test_a_plate_swing_in_an_impacts_ringing_is_no_step(hard_setup):
