@@ -64,6 +64,7 @@ __all__ = [
     "end_fit",
     "judge_edge",
     "start_fit",
+    "start_window",
     "tail_fit",
 ]
 
@@ -155,11 +156,14 @@ def edge_noise(values, quiet, period):
 
 
 class _Projector:
-    """Generalised least squares of a window on a line plus one more column."""
+    """Generalised least squares of a window on a line (and ``fixed`` columns) plus one
+    more column."""
 
-    def __init__(self, y, period, noise):
+    def __init__(self, y, period, noise, fixed=None):
         n = y.size
         line = np.column_stack([np.ones(n), (np.arange(n) - 0.5 * (n - 1)) / period])
+        if fixed is not None:
+            line = np.column_stack([line, fixed])
         if isinstance(noise, float):
             self.whiten, scale = (lambda x: np.asarray(x, dtype=float)), noise
         else:
@@ -356,6 +360,14 @@ def start_fit(values, index, runs, reach, ring):
     -------
     EdgeFit
     """
+    window, noise, onsets = start_window(values, index, runs, reach, ring)
+    return judge_edge(values, window, index, ring, noise, onsets)
+
+
+def start_window(values, index, runs, reach, ring):
+    """The window, noise model and lobe onsets of :func:`start_fit` (its docstring):
+    ``(0, stop)`` sample indices, the ARNoise (or float), and ``(earliest, latest)``
+    [samples from the first sample]."""
     period = max(1, round(ring[0].period / ring[1]))
     n = len(values)
     later = [first for first, _ in runs if first > index]
@@ -365,8 +377,7 @@ def start_fit(values, index, runs, reach, ring):
     quiet = (lo, lo + round(QUIET_PERIODS * period))
     noise = _side_noise(values, quiet, (index, stop), runs, reach, period)
     longest = round(DURATIONS[-1] * period)
-    latest = min(index - 1, period // 2)
-    return judge_edge(values, (0, stop), index, ring, noise, (-longest, latest))
+    return (0, stop), noise, (-longest, min(index - 1, period // 2))
 
 
 def end_fit(values, at, first, runs, reach, ring):

@@ -49,6 +49,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.edge_boxes import start_box
 from dem_check.campaign.edge_models import end_fit, start_fit
 from dem_check.campaign.step_ringing import difference_sigma, place_across, second_across
 
@@ -399,12 +400,27 @@ def edge_steps(values, runs, period, reach, ring=None):
         window, index, note = (0, n - step.window[0]), n - step.index, ""
         if ring is not None:
             fit = start_fit(values, index, runs, reach, ring)
-            if not fit.step:
-                continue  # an impact's lobe: the run is left to the impacts
+            if not fit.step:  # an impact's lobe, or a box of steps over it
+                found += _box_steps(values, index, runs, reach, ring, fit.lobe_chi2)
+                continue  # the lobe is left to the impacts
             index = fit.index  # placed by the fit, under the record's noise model
             note = f"; {fit.reason()}: a level change within one sample is no sensor's response"
         found.append(OffsetStep(index, -step.height, step.significance, window, note=note))
     return sorted(found, key=lambda step: step.index)
+
+
+def _box_steps(values, index, runs, reach, ring, lobe_chi2):
+    """The steps of :func:`dem_check.campaign.edge_boxes.start_box` when it adopts them
+    (each one's significance the square root of its chi-squared drop), else none."""
+    box = start_box(values, index, runs, reach, ring, lobe_chi2)
+    if not box.adopted:
+        return []
+    note = f"; {box.reason()}: a box of offset steps over an impact at the first sample"
+    window = (0, max(box.indices) + 1)
+    return [
+        OffsetStep(at, height, float(np.sqrt(drop)), window, note=note)
+        for at, height, drop in zip(box.indices, box.heights, box.drops, strict=True)
+    ]
 
 
 def period_noise(values, period):
