@@ -165,7 +165,8 @@ def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=2):
         heights.append(height)
     error = _Projector(y, period, noise).fit(lobe_column[:, None])[2][0]
     energy = float((lobe[4] / error) ** 2)  # A**2 |W r|**2 / sigma**2, A with the steps
-    adopted = bool(chosen) and all(d > STEP_SIGMAS**2 + MODEL_ERROR * energy for d in drops)
+    passes = all(d > STEP_SIGMAS**2 + MODEL_ERROR * energy for d in drops)
+    adopted = bool(chosen) and energy >= STEP_SIGMAS**2 and passes
     family, damping, t0, tau, amplitude = lobe
     return BoxFit(
         adopted=adopted,
@@ -191,4 +192,5 @@ def start_box(values, index, runs, reach, ring, lobe_chi2):
     after the record's start whose edge fit preferred the lobe (chi-squared
     ``lobe_chi2``); arguments as :func:`~dem_check.campaign.edge_models.start_fit`'s."""
     window, noise, onsets = start_window(values, index, runs, reach, ring)
-    return box_fit(values, window, ring, noise, onsets, lobe_chi2)
+    box = box_fit(values, window, ring, noise, onsets, lobe_chi2)
+    return box if box.adopted else box_fit(values, window, ring, noise, onsets, lobe_chi2, 1)

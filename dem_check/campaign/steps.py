@@ -400,9 +400,10 @@ def edge_steps(values, runs, period, reach, ring=None):
         window, index, note = (0, n - step.window[0]), n - step.index, ""
         if ring is not None:
             fit = start_fit(values, index, runs, reach, ring)
-            if not fit.step:  # an impact's lobe, or a box of steps over it
-                found += _box_steps(values, index, runs, reach, ring, fit.lobe_chi2)
-                continue  # the lobe is left to the impacts
+            box = _box_steps(values, index, runs, reach, ring, fit.lobe_chi2)
+            found += box  # steps over an impact's lobe, which is left to the impacts
+            if box or not fit.step:
+                continue  # or an impact's lobe alone
             index = fit.index  # placed by the fit, under the record's noise model
             note = f"; {fit.reason()}: a level change within one sample is no sensor's response"
         found.append(OffsetStep(index, -step.height, step.significance, window, note=note))
