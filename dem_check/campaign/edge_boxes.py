@@ -37,7 +37,7 @@ from dem_check.campaign.edge_models import _lobe_fit, _Lobes, _Projector, start_
 
 __all__ = ["MODEL_ERROR", "BoxFit", "box_fit", "start_box"]
 
-MODEL_ERROR = 0.05
+MODEL_ERROR = 0.1
 """Largest share of a lobe's whitened energy [-] that one step of the combined model
 absorbs on an impact at the first sample without steps (the lobe model's own error;
 measured, see the module docstring)."""
@@ -46,8 +46,8 @@ STEP_SIGMAS = 8.0
 """Each step's chi-squared drop must reach this many standard errors squared [-], as
 every step's height must (:data:`dem_check.campaign.steps.STEP_SIGMAS`)."""
 
-ROUNDS = 2
-"""Rounds of placing each step again with the other and the refitted lobe [-]."""
+ROUNDS = 3
+"""Rounds of placing the steps given the lobe and fitting the lobe given the steps [-]."""
 
 
 @dataclass(frozen=True)
@@ -90,13 +90,65 @@ def _steps(n, places):
     return (np.arange(n)[:, None] >= np.asarray(places, dtype=int)[None, :]).astype(float)
 
 
-def _best_place(y, period, noise, fixed, places):
-    """Chi-squared and the best place among ``places`` for one more step, the line and
-    the ``fixed`` columns fitted with it."""
+def _place_steps(y, period, noise, fixed, count):
+    """The least-squares places of ``count`` (1 or 2) steps on the window, the line and
+    the ``fixed`` columns (or none) fitted with them: chi-squared and the places. Every
+    place, or pair of places on a grid of a sixteenth of a sensor period, is tried at
+    once from the whitened step columns' inner products; each place of a pair is then
+    refined at every sample within a grid step, the other held."""
+    n = y.size
+    grid = max(1, round(period / 16))
+    places = np.arange(1, n, grid if count == 2 else 1)
     projector = _Projector(y, period, noise, fixed)
-    chi2 = projector.fit(_steps(y.size, places))[0]
+    u = projector.whiten(_steps(n, places))
+    u -= projector.basis @ (projector.basis.T @ u)
+    b, gram = u.T @ projector.y_off, u.T @ u
+    g = np.diag(gram).copy()
+    total = float(projector.y_off @ projector.y_off)
+    if count == 1:
+        explained = np.where(g > 0.0, b * b / np.where(g > 0.0, g, 1.0), -np.inf)
+        k = int(np.argmax(explained))
+        return (total - explained[k]) / projector.scale**2, [int(places[k])]
+    det = np.outer(g, g) - gram * gram
+    num = np.outer(b * b, g) - 2.0 * np.outer(b, b) * gram + np.outer(g, b * b)
+    upper = np.triu(det > 1e-12 * np.outer(g, g), 1)
+    explained = np.full(det.shape, -np.inf)
+    explained[upper] = num[upper] / det[upper]
+    i, j = np.unravel_index(int(np.argmax(explained)), explained.shape)
+    chosen = [int(places[i]), int(places[j])]
+    if grid == 1:
+        return (total - explained[i, j]) / projector.scale**2, chosen
+    for k in range(2):  # each place refined within a grid step, the other held
+        other = _steps(n, [chosen[1 - k]])
+        near = np.arange(max(1, chosen[k] - grid + 1), min(n, chosen[k] + grid))
+        near = near[near != chosen[1 - k]]
+        fixed_k = other if fixed is None else np.column_stack([fixed, other])
+        chi2, (chosen[k],) = _place_among(y, period, noise, fixed_k, near)
+    return chi2, chosen
+
+
+def _place_among(y, period, noise, fixed, places):
+    """Chi-squared and the best of ``places`` for one step, the line and ``fixed``
+    fitted with it."""
+    chi2 = _Projector(y, period, noise, fixed).fit(_steps(y.size, places))[0]
     k = int(np.nanargmin(chi2))
-    return float(chi2[k]), int(places[k])
+    return float(chi2[k]), [int(places[k])]
+
+
+def _alternate(y, period, noise, lobes, grid, count, lobe):
+    """Steps placed given the lobe and the lobe fitted given the steps, in turn
+    (:data:`ROUNDS` times), from ``lobe`` (None: the steps on the line alone first):
+    chi-squared, the places and the lobe."""
+    chosen = None
+    for _ in range(ROUNDS):
+        fixed = None if lobe is None else _column(lobes, lobe)[:, None]
+        placed = sorted(_place_steps(y, period, noise, fixed, count)[1])
+        if placed == chosen:
+            break  # the lobe fitted given these places already
+        chosen = placed
+        projector = _Projector(y, period, noise, _steps(y.size, chosen))
+        chi2, lobe = _lobe_fit(projector, lobes, grid, positive=True)
+    return chi2, chosen, lobe
 
 
 def _chi2(y, period, noise, columns):
@@ -140,19 +192,11 @@ def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=2):
     earliest, latest = onsets
     grid = dt * np.arange(earliest, latest + 1, max(1, round(period / 16)), dtype=float)
     lobes = _Lobes(n, max(0, -earliest) + 2, ring)
-    places = np.arange(1, n)
-    chosen = []
-    lobe = _lobe_fit(_Projector(y, period, noise), lobes, grid)[1]
-    for _ in range(steps):  # greedily, each with the lobe fitted alone
-        fixed = np.column_stack([_column(lobes, lobe), _steps(n, chosen)])
-        chosen.append(_best_place(y, period, noise, fixed, np.setdiff1d(places, chosen))[1])
-    for _ in range(ROUNDS):  # the lobe refitted with the steps, each step placed again
-        lobe = _lobe_fit(_Projector(y, period, noise, _steps(n, chosen)), lobes, grid)[1]
-        for k in range(len(chosen)):
-            others = [p for j, p in enumerate(chosen) if j != k]
-            fixed = np.column_stack([_column(lobes, lobe), _steps(n, others)])
-            chosen[k] = _best_place(y, period, noise, fixed, np.setdiff1d(places, others))[1]
-    chosen = sorted(chosen)
+    alone = _lobe_fit(_Projector(y, period, noise), lobes, grid, positive=True)[1]
+    # two starts: the lobe fitted alone, whose misfit can draw the steps to its own
+    # error, and the steps placed on the line alone, whose misfit is the lobe
+    fits = [_alternate(y, period, noise, lobes, grid, steps, start) for start in (alone, None)]
+    _, chosen, lobe = min(fits, key=lambda fit: fit[0])
     lobe_column = _column(lobes, lobe)
     columns = np.column_stack([lobe_column, _steps(n, chosen)])
     chi2, drops, heights = math.nan, [], []

@@ -216,17 +216,23 @@ class _Lobes:
         return np.column_stack([model.response(t0, tau, unit)[self.lead :] for t0 in t0s])
 
 
-def _lobe_fit(projector, lobes, onsets):
+def _lobe_fit(projector, lobes, onsets, positive=False):
     """Best lobe: chi-squared and ``(family, damping, t0, tau, A)`` (``t0`` [s] from the
-    window's first sample), on the grid then refined."""
+    window's first sample), on the grid then refined; ``positive``: a compressive
+    force's only (``A > 0``)."""
     period = lobes.sensor.period
     best = (math.inf, None)
+
+    def fit(columns):
+        chi2, amplitude, _ = projector.fit(columns)
+        return np.where(amplitude > 0.0, chi2, math.inf) if positive else chi2
+
     for spec in EDGE_FAMILIES:
         for tau in period * np.asarray(DURATIONS):
             t0s = onsets[onsets > -tau]
             if not t0s.size:
                 continue
-            chi2 = projector.fit(lobes.columns(spec, t0s, tau))[0]
+            chi2 = fit(lobes.columns(spec, t0s, tau))
             k = int(np.nanargmin(chi2)) if np.isfinite(chi2).any() else None
             if k is not None and chi2[k] < best[0]:
                 best = (float(chi2[k]), (spec, float(t0s[k]), float(tau)))
@@ -239,7 +245,7 @@ def _lobe_fit(projector, lobes, onsets):
         t0, tau = x[0], x[1]
         if not (tau > 0.0 and low <= t0 <= high and t0 + tau > 0.0):
             return math.inf
-        return float(projector.fit(lobes.columns(spec, [t0], tau))[0][0])
+        return float(fit(lobes.columns(spec, [t0], tau))[0])
 
     simplex = np.array([[t0, tau], [t0 + lobes.dt, tau], [t0, 1.1 * tau]])
     solved = optimize.minimize(
