@@ -202,6 +202,7 @@ SEED_53 = {
     "bounce_delay": 2.5783660e-3,
 }
 
+
 def _judged(hard_setup, case):
     """The hard mix's record of ``case``, what was found on it, and its truth."""
     record = _hard_mix_record(hard_setup, case)
