@@ -6,16 +6,22 @@
   (``tests/dem_check/campaign/test_two_impacts.py``'s records), seeds 0-2: each impact's
   status and its errors against its own truth (onset in samples, peak signal, impulse,
   reconstructed peak and contact time, relative), and the largest over the seeds.
+  With ``--before REF``, the module ``dem_check/campaign/overlaps.py`` of the git
+  revision ``REF`` reads the same detections in the same run (rows ``version`` "before"
+  and "now").
 - ``--mixes``: the records of ``bench_realistic.py --accuracy`` (every configuration, 4
   records each) and of ``bench_steps.py``'s hard mix (100 records): how many impacts
   the detection flags ``overlap``, how many of them are now read apart with numbers,
   and their errors where they match a true impact (within 60 us).
 
-Run: ``.venv/bin/python benchmarks/bench_overlaps.py [--pairs] [--mixes] [--seeds N]``
+Run: ``.venv/bin/python benchmarks/bench_overlaps.py [--pairs] [--mixes] [--seeds N]
+[--before REF] [--gaps 200 300 ...]``
 """
 
 import argparse
+import importlib.util
 import os
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -45,15 +51,42 @@ COLUMNS = {
 }
 
 
-def _rows(record, sensor, grain, everything=True):
+def _before(revision):
+    """``separate_overlaps`` of ``dem_check/campaign/overlaps.py`` at the git revision
+    ``revision``, loaded as a module of its own (its imports are this tree's)."""
+    root = Path(__file__).resolve().parents[1]
+    source = subprocess.run(
+        ["git", "show", f"{revision}:dem_check/campaign/overlaps.py"],
+        cwd=root,
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout
+    spec = importlib.util.spec_from_loader("overlaps_before", loader=None)
+    module = importlib.util.module_from_spec(spec)
+    exec(compile(source, f"{revision}:overlaps.py", "exec"), module.__dict__)
+    return module.separate_overlaps
+
+
+def _rows(record, sensor, grain, everything=True, versions=None):
     """Every impact row of a record (overlaps read apart) with its onset and the
-    detection's status; ``everything=False``: only the impacts flagged ``overlap``."""
+    detection's status; ``everything=False``: only the impacts flagged ``overlap``.
+    ``versions``: ``{name: separate_overlaps}`` to compare on the same detection (rows
+    carry ``version``)."""
     found = find_impacts(record.trace, sensor)
     if not everything and not any(w.status == "overlap" for w in found.impacts):
         return []
     modes = record_modes(found, sensor)
     noise = record_noise(found, sensor)
-    separated = separate_overlaps(found, sensor, grain, None, True, modes, noise)
+    rows = []
+    for version, separate in (versions or {"now": separate_overlaps}).items():
+        separated = separate(found, sensor, grain, None, True, modes, noise)
+        rows += _version_rows(found, separated, sensor, grain, everything, modes, noise, version)
+    return rows
+
+
+def _version_rows(found, separated, sensor, grain, everything, modes, noise, version):
+    """The rows of one reading of the overlaps (:func:`_rows`)."""
     rows = []
     for k, window in enumerate(found.impacts):
         if k in separated:
@@ -64,7 +97,7 @@ def _rows(record, sensor, grain, everything=True):
             row = analyse_impact(found, window, sensor, grain, None, True, modes, noise)[0]
         else:
             row = {"status": window.status, "onset [s]": window.onset}
-        rows.append({**row, "flagged": window.status})
+        rows.append({**row, "flagged": window.status, "version": version})
     return rows
 
 
@@ -83,17 +116,18 @@ def _errors(row, truth, rate):
     return out
 
 
-def pairs(seeds):
+def pairs(seeds, gaps, ratios, versions):
     grain, sensor, law = hard()
     table = []
-    for gap in GAPS:
-        for ratio in (1.0, 0.5):
+    for gap in gaps:
+        for ratio in ratios:
             for seed in range(seeds):
                 record = pair((grain, sensor, law), gap, ratio, seed)
-                for row in _rows(record, sensor, grain):
+                for row in _rows(record, sensor, grain, versions=versions):
                     errors = _errors(row, record.truth, 2e6) or {}
                     table.append(
                         {
+                            "version": row["version"],
                             "gap [us]": gap * 1e6,
                             "ratio": ratio,
                             "seed": seed,
@@ -106,10 +140,11 @@ def pairs(seeds):
     print(table.round(4).to_string())
     numbers = ["onset [samples]", *COLUMNS.values()]
     read = table[table["status"].isin(ANALYSED)]
-    largest = read.groupby(["gap [us]", "true #"])[numbers].agg(lambda v: np.nanmax(np.abs(v)))
+    by = ["version", "gap [us]", "ratio", "true #"]
+    largest = read.groupby(by)[numbers].agg(lambda v: np.nanmax(np.abs(v)))
     print("largest errors of the impacts read (onset in samples, the others relative):")
     print(largest.round(4).to_string())
-    print(table.groupby("gap [us]")["status"].value_counts().to_string())
+    print(table.groupby(["version", "gap [us]"])["status"].value_counts().to_string())
 
 
 def _mix(records, label, rate_of):
@@ -156,11 +191,18 @@ def main():
     parser.add_argument("--pairs", action="store_true")
     parser.add_argument("--mixes", action="store_true")
     parser.add_argument("--seeds", type=int, default=3)
+    parser.add_argument("--gaps", type=float, nargs="+", help="[us] (default: all)")
+    parser.add_argument("--ratios", type=float, nargs="+", default=[1.0, 0.5])
+    parser.add_argument("--before", help="a git revision whose overlaps.py reads them too")
     args = parser.parse_args()
+    versions = {"now": separate_overlaps}
+    if args.before:
+        versions = {"before": _before(args.before), **versions}
+    gaps = GAPS if args.gaps is None else tuple(g * 1e-6 for g in args.gaps)
     print(f"load average before: {os.getloadavg()[0]:.1f} (1 min)")
     started = time.process_time()
     if args.pairs:
-        pairs(args.seeds)
+        pairs(args.seeds, gaps, args.ratios, versions)
     if args.mixes:
         mixes()
     print(

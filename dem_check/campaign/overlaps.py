@@ -37,11 +37,14 @@ import dataclasses
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.local_baseline import free_ringing, local_baseline
+from contactlab.inverse.lobe_onset import SCAN_DURATIONS
+from contactlab.inverse.local_baseline import free_ringing
 from dem_check.campaign.analysis import ONSET_MARGIN, read_impact, window_row
 from dem_check.campaign.detection import BASELINE_MIN_SAMPLES
 from dem_check.campaign.noise import record_filters
 from dem_check.campaign.onsets import record_onsets
+from dem_check.campaign.overlap_fit import AFTER_PERIODS, joint_ringing
+from dem_check.campaign.plausibility import physics_status
 
 __all__ = ["HELD_OUT", "HOLD_PERIODS", "SUBTRACTED", "separate_overlaps"]
 
@@ -96,13 +99,15 @@ def _less(detection, ringing):
     )
 
 
-def _held_out(detection, window, hold, sensor, noise):
+def _held_out(detection, window, hold, later, limit, sensor, family):
     """The detection with the samples of ``window``'s segment from index ``hold`` on (the
-    next impact's) replaced by this impact's line and free ringing, fitted before it and
-    from :data:`POST_MARGIN` periods after its first lobe to ``hold``
-    (:func:`contactlab.inverse.local_baseline.local_baseline`): the analysis then reads
-    a record that holds this impact alone; and that fit (its free ringing is what is
-    taken off the next impact)."""
+    next impact's) replaced by this impact's line and free ringing, fitted with the next
+    impact's lobe (:func:`dem_check.campaign.overlap_fit.joint_ringing`) from
+    :data:`POST_MARGIN` periods after this impact's first lobe to the next contact's
+    decayed ringing (at most to ``limit`` [s]: the segment's end, or where a third impact
+    is held out): the analysis then reads a record that holds this impact alone; and
+    that fit (:class:`dem_check.campaign.overlap_fit.JointRinging`: its free ringing is
+    what is taken off the next impact)."""
     part = slice(window.first, window.stop)
     t = np.asarray(detection.record.t[part])
     y = np.asarray(detection.record.values[part], dtype=float)
@@ -112,16 +117,16 @@ def _held_out(detection, window, hold, sensor, noise):
     level = float(np.mean(smooth[(t >= base[0]) & (t < base[1])]))
     top = int(np.argmax(smooth[:cut]))
     lobe_end = float(t[top + int(np.argmax(smooth[top:cut] <= level))])  # back to the baseline
-    start = window.onset - ONSET_MARGIN * sensor.period
-    held = np.arange(t.size) >= cut
     post = lobe_end + POST_MARGIN * sensor.period
-    fitted = local_baseline(t, y, base, start, post, t[-1], sensor, noise, held)
-    model = fitted.values + free_ringing(
-        t, fitted.post[0], fitted.ringing or (0.0, 0.0), sensor
-    ) * (t >= fitted.post[0])
+    length = lobe_end - window.onset  # the second contact's first guess
+    stop = later.onset + (SCAN_DURATIONS[-1] * length) + AFTER_PERIODS * sensor.period
+    fitted = (t >= post) & (t <= min(stop, limit))
+    if family is None:
+        raise ParameterError("no contact family was read for the next impact's lobe")
+    joint = joint_ringing(t[fitted], y[fitted], (later.onset, length), sensor, family)
     other = np.zeros(np.asarray(detection.record.t).size)
-    other[window.first + cut : window.stop] = (y - model)[cut:]
-    return _less(detection, other), fitted
+    other[window.first + cut : window.stop] = (y - joint.values(t, sensor))[cut:]
+    return _less(detection, other), joint
 
 
 def _window(detection, window, first, stop, base, sensor, noise):
@@ -145,22 +150,48 @@ def _window(detection, window, first, stop, base, sensor, noise):
         significance=float(smooth[top] / detection.local_noise[top]),
     )
     family = detection.contact_family
-    onsets, notes, *_, spreads = record_onsets(detection, [alone], sensor, noise, family)
+    onsets, notes, name, damping, spreads = record_onsets(detection, [alone], sensor, noise, family)
+    family = family or (None if name is None else (name, damping))
     end = min(base[1], onsets[0] - ONSET_MARGIN * sensor.period)
     quiet = int(np.count_nonzero((t >= base[0]) & (t < end)))
     if quiet < BASELINE_MIN_SAMPLES:
-        return None, (
+        why = (
             f"only {quiet} quiet samples between {base[0]:.6g} s and its onset "
             f"{onsets[0]:.6g} s (need {BASELINE_MIN_SAMPLES})"
         )
-    return dataclasses.replace(
+        return None, why, family
+    alone = dataclasses.replace(
         alone,
         onset=onsets[0],
         onset_uncertainty=spreads[0],
         reason=notes[0],
         baseline_window=(base[0], end),
         start=end,
-    ), ""
+    )
+    return alone, "", family
+
+
+def _joint_numbers(joint, grain, row):
+    """The columns of a later impact read from the joint fit of the impact before it
+    (``joint``, :class:`dem_check.campaign.overlap_fit.JointRinging`): peak signal,
+    impulse, contact force and contact time of its contact family's force fitted with
+    that impact's ringing and a line, its velocity change, the physics check on them,
+    and the reason saying so."""
+    out = {
+        "peak_sensor_force [N]": joint.peak_signal,
+        "impulse [N*s]": joint.impulse,
+        "peak_contact_force [N]": joint.amplitude,
+        "contact_time [s]": joint.duration,
+    }
+    if grain is not None:
+        out["velocity_change [m/s]"] = joint.impulse / grain.mass
+    note = (
+        "peak signal, impulse, contact force and contact time from its contact family's "
+        f"force fitted with the previous impact's line and free ringing (rms residual "
+        f"{joint.rms:.3g} N; the record's noise {row['noise [N]']:.3g} N)"
+    )
+    out["reason"] = "; ".join(r for r in (row["reason"], note) if r)
+    return {**out, **physics_status({**row, **out}, grain)}
 
 
 def _read_group(detection, group, sensor, options):
@@ -175,14 +206,17 @@ def _read_group(detection, group, sensor, options):
         hold = window.stop
         if later is not None:
             hold = int(np.searchsorted(t, later.onset - HOLD_PERIODS * sensor.period))
-        alone, why = _window(current, window, first, hold, base, sensor, options["noise"])
+        alone, why, family = _window(current, window, first, hold, base, sensor, options["noise"])
         if alone is None:
             break
         alone = dataclasses.replace(alone, stop=window.stop, end=window.end)
         try:
             reading, local = current, None
             if later is not None:
-                reading, local = _held_out(current, alone, hold, sensor, options["noise"])
+                limit = later.end
+                if j + 2 < len(windows):  # a third impact: the fit ends where it is held out
+                    limit = windows[j + 2].onset - HOLD_PERIODS * sensor.period
+                reading, local = _held_out(current, alone, hold, later, limit, sensor, family)
             row, traces, _ = read_impact(
                 dataclasses.replace(reading, impacts=[alone]), alone, sensor, **options
             )
@@ -196,13 +230,13 @@ def _read_group(detection, group, sensor, options):
             status = SUBTRACTED
             parts.append(
                 f"the free ringing of the impact at {before[0]:.6g} s (fitted from "
-                f"{before[1]:.6g} s) subtracted, the baseline read from "
+                f"{before[1]:.6g} s with this impact's lobe) subtracted, the baseline read from "
                 f"{alone.baseline_window[0]:.6g} to {alone.baseline_window[1]:.6g} s"
             )
         if later is not None:
             parts.append(
                 f"the impact at {later.onset:.6g} s held out: from {t[hold]:.6g} s the record "
-                "is this impact's line and free ringing, fitted before it"
+                "is this impact's line and free ringing, fitted with the next impact's lobe"
             )
         how = "; ".join(parts)
         note = f"overlap read apart: {how}"
@@ -211,20 +245,25 @@ def _read_group(detection, group, sensor, options):
             # the reconstruction reads: its signal numbers stand, its contact is not given
             row["reason"] = f"no contact force or contact time: {row['reason']}"
             row["status"] = "ok"
+        if row["status"] == "ok" and before is not None:
+            row.update(_joint_numbers(before[2], options["grain"], row))
         if row["status"] == "ok":
             row["status"] = status
         row["reason"] = "; ".join(r for r in (note, row["reason"]) if r)
         out[k] = (row, traces)
-        if later is None or not (row["status"] == status and local.ringing):
+        if later is None or row["status"] != status:
             why = "the impact before it was not read apart"
             break
         ringing = np.zeros(t.size)
-        free = t >= local.post[0] - sensor.period  # a period after the contact's end
-        ringing[free] = free_ringing(t[free], local.post[0], local.ringing, sensor)
+        # from a period before the ringing's origin: the filters of the next segment,
+        # which starts at that origin, see no step there (the held-out fill, from ``hold``
+        # on, is this ringing too)
+        free = t >= local.start - sensor.period
+        ringing[free] = free_ringing(t[free], local.start, local.ringing, sensor)
         current = _less(current, ringing)
-        first = int(np.searchsorted(t, local.post[0]))
+        first = int(np.searchsorted(t, local.start))
         base = (float(t[first]), later.onset - HOLD_PERIODS * sensor.period + dt)
-        before = (alone.onset, local.post[0])
+        before = (alone.onset, local.start, local)
     for k, window in zip(group, windows, strict=True):
         if k not in out:
             row = window_row(window)
