@@ -7,29 +7,35 @@ in time order, with the ordinary analysis (:func:`dem_check.campaign.analysis.re
 
 - the next impact is **held out**: from :data:`HOLD_PERIODS` sensor periods before its
   onset (which, not analysed, is where the ringing grew: it lags the touch) the record
-  is replaced by this impact's line and free ringing, fitted on the line before it and
-  from :data:`POST_MARGIN` periods after its first lobe to the held-out samples
-  (:func:`contactlab.inverse.local_baseline.local_baseline`). Where that leaves the
-  reconstruction mostly modelled samples (its window spans two lobe-lengths), it can
-  fail: the impact then keeps its signal's numbers and its reason says so;
-- from the second impact on, the free ringing of the impact before (that fit's,
-  :attr:`contactlab.inverse.local_baseline.LocalBaseline.ringing`) is **subtracted**
-  from the record and from its smoothed and low-passed traces (the same filters,
-  :func:`dem_check.campaign.noise.record_filters`); the impact's baseline window is the
-  stretch between the previous impact's ringing fit's start and its own onset, where
-  the record less that ringing is the baseline and noise;
-- each onset is fitted as an analysed impact's
-  (:func:`dem_check.campaign.onsets.record_onsets`, with the record's contact family
-  when it was read).
+  is replaced by this impact's line and free ringing. Both are fitted from
+  :data:`POST_MARGIN` periods after its first lobe to the next contact's decayed
+  ringing, together with the next impact's lobe (its contact family's force through
+  the sensor: :func:`dem_check.campaign.overlap_fit.joint_ringing`), so the ringing is
+  read through the next impact instead of extrapolated from the few periods before it.
+  Where that leaves the reconstruction mostly modelled samples (its window spans two
+  lobe-lengths), it can fail: the impact then keeps its signal's numbers and its reason
+  says so;
+- from the second impact on, the free ringing of the impact before (that fit's) is
+  **subtracted** from the record and from its smoothed and low-passed traces (the same
+  filters, :func:`dem_check.campaign.noise.record_filters`), from a period before the
+  ringing's origin (the next segment starts at that origin: its filtered traces see no
+  step there; the held-out fill, from ``hold`` on, is the same ringing); the impact's
+  baseline window is the stretch between that origin and its own onset. Its onset is
+  fitted as an analysed impact's (:func:`dem_check.campaign.onsets.record_onsets`, with
+  the record's contact family), and its peak signal, impulse, contact force and contact
+  time are the joint fit's (the ordinary reading's local baseline has only that short
+  window before the impact: at half the velocity 0.2 ms after the first it read the
+  impulse up to 8 % high, with the true ringing subtracted too).
 
 The first impact of a group gets status ``"overlap, neighbour held out"``, each later one
 ``"overlap, ringing subtracted"``, with a reason that says what was held out or taken
 off; both are analysed (:data:`dem_check.campaign.detection.ANALYSED`). An impact that
 cannot be read apart keeps ``"overlap"`` and its reason says why: too few quiet samples
 between the previous contact and its onset, or an impact before it that could not be
-read (the analysis flagged it, or the record is too coarse for its ringing to be
-fitted). A second contact that starts within a period of the first lobe's end is not
-seen by the ringing check (the analysis flags it by its impulse) and is not read apart.
+read (the analysis flagged it, no contact family was read, the joint fit failed, or the
+record is too coarse for the ringing to be fitted). A second contact that starts within
+a period of the first lobe's end is not seen by the ringing check (the analysis flags it
+by its impulse) and is not read apart.
 """
 
 import dataclasses
@@ -66,8 +72,10 @@ POST_MARGIN = 1.0
 """Sensor periods after an impact's first lobe (the smoothed signal back at its
 baseline) from which its free ringing is fitted before a later impact [-]: the lobe
 can end a little before the contact does (a period, as the analysis reads the impulse
-past its contact's end). Measured on a pair 0.2 ms apart (1:0.5, one seed): from the lobe's end the
-second impact's impulse was 10 % high, from a period after it 8 %."""
+past its contact's end), and the joint fit models free ringing there. Measured with the
+ringing fitted alone between the two (before the joint fit), on a pair 0.2 ms apart
+(1:0.5, one seed): from the lobe's end the second impact's impulse was 10 % high, from a
+period after it 8 %."""
 
 
 def _groups(detection):
