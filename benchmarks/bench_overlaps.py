@@ -236,6 +236,7 @@ def split(seeds, gaps, family):
                 rows = _two_lobes(t[kept], y[kept], onsets[0], length, sensor, read)
                 for k, row in enumerate(rows):
                     errors = _errors(row, record.truth.iloc[[k]], 2e6)
+                    errors.pop("true #")  # this contact's own truth
                     table.append(
                         {"gap [us]": gap * 1e6, "ratio": ratio, "seed": seed, "contact": k}
                         | {"family": f"{read[0]} {read[1]:.3f}"}
