@@ -248,13 +248,13 @@ def _read_group(detection, group, sensor, options):
             )
         how = "; ".join(parts)
         note = f"overlap read apart: {how}"
-        if row["status"] == "reconstruction failed" and later is not None:
+        if row["status"] == "ok" and before is not None:
+            row.update(_joint_numbers(before[2], options["grain"], row))
+        elif row["status"] == "reconstruction failed" and later is not None:
             # the held-out samples (the model, without noise) fill most of the record
             # the reconstruction reads: its signal numbers stand, its contact is not given
             row["reason"] = f"no contact force or contact time: {row['reason']}"
             row["status"] = "ok"
-        if row["status"] == "ok" and before is not None:
-            row.update(_joint_numbers(before[2], options["grain"], row))
         if row["status"] == "ok":
             row["status"] = status
         row["reason"] = "; ".join(r for r in (note, row["reason"]) if r)
