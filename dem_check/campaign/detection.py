@@ -74,6 +74,8 @@ from dem_check.campaign.noise import (
     noise_floor,
 )
 from dem_check.campaign.onsets import first_touches
+from dem_check.campaign.plate_swings import STATUS as SWING
+from dem_check.campaign.plate_swings import negative_swing
 from dem_check.campaign.step_runs import search_steps
 from dem_check.campaign.steps import PASSES, merge_steps, remove_steps
 
@@ -138,7 +140,8 @@ class ImpactWindow:
     status: str
     """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``, ``"no baseline"``,
     ``"negative"``, ``"overrange"``, ``"clipped"``, ``"below min_force"``, ``"too close"`` or
-    ``"offset step"`` (a row of :attr:`Detection.steps`): those of :data:`ANALYSED` are analysed."""
+    ``"offset step"`` (a row of :attr:`Detection.steps`) or ``"structure ringing"`` (a row
+    of :attr:`Detection.swings`): those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is), and for an analysed impact
     whose onset could not be fitted, that it is the crossing and why."""
@@ -176,6 +179,10 @@ class Detection:
     step"``, ``peak`` the height [N]), in time order."""
     contact_family: tuple = None
     """``(name, damping ratio [-])`` the onset fit read (:mod:`dem_check.campaign.onsets`)."""
+    swings: list = ()
+    """:class:`ImpactWindow` rows of ``negative`` candidates the plate's ringing after an
+    impact explains (status ``"structure ringing"``, :mod:`dem_check.campaign.plate_swings`),
+    in time order: listed, not impacts."""
 
 
 def _samples(periods, sensor, dt, minimum):
@@ -248,13 +255,19 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         stage = _candidates(trace, sensor)
     floor, smoothed, ratio, runs = (stage[k] for k in ("floor", "smoothed", "ratio", "runs"))
     t = smoothed.t
-    windows, previous_end = [], 0
+    windows, swings, previous_end = [], [], 0
     for k, (first, last) in enumerate(runs):
         following = runs[k + 1][0] if k + 1 < len(runs) else t.size
         stop = min(last + stage["scales"]["hold"] + stage["scales"]["tail"], following, t.size)
         candidate = (previous_end, first, last, stop)
-        windows += _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
+        found = _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
         previous_end = last + 1
+        if found[0].status == "negative" and period >= RESOLVED_PERIOD_SAMPLES:
+            why = negative_swing(trace, stage, (first, last), windows, following, sensor)
+            if why:  # the plate's ringing after an impact: listed, not an impact
+                swings.append(dataclasses.replace(found[0], status=SWING, reason=why))
+                continue
+        windows += found
     windows = _apply_limits(windows, min_force, min_separation)
     found = Detection(
         floor,
@@ -265,6 +278,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         stage["local"],
         trace,
         [_step_row(step, t) for step in steps],
+        swings=swings,
     )
     if not fit_onsets or period < RESOLVED_PERIOD_SAMPLES:
         return found  # a sensor period of a few samples holds no rise to fit

@@ -41,8 +41,9 @@ STATUS_LEGEND = (
     "that impact's free ringing fitted after its contact). Not analysed: <em>overlap</em> "
     "(two impacts that could not be read apart: the reason says why), <em>truncated</em>, "
     "<em>no baseline</em>, <em>negative</em>, <em>overrange</em>, <em>clipped</em>, "
-    "<em>below min_force</em>, <em>too close</em>, <em>offset step</em>; and the analysis's "
-    "<em>reconstruction failed</em>, <em>fit failed</em>, <em>implausible</em> "
+    "<em>below min_force</em>, <em>too close</em>, <em>offset step</em>, <em>structure "
+    "ringing</em> (a negative swing after an impact that the plate's free ringing explains); "
+    "and the analysis's <em>reconstruction failed</em>, <em>fit failed</em>, <em>implausible</em> "
     "(docs/campaign.md, Per impact).</p>"
 )
 """What each impact status means, under the candidates' table."""

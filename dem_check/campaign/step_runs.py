@@ -47,6 +47,7 @@ from scipy.ndimage import median_filter, uniform_filter1d
 
 from contactlab.signals import robust_noise
 from dem_check.campaign.edge_models import tail_fit
+from dem_check.campaign.plate_swings import judged_steps
 from dem_check.campaign.step_ringing import difference_sigma, rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
@@ -414,4 +415,6 @@ def search_steps(values, runs, period, hold, ring=None):
             for s in means
             if s.index < tail or tail_fit(rest, s.index, ends[-1][0], runs, hold, ring).step
         ]
+    if ring is not None:  # in an impact's ringing: a step, or the plate's swing?
+        means = judged_steps(rest, means, runs, period, ring)
     return sorted(found + means + edges, key=lambda step: step.index)
