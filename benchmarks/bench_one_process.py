@@ -18,7 +18,8 @@ The first ``--tree`` is the reference. A checkout from before the compiled core
 (``d6916cc``: ``contactlab.batch.hertz_kernel`` / ``linear_kernel``) is run through its
 own kernels. The copies compile into ``--workdir`` (a new temporary folder by default:
 about a minute per checkout; a kept ``--workdir`` loads them from numba's cache the next
-time). Every kernel is called once before the timed rounds.
+time: unchanged files are not rewritten). Every kernel is called once before the timed
+rounds.
 """
 
 import argparse
@@ -38,13 +39,35 @@ ROWS = {"hertz": 3000, "linear": 30000}
 
 
 def _copy(tree, name, workdir):
-    """``tree/contactlab`` copied to ``workdir/name`` with the package renamed."""
-    target = workdir / name
-    if target.exists():
-        shutil.rmtree(target)
-    shutil.copytree(Path(tree) / "contactlab", target, ignore=shutil.ignore_patterns("__pycache__"))
-    for path in target.rglob("*.py"):
-        path.write_text(re.sub(r"\bcontactlab\b", name, path.read_text()))
+    """``tree/contactlab`` copied to ``workdir/name`` with the package renamed.
+
+    A file whose renamed text is already there is left alone: numba's cache is keyed on
+    the source file's time stamp, so an unchanged checkout loads instead of compiling.
+    Files no longer in ``tree`` are removed. Any change empties the copy's caches: a
+    cached caller does not notice a changed callee.
+    """
+    source, target = Path(tree) / "contactlab", workdir / name
+    wanted, changed = set(), False
+    for path in source.rglob("*"):
+        if "__pycache__" in path.parts or not path.is_file():
+            continue
+        copy = target / path.relative_to(source)
+        wanted.add(copy)
+        copy.parent.mkdir(parents=True, exist_ok=True)
+        if path.suffix != ".py":
+            shutil.copyfile(path, copy)
+            continue
+        text = re.sub(r"\bcontactlab\b", name, path.read_text())
+        if not copy.exists() or copy.read_text() != text:
+            copy.write_text(text)
+            changed = True
+    for copy in list(target.rglob("*.py")):
+        if copy not in wanted and "__pycache__" not in copy.parts:
+            copy.unlink()
+            changed = True
+    if changed:  # numba's cache of a caller does not notice a changed callee
+        for cache in list(target.rglob("__pycache__")):
+            shutil.rmtree(cache)
 
 
 def _runner(name, law, columns, out, status):

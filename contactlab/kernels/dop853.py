@@ -23,7 +23,7 @@ from scipy.integrate import DOP853 as _SCIPY
 
 from contactlab.compiled import njit
 from contactlab.kernels.model_rhs import NORMAL, rhs
-from contactlab.kernels.power import rhs as power_rhs
+from contactlab.kernels.power import rhs_row as power_rhs
 
 __all__ = [
     "STAGES",
@@ -45,8 +45,13 @@ WORK_ROWS = _DENSE_STAGES + 2
 """Rows of the work array ``K`` of :func:`step` and :func:`interpolant`: the stages
 (:data:`STAGES` + 4) and two scratch rows, so that no step allocates memory."""
 
+_TMP, _SCALE = _DENSE_STAGES, _DENSE_STAGES + 1
+"""The scratch rows of ``K``: a stage's state, the error's scale. They are read by row
+index, not through row views: a view costs a reference-count increment and decrement,
+and its presence kept numba from pruning those of the step's arguments (18 a step)."""
+
 _A = np.ascontiguousarray(_SCIPY.A, dtype=np.float64)
-_B = np.ascontiguousarray(_SCIPY.B, dtype=np.float64)
+_B = np.ascontiguousarray(_SCIPY.B[np.newaxis], dtype=np.float64)
 _E3 = np.ascontiguousarray(_SCIPY.E3, dtype=np.float64)
 _E5 = np.ascontiguousarray(_SCIPY.E5, dtype=np.float64)
 _D = np.ascontiguousarray(_SCIPY.D, dtype=np.float64)
@@ -82,37 +87,39 @@ def initial_step(y, f, rtol, atol, par, warped):
     return min(100.0 * h0, h1)
 
 
-@njit(cache=True, error_model="numpy")
-def _stage_state(y, h, coef, K, stages, out):
-    """``out = y + h (coef[:stages] @ K[:stages])``."""
+@njit(cache=True, error_model="numpy", inline="always")
+def _stage_state(y, h, table, row, K, stages):
+    """``K[_TMP] = y + h (table[row, :stages] @ K[:stages])``: a stage's state."""
     for c in range(y.size):
         acc = 0.0
         for s in range(stages):
-            acc += coef[s] * K[s, c]
-        out[c] = y[c] + h * acc
+            acc += table[row, s] * K[s, c]
+        K[_TMP, c] = y[c] + h * acc
 
 
-@njit(cache=True, error_model="numpy")
-def _error_norm(K, h, scale, separate):
+@njit(cache=True, error_model="numpy", inline="always")
+def _error_norm(K, h, separate):
     """The step's error norm: scipy's (and Hairer's ``DOP853``) combination of the 5th- and
     3rd-order estimates over all components, or, with ``separate``, the same combination
-    per component, then their rms (:meth:`contactlab.solver.dop853.Stepper.error_norm`)."""
+    per component, then their rms (:meth:`contactlab.solver.dop853.Stepper.error_norm`),
+    with the scale in ``K[_SCALE]``."""
+    n = K.shape[1]
     e5 = e3 = total = 0.0
-    for c in range(scale.size):
+    for c in range(n):
         a5 = a3 = 0.0
         for s in range(STAGES + 1):
             a5 += _E5[s] * K[s, c]
             a3 += _E3[s] * K[s, c]
-        a5, a3 = (a5 / scale[c]) ** 2, (a3 / scale[c]) ** 2
+        a5, a3 = (a5 / K[_SCALE, c]) ** 2, (a3 / K[_SCALE, c]) ** 2
         e5 += a5
         e3 += a3
         if separate and a5 > 0.0:
             total += a5 * a5 / (a5 + 0.01 * a3)
     if separate:
-        return abs(h) * math.sqrt(total / scale.size)
+        return abs(h) * math.sqrt(total / n)
     if e5 == 0.0 and e3 == 0.0:
         return 0.0
-    return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * scale.size)
+    return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
 
 
 @njit(cache=True, error_model="numpy")
@@ -135,38 +142,39 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new, mode
     n = y.size
     min_step = 10.0 * abs(np.nextafter(t, math.inf) - t)
     h = max(h_try, min_step)
-    rejected = False
-    tmp, scale = K[_DENSE_STAGES], K[_DENSE_STAGES + 1]
-    while True:
-        if h < min_step:
-            return False, t, h, 0.0
+    rejected, t_new, h_next = False, t, math.nan
+    while h >= min_step:
         t_new = min(t + h, t_bound)
         h = t_new - t
-        K[0, :] = f
+        for c in range(n):  # not K[0, :] = f: a slice copy checks overlap and allocates
+            K[0, c] = f[c]
         for s in range(1, STAGES):
-            _stage_state(y, h, _A[s], K, s, tmp)
+            _stage_state(y, h, _A, s, K, s)
             if model == NORMAL:  # a constant: numba keeps one branch (model_rhs)
-                power_rhs(tmp, par, warped, K[s])
+                power_rhs(K, _TMP, par, warped, K, s)
             else:
-                rhs(tmp, par, warped, K[s])
-        _stage_state(y, h, _B, K, STAGES, y_new)
+                rhs(K[_TMP], par, warped, K[s])
+        _stage_state(y, h, _B, 0, K, STAGES)
         if model == NORMAL:
-            power_rhs(y_new, par, warped, f_new)
+            power_rhs(K, _TMP, par, warped, K, STAGES)
         else:
-            rhs(y_new, par, warped, f_new)
-        K[STAGES, :] = f_new
+            rhs(K[_TMP], par, warped, K[STAGES])
         for c in range(n):
-            scale[c] = atol[c] + max(abs(y[c]), abs(y_new[c])) * rtol
-        error = _error_norm(K, h, scale, warped)  # per component in s: Stepper.error_norm
+            y_new[c], f_new[c] = K[_TMP, c], K[STAGES, c]
+            K[_SCALE, c] = atol[c] + max(abs(y[c]), abs(y_new[c])) * rtol
+        error = _error_norm(K, h, warped)  # per component in s: Stepper.error_norm
         if error < 1.0:
             if error == 0.0:
                 factor = _MAX_FACTOR
             else:
                 factor = min(_MAX_FACTOR, _SAFETY * error**_EXPONENT)
             h_next = h * (min(1.0, factor) if rejected else factor)
-            return True, t_new, h_next, h
+            break
         h *= max(_MIN_FACTOR, _SAFETY * error**_EXPONENT)
         rejected = True
+    if math.isnan(h_next):
+        return False, t, h, 0.0
+    return True, t_new, h_next, h
 
 
 @njit(cache=True, error_model="numpy")
@@ -175,14 +183,13 @@ def interpolant(K, h, y_old, y, f_new, par, warped, F, model):
     :meth:`Stepper.interpolant` (three extra stages into ``K``; ``model`` as in
     :func:`step`)."""
     n = y.size
-    tmp = K[_DENSE_STAGES]
     for i in range(_EXTRA):
         stage = STAGES + 1 + i
-        _stage_state(y_old, h, _A_EXTRA[i], K, stage, tmp)
+        _stage_state(y_old, h, _A_EXTRA, i, K, stage)
         if model == NORMAL:  # as in step
-            power_rhs(tmp, par, warped, K[stage])
+            power_rhs(K, _TMP, par, warped, K, stage)
         else:
-            rhs(tmp, par, warped, K[stage])
+            rhs(K[_TMP], par, warped, K[stage])
     for c in range(n):
         delta = y[c] - y_old[c]
         F[0, c] = delta
@@ -195,7 +202,7 @@ def interpolant(K, h, y_old, y, f_new, par, warped, F, model):
             F[3 + row, c] = h * acc
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", inline="always")
 def interpolate(F, y_old, x, out):
     """A step's interpolant at ``x = (t - t_old) / h`` into ``out``, as
     :func:`contactlab.kernels.segments.interpolate`."""

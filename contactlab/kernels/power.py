@@ -43,6 +43,7 @@ __all__ = [
     "pack",
     "power",
     "rhs",
+    "rhs_row",
 ]
 
 PARAMETERS = ("a", "p", "b", "q", "signed", "m1", "k1", "c1", "m2", "rigid", "model")
@@ -169,20 +170,31 @@ def force_floor(d_lo, d_hi, r_lo, r_hi, par):
 
 
 @njit(cache=True, error_model="numpy")
-def rhs(z, par, warped, out):
-    """Right-hand side into ``out``: ``y' = f(y)``, or ``dz/ds`` in the warped variable
-    (``dy/ds = 4 s**3 f(y)``, ``ds/ds = 1``)."""
-    x1, v1, x2, v2 = z[0], z[1], z[2], z[3]
+def rhs_row(z, z_row, par, warped, out, row):
+    """Right-hand side at the state ``z[z_row]`` into ``out[row]`` (both 2-D): ``y' =
+    f(y)``, or ``dz/ds`` in the warped variable (``dy/ds = 4 s**3 f(y)``, ``ds/ds = 1``).
+
+    The compiled stepper reads and writes its stages so (:mod:`contactlab.kernels.dop853`):
+    a row view per stage cost a reference-count increment and decrement, 30 a
+    damped-Hertz step.
+    """
+    x1, v1, x2, v2 = z[z_row, 0], z[z_row, 1], z[z_row, 2], z[z_row, 3]
     s2 = force(x2 - x1, v2 - v1, par)
     if par[RIGID] > 0.0:
-        out[0], out[1] = 0.0, 0.0
+        out[row, 0], out[row, 1] = 0.0, 0.0
     else:
-        out[0] = v1
-        out[1] = (s2 - par[K1] * x1 - par[C1] * v1) / par[M1]
-    out[2] = v2
-    out[3] = -s2 / par[M2]
+        out[row, 0] = v1
+        out[row, 1] = (s2 - par[K1] * x1 - par[C1] * v1) / par[M1]
+    out[row, 2] = v2
+    out[row, 3] = -s2 / par[M2]
     if warped:
-        w = 4.0 * z[4] ** 3
+        w = 4.0 * z[z_row, 4] ** 3
         for c in range(4):
-            out[c] *= w
-        out[4] = 1.0
+            out[row, c] *= w
+        out[row, 4] = 1.0
+
+
+@njit(cache=True, error_model="numpy")
+def rhs(z, par, warped, out):
+    """Right-hand side into ``out`` (:func:`rhs_row` into a 1-D array)."""
+    rhs_row(z.reshape((1, z.size)), 0, par, warped, out.reshape((1, out.size)), 0)

@@ -184,15 +184,16 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
             return STATUS_UNDERFLOW, count, t_old, hs, y_old, F, hit, t, y, last_start
         if count == t_old.size:
             t_old, hs, y_old, F = _grow(t_old, hs, y_old, F)
-        interpolant(K, h, y, y_new, f_new, par, warped, F[count], NORMAL)
-        if _pressed(F[count], y, par):
+        dense = F[count]
+        interpolant(K, h, y, y_new, f_new, par, warped, dense, NORMAL)
+        if _pressed(dense, y, par):
             rows[0, 0] = rows[SUBSTEPS, 0]
             events(y_new, par, 0.0, rows[SUBSTEPS])
             hit = math.nan
         else:
-            sample(t, h, y, F[count], y_new, par, 0.0, times, rows, tmp)
+            sample(t, h, y, dense, y_new, par, 0.0, times, rows, tmp)
             hit, index = first_crossing(
-                (t, h, y, F[count]), 1, armed, times, rows, par, 0.0, tmp, row, work, rising
+                (t, h, y, dense), 1, armed, times, rows, par, 0.0, tmp, row, work, rising
             )
             hit = math.nan if index < 0 else hit
         if not math.isnan(hit):
@@ -201,11 +202,12 @@ def _run(t, y, h_try, end, rtol, atol, par, warped):
                 rows[SUBSTEPS, 0] = rows[0, 0]
                 h_try, bound, retaken, hit = h_next, again, retaken + 1, math.nan
                 continue
-        t_old[count], hs[count], y_old[count] = t, h, y
+        t_old[count], hs[count] = t, h
+        for c in range(n):  # element copies: a slice copy checks overlap and may allocate
+            y_old[count, c] = y[c]
+            y[c], f[c] = y_new[c], f_new[c]
         last_start = t
         count += 1
-        y[:] = y_new
-        f[:] = f_new
         t, h_try, bound = t_new, h_next, end
         if not math.isnan(hit):
             break

@@ -64,6 +64,7 @@ __all__ = [
     "end_fit",
     "judge_edge",
     "start_fit",
+    "start_window",
     "tail_fit",
 ]
 
@@ -155,11 +156,14 @@ def edge_noise(values, quiet, period):
 
 
 class _Projector:
-    """Generalised least squares of a window on a line plus one more column."""
+    """Generalised least squares of a window on a line (and ``fixed`` columns) plus one
+    more column."""
 
-    def __init__(self, y, period, noise):
+    def __init__(self, y, period, noise, fixed=None):
         n = y.size
         line = np.column_stack([np.ones(n), (np.arange(n) - 0.5 * (n - 1)) / period])
+        if fixed is not None:
+            line = np.column_stack([line, fixed])
         if isinstance(noise, float):
             self.whiten, scale = (lambda x: np.asarray(x, dtype=float)), noise
         else:
@@ -212,17 +216,23 @@ class _Lobes:
         return np.column_stack([model.response(t0, tau, unit)[self.lead :] for t0 in t0s])
 
 
-def _lobe_fit(projector, lobes, onsets):
+def _lobe_fit(projector, lobes, onsets, positive=False):
     """Best lobe: chi-squared and ``(family, damping, t0, tau, A)`` (``t0`` [s] from the
-    window's first sample), on the grid then refined."""
+    window's first sample), on the grid then refined; ``positive``: a compressive
+    force's only (``A > 0``)."""
     period = lobes.sensor.period
     best = (math.inf, None)
+
+    def fit(columns):
+        chi2, amplitude, _ = projector.fit(columns)
+        return np.where(amplitude > 0.0, chi2, math.inf) if positive else chi2
+
     for spec in EDGE_FAMILIES:
         for tau in period * np.asarray(DURATIONS):
             t0s = onsets[onsets > -tau]
             if not t0s.size:
                 continue
-            chi2 = projector.fit(lobes.columns(spec, t0s, tau))[0]
+            chi2 = fit(lobes.columns(spec, t0s, tau))
             k = int(np.nanargmin(chi2)) if np.isfinite(chi2).any() else None
             if k is not None and chi2[k] < best[0]:
                 best = (float(chi2[k]), (spec, float(t0s[k]), float(tau)))
@@ -235,7 +245,7 @@ def _lobe_fit(projector, lobes, onsets):
         t0, tau = x[0], x[1]
         if not (tau > 0.0 and low <= t0 <= high and t0 + tau > 0.0):
             return math.inf
-        return float(projector.fit(lobes.columns(spec, [t0], tau))[0][0])
+        return float(fit(lobes.columns(spec, [t0], tau))[0])
 
     simplex = np.array([[t0, tau], [t0 + lobes.dt, tau], [t0, 1.1 * tau]])
     solved = optimize.minimize(
@@ -356,6 +366,14 @@ def start_fit(values, index, runs, reach, ring):
     -------
     EdgeFit
     """
+    window, noise, onsets = start_window(values, index, runs, reach, ring)
+    return judge_edge(values, window, index, ring, noise, onsets)
+
+
+def start_window(values, index, runs, reach, ring):
+    """The window, noise model and lobe onsets of :func:`start_fit` (its docstring):
+    ``(0, stop)`` sample indices, the ARNoise (or float), and ``(earliest, latest)``
+    [samples from the first sample]."""
     period = max(1, round(ring[0].period / ring[1]))
     n = len(values)
     later = [first for first, _ in runs if first > index]
@@ -365,8 +383,7 @@ def start_fit(values, index, runs, reach, ring):
     quiet = (lo, lo + round(QUIET_PERIODS * period))
     noise = _side_noise(values, quiet, (index, stop), runs, reach, period)
     longest = round(DURATIONS[-1] * period)
-    latest = min(index - 1, period // 2)
-    return judge_edge(values, (0, stop), index, ring, noise, (-longest, latest))
+    return (0, stop), noise, (-longest, min(index - 1, period // 2))
 
 
 def end_fit(values, at, first, runs, reach, ring):

@@ -49,6 +49,7 @@ import numpy as np
 from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
+from dem_check.campaign.edge_boxes import start_steps
 from dem_check.campaign.edge_models import end_fit, start_fit
 from dem_check.campaign.step_ringing import difference_sigma, place_across, second_across
 
@@ -377,7 +378,8 @@ def edge_steps(values, runs, period, reach, ring=None):
     ring : tuple, optional
         ``(sensor, dt)``: the sensor and the sampling interval [s]. A step at the start,
         or within a sensor period of the end, is then told from an impact's lobe by
-        fitting both (:mod:`dem_check.campaign.edge_models`) instead of by the
+        fitting both (:mod:`dem_check.campaign.edge_models`; a box of steps over an
+        impact at the start with it, :mod:`dem_check.campaign.edge_boxes`) instead of by the
         flatness of its side (and at the end without the :data:`STEP_SIGMAS` test, which
         so few samples cannot pass: the run reached the detection threshold).
 
@@ -399,8 +401,10 @@ def edge_steps(values, runs, period, reach, ring=None):
         window, index, note = (0, n - step.window[0]), n - step.index, ""
         if ring is not None:
             fit = start_fit(values, index, runs, reach, ring)
-            if not fit.step:
-                continue  # an impact's lobe: the run is left to the impacts
+            box = start_steps(values, index, runs, reach, ring, fit.lobe_chi2)
+            found += [OffsetStep(*row[:4], note=row[4]) for row in box]  # over a lobe
+            if box or not fit.step:
+                continue  # or an impact's lobe alone
             index = fit.index  # placed by the fit, under the record's noise model
             note = f"; {fit.reason()}: a level change within one sample is no sensor's response"
         found.append(OffsetStep(index, -step.height, step.significance, window, note=note))
