@@ -29,14 +29,13 @@ import numpy as np
 
 import contactlab as cl
 from contactlab.config import load_config
-from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign import find_impacts
+from dem_check.campaign.hard_mix import hard_mix as draw_hard_mix
 from dem_check.campaign.records import ringing_at_onsets
 
 ROOT = Path(__file__).resolve().parents[1]
-NOISE = 0.03  # [N]
 MATCH = 60e-6  # [s] a detected onset this close to a true one is that impact
 CLEAR = 10.0  # true impacts of at least this many noise sigmas must be found
-STEP_KINDS = ("anywhere", "start", "end", "before impact", "after impact")
 
 
 def hard():
@@ -44,54 +43,10 @@ def hard():
     return config.grain, config.sensor, cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
 
 
-def _step_time(rng, kind, onsets, length):
-    """A step's time [s] of one of :data:`STEP_KINDS`."""
-    if kind == "start" or (kind.endswith("impact") and not onsets.size):
-        return rng.uniform(0.0, 0.2e-3)
-    if kind == "end":
-        return length - rng.uniform(0.0, 0.2e-3)
-    if kind == "before impact":
-        return max(0.0, rng.choice(onsets) - rng.uniform(0.0, 0.3e-3))
-    if kind == "after impact":
-        return rng.choice(onsets) + rng.uniform(0.0, 0.3e-3)
-    return rng.uniform(0.0, length)
-
-
 def hard_mix(seed):
-    """One record of the hard mix (module docstring) and its effects."""
-    rng = np.random.default_rng(seed)
-    rate = float(rng.choice([1e6, 2e6, 5e6]))
-    count = int(rng.integers(1, 5))
-    delay = rng.uniform(1.5e-3, 3e-3)
-    first = float(rng.choice([0.0, 2.0 / rate, 1e-3]))
-    gaps = rng.uniform(delay + 1.5e-3, 8e-3, count - 1)
-    onsets = first + np.concatenate([[0.0], np.cumsum(gaps)])
-    velocities = rng.uniform(0.2, 2.5, count)
-    length = float(onsets[-1] + 6e-3)
-    offsets = tuple(
-        (
-            _step_time(rng, str(rng.choice(STEP_KINDS)), onsets, length),
-            rng.choice((-1.0, 1.0)) * rng.uniform(3.0, 30.0) * NOISE,
-        )
-        for _ in range(2)
-    )
-    largest = 3.0 * velocities.max() / 2.0  # the hard grain's peak signal [N]
-    drift = rng.uniform(20.0, 50.0) * NOISE if first >= 1e-3 else 10.0 * NOISE
-    # the ADC clips the largest impact, not the drift and steps (a record held at a
-    # rail is not analysable)
-    rails = 1.2 * largest + drift + sum(abs(h) for _, h in offsets)
-    effects = Effects.everything(
-        NOISE,
-        largest,
-        drift=drift,
-        full_scale=rails,
-        steps=0,
-        offsets=offsets,
-        bounce_delay=delay,
-    )
-    sampling = {"length": length, "sample_rate": rate, "noise": NOISE}
-    record = realistic_record(*hard(), velocities, onsets, **sampling, effects=effects, seed=seed)
-    return record, effects
+    """One record of the hard mix (:func:`dem_check.campaign.hard_mix.hard_mix`) of the
+    hard grain, and its effects."""
+    return draw_hard_mix(seed, *hard())
 
 
 def judge(record, effects, found):

@@ -33,7 +33,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from dem_check.campaign.edge_models import _lobe_fit, _Lobes, _Projector, start_window
+from dem_check.campaign.edge_models import (
+    _lobe_fit,
+    _Lobes,
+    _Projector,
+    start_window,
+    window_samples,
+)
 
 __all__ = ["MODEL_ERROR", "BoxFit", "box_fit", "start_box", "start_steps"]
 
@@ -185,10 +191,8 @@ def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=2):
     -------
     BoxFit
     """
-    first, stop = window
-    sensor, dt = ring
-    period = max(1, round(sensor.period / dt))
-    y = np.asarray(values[first:stop], dtype=float)
+    first, dt = window[0], ring[1]
+    y, period = window_samples(values, window, ring)
     n = y.size
     earliest, latest = onsets
     grid = dt * np.arange(earliest, latest + 1, max(1, round(period / 16)), dtype=float)

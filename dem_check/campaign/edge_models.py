@@ -66,6 +66,7 @@ __all__ = [
     "start_fit",
     "start_window",
     "tail_fit",
+    "window_samples",
 ]
 
 EDGE_FAMILIES = (("linear", 0.0), ("linear", 0.25), ("linear", 0.5), ("hertz", 0.0))
@@ -260,6 +261,17 @@ def _lobe_fit(projector, lobes, onsets, positive=False):
     return float(chi2[0]), (*spec, t0, tau, float(amplitude[0]))
 
 
+def window_samples(values, window, ring):
+    """A window's samples [N] and the sensor's period [samples]: ``(y, period)``.
+
+    ``window`` is ``(first, stop)`` [samples], ``ring`` ``(sensor, dt)`` as in
+    :func:`judge_edge`.
+    """
+    first, stop = window
+    sensor, dt = ring
+    return np.asarray(values[first:stop], dtype=float), max(1, round(sensor.period / dt))
+
+
 def judge_edge(values, window, split, ring, noise, onsets):
     """The step model against the lobe model on a window at a record's edge.
 
@@ -286,9 +298,8 @@ def judge_edge(values, window, split, ring, noise, onsets):
     EdgeFit
     """
     first, stop = window
-    sensor, dt = ring
-    period = max(1, round(sensor.period / dt))
-    y = np.asarray(values[first:stop], dtype=float)
+    dt = ring[1]
+    y, period = window_samples(values, window, ring)
     projector = _Projector(y, period, noise)
     places = np.arange(max(split - period, first + 1), min(split + period + 1, stop)) - first
     step_chi2, place, height, error = _step_fit(projector, y.size, places)

@@ -7,29 +7,35 @@ in time order, with the ordinary analysis (:func:`dem_check.campaign.analysis.re
 
 - the next impact is **held out**: from :data:`HOLD_PERIODS` sensor periods before its
   onset (which, not analysed, is where the ringing grew: it lags the touch) the record
-  is replaced by this impact's line and free ringing, fitted on the line before it and
-  from :data:`POST_MARGIN` periods after its first lobe to the held-out samples
-  (:func:`contactlab.inverse.local_baseline.local_baseline`). Where that leaves the
-  reconstruction mostly modelled samples (its window spans two lobe-lengths), it can
-  fail: the impact then keeps its signal's numbers and its reason says so;
-- from the second impact on, the free ringing of the impact before (that fit's,
-  :attr:`contactlab.inverse.local_baseline.LocalBaseline.ringing`) is **subtracted**
-  from the record and from its smoothed and low-passed traces (the same filters,
-  :func:`dem_check.campaign.noise.record_filters`); the impact's baseline window is the
-  stretch between the previous impact's ringing fit's start and its own onset, where
-  the record less that ringing is the baseline and noise;
-- each onset is fitted as an analysed impact's
-  (:func:`dem_check.campaign.onsets.record_onsets`, with the record's contact family
-  when it was read).
+  is replaced by this impact's line and free ringing. Both are fitted from
+  :data:`POST_MARGIN` periods after its first lobe to the next contact's decayed
+  ringing, together with the next impact's lobe (its contact family's force through
+  the sensor: :func:`dem_check.campaign.overlap_fit.joint_ringing`), so the ringing is
+  read through the next impact instead of extrapolated from the few periods before it.
+  Where that leaves the reconstruction mostly modelled samples (its window spans two
+  lobe-lengths), it can fail: the impact then keeps its signal's numbers and its reason
+  says so;
+- from the second impact on, the free ringing of the impact before (that fit's) is
+  **subtracted** from the record and from its smoothed and low-passed traces (the same
+  filters, :func:`dem_check.campaign.noise.record_filters`), from a period before the
+  ringing's origin (the next segment starts at that origin: its filtered traces see no
+  step there; the held-out fill, from ``hold`` on, is the same ringing); the impact's
+  baseline window is the stretch between that origin and its own onset. Its onset is
+  fitted as an analysed impact's (:func:`dem_check.campaign.onsets.record_onsets`, with
+  the record's contact family), and its peak signal, impulse, contact force and contact
+  time are the joint fit's (the ordinary reading's local baseline has only that short
+  window before the impact: at half the velocity 0.2 ms after the first it read the
+  impulse up to 8 % high, with the true ringing subtracted too).
 
 The first impact of a group gets status ``"overlap, neighbour held out"``, each later one
 ``"overlap, ringing subtracted"``, with a reason that says what was held out or taken
 off; both are analysed (:data:`dem_check.campaign.detection.ANALYSED`). An impact that
 cannot be read apart keeps ``"overlap"`` and its reason says why: too few quiet samples
 between the previous contact and its onset, or an impact before it that could not be
-read (the analysis flagged it, or the record is too coarse for its ringing to be
-fitted). A second contact that starts within a period of the first lobe's end is not
-seen by the ringing check (the analysis flags it by its impulse) and is not read apart.
+read (the analysis flagged it, no contact family was read, the joint fit failed, or the
+record is too coarse for the ringing to be fitted). A second contact that starts within
+a period of the first lobe's end is not seen by the ringing check (the analysis flags it
+by its impulse) and is not read apart.
 """
 
 import dataclasses
@@ -37,11 +43,14 @@ import dataclasses
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.local_baseline import free_ringing, local_baseline
+from contactlab.inverse.lobe_onset import SCAN_DURATIONS
+from contactlab.inverse.local_baseline import free_ringing
 from dem_check.campaign.analysis import ONSET_MARGIN, read_impact, window_row
 from dem_check.campaign.detection import BASELINE_MIN_SAMPLES
 from dem_check.campaign.noise import record_filters
 from dem_check.campaign.onsets import record_onsets
+from dem_check.campaign.overlap_fit import AFTER_PERIODS, joint_ringing
+from dem_check.campaign.plausibility import physics_status
 
 __all__ = ["HELD_OUT", "HOLD_PERIODS", "SUBTRACTED", "separate_overlaps"]
 
@@ -63,8 +72,10 @@ POST_MARGIN = 1.0
 """Sensor periods after an impact's first lobe (the smoothed signal back at its
 baseline) from which its free ringing is fitted before a later impact [-]: the lobe
 can end a little before the contact does (a period, as the analysis reads the impulse
-past its contact's end). Measured on a pair 0.2 ms apart (1:0.5, one seed): from the lobe's end the
-second impact's impulse was 10 % high, from a period after it 8 %."""
+past its contact's end), and the joint fit models free ringing there. Measured with the
+ringing fitted alone between the two (before the joint fit), on a pair 0.2 ms apart
+(1:0.5, one seed): from the lobe's end the second impact's impulse was 10 % high, from a
+period after it 8 %."""
 
 
 def _groups(detection):
@@ -96,13 +107,15 @@ def _less(detection, ringing):
     )
 
 
-def _held_out(detection, window, hold, sensor, noise):
+def _held_out(detection, window, hold, later, limit, sensor, family):
     """The detection with the samples of ``window``'s segment from index ``hold`` on (the
-    next impact's) replaced by this impact's line and free ringing, fitted before it and
-    from :data:`POST_MARGIN` periods after its first lobe to ``hold``
-    (:func:`contactlab.inverse.local_baseline.local_baseline`): the analysis then reads
-    a record that holds this impact alone; and that fit (its free ringing is what is
-    taken off the next impact)."""
+    next impact's) replaced by this impact's line and free ringing, fitted with the next
+    impact's lobe (:func:`dem_check.campaign.overlap_fit.joint_ringing`) from
+    :data:`POST_MARGIN` periods after this impact's first lobe to the next contact's
+    decayed ringing (at most to ``limit`` [s]: the segment's end, or where a third impact
+    is held out): the analysis then reads a record that holds this impact alone; and
+    that fit (:class:`dem_check.campaign.overlap_fit.JointRinging`: its free ringing is
+    what is taken off the next impact)."""
     part = slice(window.first, window.stop)
     t = np.asarray(detection.record.t[part])
     y = np.asarray(detection.record.values[part], dtype=float)
@@ -112,16 +125,16 @@ def _held_out(detection, window, hold, sensor, noise):
     level = float(np.mean(smooth[(t >= base[0]) & (t < base[1])]))
     top = int(np.argmax(smooth[:cut]))
     lobe_end = float(t[top + int(np.argmax(smooth[top:cut] <= level))])  # back to the baseline
-    start = window.onset - ONSET_MARGIN * sensor.period
-    held = np.arange(t.size) >= cut
     post = lobe_end + POST_MARGIN * sensor.period
-    fitted = local_baseline(t, y, base, start, post, t[-1], sensor, noise, held)
-    model = fitted.values + free_ringing(
-        t, fitted.post[0], fitted.ringing or (0.0, 0.0), sensor
-    ) * (t >= fitted.post[0])
+    length = lobe_end - window.onset  # the second contact's first guess
+    stop = later.onset + (SCAN_DURATIONS[-1] * length) + AFTER_PERIODS * sensor.period
+    fitted = (t >= post) & (t <= min(stop, limit))
+    if family is None:
+        raise ParameterError("no contact family was read for the next impact's lobe")
+    joint = joint_ringing(t[fitted], y[fitted], (later.onset, length), sensor, family)
     other = np.zeros(np.asarray(detection.record.t).size)
-    other[window.first + cut : window.stop] = (y - model)[cut:]
-    return _less(detection, other), fitted
+    other[window.first + cut : window.stop] = (y - joint.values(t, sensor))[cut:]
+    return _less(detection, other), joint
 
 
 def _window(detection, window, first, stop, base, sensor, noise):
@@ -145,22 +158,48 @@ def _window(detection, window, first, stop, base, sensor, noise):
         significance=float(smooth[top] / detection.local_noise[top]),
     )
     family = detection.contact_family
-    onsets, notes, *_, spreads = record_onsets(detection, [alone], sensor, noise, family)
+    onsets, notes, name, damping, spreads = record_onsets(detection, [alone], sensor, noise, family)
+    family = family or (None if name is None else (name, damping))
     end = min(base[1], onsets[0] - ONSET_MARGIN * sensor.period)
     quiet = int(np.count_nonzero((t >= base[0]) & (t < end)))
     if quiet < BASELINE_MIN_SAMPLES:
-        return None, (
+        why = (
             f"only {quiet} quiet samples between {base[0]:.6g} s and its onset "
             f"{onsets[0]:.6g} s (need {BASELINE_MIN_SAMPLES})"
         )
-    return dataclasses.replace(
+        return None, why, family
+    alone = dataclasses.replace(
         alone,
         onset=onsets[0],
         onset_uncertainty=spreads[0],
         reason=notes[0],
         baseline_window=(base[0], end),
         start=end,
-    ), ""
+    )
+    return alone, "", family
+
+
+def _joint_numbers(joint, grain, row):
+    """The columns of a later impact read from the joint fit of the impact before it
+    (``joint``, :class:`dem_check.campaign.overlap_fit.JointRinging`): peak signal,
+    impulse, contact force and contact time of its contact family's force fitted with
+    that impact's ringing and a line, its velocity change, the physics check on them,
+    and the reason saying so."""
+    out = {
+        "peak_sensor_force [N]": joint.peak_signal,
+        "impulse [N*s]": joint.impulse,
+        "peak_contact_force [N]": joint.amplitude,
+        "contact_time [s]": joint.duration,
+    }
+    if grain is not None:
+        out["velocity_change [m/s]"] = joint.impulse / grain.mass
+    note = (
+        "peak signal, impulse, contact force and contact time from its contact family's "
+        f"force fitted with the previous impact's line and free ringing (rms residual "
+        f"{joint.rms:.3g} N; the record's noise {row['noise [N]']:.3g} N)"
+    )
+    out["reason"] = "; ".join(r for r in (row["reason"], note) if r)
+    return {**out, **physics_status({**row, **out}, grain)}
 
 
 def _read_group(detection, group, sensor, options):
@@ -175,14 +214,17 @@ def _read_group(detection, group, sensor, options):
         hold = window.stop
         if later is not None:
             hold = int(np.searchsorted(t, later.onset - HOLD_PERIODS * sensor.period))
-        alone, why = _window(current, window, first, hold, base, sensor, options["noise"])
+        alone, why, family = _window(current, window, first, hold, base, sensor, options["noise"])
         if alone is None:
             break
         alone = dataclasses.replace(alone, stop=window.stop, end=window.end)
         try:
             reading, local = current, None
             if later is not None:
-                reading, local = _held_out(current, alone, hold, sensor, options["noise"])
+                limit = later.end
+                if j + 2 < len(windows):  # a third impact: the fit ends where it is held out
+                    limit = windows[j + 2].onset - HOLD_PERIODS * sensor.period
+                reading, local = _held_out(current, alone, hold, later, limit, sensor, family)
             row, traces, _ = read_impact(
                 dataclasses.replace(reading, impacts=[alone]), alone, sensor, **options
             )
@@ -196,17 +238,19 @@ def _read_group(detection, group, sensor, options):
             status = SUBTRACTED
             parts.append(
                 f"the free ringing of the impact at {before[0]:.6g} s (fitted from "
-                f"{before[1]:.6g} s) subtracted, the baseline read from "
+                f"{before[1]:.6g} s with this impact's lobe) subtracted, the baseline read from "
                 f"{alone.baseline_window[0]:.6g} to {alone.baseline_window[1]:.6g} s"
             )
         if later is not None:
             parts.append(
                 f"the impact at {later.onset:.6g} s held out: from {t[hold]:.6g} s the record "
-                "is this impact's line and free ringing, fitted before it"
+                "is this impact's line and free ringing, fitted with the next impact's lobe"
             )
         how = "; ".join(parts)
         note = f"overlap read apart: {how}"
-        if row["status"] == "reconstruction failed" and later is not None:
+        if row["status"] == "ok" and before is not None:
+            row.update(_joint_numbers(before[2], options["grain"], row))
+        elif row["status"] == "reconstruction failed" and later is not None:
             # the held-out samples (the model, without noise) fill most of the record
             # the reconstruction reads: its signal numbers stand, its contact is not given
             row["reason"] = f"no contact force or contact time: {row['reason']}"
@@ -215,16 +259,19 @@ def _read_group(detection, group, sensor, options):
             row["status"] = status
         row["reason"] = "; ".join(r for r in (note, row["reason"]) if r)
         out[k] = (row, traces)
-        if later is None or not (row["status"] == status and local.ringing):
+        if later is None or row["status"] != status:
             why = "the impact before it was not read apart"
             break
         ringing = np.zeros(t.size)
-        free = t >= local.post[0] - sensor.period  # a period after the contact's end
-        ringing[free] = free_ringing(t[free], local.post[0], local.ringing, sensor)
+        # from a period before the ringing's origin: the filters of the next segment,
+        # which starts at that origin, see no step there (the held-out fill, from ``hold``
+        # on, is this ringing too)
+        free = t >= local.start - sensor.period
+        ringing[free] = free_ringing(t[free], local.start, local.ringing, sensor)
         current = _less(current, ringing)
-        first = int(np.searchsorted(t, local.post[0]))
+        first = int(np.searchsorted(t, local.start))
         base = (float(t[first]), later.onset - HOLD_PERIODS * sensor.period + dt)
-        before = (alone.onset, local.post[0])
+        before = (alone.onset, local.start, local)
     for k, window in zip(group, windows, strict=True):
         if k not in out:
             row = window_row(window)

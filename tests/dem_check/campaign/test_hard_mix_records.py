@@ -1,5 +1,6 @@
-"""Failing records of the hard mix of ``benchmarks/bench_steps.py`` (issue 22), rebuilt with
-their own parameters and noise seed, and the rules they broke tested alone.
+"""Failing records of the hard mix of ``benchmarks/bench_steps.py`` (issue 22), rebuilt from
+their seeds (:func:`dem_check.campaign.hard_mix.hard_mix`), and the rules they broke
+tested alone.
 
 The hard mix: the hard grain at 1, 2 or 5 MHz, every effect of ``Effects.everything``
 on (1/f noise of one sigma, hum of 1.5, crosstalk of 2 % as the plate's response to the
@@ -13,60 +14,27 @@ from hypothesis import strategies as st
 
 from dem_check import write_trace
 from dem_check.campaign import (
-    Effects,
     find_impacts,
-    realistic_record,
     run_campaign,
     synthetic_record,
 )
 from dem_check.campaign.growths import later_impacts
-
-NOISE = 0.03
-"""White noise of the records [N], as in the hard mix."""
+from dem_check.campaign.hard_mix import NOISE, hard_mix
 
 MATCH = 60e-6
 """Largest distance of a row from the truth [s], as the hard mix counts them."""
 
 
-def _hard_mix_record(hard_setup, case):
-    """The hard mix's record of ``case``'s seed, from the parameters it drew."""
-    largest = 1.5 * max(case["velocities"])  # the hard grain's peak signal [N]
-    effects = Effects.everything(
-        NOISE,
-        largest,
-        drift=case["drift"],
-        full_scale=case["full_scale"],
-        steps=0,
-        offsets=case["offsets"],
-        bounce_delay=case["bounce_delay"],
-    )
-    return realistic_record(
-        *hard_setup,
-        case["velocities"],
-        case["onsets"],
-        length=case["length"],
-        sample_rate=case["rate"],
-        noise=NOISE,
-        effects=effects,
-        seed=case["seed"],
-    )
+def _hard_mix_record(hard_setup, seed):
+    """The hard mix's record of ``seed`` (:func:`dem_check.campaign.hard_mix.hard_mix`)."""
+    return hard_mix(seed, *hard_setup)[0]
 
 
-SEED_60 = {
-    # a 0.59 m/s bounce at 10.49 ms, 1.5 ms after a 1.47 m/s impact, 1 MHz: the plate's
-    # response to the bounce's force swings the level by 0.15 N over 0.3 ms, which the
-    # running baseline does not follow (z 0.075 N off), and a noise peak on it grew the
-    # largest value per period from 0.055 to 0.202 N: an 'overlap' at 10.781 ms
-    "seed": 60,
-    "rate": 1e6,
-    "length": 14.952845e-3,
-    "velocities": [2.1855669, 1.4662194],
-    "onsets": [1e-3, 8.952845e-3],
-    "drift": 1.1110568,
-    "full_scale": 5.5603200,
-    "offsets": ((14.477114e-3, 0.40853614), (9.156558e-3, -0.10670669)),
-    "bounce_delay": 1.5407196e-3,
-}
+# a 0.59 m/s bounce at 10.49 ms, 1.5 ms after a 1.47 m/s impact, 1 MHz: the plate's
+# response to the bounce's force swings the level by 0.15 N over 0.3 ms, which the
+# running baseline does not follow (z 0.075 N off), and a noise peak on it grew the
+# largest value per period from 0.055 to 0.202 N: an 'overlap' at 10.781 ms
+SEED_60 = 60
 
 
 @pytest.mark.parametrize("case", [SEED_60], ids=["seed 60"])
@@ -81,67 +49,37 @@ def test_a_level_moved_in_an_impacts_ringing_invents_no_overlap(hard_setup, case
     assert "overlap" not in {w.status for w in found.impacts}
 
 
-SEED_1 = {
-    # a box of a 0.73 N step up at 10.417 ms and a 0.70 N step down at 10.638 ms, 0.10 ms
-    # before a 0.84 m/s bounce, 2 MHz, 2.6 ms after a 2.10 m/s impact: that impact's
-    # plate modes swing the box's top by 0.13 N (the record less the two steps, period
-    # means: 0.123 N at most against 6 sigmas of the record's period means, 0.111 N);
-    # the box was read as an 'ok' impact at 10.414 ms
-    "seed": 1,
-    "rate": 2e6,
-    "length": 19.356734e-3,
-    "velocities": [1.1736508, 2.1037160, 1.1411580],
-    "onsets": [0.0, 7.816457e-3, 13.356734e-3],
-    "drift": 0.3,
-    "full_scale": 5.5156616,
-    "offsets": ((10.638339e-3, -0.70034562), (10.416697e-3, 0.72862725)),
-    "bounce_delay": 2.9256955e-3,
-}
+# a box of a 0.73 N step up at 10.417 ms and a 0.70 N step down at 10.638 ms, 0.10 ms
+# before a 0.84 m/s bounce, 2 MHz, 2.6 ms after a 2.10 m/s impact: that impact's
+# plate modes swing the box's top by 0.13 N (the record less the two steps, period
+# means: 0.123 N at most against 6 sigmas of the record's period means, 0.111 N);
+# the box was read as an 'ok' impact at 10.414 ms
+SEED_1 = 1
 
 
-SEED_15 = {
-    # a box of steps of -0.72 N at 0.091 ms and +0.85 N at 0.167 ms over a 0.54 m/s
-    # impact at the first sample, 5 MHz: neither the edge's step nor its lobe model fits
-    # (chi-squared 13482 and 8633 on 952 samples); a 'negative' impact of -0.98 N was
-    # read at 0.091 ms and the true impact missed (the lobe and two steps fitted at
-    # once: dem_check.campaign.edge_boxes)
-    "seed": 15,
-    "rate": 5e6,
-    "length": 16.775281e-3,
-    "velocities": [0.53636448, 1.8531742, 0.99431996],
-    "onsets": [0.0, 4.393047e-3, 10.775281e-3],
-    "drift": 0.3,
-    "full_scale": 5.2114143,
-    "offsets": ((0.091401935e-3, -0.72298748), (0.16653432e-3, 0.85271330)),
-    "bounce_delay": 2.7237257e-3,
-}
+# a box of steps of -0.72 N at 0.091 ms and +0.85 N at 0.167 ms over a 0.54 m/s
+# impact at the first sample, 5 MHz: neither the edge's step nor its lobe model fits
+# (chi-squared 13482 and 8633 on 952 samples); a 'negative' impact of -0.98 N was
+# read at 0.091 ms and the true impact missed (the lobe and two steps fitted at
+# once: dem_check.campaign.edge_boxes)
+SEED_15 = 15
 
-SEED_48 = {
-    # a -0.72 N step at 13.628 ms and a 0.16 N step 76 us later, 0.12 ms before the end
-    # of the record, 1 MHz: closer than BOX_PERIODS (an impact's lobe fits such a pair),
-    # and the run to the end holds two levels (no single step's flat side): read as a
-    # 'negative' impact of -0.52 N at 13.627 ms
-    "seed": 48,
-    "rate": 1e6,
-    "length": 13.745480e-3,
-    "velocities": [1.7007425, 2.1851687],
-    "onsets": [1e-3, 7.745480e-3],
-    "drift": 1.0277994,
-    "full_scale": 5.8354633,
-    "offsets": ((13.627511e-3, -0.71509336), (13.703372e-3, 0.15926693)),
-    "bounce_delay": 2.3936602e-3,
-}
+# a -0.72 N step at 13.628 ms and a 0.16 N step 76 us later, 0.12 ms before the end
+# of the record, 1 MHz: closer than BOX_PERIODS (an impact's lobe fits such a pair),
+# and the run to the end holds two levels (no single step's flat side): read as a
+# 'negative' impact of -0.52 N at 13.627 ms
+SEED_48 = 48
 
 
 @pytest.mark.parametrize("case", [SEED_1, SEED_48], ids=["seed 1", "seed 48"])
 def test_two_steps_are_two_steps(hard_setup, case):
-    record = _hard_mix_record(hard_setup, case)
+    record, effects = hard_mix(case, *hard_setup)
     found = find_impacts(record.trace, hard_setup[1])
     truth = record.truth["onset [s]"].to_numpy()
     onsets = np.array([w.onset for w in found.impacts])
     assert all(np.abs(truth - at).min() <= MATCH for at in onsets)  # nothing invented
     assert all(np.abs(onsets - at).min() <= MATCH for at in truth)  # nothing missed
-    times, heights = np.array(case["offsets"]).T
+    times, heights = np.array(effects.offsets).T
     assert len(found.steps) == 2
     for step, at in zip(found.steps, np.sort(record.step_times), strict=True):
         assert abs(step.onset - at) <= 5e-6  # the split within a period: a few samples
@@ -151,7 +89,7 @@ def test_two_steps_are_two_steps(hard_setup, case):
 
 
 def test_a_box_of_steps_over_an_impact_at_the_first_sample(hard_setup):
-    record = _hard_mix_record(hard_setup, SEED_15)
+    record, effects = hard_mix(SEED_15, *hard_setup)
     found = find_impacts(record.trace, hard_setup[1])
     truth = record.truth["onset [s]"].to_numpy()
     onsets = np.array([w.onset for w in found.impacts])
@@ -159,7 +97,7 @@ def test_a_box_of_steps_over_an_impact_at_the_first_sample(hard_setup):
     assert all(np.abs(onsets - at).min() <= MATCH for at in truth)  # nothing missed
     assert found.impacts[0].status == "short pre-trigger"
     assert len(found.steps) == 2
-    for step, (at, height) in zip(found.steps, sorted(SEED_15["offsets"]), strict=True):
+    for step, (at, height) in zip(found.steps, sorted(effects.offsets), strict=True):
         assert abs(step.onset - at) <= 1e-6  # placed by the fit at every sample: 5 samples
         assert "box of offset steps" in step.reason
         # read with the impact's lobe, whose rigid-wall model errs by a few per cent of
@@ -168,39 +106,19 @@ def test_a_box_of_steps_over_an_impact_at_the_first_sample(hard_setup):
         assert step.peak == pytest.approx(height, abs=0.1)
 
 
-SEED_28 = {
-    # the plate's response to a 2.21 m/s impact (3.59 N, modes of 2 %) swings from +0.026
-    # to -0.130 N within 0.1 ms, 0.95 ms after it, 2 MHz: with a 1/f excursion on its
-    # trough it reached 7.06 local sigmas and was a 'negative' impact of -0.14 N at
-    # 1.953 ms; the plate's free ringing fitted around it (734, 1885, 4113 Hz found)
-    # leaves 2.3 local sigmas there
-    "seed": 28,
-    "rate": 2e6,
-    "length": 21.494469e-3,
-    "velocities": [2.2148087, 2.3870229, 1.4250068, 2.0057999],
-    "onsets": [1e-3, 5.445594e-3, 9.957300e-3, 15.494469e-3],
-    "drift": 0.75974647,
-    "full_scale": 6.1763522,
-    "offsets": ((5.2001690e-3, -0.75156113), (20.690096e-3, -0.36840343)),
-    "bounce_delay": 2.8273394e-3,
-}
+# the plate's response to a 2.21 m/s impact (3.59 N, modes of 2 %) swings from +0.026
+# to -0.130 N within 0.1 ms, 0.95 ms after it, 2 MHz: with a 1/f excursion on its
+# trough it reached 7.06 local sigmas and was a 'negative' impact of -0.14 N at
+# 1.953 ms; the plate's free ringing fitted around it (734, 1885, 4113 Hz found)
+# leaves 2.3 local sigmas there
+SEED_28 = 28
 
-SEED_53 = {
-    # 0.41 ms after a 2.35 m/s impact (3.80 N), 5 MHz, the plate's response swings by
-    # +-0.1 N (+0.076 N at 1.35 ms, -0.056 N at 1.45 ms) under a drift of -0.12 N/ms: the
-    # period means read a step of -0.125 N (14.4 sigmas) at 1.408 ms, 0.62 ms from the
-    # nearest true step; the plate's ringing without a step fits the period means to
-    # 0.013 N rms, with the step taken off and refitted to 0.045 N
-    "seed": 53,
-    "rate": 5e6,
-    "length": 7e-3,
-    "velocities": [2.3461039],
-    "onsets": [1e-3],
-    "drift": 0.86264466,
-    "full_scale": 6.5519483,
-    "offsets": ((0.020964955e-3, -0.75359568), (0.79252993e-3, 0.71272085)),
-    "bounce_delay": 2.5783660e-3,
-}
+# 0.41 ms after a 2.35 m/s impact (3.80 N), 5 MHz, the plate's response swings by
+# +-0.1 N (+0.076 N at 1.35 ms, -0.056 N at 1.45 ms) under a drift of -0.12 N/ms: the
+# period means read a step of -0.125 N (14.4 sigmas) at 1.408 ms, 0.62 ms from the
+# nearest true step; the plate's ringing without a step fits the period means to
+# 0.013 N rms, with the step taken off and refitted to 0.045 N
+SEED_53 = 53
 
 
 def _judged(hard_setup, case):

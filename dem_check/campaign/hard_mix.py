@@ -1,0 +1,92 @@
+"""The hard mix: realistic records with every effect on and two offset steps (issue 22).
+
+One record per seed, drawn as ``benchmarks/bench_steps.py`` counts them (100 records) and
+as the regression tests of its failing records rebuild them
+(``tests/dem_check/campaign/test_hard_mix_records.py``): a failing record is named by its
+seed alone. The record: 1-4 impacts of 0.2-2.5 m/s at 1, 2 or 5 MHz, with bounces (1.5-3
+ms later), every effect of :meth:`~dem_check.campaign.Effects.everything` (1/f noise as
+large as the white noise, hum of 1.5 sigma, crosstalk of 2 % as the plate's response to
+the force, a 16-bit ADC clipping at 1.2 times the largest peak plus the drift and the
+steps), drift of 20-50 noise sigmas (10 when the record starts at its impact) and two
+offset steps of 3-30 noise sigmas, up or down, each at a random place of one of
+:data:`STEP_KINDS`.
+"""
+
+import numpy as np
+
+from dem_check.campaign.records import Effects, realistic_record
+
+__all__ = ["NOISE", "STEP_KINDS", "hard_mix"]
+
+NOISE = 0.03
+"""White noise of the records [N]: 1 % of the hard grain's 3 N peak at 2 m/s."""
+
+STEP_KINDS = ("anywhere", "start", "end", "before impact", "after impact")
+"""Where an offset step is drawn: anywhere, within 0.2 ms of the record's start or end, up
+to 0.3 ms before an impact, or up to 0.3 ms after one (in its ringing)."""
+
+
+def _step_time(rng, kind, onsets, length):
+    """A step's time [s] of one of :data:`STEP_KINDS`."""
+    if kind == "start" or (kind.endswith("impact") and not onsets.size):
+        return rng.uniform(0.0, 0.2e-3)
+    if kind == "end":
+        return length - rng.uniform(0.0, 0.2e-3)
+    if kind == "before impact":
+        return max(0.0, rng.choice(onsets) - rng.uniform(0.0, 0.3e-3))
+    if kind == "after impact":
+        return rng.choice(onsets) + rng.uniform(0.0, 0.3e-3)
+    return rng.uniform(0.0, length)
+
+
+def hard_mix(seed, grain, sensor, law):
+    """One record of the hard mix (module docstring) and its effects.
+
+    Parameters
+    ----------
+    seed : int
+        The record's number: it draws the record's parameters and its noise.
+    grain, sensor, law
+        As for :func:`~dem_check.campaign.realistic_record`; the benchmark's are the hard
+        test grain (``data/traces/model_hard.toml``, linear contact k2 = 4e4 N/m, c2 =
+        0.5 N*s/m: peak signal 1.5 N per m/s).
+
+    Returns
+    -------
+    (RealisticRecord, Effects)
+    """
+    rng = np.random.default_rng(seed)
+    rate = float(rng.choice([1e6, 2e6, 5e6]))
+    count = int(rng.integers(1, 5))
+    delay = rng.uniform(1.5e-3, 3e-3)
+    first = float(rng.choice([0.0, 2.0 / rate, 1e-3]))
+    gaps = rng.uniform(delay + 1.5e-3, 8e-3, count - 1)
+    onsets = first + np.concatenate([[0.0], np.cumsum(gaps)])
+    velocities = rng.uniform(0.2, 2.5, count)
+    length = float(onsets[-1] + 6e-3)
+    offsets = tuple(
+        (
+            _step_time(rng, str(rng.choice(STEP_KINDS)), onsets, length),
+            rng.choice((-1.0, 1.0)) * rng.uniform(3.0, 30.0) * NOISE,
+        )
+        for _ in range(2)
+    )
+    largest = 3.0 * velocities.max() / 2.0  # the hard grain's peak signal [N]
+    drift = rng.uniform(20.0, 50.0) * NOISE if first >= 1e-3 else 10.0 * NOISE
+    # the ADC clips the largest impact, not the drift and steps (a record held at a
+    # rail is not analysable)
+    rails = 1.2 * largest + drift + sum(abs(h) for _, h in offsets)
+    effects = Effects.everything(
+        NOISE,
+        largest,
+        drift=drift,
+        full_scale=rails,
+        steps=0,
+        offsets=offsets,
+        bounce_delay=delay,
+    )
+    sampling = {"length": length, "sample_rate": rate, "noise": NOISE}
+    record = realistic_record(
+        grain, sensor, law, velocities, onsets, **sampling, effects=effects, seed=seed
+    )
+    return record, effects
