@@ -116,7 +116,8 @@ def raise_peak(best, which, value, t):
 @njit(cache=True, error_model="numpy")
 def state(tau, lam, vec, coef, nm, base, slope, y0, out):
     if tau == 0.0:
-        out[:] = y0
+        for c in range(4):  # element copies: a slice copy checks overlap and may allocate
+            out[c] = y0[c]
         return
     for c in range(4):
         out[c] = base[c] + slope[c] * tau
@@ -331,7 +332,8 @@ def scan(piece, par, tau0, tau_max, step, event, direction, track, best, y, work
                     track[0] = False
             if hit >= 0.0:
                 return hit
-            prev[:] = cur
+            for c in range(5):  # as in state
+                prev[c] = cur[c]
             t_prev = tau
         start = last
     return -1.0
