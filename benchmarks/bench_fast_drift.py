@@ -27,7 +27,7 @@ from bench_steps import hard, judge
 
 import dem_check.campaign.noise as noise_module
 from dem_check.campaign import Effects, find_impacts, realistic_record
-from dem_check.campaign.hard_mix import NOISE
+from dem_check.campaign.drawn_records import NOISE
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "dem_check" / "campaign"))
 # the test's drift and hum alone (the generator's draws replayed)

@@ -57,6 +57,7 @@ from dem_check import read_trace, write_trace
 from dem_check.campaign import Effects, find_impacts, realistic_record, run_campaign
 from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.detection import ANALYSED
+from dem_check.campaign.drawn_records import accuracy_record
 from dem_check.campaign.local import record_noise
 from dem_check.campaign.structure import record_modes
 
@@ -146,22 +147,7 @@ def _records(rate, seeds, changes, law=None):
     grain, sensor, hard_law = hard()
     law = hard_law if law is None else law
     for seed in seeds:
-        rng = np.random.default_rng(seed)
-        onsets = 1e-3 + np.cumsum(rng.uniform(4e-3, 7e-3, 4)) - 4e-3
-        # clipping and offset steps off unless ``changes`` turn them on
-        effects = Effects.everything(NOISE, 3.0, **{"full_scale": None, "steps": 0, **changes})
-        yield realistic_record(
-            grain,
-            sensor,
-            law,
-            rng.uniform(0.5, 2.5, 4),
-            onsets,
-            length=onsets[-1] + 6e-3,
-            sample_rate=rate,
-            noise=NOISE,
-            effects=effects,
-            seed=seed,
-        )
+        yield accuracy_record(seed, grain, sensor, law, rate, NOISE, **changes)
 
 
 def _errors(row, true, rate, noise):

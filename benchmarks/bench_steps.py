@@ -30,7 +30,7 @@ import numpy as np
 import contactlab as cl
 from contactlab.config import load_config
 from dem_check.campaign import find_impacts
-from dem_check.campaign.hard_mix import hard_mix as draw_hard_mix
+from dem_check.campaign.drawn_records import hard_mix as draw_hard_mix
 from dem_check.campaign.records import ringing_at_onsets
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -44,7 +44,7 @@ def hard():
 
 
 def hard_mix(seed):
-    """One record of the hard mix (:func:`dem_check.campaign.hard_mix.hard_mix`) of the
+    """One record of the hard mix (:func:`dem_check.campaign.drawn_records.hard_mix`) of the
     hard grain, and its effects."""
     return draw_hard_mix(seed, *hard())
 

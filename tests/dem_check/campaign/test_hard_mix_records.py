@@ -1,5 +1,5 @@
 """Failing records of the hard mix of ``benchmarks/bench_steps.py`` (issue 22), rebuilt from
-their seeds (:func:`dem_check.campaign.hard_mix.hard_mix`), and the rules they broke
+their seeds (:func:`dem_check.campaign.drawn_records.hard_mix`), and the rules they broke
 tested alone.
 
 The hard mix: the hard grain at 1, 2 or 5 MHz, every effect of ``Effects.everything``
@@ -19,14 +19,14 @@ from dem_check.campaign import (
     synthetic_record,
 )
 from dem_check.campaign.growths import later_impacts
-from dem_check.campaign.hard_mix import NOISE, hard_mix
+from dem_check.campaign.drawn_records import NOISE, hard_mix
 
 MATCH = 60e-6
 """Largest distance of a row from the truth [s], as the hard mix counts them."""
 
 
 def _hard_mix_record(hard_setup, seed):
-    """The hard mix's record of ``seed`` (:func:`dem_check.campaign.hard_mix.hard_mix`)."""
+    """The hard mix's record of ``seed`` (:func:`dem_check.campaign.drawn_records.hard_mix`)."""
     return hard_mix(seed, *hard_setup)[0]
 
 

@@ -1,22 +1,23 @@
-"""The hard mix: realistic records with every effect on and two offset steps (issue 22).
+"""Realistic records drawn from a seed, as the benchmarks count them and the regression
+tests of their failing records rebuild them (issue 22): a record is named by its seed
+alone.
 
-One record per seed, drawn as ``benchmarks/bench_steps.py`` counts them (100 records) and
-as the regression tests of its failing records rebuild them
-(``tests/dem_check/campaign/test_hard_mix_records.py``): a failing record is named by its
-seed alone. The record: 1-4 impacts of 0.2-2.5 m/s at 1, 2 or 5 MHz, with bounces (1.5-3
-ms later), every effect of :meth:`~dem_check.campaign.Effects.everything` (1/f noise as
-large as the white noise, hum of 1.5 sigma, crosstalk of 2 % as the plate's response to
-the force, a 16-bit ADC clipping at 1.2 times the largest peak plus the drift and the
-steps), drift of 20-50 noise sigmas (10 when the record starts at its impact) and two
-offset steps of 3-30 noise sigmas, up or down, each at a random place of one of
-:data:`STEP_KINDS`.
+:func:`accuracy_record`: the records of ``benchmarks/bench_realistic.py --accuracy``.
+:func:`hard_mix`: the hard mix of ``benchmarks/bench_steps.py`` (100 records;
+``tests/dem_check/campaign/test_hard_mix_records.py``). The hard mix's record: 1-4
+impacts of 0.2-2.5 m/s at 1, 2 or 5 MHz, with bounces (1.5-3 ms later), every effect of
+:meth:`~dem_check.campaign.Effects.everything` (1/f noise as large as the white noise,
+hum of 1.5 sigma, crosstalk of 2 % as the plate's response to the force, a 16-bit ADC
+clipping at 1.2 times the largest peak plus the drift and the steps), drift of 20-50
+noise sigmas (10 when the record starts at its impact) and two offset steps of 3-30 noise
+sigmas, up or down, each at a random place of one of :data:`STEP_KINDS`.
 """
 
 import numpy as np
 
 from dem_check.campaign.records import Effects, realistic_record
 
-__all__ = ["NOISE", "STEP_KINDS", "hard_mix"]
+__all__ = ["NOISE", "STEP_KINDS", "accuracy_record", "hard_mix"]
 
 NOISE = 0.03
 """White noise of the records [N]: 1 % of the hard grain's 3 N peak at 2 m/s."""
@@ -90,3 +91,42 @@ def hard_mix(seed, grain, sensor, law):
         grain, sensor, law, velocities, onsets, **sampling, effects=effects, seed=seed
     )
     return record, effects
+
+
+def accuracy_record(seed, grain, sensor, law, sample_rate, noise=NOISE, **changes):
+    """One record of the accuracy benchmark (``benchmarks/bench_realistic.py``).
+
+    Four impacts of 0.5-2.5 m/s, 4-7 ms apart, the first at 1 ms, with every effect of
+    :meth:`~dem_check.campaign.Effects.everything` for a 3 N peak; clipping and offset
+    steps off unless ``changes`` (keywords of ``Effects.everything``) turn them on.
+
+    Parameters
+    ----------
+    seed : int
+        Draws the velocities and onsets and the record's noise.
+    grain, sensor, law
+        As for :func:`~dem_check.campaign.realistic_record`.
+    sample_rate : float
+        [Hz].
+    noise : float, default :data:`NOISE`
+        White noise [N].
+
+    Returns
+    -------
+    RealisticRecord
+    """
+    rng = np.random.default_rng(seed)
+    onsets = 1e-3 + np.cumsum(rng.uniform(4e-3, 7e-3, 4)) - 4e-3
+    effects = Effects.everything(noise, 3.0, **{"full_scale": None, "steps": 0, **changes})
+    return realistic_record(
+        grain,
+        sensor,
+        law,
+        rng.uniform(0.5, 2.5, 4),
+        onsets,
+        length=onsets[-1] + 6e-3,
+        sample_rate=sample_rate,
+        noise=noise,
+        effects=effects,
+        seed=seed,
+    )
