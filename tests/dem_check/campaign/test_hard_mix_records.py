@@ -18,8 +18,8 @@ from dem_check.campaign import (
     run_campaign,
     synthetic_record,
 )
-from dem_check.campaign.growths import later_impacts
 from dem_check.campaign.drawn_records import NOISE, hard_mix
+from dem_check.campaign.growths import later_impacts
 
 MATCH = 60e-6
 """Largest distance of a row from the truth [s], as the hard mix counts them."""
