@@ -142,8 +142,10 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new, mode
     n = y.size
     min_step = 10.0 * abs(np.nextafter(t, math.inf) - t)
     h = max(h_try, min_step)
-    rejected, t_new, h_next = False, t, math.nan
-    while h >= min_step:
+    rejected = False
+    while True:
+        if h < min_step:
+            return False, t, h, 0.0
         t_new = min(t + h, t_bound)
         h = t_new - t
         for c in range(n):  # not K[0, :] = f: a slice copy checks overlap and allocates
@@ -169,12 +171,9 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new, mode
             else:
                 factor = min(_MAX_FACTOR, _SAFETY * error**_EXPONENT)
             h_next = h * (min(1.0, factor) if rejected else factor)
-            break
+            return True, t_new, h_next, h
         h *= max(_MIN_FACTOR, _SAFETY * error**_EXPONENT)
         rejected = True
-    if math.isnan(h_next):
-        return False, t, h, 0.0
-    return True, t_new, h_next, h
 
 
 @njit(cache=True, error_model="numpy")
