@@ -25,6 +25,17 @@ MATCH = 60e-6
 """Largest distance of a row from the truth [s], as the hard mix counts them."""
 
 
+def _found_all(record, sensor):
+    """:func:`find_impacts` on ``record``, checked against its truth: every row within
+    :data:`MATCH` of a true onset (nothing invented) and every true onset found."""
+    found = find_impacts(record.trace, sensor)
+    truth = record.truth["onset [s]"].to_numpy()
+    onsets = np.array([w.onset for w in found.impacts])
+    assert all(np.abs(truth - at).min() <= MATCH for at in onsets)  # nothing invented
+    assert all(np.abs(onsets - at).min() <= MATCH for at in truth)  # nothing missed
+    return found
+
+
 def _hard_mix_record(hard_setup, seed):
     """The hard mix's record of ``seed`` (:func:`dem_check.campaign.drawn_records.hard_mix`)."""
     return hard_mix(seed, *hard_setup)[0]
@@ -40,12 +51,7 @@ SEED_60 = 60
 @pytest.mark.parametrize("case", [SEED_60], ids=["seed 60"])
 def test_a_level_moved_in_an_impacts_ringing_invents_no_overlap(hard_setup, case):
     record = _hard_mix_record(hard_setup, case)
-    found = find_impacts(record.trace, hard_setup[1])
-    truth = record.truth["onset [s]"].to_numpy()
-    onsets = np.array([w.onset for w in found.impacts])
-    # nothing invented, every impact found (each is at least 10 noise sigmas here)
-    assert all(np.abs(truth - at).min() <= MATCH for at in onsets)
-    assert all(np.abs(onsets - at).min() <= MATCH for at in truth)
+    found = _found_all(record, hard_setup[1])  # each impact at least 10 noise sigmas here
     assert "overlap" not in {w.status for w in found.impacts}
 
 
@@ -74,11 +80,7 @@ SEED_48 = 48
 @pytest.mark.parametrize("case", [SEED_1, SEED_48], ids=["seed 1", "seed 48"])
 def test_two_steps_are_two_steps(hard_setup, case):
     record, effects = hard_mix(case, *hard_setup)
-    found = find_impacts(record.trace, hard_setup[1])
-    truth = record.truth["onset [s]"].to_numpy()
-    onsets = np.array([w.onset for w in found.impacts])
-    assert all(np.abs(truth - at).min() <= MATCH for at in onsets)  # nothing invented
-    assert all(np.abs(onsets - at).min() <= MATCH for at in truth)  # nothing missed
+    found = _found_all(record, hard_setup[1])
     times, heights = np.array(effects.offsets).T
     assert len(found.steps) == 2
     for step, at in zip(found.steps, np.sort(record.step_times), strict=True):
@@ -90,11 +92,7 @@ def test_two_steps_are_two_steps(hard_setup, case):
 
 def test_a_box_of_steps_over_an_impact_at_the_first_sample(hard_setup):
     record, effects = hard_mix(SEED_15, *hard_setup)
-    found = find_impacts(record.trace, hard_setup[1])
-    truth = record.truth["onset [s]"].to_numpy()
-    onsets = np.array([w.onset for w in found.impacts])
-    assert all(np.abs(truth - at).min() <= MATCH for at in onsets)  # nothing invented
-    assert all(np.abs(onsets - at).min() <= MATCH for at in truth)  # nothing missed
+    found = _found_all(record, hard_setup[1])
     assert found.impacts[0].status == "short pre-trigger"
     assert len(found.steps) == 2
     for step, (at, height) in zip(found.steps, sorted(effects.offsets), strict=True):
