@@ -7,7 +7,11 @@ kHz disc sensor, contact 100 us; white noise 0.03 N, 12-bit ADC) at 1, 2 and 5 M
   sigmas) or 1-2 m/s, 1/f noise of 1-2 sigma; or no impact there and an offset step of
   8-15 sigma, up or down, 0.02-0.15 ms after the start (an impact 1 ms in);
 - **end**: an offset step of 5-10 sigma, up or down, 3-24 us before the last sample
-  (an impact 1 ms in), 1/f noise of 1-2 sigma.
+  (an impact 1 ms in), 1/f noise of 1-2 sigma;
+- **box** (only with ``--families box``): two offset steps of 10-30 sigma, up or down,
+  0.03-0.22 ms after the start, over an impact of 0.3-1 m/s at the first sample, 1/f
+  noise of one sigma, 3 ms at 1, 2 or 5 MHz (drawn with the seed; ``--records`` of them
+  per rate): the boxes of :mod:`dem_check.campaign.edge_boxes`.
 
 Counted as ``tests/dem_check/campaign/test_realistic_detection.py`` asserts: a record
 fails when an impact row lies more than 60 us from every true onset, a true impact has
@@ -15,8 +19,8 @@ no row within 60 us, or a step row lies more than 60 us from every true step; an
 many true steps got a row. Prints the failing records and the CPU time of
 ``find_impacts``.
 
-Run: ``.venv/bin/python benchmarks/bench_edges.py [--records 20]`` (records per family
-and rate).
+Run: ``.venv/bin/python benchmarks/bench_edges.py [--records 20] [--families start end
+box]`` (records per family and rate; default: start and end).
 """
 
 import argparse
@@ -43,6 +47,8 @@ def hard():
 def edge_record(family, rate, seed):
     """One record of ``family`` ("start" or "end", module docstring)."""
     rng = np.random.default_rng(seed)
+    if family == "box":
+        return box_record(rate, rng, seed)
     pink = rng.uniform(1.0, 2.0) * NOISE
     sign = rng.choice((-1.0, 1.0))
     offsets, velocities, onsets = (), [1.0], [1e-3]
@@ -57,6 +63,16 @@ def edge_record(family, rate, seed):
     effects = Effects(pink=pink, full_scale=3.75, bits=12, offsets=offsets)
     sampling = {"length": LENGTH, "sample_rate": rate, "noise": NOISE, "seed": seed}
     return realistic_record(*hard(), velocities, np.array(onsets), **sampling, effects=effects)
+
+
+def box_record(rate, rng, seed):
+    """A box of two steps over an impact at the first sample (module docstring)."""
+    velocity = rng.uniform(0.3, 1.0)
+    times = np.sort(rng.uniform(0.03e-3, 0.22e-3, 2))
+    heights = rng.choice((-1.0, 1.0), 2) * rng.uniform(10.0, 30.0, 2) * NOISE
+    effects = Effects(pink=NOISE, offsets=tuple(zip(times, heights, strict=True)))
+    sampling = {"length": 3e-3, "sample_rate": rate, "noise": NOISE, "seed": seed}
+    return realistic_record(*hard(), [velocity], np.array([0.0]), **sampling, effects=effects)
 
 
 def judge(record, found):
@@ -79,9 +95,12 @@ def judge(record, found):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--records", type=int, default=20)
+    parser.add_argument(
+        "--families", nargs="+", default=["start", "end"], choices=["start", "end", "box"]
+    )
     args = parser.parse_args()
     _, sensor, _ = hard()
-    for family in ("start", "end"):
+    for family in args.families:
         failing, cpu, steps, rows = 0, 0.0, 0, 0
         for rate in (1e6, 2e6, 5e6):
             for seed in range(args.records):

@@ -28,6 +28,7 @@ the first sample with every effect of the hard mix; module ``benchmarks/bench_ed
 and ``docs/campaign.md``, "A box of steps over an impact at the first sample").
 """
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -97,6 +98,15 @@ def _steps(n, places):
     return (np.arange(n)[:, None] >= np.asarray(places, dtype=int)[None, :]).astype(float)
 
 
+def _white_steps(projector, n, places):
+    """:func:`_steps` whitened by ``projector``'s filter: one whitened step, shifted to
+    each place (as :meth:`dem_check.campaign.edge_models._Lobes.white_columns`)."""
+    places = np.asarray(places, dtype=int)
+    last = int(places.max())
+    white = projector.whiten((np.arange(-last, n - int(places.min())) >= 0).astype(float))
+    return white[np.arange(n - projector.order)[:, None] + (last - places)[None, :]]
+
+
 def _place_steps(y, period, noise, fixed, count):
     """The least-squares places of ``count`` (1 or 2) steps on the window, the line and
     the ``fixed`` columns (or none) fitted with them: chi-squared and the places. Every
@@ -104,18 +114,16 @@ def _place_steps(y, period, noise, fixed, count):
     once from the whitened step columns' inner products; each place of a pair is then
     refined at every sample within a grid step, the other held."""
     n = y.size
+    if count == 1:
+        return _place_among(y, period, noise, fixed, np.arange(1, n))
     grid = max(1, round(period / 16))
-    places = np.arange(1, n, grid if count == 2 else 1)
+    places = np.arange(1, n, grid)
     projector = _Projector(y, period, noise, fixed)
-    u = projector.whiten(_steps(n, places))
+    u = _white_steps(projector, n, places)
     u -= projector.basis @ (projector.basis.T @ u)
     b, gram = u.T @ projector.y_off, u.T @ u
     g = np.diag(gram).copy()
     total = float(projector.y_off @ projector.y_off)
-    if count == 1:
-        explained = np.where(g > 0.0, b * b / np.where(g > 0.0, g, 1.0), -np.inf)
-        k = int(np.argmax(explained))
-        return (total - explained[k]) / projector.scale**2, [int(places[k])]
     det = np.outer(g, g) - gram * gram
     num = np.outer(b * b, g) - 2.0 * np.outer(b, b) * gram + np.outer(g, b * b)
     upper = np.triu(det > 1e-12 * np.outer(g, g), 1)
@@ -137,24 +145,31 @@ def _place_steps(y, period, noise, fixed, count):
 def _place_among(y, period, noise, fixed, places):
     """Chi-squared and the best of ``places`` for one step, the line and ``fixed``
     fitted with it."""
-    chi2 = _Projector(y, period, noise, fixed).fit(_steps(y.size, places))[0]
+    projector = _Projector(y, period, noise, fixed)
+    chi2 = projector.fit_white(_white_steps(projector, y.size, places))[0]
     k = int(np.nanargmin(chi2))
     return float(chi2[k]), [int(places[k])]
 
 
-def _alternate(y, period, noise, lobes, grid, count, lobe):
+def _alternate(y, period, noise, lobes, grid, count, lobe, memo):
     """Steps placed given the lobe and the lobe fitted given the steps, in turn
     (:data:`ROUNDS` times), from ``lobe`` (None: the steps on the line alone first):
-    chi-squared, the places and the lobe."""
+    chi-squared, the places and the lobe. ``memo`` holds the window's fits already made
+    (the same places, or the same lobe, give the same fit: the two starts often meet)."""
     chosen = None
     for _ in range(ROUNDS):
-        fixed = None if lobe is None else _column(lobes, lobe)[:, None]
-        placed = sorted(_place_steps(y, period, noise, fixed, count)[1])
-        if placed == chosen:
+        key = ("places", count, lobe)
+        if key not in memo:
+            fixed = None if lobe is None else _column(lobes, lobe)[:, None]
+            memo[key] = sorted(_place_steps(y, period, noise, fixed, count)[1])
+        if memo[key] == chosen:
             break  # the lobe fitted given these places already
-        chosen = placed
-        projector = _Projector(y, period, noise, _steps(y.size, chosen))
-        chi2, lobe = _lobe_fit(projector, lobes, grid, positive=True)
+        chosen = memo[key]
+        key = ("lobe", *chosen)
+        if key not in memo:
+            projector = _Projector(y, period, noise, _steps(y.size, chosen))
+            memo[key] = _lobe_fit(projector, lobes, grid, positive=True)
+        chi2, lobe = memo[key]
     return chi2, chosen, lobe
 
 
@@ -165,9 +180,9 @@ def _chi2(y, period, noise, columns):
     return float(chi2[0]), float(amplitude[0])
 
 
-def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=2):
-    """The line, an impact's lobe and up to ``steps`` offset steps fitted to a window at
-    the record's start (module docstring).
+def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=(2, 1)):
+    """The line, an impact's lobe and up to two offset steps fitted to a window at the
+    record's start (module docstring).
 
     Parameters
     ----------
@@ -184,24 +199,44 @@ def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=2):
         ``(earliest, latest)`` onsets of the lobe [samples from the window's first].
     lobe_chi2 : float
         Chi-squared of the lobe alone on the window [-].
-    steps : int, default 2
-        Most steps fitted.
+    steps : tuple of int, default (2, 1)
+        Numbers of steps fitted in turn (each 1 or 2): the first fit adopted is
+        returned, else the last.
 
     Returns
     -------
     BoxFit
     """
-    first, dt = window[0], ring[1]
     y, period = window_samples(values, window, ring)
-    n = y.size
     earliest, latest = onsets
-    grid = dt * np.arange(earliest, latest + 1, max(1, round(period / 16)), dtype=float)
-    lobes = _Lobes(n, max(0, -earliest) + 2, ring)
+    grid = np.arange(earliest, latest + 1, max(1, round(period / 16)))
+    lobes = _Lobes(y.size, max(0, -earliest) + 2, ring)
     alone = _lobe_fit(_Projector(y, period, noise), lobes, grid, positive=True)[1]
-    # two starts: the lobe fitted alone, whose misfit can draw the steps to its own
-    # error, and the steps placed on the line alone, whose misfit is the lobe
-    fits = [_alternate(y, period, noise, lobes, grid, steps, start) for start in (alone, None)]
-    _, chosen, lobe = min(fits, key=lambda fit: fit[0])
+    memo = {}
+    for count in steps:
+        # two starts: the lobe fitted alone, whose misfit can draw the steps to its own
+        # error, and the steps placed on the line alone, whose misfit is the lobe
+        fits = [
+            _alternate(y, period, noise, lobes, grid, count, start, memo) for start in (alone, None)
+        ]
+        box = _judge(y, period, noise, lobes, min(fits, key=lambda fit: fit[0]))
+        if box.adopted:
+            break
+    family, damping, t0, tau, amplitude = box.lobe
+    return dataclasses.replace(
+        box,
+        indices=tuple(window[0] + p for p in box.indices),
+        lobe_chi2=lobe_chi2,
+        lobe=(family, damping, t0 + window[0] * ring[1], tau, amplitude),
+    )
+
+
+def _judge(y, period, noise, lobes, fit):
+    """The :class:`BoxFit` of a fit ``(chi2, places, lobe)`` on the window (indices
+    and ``t0`` from its first sample, ``lobe_chi2`` not set): each step's drop against
+    the model without it, the lobe's energy and whether the steps are adopted."""
+    _, chosen, lobe = fit
+    n = y.size
     lobe_column = _column(lobes, lobe)
     columns = np.column_stack([lobe_column, _steps(n, chosen)])
     chi2, drops, heights = math.nan, [], []
@@ -216,16 +251,15 @@ def box_fit(values, window, ring, noise, onsets, lobe_chi2, steps=2):
     energy = float((lobe[4] / error) ** 2)  # A**2 |W r|**2 / sigma**2, A with the steps
     passes = all(d > STEP_SIGMAS**2 + MODEL_ERROR * energy for d in drops)
     adopted = bool(chosen) and energy >= STEP_SIGMAS**2 and passes
-    family, damping, t0, tau, amplitude = lobe
     return BoxFit(
         adopted=adopted,
-        indices=tuple(first + p for p in chosen),
+        indices=tuple(chosen),
         heights=tuple(heights),
         drops=tuple(drops),
         chi2=chi2,
-        lobe_chi2=lobe_chi2,
+        lobe_chi2=math.nan,
         energy=energy,
-        lobe=(family, damping, t0 + first * dt, tau, amplitude),
+        lobe=lobe,
     )
 
 
@@ -241,8 +275,7 @@ def start_box(values, index, runs, reach, ring, lobe_chi2):
     after the record's start whose edge fit preferred the lobe (chi-squared
     ``lobe_chi2``); arguments as :func:`~dem_check.campaign.edge_models.start_fit`'s."""
     window, noise, onsets = start_window(values, index, runs, reach, ring)
-    box = box_fit(values, window, ring, noise, onsets, lobe_chi2)
-    return box if box.adopted else box_fit(values, window, ring, noise, onsets, lobe_chi2, 1)
+    return box_fit(values, window, ring, noise, onsets, lobe_chi2)
 
 
 def start_steps(values, index, runs, reach, ring, lobe_chi2):

@@ -167,8 +167,10 @@ class _Projector:
             line = np.column_stack([line, fixed])
         if isinstance(noise, float):
             self.whiten, scale = (lambda x: np.asarray(x, dtype=float)), noise
+            self.order = 0
         else:
             self.whiten, scale = noise.whiten, noise.innovation
+            self.order = noise.order
         if not scale > 0.0:
             raise ParameterError("the noise beside the record's edge is zero")
         self.scale = scale
@@ -179,7 +181,10 @@ class _Projector:
 
     def fit(self, columns):
         """Chi-squared [-], amplitude and its standard error of each column [N]."""
-        c_w = self.whiten(columns)
+        return self.fit_white(self.whiten(columns))
+
+    def fit_white(self, c_w):
+        """:meth:`fit` of columns already whitened (``order`` rows fewer than ``y``)."""
         c_off = c_w - self.basis @ (self.basis.T @ c_w)
         norm = np.einsum("ij,ij->j", c_off, c_off)
         norm = np.where(norm > 0.0, norm, np.nan)
@@ -208,6 +213,7 @@ class _Lobes:
         self.models = {
             spec: LobeModel(t, np.zeros(t.size), self.sensor, *spec) for spec in EDGE_FAMILIES
         }
+        self.signals = {}  # white_columns' signals, by family, duration and onsets
 
     def columns(self, spec, t0s, tau):
         """Unit-peak signals [-] on the window for onsets ``t0s`` [s from its first
@@ -216,24 +222,43 @@ class _Lobes:
         unit = model.unit(tau)
         return np.column_stack([model.response(t0, tau, unit)[self.lead :] for t0 in t0s])
 
+    def white_columns(self, spec, starts, tau, projector):
+        """:meth:`columns` for onsets at whole samples ``starts`` [samples from the
+        window's first], whitened by ``projector``'s filter. A sample's signal depends
+        only on its time since the onset and the filter is the same at every sample, so
+        each whitened column is one whitened signal shifted: it is computed once, on
+        every time since the onset the window sees (and kept for the next fits on the
+        window), and sampled."""
+        starts = np.asarray(starts, dtype=int)
+        key = (spec, tau, int(starts.min()), int(starts.max()))
+        if key not in self.signals:
+            s, r = self.models[spec].unit(tau)
+            lags = np.arange(-key[3], self.n - key[2])
+            self.signals[key] = np.interp(self.dt * lags, s, r, left=0.0)
+        white = projector.whiten(self.signals[key])
+        rows = np.arange(self.n - projector.order)
+        return white[rows[:, None] + (key[3] - starts)[None, :]]
 
-def _lobe_fit(projector, lobes, onsets, positive=False):
+
+def _lobe_fit(projector, lobes, starts, positive=False):
     """Best lobe: chi-squared and ``(family, damping, t0, tau, A)`` (``t0`` [s] from the
-    window's first sample), on the grid then refined; ``positive``: a compressive
-    force's only (``A > 0``)."""
+    window's first sample), on the grid of onsets ``starts`` [samples from the window's
+    first] then refined; ``positive``: a compressive force's only (``A > 0``)."""
     period = lobes.sensor.period
     best = (math.inf, None)
+    onsets = lobes.dt * np.asarray(starts, dtype=float)
 
-    def fit(columns):
-        chi2, amplitude, _ = projector.fit(columns)
+    def fit(chi2, amplitude):
         return np.where(amplitude > 0.0, chi2, math.inf) if positive else chi2
 
     for spec in EDGE_FAMILIES:
         for tau in period * np.asarray(DURATIONS):
-            t0s = onsets[onsets > -tau]
+            kept = onsets > -tau
+            t0s = onsets[kept]
             if not t0s.size:
                 continue
-            chi2 = fit(lobes.columns(spec, t0s, tau))
+            white = lobes.white_columns(spec, np.asarray(starts)[kept], tau, projector)
+            chi2 = fit(*projector.fit_white(white)[:2])
             k = int(np.nanargmin(chi2)) if np.isfinite(chi2).any() else None
             if k is not None and chi2[k] < best[0]:
                 best = (float(chi2[k]), (spec, float(t0s[k]), float(tau)))
@@ -246,7 +271,7 @@ def _lobe_fit(projector, lobes, onsets, positive=False):
         t0, tau = x[0], x[1]
         if not (tau > 0.0 and low <= t0 <= high and t0 + tau > 0.0):
             return math.inf
-        return float(fit(lobes.columns(spec, [t0], tau))[0])
+        return float(fit(*projector.fit(lobes.columns(spec, [t0], tau))[:2])[0])
 
     simplex = np.array([[t0, tau], [t0 + lobes.dt, tau], [t0, 1.1 * tau]])
     solved = optimize.minimize(
@@ -305,9 +330,8 @@ def judge_edge(values, window, split, ring, noise, onsets):
     step_chi2, place, height, error = _step_fit(projector, y.size, places)
     step = max(1, round(SCAN_PERIODS * period))
     earliest, latest = onsets
-    grid = dt * np.arange(earliest, latest + 1, step, dtype=float)
     lobes = _Lobes(y.size, max(0, -earliest) + 2, ring)
-    lobe_chi2, lobe = _lobe_fit(projector, lobes, grid)
+    lobe_chi2, lobe = _lobe_fit(projector, lobes, np.arange(earliest, latest + 1, step))
     if lobe is not None:
         lobe = (*lobe[:2], lobe[2] + first * dt, *lobe[3:])
     else:
