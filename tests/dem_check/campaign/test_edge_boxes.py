@@ -14,7 +14,8 @@ import pytest
 
 from contactlab.inverse.noise_colour import ARNoise
 from dem_check.campaign import Effects, find_impacts, realistic_record
-from dem_check.campaign.edge_boxes import _place_steps
+from dem_check.campaign.edge_boxes import _place_steps, _steps, _white_steps
+from dem_check.campaign.edge_models import _Projector
 
 NOISE = 0.03
 """White noise of the records [N] (as the hard mix's)."""
@@ -54,6 +55,17 @@ def test_the_step_places_are_least_squares(count):
     expected, truth = _brute_force(y, noise, fixed, count)
     assert places == truth
     assert chi2 == pytest.approx(expected, rel=1e-8)  # exact linear algebra: rounding
+
+
+def test_the_whitened_steps_are_one_whitened_step_shifted():
+    # the whitened unit step at every place (and at a few), one whitened step sampled,
+    # against each column whitened on its own: the same operations on the same values
+    noise = ARNoise(np.array([0.9, -0.2, 0.05]), 0.05, 1000)
+    projector = _Projector(np.random.default_rng(1).normal(0.0, 0.05, 200), 25, noise)
+    for places in (np.arange(1, 200), np.arange(5, 180, 7), np.array([50])):
+        assert np.array_equal(
+            _white_steps(projector, 200, places), noise.whiten(_steps(200, places))
+        )
 
 
 def _record(hard_setup, velocity, offsets, effects, rate, seed):

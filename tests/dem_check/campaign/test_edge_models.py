@@ -14,7 +14,7 @@ import pytest
 
 from contactlab.inverse.noise_colour import ARNoise
 from dem_check.campaign import Effects, find_impacts, realistic_record
-from dem_check.campaign.edge_models import _Projector, judge_edge
+from dem_check.campaign.edge_models import EDGE_FAMILIES, _Lobes, _Projector, judge_edge
 
 NOISE = 0.03
 """White noise of the records [N] (as the sweep's)."""
@@ -129,6 +129,25 @@ def test_the_projection_is_generalised_least_squares():
     assert chi2[0] == pytest.approx(rss[0] / noise.innovation**2, rel=1e-9)
     assert amplitude[0] == pytest.approx(beta[2], rel=1e-9)
     assert error[0] == pytest.approx(np.sqrt(covariance[2, 2]), rel=1e-9)
+
+
+@pytest.mark.parametrize("rate", [1e6, 5e6])
+def test_the_grid_columns_are_one_whitened_signal_shifted(hard_setup, rate):
+    # the lobe grid's whitened columns, one whitened signal sampled at each onset,
+    # against each onset's signal interpolated on its own and whitened (AR(3) noise;
+    # onsets from before the lead to after the window's first sample)
+    n, lead, period = 300, 200, round(hard_setup[1].period * rate)
+    lobes = _Lobes(n, lead, (hard_setup[1], 1.0 / rate))
+    y = np.random.default_rng(1).normal(0.0, 0.03, n)
+    projector = _Projector(y, period, ARNoise(np.array([0.9, -0.2, 0.05]), 0.03, 1000))
+    starts = np.arange(-198, 13, 3)
+    for spec in EDGE_FAMILIES:
+        tau = 1.4 * hard_setup[1].period
+        one_by_one = projector.whiten(lobes.columns(spec, starts / rate, tau))
+        shifted = lobes.white_columns(spec, starts, tau, projector)
+        # the same signal at times dt * (i - k) instead of dt * i - dt * k: rounding
+        # (measured 1.2e-14 of the largest value)
+        assert shifted == pytest.approx(one_by_one, abs=1e-12 * np.abs(one_by_one).max())
 
 
 @pytest.mark.parametrize("rate", RATES)
