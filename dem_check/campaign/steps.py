@@ -51,7 +51,12 @@ from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
 from dem_check.campaign.edge_boxes import start_steps
 from dem_check.campaign.edge_models import end_fit, start_fit
-from dem_check.campaign.step_ringing import difference_sigma, place_across, second_across
+from dem_check.campaign.step_ringing import (
+    difference_sigma,
+    height_across,
+    place_across,
+    second_across,
+)
 
 __all__ = [
     "STEP_SIGMAS",
@@ -279,6 +284,8 @@ def _one_pass(values, period, masked, ring):
             first, stop = window
             x = values[first:stop] - change[1] * (np.arange(first, stop) - firsts[k + 1])
             args = (x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring)
+            height = height_across(*args)  # read on the samples, the ringing fitted
+            args = (x, change[0], height, period, FAR_SIGMAS * noise[0], ring)
             placed = place_across(*args)
             if placed is not None:
                 index = first + placed[0]
@@ -289,8 +296,9 @@ def _one_pass(values, period, masked, ring):
                 for at, h, sigma in zip((index, first + other[0]), other[1], sigmas, strict=True):
                     found.append(OffsetStep(at, h, sigma, window))
                 continue
-        height, sigmas = float(changes["height"][k]), float(significance[k])
-        found.append(OffsetStep(index, height, sigmas, window, lobe))
+        else:
+            height = float(changes["height"][k])
+        found.append(OffsetStep(index, height, float(significance[k]), window, lobe))
     return found
 
 
