@@ -25,9 +25,9 @@ and the ringing, larger than the step, counts for both levels at random. So:
    hum and 1/f noise bend (seed 3 of a 0.614 N step 19 us before an onset read 0.449 N:
    its new level then lay outside the band between the two levels and the step was taken
    for the lobe's rise). The height is read again on the samples of the window, by the
-   fit of the level, the free ringing from the lobe's end and a step at that end, and the
-   lobe found again with it, until it stays (:func:`height_across`); that height places
-   the step and is the step's.
+   fit of the level, the free ringing and the step at its best place, and the lobe found
+   again with it, until it stays (:func:`height_across`); that height places the step
+   and is the step's.
 4. **Inside the lobe.** A step at the lobe's end, the first sample after it, stands for
    a step anywhere inside the lobe. When it fits not worse than the best place by more
    than :data:`SEPARABLE_SIGMAS` (of the residual's noise), the step cannot be told from
@@ -170,8 +170,9 @@ before [-] (:func:`height_across`; on the near-step cases it stays after two).""
 def height_across(x, level, height, period, far_noise, ring):
     """The height [N] of a step found across an impact, read on the window's samples
     (module step 3): the least-squares fit of the level, the sensor's free ringing from
-    the main lobe's end and a step at that end, on the samples outside the lobe, the lobe
-    found again with the height fitted, until it stays (at most :data:`HEIGHT_PASSES`).
+    the main lobe's end and a step at its best place (a sample outside the lobe, or the
+    first after it for one inside), on the samples outside the lobe, the lobe found again
+    with the height fitted, until it stays (at most :data:`HEIGHT_PASSES`).
 
     Parameters
     ----------
@@ -191,11 +192,15 @@ def height_across(x, level, height, period, far_noise, ring):
             break
         start, stop = lobe
         kept = _kept(x, lobe)
-        at_end = int(np.searchsorted(kept, stop))
-        if start == 0 or at_end >= kept.size:
+        if start == 0 or stop >= x.size:
             break
         peak = start + int(np.argmax(np.abs(x[start:stop] - level)))
-        fitted = float(_fit(x, kept, stop, peak, ring, fixed=(at_end,))["coefficients"][-1])
+        fit = _fit(x, kept, stop, peak, ring)
+        valid = fit["valid"] & (np.sign(fit["r_u"]) == np.sign(height))
+        if not valid.any():
+            return height
+        j = int(np.argmax(np.where(valid, fit["gain"], 0.0)))  # the step's best place
+        fitted = float(_fit(x, kept, stop, peak, ring, fixed=(j,))["coefficients"][-1])
         if np.sign(fitted) != np.sign(height):
             return height
         again = _lobe(x, level, fitted, period, far_noise)
