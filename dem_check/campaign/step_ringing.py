@@ -46,6 +46,7 @@ __all__ = [
     "difference_sigma",
     "height_across",
     "place_across",
+    "read_across",
     "rise",
     "second_across",
 ]
@@ -258,6 +259,34 @@ def place_across(x, level, height, period, far_noise, ring):
         if j == at_end or gain[j] - gain[at_end] <= SEPARABLE_SIGMAS**2 * variance:
             return (start + stop) // 2, lobe
     return int(kept[j]), None
+
+
+def read_across(x, level, height, period, far_noise, ring):
+    """A step found across an impact read on the window's samples: its height
+    (:func:`height_across`), its place (:func:`place_across`) with that height and, when
+    placed outside the lobe, a second step on the lobe's other side
+    (:func:`second_across`).
+
+    Parameters
+    ----------
+    x, level, height, period, far_noise, ring
+        As for :func:`place_across`; ``height`` is the period means' reading [N].
+
+    Returns
+    -------
+    height : float
+        The height read again [N].
+    placed : tuple or None
+        :func:`place_across`'s result.
+    other : tuple or None
+        :func:`second_across`'s result (None when the step is not placed, or flagged
+        inside the lobe).
+    """
+    height = height_across(x, level, height, period, far_noise, ring)
+    placed = place_across(x, level, height, period, far_noise, ring)
+    if placed is None or placed[1] is not None:
+        return height, placed, None
+    return height, placed, second_across(x, level, height, period, far_noise, ring, placed[0])
 
 
 def second_across(x, level, height, period, far_noise, ring, index):
