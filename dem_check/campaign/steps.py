@@ -51,7 +51,7 @@ from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
 from dem_check.campaign.edge_boxes import start_steps
 from dem_check.campaign.edge_models import end_fit, start_fit
-from dem_check.campaign.step_ringing import difference_sigma, place_across, second_across
+from dem_check.campaign.step_ringing import difference_sigma, read_across
 
 __all__ = [
     "STEP_SIGMAS",
@@ -274,23 +274,23 @@ def _one_pass(values, period, masked, ring):
         window = (int(firsts[lo]), int(stops[hi]))
         change = (changes["level"][k], changes["slope"][k], changes["height"][k])
         index = _place(values, period, window, int(firsts[k + 1]), change, noise)
-        lobe = None
+        lobe, height = None, float(changes["height"][k])
         if ring is not None and masked[window[0] : window[1]].any():  # across an impact
             first, stop = window
             x = values[first:stop] - change[1] * (np.arange(first, stop) - firsts[k + 1])
-            args = (x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring)
-            placed = place_across(*args)
+            # the height read again on the samples, the ringing fitted
+            height, placed, other = read_across(
+                x, change[0], change[2], period, FAR_SIGMAS * noise[0], ring
+            )
             if placed is not None:
                 index = first + placed[0]
                 lobe = None if placed[1] is None else tuple(first + i for i in placed[1])
-            other = second_across(*args, index - first) if placed and not lobe else None
             sigmas = _both(other, period, noise)
             if sigmas:  # a step before the impact and one in its ringing
                 for at, h, sigma in zip((index, first + other[0]), other[1], sigmas, strict=True):
                     found.append(OffsetStep(at, h, sigma, window))
                 continue
-        height, sigmas = float(changes["height"][k]), float(significance[k])
-        found.append(OffsetStep(index, height, sigmas, window, lobe))
+        found.append(OffsetStep(index, height, float(significance[k]), window, lobe))
     return found
 
 
@@ -325,7 +325,7 @@ def find_steps(values, period, masked, ring=None):
     ring : tuple, optional
         ``(sensor, dt)``: the sensor and the sampling interval [s]; a step found across
         an impact is then placed with the sensor's free ringing fitted
-        (:func:`dem_check.campaign.step_ringing.place_across`).
+        (:func:`dem_check.campaign.step_ringing.read_across`).
 
     Returns
     -------
