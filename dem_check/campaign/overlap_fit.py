@@ -36,8 +36,9 @@ residual's chi-squared is compared with its expectation: ``n - 7`` degrees of fr
 (``n`` samples; five coefficients, the onset and the duration), standard deviation
 ``sqrt(2 (n - 7))``. A fit more than :data:`REJECT_SIGMAS` of them above is rejected,
 and every family and damping of :data:`contactlab.inverse.lobe_onset.DAMPINGS` is
-fitted instead; the one of least chi-squared is kept if it passes, and the result says
-that none did otherwise.
+fitted instead, the best one's damping refined between its grid neighbours (bounded
+Brent, as :func:`contactlab.inverse.lobe_onset.lobe_family`); the fit of least
+chi-squared is kept if it passes, and the result says that none did otherwise.
 """
 
 import math
@@ -48,7 +49,12 @@ from scipy import linalg, optimize
 
 from contactlab.errors import ParameterError
 from contactlab.inverse.lobe_model import FAMILIES, LobeModel
-from contactlab.inverse.lobe_onset import DAMPINGS, SCAN_DURATIONS, SCAN_PERIODS
+from contactlab.inverse.lobe_onset import (
+    DAMPING_TOLERANCE,
+    DAMPINGS,
+    SCAN_DURATIONS,
+    SCAN_PERIODS,
+)
 from contactlab.inverse.local_baseline import RESOLVED_PERIOD_SAMPLES, free_ringing
 
 __all__ = [
@@ -79,9 +85,14 @@ family -1.4 to +0.4 on ``bench_overlaps.py --pairs`` (18 pairs 0.2-0.5 ms apart,
 noise's white and 1/f levels estimated on the record) and -1.2 to +0.4 on 16 records of
 closed-form pulses (``tests/dem_check/campaign/test_overlap_fit.py``, noise known); with
 the other family (Hertz for a half-sine, linear for a Hertz pulse) +24 to +265 on the
-latter. Six is four times the largest with the right family: a rejection costs 17 fits
-and may fall back to an unreliable reading, so a few sigmas of noise-level error must
-not trigger it."""
+latter. Six is four times the largest with the right family: a rejection costs 18 fits
+and a damping search and may fall back to an unreliable reading, so a few sigmas of
+noise-level error must not trigger it."""
+
+
+UNFITTED = 1e300
+"""The chi-squared given a family whose force could not be fitted [-] (finite: the
+bounded Brent search of the damping takes differences)."""
 
 
 @dataclass(frozen=True)
@@ -305,12 +316,25 @@ def checked_joint_ringing(t, y, guess, sensor, family, noise):
     first = joint_ringing(t, y, guess, sensor, family, noise)
     if noise is None or first.excess <= REJECT_SIGMAS:
         return CheckedJoint(joint=first, accepted=True)
-    fits = [first]
-    for other in ((name, z) for name in FAMILIES for z in DAMPINGS):
-        if other != first.family:
+    fits = {first.family: first}
+
+    def chi(name, damping):
+        key = (name, round(float(damping), 12))
+        if key not in fits:
             try:
-                fits.append(joint_ringing(t, y, guess, sensor, other, noise))
+                fits[key] = joint_ringing(t, y, guess, sensor, key, noise)
             except ParameterError:  # no force of this shape fitted: not a candidate
-                continue
-    best = min(fits, key=lambda fit: fit.chi_squared)
+                fits[key] = None
+        return UNFITTED if fits[key] is None else fits[key].chi_squared
+
+    name, damping = min(((f, z) for f in FAMILIES for z in DAMPINGS), key=lambda p: chi(*p))
+    k = DAMPINGS.index(damping)  # refined between the grid's neighbours, as lobe_family
+    low, high = DAMPINGS[max(k - 1, 0)], DAMPINGS[min(k + 1, len(DAMPINGS) - 1)]
+    optimize.minimize_scalar(
+        lambda z: chi(name, z),
+        bounds=(low, high),
+        method="bounded",
+        options={"xatol": DAMPING_TOLERANCE},
+    )
+    best = min((fit for fit in fits.values() if fit is not None), key=lambda f: f.chi_squared)
     return CheckedJoint(joint=best, accepted=best.excess <= REJECT_SIGMAS, rejected=first)

@@ -195,3 +195,19 @@ def test_a_misread_family_is_caught_by_the_joint_fit(hard_setup, gap):
     true = record.truth.iloc[1]
     for column, target in TARGETS.items():
         assert row[column] == pytest.approx(true[column], rel=target), column
+
+
+def test_a_merged_pair_read_as_a_short_contact_is_flagged(hard_setup):
+    """Two equal impacts 110 us apart (seed 1): the reconstruction reads the merged lobe
+    as a 6-sample spike, which passed for a record too coarse to reconstruct and printed
+    the segment's impulse (both contacts, +74 %) as an ``ok`` impact's. A first lobe
+    longer than the reconstructed contact and a sensor period is not a short contact:
+    the row is an ``overlap`` without numbers, its reason saying why."""
+    grain, sensor, _ = hard_setup
+    record = _pair(hard_setup, 110e-6, 1.0, seed=1)
+    found = find_impacts(record.trace, sensor)
+    assert len(found.impacts) == 1
+    row = analyse_impact(found, found.impacts[0], sensor, grain)[0]
+    assert row["status"] == "overlap"
+    assert "one contact does not explain it" in row["reason"]
+    assert "impulse [N*s]" not in row
