@@ -15,13 +15,14 @@ import re
 
 import numpy as np
 import pytest
+from scipy import signal
 
 from contactlab.inverse.local_baseline import local_baseline
 from dem_check.campaign import Effects, find_impacts, realistic_record
 from dem_check.campaign.analysis import ONSET_MARGIN, analyse_impact
 from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.local import record_noise
-from dem_check.campaign.overlaps import HELD_OUT, SUBTRACTED, separate_overlaps
+from dem_check.campaign.overlaps import HELD_OUT, SUBTRACTED, UNRELIABLE, separate_overlaps
 from dem_check.campaign.structure import record_modes
 
 NOISE = 0.03
@@ -211,3 +212,39 @@ def test_a_merged_pair_read_as_a_short_contact_is_flagged(hard_setup):
     assert row["status"] == "overlap"
     assert "one contact does not explain it" in row["reason"]
     assert "impulse [N*s]" not in row
+
+
+def test_a_second_force_no_family_has_is_flagged_unreliable(hard_setup):
+    """One impact of the record model and, 0.2 ms later, a rectangular force of 1.2 N for
+    100 us pushed through the sensor by :func:`scipy.signal.lsim` (no contact family's
+    shape): the joint fit is rejected with every family, the second impact's row is
+    ``overlap, unreliable`` (not analysed) and both reasons say why."""
+    grain, sensor, law = hard_setup
+    record = realistic_record(
+        grain,
+        sensor,
+        law,
+        [2.0],
+        [1e-3],
+        length=4e-3,
+        sample_rate=2e6,
+        noise=NOISE,
+        effects=Effects(pink=NOISE),
+    )
+    t = np.asarray(record.trace.t)
+    w, zeta = sensor.angular_frequency, sensor.damping_ratio
+    system = signal.lti([2.0 * zeta * w, w * w], [1.0, 2.0 * zeta * w, w * w])
+    fine = np.linspace(0.0, t[-1], 10 * (t.size - 1) + 1)
+    force = np.where((fine >= 1.2e-3) & (fine <= 1.3e-3), 1.2, 0.0)
+    extra = np.interp(t, fine, signal.lsim(system, force, fine)[1])
+    values = np.asarray(record.trace.values) + extra
+    found = find_impacts(record.trace.derive({"step": "rectangle added"}, values=values), sensor)
+    assert [w.status for w in found.impacts] == ["overlap", "overlap"]
+    modes = record_modes(found, sensor)
+    read = separate_overlaps(found, sensor, grain, None, True, modes, record_noise(found, sensor))
+    first, second = read[0][0], read[1][0]
+    assert first["status"] == HELD_OUT
+    assert second["status"] == UNRELIABLE and UNRELIABLE not in ANALYSED
+    for row in (first, second):
+        assert "no family agrees" in row["reason"]
+    assert "unreliable" in second["reason"]
