@@ -67,8 +67,8 @@ SUBTRACTED = "overlap, ringing subtracted"
 previous impact's fitted free ringing (analysed)."""
 
 UNRELIABLE = "overlap, unreliable"
-"""Status of a later impact of an overlapping group whose joint fit agreed with the
-record's noise with no contact family
+"""Status of a later impact of an overlapping group whose joint fit with the impact
+before it agrees with the record's noise for no contact family
 (:func:`dem_check.campaign.overlap_fit.checked_joint_ringing`): its row keeps the numbers
 of its reading on the record less the fitted ringing, which the status and reason mark
 as not to be trusted (not analysed)."""
