@@ -8,7 +8,11 @@
   reconstructed peak and contact time, relative), and the largest over the seeds.
   With ``--before REF``, the module ``dem_check/campaign/overlaps.py`` of the git
   revision ``REF`` reads the same detections in the same run (rows ``version`` "before"
-  and "now").
+  and "now"). ``--misread NAME,ZETA``: the record's contact family replaced by that one
+  before the overlaps are read (a misread family: ``linear`` is this contact's). Column
+  ``check``: the joint fit's chi-squared excess over the record's noise's expectation
+  [standard deviations] as the row's reason gives it (the kept fit's; ``rejected``
+  where the record's family's fit was refitted).
 - ``--split``: the pairs 110-130 us apart, which the analysis flags by their impulse
   and does not read apart, fitted here (not in the campaign) as two lobes of the contact
   family through the sensor plus a line on one window, from 8 periods before the
@@ -23,12 +27,14 @@
   and their errors where they match a true impact (within 60 us).
 
 Run: ``.venv/bin/python benchmarks/bench_overlaps.py [--pairs] [--mixes] [--seeds N]
-[--before REF] [--gaps 200 300 ...] [--split [--family NAME,ZETA]]``
+[--before REF] [--misread NAME,ZETA] [--gaps 200 300 ...] [--split [--family NAME,ZETA]]``
 """
 
 import argparse
+import dataclasses
 import importlib.util
 import os
+import re
 import subprocess
 import sys
 import time
@@ -79,12 +85,14 @@ def _before(revision):
     return module.separate_overlaps
 
 
-def _rows(record, sensor, grain, everything=True, versions=None):
+def _rows(record, sensor, grain, everything=True, versions=None, family=None):
     """Every impact row of a record (overlaps read apart) with its onset and the
     detection's status; ``everything=False``: only the impacts flagged ``overlap``.
     ``versions``: ``{name: separate_overlaps}`` to compare on the same detection (rows
-    carry ``version``)."""
+    carry ``version``); ``family``: the contact family the overlaps are read with."""
     found = find_impacts(record.trace, sensor)
+    if family is not None:
+        found = dataclasses.replace(found, contact_family=family)
     if not everything and not any(w.status == "overlap" for w in found.impacts):
         return []
     modes = record_modes(found, sensor)
@@ -127,15 +135,24 @@ def _errors(row, truth, rate):
     return out
 
 
-def pairs(seeds, gaps, ratios, versions):
+def _check(reason):
+    """The joint fit's chi-squared excess the reason states [-] (NaN if none), and
+    ``rejected`` where the record's family's fit was refitted."""
+    found = re.search(r"(agrees|chi-squared) \(?([-+]?[0-9.]+)", reason or "")
+    value = np.nan if found is None else float(found.group(2))
+    return value, "was rejected" in (reason or "")
+
+
+def pairs(seeds, gaps, ratios, versions, family=None):
     grain, sensor, law = hard()
     table = []
     for gap in gaps:
         for ratio in ratios:
             for seed in range(seeds):
                 record = pair((grain, sensor, law), gap, ratio, seed)
-                for row in _rows(record, sensor, grain, versions=versions):
+                for row in _rows(record, sensor, grain, versions=versions, family=family):
                     errors = _errors(row, record.truth, 2e6) or {}
+                    check, rejected = _check(row.get("reason"))
                     table.append(
                         {
                             "version": row["version"],
@@ -143,6 +160,8 @@ def pairs(seeds, gaps, ratios, versions):
                             "ratio": ratio,
                             "seed": seed,
                             "status": row["status"],
+                            "check": check,
+                            "rejected": rejected,
                             **errors,
                         }
                     )
@@ -299,6 +318,7 @@ def main():
     parser.add_argument("--before", help="a git revision whose overlaps.py reads them too")
     parser.add_argument("--split", action="store_true")
     parser.add_argument("--family", help="NAME,ZETA for --split (default: read on the lobe)")
+    parser.add_argument("--misread", help="NAME,ZETA: the family --pairs reads overlaps with")
     args = parser.parse_args()
     versions = {"now": separate_overlaps}
     if args.before:
@@ -307,7 +327,11 @@ def main():
     print(f"load average before: {os.getloadavg()[0]:.1f} (1 min)")
     started = time.process_time()
     if args.pairs:
-        pairs(args.seeds, gaps, args.ratios, versions)
+        misread = None
+        if args.misread:
+            name, zeta = args.misread.split(",")
+            misread = (name, float(zeta))
+        pairs(args.seeds, gaps, args.ratios, versions, misread)
     if args.split:
         family = None
         if args.family:

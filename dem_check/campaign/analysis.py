@@ -421,6 +421,15 @@ def read_impact(
         row.update(status="reconstruction failed", reason=str(exc))
         return row, None, None
     if not rec.metrics.duration >= MIN_SAMPLES_PER_CONTACT * dt:
+        lobe = row["sensor_response_time [s]"]
+        if lobe > rec.metrics.duration + sensor.period:  # not a short contact: a merged pair
+            reason = (
+                f"the signal's first lobe lasts {lobe:.3g} s, more than the reconstructed "
+                f"contact ({rec.metrics.duration / dt:.3g} samples) and a sensor period: one "
+                "contact does not explain it (a second one within the first lobe), so "
+                "neither is analysed alone"
+            )
+            return {**window_row(window), "status": "overlap", "reason": reason}, None, None
         return _too_coarse(row, rec.metrics.duration, dt, "reconstructed contact"), None, None
     row["peak_contact_force [N]"] = rec.metrics.peak
     row["contact_time [s]"] = rec.metrics.duration

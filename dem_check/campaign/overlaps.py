@@ -25,7 +25,12 @@ in time order, with the ordinary analysis (:func:`dem_check.campaign.analysis.re
   the record's contact family), and its peak signal, impulse, contact force and contact
   time are the joint fit's (the ordinary reading's local baseline has only that short
   window before the impact: at half the velocity 0.2 ms after the first it read the
-  impulse up to 8 % high, with the true ringing subtracted too).
+  impulse up to 8 % high, with the true ringing subtracted too). That fit assumes the
+  record's contact family: its chi-squared under the record's noise is checked
+  (:func:`dem_check.campaign.overlap_fit.checked_joint_ringing`); where it is rejected
+  every family is fitted and one that agrees is kept (both impacts' reasons say so);
+  where none agrees the later impact keeps its ordinary reading's numbers with status
+  :data:`UNRELIABLE` (not analysed) and a reason that says why.
 
 The first impact of a group gets status ``"overlap, neighbour held out"``, each later one
 ``"overlap, ringing subtracted"``, with a reason that says what was held out or taken
@@ -49,10 +54,10 @@ from dem_check.campaign.analysis import ONSET_MARGIN, read_impact, window_row
 from dem_check.campaign.detection import BASELINE_MIN_SAMPLES
 from dem_check.campaign.noise import record_filters
 from dem_check.campaign.onsets import record_onsets
-from dem_check.campaign.overlap_fit import AFTER_PERIODS, joint_ringing
+from dem_check.campaign.overlap_fit import AFTER_PERIODS, checked_joint_ringing
 from dem_check.campaign.plausibility import physics_status
 
-__all__ = ["HELD_OUT", "HOLD_PERIODS", "SUBTRACTED", "separate_overlaps"]
+__all__ = ["HELD_OUT", "HOLD_PERIODS", "SUBTRACTED", "UNRELIABLE", "separate_overlaps"]
 
 HELD_OUT = "overlap, neighbour held out"
 """Status of the first impact of an overlapping group, read apart (analysed)."""
@@ -60,6 +65,13 @@ HELD_OUT = "overlap, neighbour held out"
 SUBTRACTED = "overlap, ringing subtracted"
 """Status of a later impact of an overlapping group, read on the record less the
 previous impact's fitted free ringing (analysed)."""
+
+UNRELIABLE = "overlap, unreliable"
+"""Status of a later impact of an overlapping group whose joint fit with the impact
+before it agrees with the record's noise for no contact family
+(:func:`dem_check.campaign.overlap_fit.checked_joint_ringing`): its row keeps the numbers
+of its reading on the record less the fitted ringing, which the status and reason mark
+as not to be trusted (not analysed)."""
 
 HOLD_PERIODS = 2.0
 """Sensor periods before a later impact's detected onset from which its signal is held
@@ -107,15 +119,16 @@ def _less(detection, ringing):
     )
 
 
-def _held_out(detection, window, hold, later, limit, sensor, family):
+def _held_out(detection, window, hold, later, limit, sensor, family, noise):
     """The detection with the samples of ``window``'s segment from index ``hold`` on (the
     next impact's) replaced by this impact's line and free ringing, fitted with the next
     impact's lobe (:func:`dem_check.campaign.overlap_fit.joint_ringing`) from
     :data:`POST_MARGIN` periods after this impact's first lobe to the next contact's
     decayed ringing (at most to ``limit`` [s]: the segment's end, or where a third impact
     is held out): the analysis then reads a record that holds this impact alone; and
-    that fit (:class:`dem_check.campaign.overlap_fit.JointRinging`: its free ringing is
-    what is taken off the next impact)."""
+    that fit, checked against the record's ``noise``
+    (:class:`dem_check.campaign.overlap_fit.CheckedJoint`: its free ringing is what is
+    taken off the next impact)."""
     part = slice(window.first, window.stop)
     t = np.asarray(detection.record.t[part])
     y = np.asarray(detection.record.values[part], dtype=float)
@@ -131,10 +144,12 @@ def _held_out(detection, window, hold, later, limit, sensor, family):
     fitted = (t >= post) & (t <= min(stop, limit))
     if family is None:
         raise ParameterError("no contact family was read for the next impact's lobe")
-    joint = joint_ringing(t[fitted], y[fitted], (later.onset, length), sensor, family)
+    checked = checked_joint_ringing(
+        t[fitted], y[fitted], (later.onset, length), sensor, family, noise
+    )
     other = np.zeros(np.asarray(detection.record.t).size)
-    other[window.first + cut : window.stop] = (y - joint.values(t, sensor))[cut:]
-    return _less(detection, other), joint
+    other[window.first + cut : window.stop] = (y - checked.joint.values(t, sensor))[cut:]
+    return _less(detection, other), checked
 
 
 def _window(detection, window, first, stop, base, sensor, noise):
@@ -179,12 +194,23 @@ def _window(detection, window, first, stop, base, sensor, noise):
     return alone, "", family
 
 
-def _joint_numbers(joint, grain, row):
+def _joint_numbers(checked, grain, row):
     """The columns of a later impact read from the joint fit of the impact before it
-    (``joint``, :class:`dem_check.campaign.overlap_fit.JointRinging`): peak signal,
+    (``checked``, :class:`dem_check.campaign.overlap_fit.CheckedJoint`): peak signal,
     impulse, contact force and contact time of its contact family's force fitted with
     that impact's ringing and a line, its velocity change, the physics check on them,
-    and the reason saying so."""
+    and the reason saying so; or, where no family's fit agreed with the record's noise,
+    the row as read (on the record less the fitted ringing, its baseline the short
+    window before it) with status :data:`UNRELIABLE` and the reason saying why."""
+    joint = checked.joint
+    check = checked.note()
+    if not checked.accepted:
+        note = (
+            f"{check}: its numbers are not the joint fit's but its reading on the record "
+            "less the fitted ringing, whose baseline is the short window before it (up to "
+            "8 % off at 0.2 ms from the impact before it, docs/campaign.md): unreliable"
+        )
+        return {"status": UNRELIABLE, "reason": "; ".join(r for r in (row["reason"], note) if r)}
     out = {
         "peak_sensor_force [N]": joint.peak_signal,
         "impulse [N*s]": joint.impulse,
@@ -196,7 +222,7 @@ def _joint_numbers(joint, grain, row):
     note = (
         "peak signal, impulse, contact force and contact time from its contact family's "
         f"force fitted with the previous impact's line and free ringing (rms residual "
-        f"{joint.rms:.3g} N; the record's noise {row['noise [N]']:.3g} N)"
+        f"{joint.rms:.3g} N; the record's noise {row['noise [N]']:.3g} N; {check})"
     )
     out["reason"] = "; ".join(r for r in (row["reason"], note) if r)
     return {**out, **physics_status({**row, **out}, grain)}
@@ -224,7 +250,9 @@ def _read_group(detection, group, sensor, options):
                 limit = later.end
                 if j + 2 < len(windows):  # a third impact: the fit ends where it is held out
                     limit = windows[j + 2].onset - HOLD_PERIODS * sensor.period
-                reading, local = _held_out(current, alone, hold, later, limit, sensor, family)
+                reading, local = _held_out(
+                    current, alone, hold, later, limit, sensor, family, options["noise"]
+                )
             row, traces, _ = read_impact(
                 dataclasses.replace(reading, impacts=[alone]), alone, sensor, **options
             )
@@ -246,10 +274,13 @@ def _read_group(detection, group, sensor, options):
                 f"the impact at {later.onset:.6g} s held out: from {t[hold]:.6g} s the record "
                 "is this impact's line and free ringing, fitted with the next impact's lobe"
             )
+            if local.rejected is not None:
+                parts.append(local.note())
         how = "; ".join(parts)
         note = f"overlap read apart: {how}"
         if row["status"] == "ok" and before is not None:
             row.update(_joint_numbers(before[2], options["grain"], row))
+            status = row["status"] if row["status"] == UNRELIABLE else status
         elif row["status"] == "reconstruction failed" and later is not None:
             # the held-out samples (the model, without noise) fill most of the record
             # the reconstruction reads: its signal numbers stand, its contact is not given
@@ -266,12 +297,13 @@ def _read_group(detection, group, sensor, options):
         # from a period before the ringing's origin: the filters of the next segment,
         # which starts at that origin, see no step there (the held-out fill, from ``hold``
         # on, is this ringing too)
-        free = t >= local.start - sensor.period
-        ringing[free] = free_ringing(t[free], local.start, local.ringing, sensor)
+        joint = local.joint
+        free = t >= joint.start - sensor.period
+        ringing[free] = free_ringing(t[free], joint.start, joint.ringing, sensor)
         current = _less(current, ringing)
-        first = int(np.searchsorted(t, local.start))
+        first = int(np.searchsorted(t, joint.start))
         base = (float(t[first]), later.onset - HOLD_PERIODS * sensor.period + dt)
-        before = (alone.onset, local.start, local)
+        before = (alone.onset, joint.start, local)
     for k, window in zip(group, windows, strict=True):
         if k not in out:
             row = window_row(window)
