@@ -53,12 +53,27 @@ class _RebuildingCache(FunctionCache):
             return None
 
 
-def njit(*args, **options):
+def njit(*args, borrowed=False, **options):
     """:func:`numba.njit`, whose ``cache=True`` rebuilds a damaged cache entry.
 
     Used as ``@njit(cache=True, error_model="numpy")`` (or bare ``@njit``); the options
-    are numba's.
+    are numba's, and one of ours:
+
+    borrowed : bool, default False
+        The function only reads and writes the arrays it is given: it allocates none and
+        returns none (nor a tuple holding one). It is then compiled without numba's
+        reference counts (numba's ``_nrt=False``). numba increments the count of every
+        array argument on entry and decrements it at the argument's last use with
+        atomic instructions, and its pruning pass pairs them only inside one basic block
+        or a simple diamond: a small helper with branches, called at every scan point or
+        root iteration, paid eight atomic operations a call, and they took about a third
+        of the linear batch's time (perf, issue 25). An allocation in such a function
+        fails to compile; returning a borrowed array would hand the caller a reference
+        it does not own, so :func:`contactlab.kernels` tests check the compiled
+        signatures (``tests/contactlab/test_borrowed_kernels.py``).
     """
+    if borrowed:
+        options["_nrt"] = False
     if args and callable(args[0]):
         return _rebuilding(numba.njit(*args, **options))
     decorate = numba.njit(*args, **options)

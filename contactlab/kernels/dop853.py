@@ -122,7 +122,7 @@ def _error_norm(K, h, separate):
     return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new, model):
     """One accepted step from ``(t, y)`` with ``f = f(y)``, not beyond ``t_bound``.
 
@@ -176,7 +176,7 @@ def step(t, y, f, h_try, t_bound, rtol, atol, par, warped, K, y_new, f_new, mode
         rejected = True
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def interpolant(K, h, y_old, y, f_new, par, warped, F, model):
     """The step's 7th-order interpolant coefficients into ``F`` (7, n), as
     :meth:`Stepper.interpolant` (three extra stages into ``K``; ``model`` as in

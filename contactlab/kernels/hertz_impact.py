@@ -104,7 +104,7 @@ def _at(u, a, h, F, y_old, par, z, values):
     _signals(z, par, values)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def _root(kind, lo, f_lo, hi, f_hi, a, h, F, y_old, par, z, values, work):
     """Where signal ``kind`` crosses zero on [lo, hi] inside one step (Brent)."""
     x, done = brent_start(work, lo, f_lo, hi, f_hi)

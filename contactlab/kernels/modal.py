@@ -113,7 +113,7 @@ def raise_peak(best, which, value, t):
         best[which + 3] = t
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def state(tau, lam, vec, coef, nm, base, slope, y0, out):
     if tau == 0.0:
         for c in range(4):  # element copies: a slice copy checks overlap and may allocate
@@ -169,7 +169,7 @@ def _clipped_force(y, par):
     return max(par[K2] * d + par[C2] * (y[3] - y[1]), 0.0)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def _crossed_side(kind, direction, t, hi, piece, par, y):
     """contactlab.roots.crossed_side: the first float from ``t`` where the event happened."""
     lam, vec, coef, nm, base, slope, y0 = piece
@@ -183,7 +183,7 @@ def _crossed_side(kind, direction, t, hi, piece, par, y):
     return hi
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def _root(kind, lo, f_lo, hi, f_hi, piece, par, y, work):
     """Root of one signal on ``[lo, hi]`` (Brent, the solver's tolerance)."""
     lam, vec, coef, nm, base, slope, y0 = piece
@@ -194,7 +194,7 @@ def _root(kind, lo, f_lo, hi, f_hi, piece, par, y, work):
     return x
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def _refine_peak(slope_kind, peak, interval, piece, par, y, work, best):
     """A maximum between two scan points, raised into ``best[peak]`` if it is before the
     event: ``interval`` is ``(lo, slope at lo, hi, slope at hi, upto)`` [s] with the
@@ -212,7 +212,7 @@ def _refine_peak(slope_kind, peak, interval, piece, par, y, work, best):
     raise_peak(best, peak, value, best[PIECE_START] + t_max)
 
 
-@njit(cache=True, error_model="numpy", inline="always")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def _read(event, y, par, track, values):
     """Signals of a scan point: [event, sensor signal, its slope, contact-force slope,
     contact force] (as :func:`_signal` and :func:`_clipped_force`, in one pass)."""

@@ -169,7 +169,7 @@ def force_floor(d_lo, d_hi, r_lo, r_hi, par):
     return floor, size
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, error_model="numpy", borrowed=True)
 def rhs_row(z, z_row, par, warped, out, row):
     """Right-hand side at the state ``z[z_row]`` into ``out[row]`` (both 2-D): ``y' =
     f(y)``, or ``dz/ds`` in the warped variable (``dy/ds = 4 s**3 f(y)``, ``ds/ds = 1``).
