@@ -45,7 +45,7 @@ def _driven_columns(times, onsets, drives, frequency, zeta):
     return columns
 
 
-def driven_significance(windows, onsets, drives, candidates, sensor):
+def driven_significance(windows, onsets, drives, candidates, sensor, autocovariance=None):
     """Standard errors of each candidate mode's shared coupling to the impacts (module
     docstring), and whether it reaches :data:`~contactlab.inverse.crosstalk.SIGNIFICANCE`.
 
@@ -66,39 +66,84 @@ def driven_significance(windows, onsets, drives, candidates, sensor):
     candidates : sequence of (float, float)
         ``(frequency [Hz], damping ratio [-])`` of each candidate.
     sensor : Sensor
+    autocovariance : array_like, optional
+        The record's noise autocovariance at lags of ``0, 1, ...`` samples, up to the
+        span of the windows and a block (unit of the record squared; e.g.
+        ``ColouredNoise.autocovariance``): the couplings' standard errors are then the
+        larger of the white residual's and those of least squares under this noise,
+        whose block means are correlated within and across the windows (1/f noise near
+        a low-frequency candidate: :func:`_block_covariance`).
 
     Returns
     -------
+    coupling : numpy.ndarray
+        Each candidate's amplitude of ringing per unit of drive at the driving impact's
+        onset (unit of the record per unit of the drives: [-] for peaks in N).
     z : numpy.ndarray
-        Each candidate's coupling over its standard error (white residual) [-].
+        Each coupling over its standard error [-].
     significant : numpy.ndarray of bool
         ``z > SIGNIFICANCE``.
     """
     onsets, drives = check_samples("onsets", onsets), check_samples("drives", drives)
     if onsets.shape != drives.shape:
         raise ParameterError(f"onsets and drives must match; got {onsets.size} and {drives.size}")
+    none = np.zeros(len(candidates)), np.zeros(len(candidates)), np.zeros(len(candidates), bool)
     if not candidates or not windows:
-        return np.zeros(len(candidates)), np.zeros(len(candidates), dtype=bool)
-    count, blocks, targets = len(windows), [], []
+        return none
+    count, blocks, targets, starts = len(windows), [], [], []
+    first = float(check_samples("t", windows[0][0])[0])
     for k, (t, y) in enumerate(windows):
         t = check_samples("t", t)
-        tau, means, _ = _band(t, check_samples("y", y), sensor, degree=1, blocks=True)
+        dt = float(t[1] - t[0])
+        tau, means, step = _band(t, check_samples("y", y), sensor, degree=1, blocks=True)
         lines = np.zeros((tau.size, 2 * count))
         lines[:, 2 * k], lines[:, 2 * k + 1] = 1.0, tau - tau.mean()
         driven = [_driven_columns(t[0] + tau, onsets, drives, f, z) for f, z in candidates]
         blocks.append(np.concatenate([lines, *driven], axis=1))
         targets.append(means)
+        size = round(step / dt)  # samples per block
+        starts.append(round((float(t[0]) - first) / dt) + size * np.arange(tau.size))
     design, values = np.concatenate(blocks), np.concatenate(targets)
     if design.shape[0] <= design.shape[1]:
-        return np.zeros(len(candidates)), np.zeros(len(candidates), dtype=bool)
+        return none
     coefficients, covariance = _least_squares(design, values)
-    z = []
+    if autocovariance is not None:
+        blocked = _block_covariance(np.concatenate(starts), size, autocovariance)
+        coloured = _sandwich(design, blocked)
+    coupling, z = np.zeros(len(candidates)), np.zeros(len(candidates))
     for k in range(len(candidates)):
         at = slice(2 * count + 2 * k, 2 * count + 2 * k + 2)
         pair = coefficients[at]
-        norm = float(np.hypot(*pair))
-        # the coupling's variance along itself (as the pencil's test, _pair)
-        variance = float(pair @ covariance[at, at] @ pair) / max(norm, 1e-300) ** 2
-        z.append(norm / math.sqrt(variance) if variance > 0.0 else 0.0)
-    z = np.asarray(z)
-    return z, z > SIGNIFICANCE
+        coupling[k] = float(np.hypot(*pair))
+        # the coupling's variance along itself (as the pencil's test, crosstalk._pair)
+        variance = float(pair @ covariance[at, at] @ pair)
+        if autocovariance is not None:
+            variance = max(variance, float(pair @ coloured[at, at] @ pair))
+        variance /= max(coupling[k], 1e-300) ** 2
+        z[k] = coupling[k] / math.sqrt(variance) if variance > 0.0 else 0.0
+    return coupling, z, z > SIGNIFICANCE
+
+
+def _block_covariance(starts, size, autocovariance):
+    """Covariance of the means of blocks of ``size`` samples that start at the sample
+    indices ``starts``, under stationary noise of the given autocovariance (lags ``0,
+    1, ...`` samples): ``(1 / size**2) sum_d (size - |d|) r(|lag + d|)`` for blocks
+    ``lag`` samples apart."""
+    span = int(starts.max() - starts.min())
+    r = np.asarray(autocovariance, dtype=float)
+    if r.size < span + size + 1:
+        raise ParameterError(
+            f"autocovariance must hold {span + size + 1} lags (the windows' span and a "
+            f"block); got {r.size}"
+        )
+    symmetric = np.concatenate([r[size - 1 : 0 : -1], r[: span + size + 1]])
+    triangle = (size - np.abs(np.arange(1 - size, size))) / size**2
+    means = np.convolve(symmetric, triangle, mode="valid")  # lags 0 .. span + 1
+    return means[np.abs(starts[:, None] - starts[None, :])]
+
+
+def _sandwich(design, covariance):
+    """Covariance of least-squares coefficients under noise of the given covariance:
+    ``(X'X)^-1 X' R X (X'X)^-1``."""
+    inverse = np.linalg.pinv(design.T @ design)
+    return inverse @ (design.T @ covariance @ design) @ inverse

@@ -23,6 +23,7 @@ from contactlab.inverse.crosstalk import (
     structure_modes,
 )
 from contactlab.inverse.crosstalk_driven import driven_significance
+from dem_check.campaign.local import record_noise
 
 __all__ = [
     "NEXT_MARGIN_PERIODS",
@@ -59,6 +60,9 @@ impacts, a plate mode's after three or four."""
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the sensor's ringing to be fitted [-]."""
 
+NOT_GIVEN = object()
+"""Default of :func:`record_modes`' ``noise``: estimate it (``None`` means none)."""
+
 
 def _following(detection, index, sensor):
     """Where the window after impact ``index`` must end [s]: before the next onset."""
@@ -67,7 +71,7 @@ def _following(detection, index, sensor):
     return float(detection.record.t[-1])
 
 
-def record_modes(detection, sensor, *, refine=True):
+def record_modes(detection, sensor, *, refine=True, noise=NOT_GIVEN):
     """The structure's modes of a record: those found after half of its impacts (two at
     least; all of them when only one impact could be read), on each impact's ringing
     alone and on all of them jointly.
@@ -104,6 +108,11 @@ def record_modes(detection, sensor, *, refine=True):
         Refine the joint poles by variable projection on the windows
         (``joint_structure_modes(..., refine=True)``); False: the pencil's poles, as
         before (``benchmarks/bench_realistic.py --no-refine``).
+    noise : ColouredNoise or None, optional
+        The record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`,
+        estimated here when not given): the driven test's standard errors then hold the
+        1/f noise's correlation between the windows' samples; ``None``: the white
+        residual's only.
 
     Returns
     -------
@@ -135,7 +144,11 @@ def record_modes(detection, sensor, *, refine=True):
     needed = max(2, math.ceil(HALF * len(windows))) if len(windows) > 1 else 1
     onsets = [w.onset for w in detection.impacts]
     drives = [w.peak if w.peak > 0.0 else 0.0 for w in detection.impacts]  # nan: none
-    _, driven = driven_significance(windows, onsets, drives, candidates, sensor)
+    if noise is NOT_GIVEN:
+        noise = record_noise(detection, sensor)
+    # lags over the record and a block of it (the windows' span and a block mean)
+    lags = None if noise is None else noise.autocovariance(2 * t.size)
+    *_, driven = driven_significance(windows, onsets, drives, candidates, sensor, lags)
     for (frequency, zeta), hits, shared in zip(
         candidates, significant.sum(axis=0), driven, strict=True
     ):
