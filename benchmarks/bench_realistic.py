@@ -171,8 +171,9 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True, p
     """Detection and analysis of one record in memory (what ``run_campaign`` does for
     each impact, without the files and the report); the errors of its impacts."""
     found = find_impacts(record.trace, sensor)
-    modes = record_modes(found, sensor, refine=refine) if crosstalk else []
-    noise = record_noise(found, sensor) if predict else None
+    levels = record_noise(found, sensor)
+    modes = record_modes(found, sensor, refine=refine, noise=levels) if crosstalk else []
+    noise = levels if predict else None
     truth, rows = record.truth, []
     for window in found.impacts:
         gap = np.abs(truth["onset [s]"] - window.onset)

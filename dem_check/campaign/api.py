@@ -207,8 +207,8 @@ def _analyse_file(path, options, timings, progress):
     timings["detect"] += time.perf_counter() - started
     rows, gallery = [], {}
     started = time.perf_counter()
-    modes = record_modes(found, sensor) if options["crosstalk"] else []
     levels = record_noise(found, sensor)  # white and 1/f noise, once per record
+    modes = record_modes(found, sensor, noise=levels) if options["crosstalk"] else []
     crosstalk = options["crosstalk"]
     separated = separate_overlaps(found, sensor, grain, fit, crosstalk, modes, levels)
     for k, window in enumerate(found.impacts):

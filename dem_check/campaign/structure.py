@@ -22,6 +22,8 @@ from contactlab.inverse.crosstalk import (
     joint_structure_modes,
     structure_modes,
 )
+from contactlab.inverse.crosstalk_driven import driven_significance
+from dem_check.campaign.local import record_noise
 
 __all__ = [
     "NEXT_MARGIN_PERIODS",
@@ -58,6 +60,9 @@ impacts, a plate mode's after three or four."""
 RESOLVED_PERIOD_SAMPLES = 4
 """Fewest samples per sensor period for the sensor's ringing to be fitted [-]."""
 
+NOT_GIVEN = object()
+"""Default of :func:`record_modes`' ``noise``: estimate it (``None`` means none)."""
+
 
 def _following(detection, index, sensor):
     """Where the window after impact ``index`` must end [s]: before the next onset."""
@@ -66,7 +71,7 @@ def _following(detection, index, sensor):
     return float(detection.record.t[-1])
 
 
-def record_modes(detection, sensor, *, refine=True):
+def record_modes(detection, sensor, *, refine=True, noise=NOT_GIVEN):
     """The structure's modes of a record: those found after half of its impacts (two at
     least; all of them when only one impact could be read), on each impact's ringing
     alone and on all of them jointly.
@@ -84,7 +89,12 @@ def record_modes(detection, sensor, *, refine=True):
        windows, kept when significant after :data:`HALF` of them. Windows of 1-2 ms
        between a hit and its bounce, under two periods of a 730 Hz plate mode, add to
        its estimate; window by window the mode was found in none of eight records at 1
-       and 5 MHz (``docs/campaign.md``). A joint pole within twice
+       and 5 MHz (``docs/campaign.md``). A joint pole significant after fewer windows
+       is kept when the impacts drive it: its ringing, fitted with one coupling to
+       every impact's peak shared by all the windows
+       (:func:`~contactlab.inverse.crosstalk_driven.driven_significance`), is
+       significant (a plate's 4100 Hz mode rung under the noise by the weaker impacts
+       of a 2 MHz record). A joint pole within twice
        :data:`FREQUENCY_TOLERANCE` of a mode found window by window is that mode (the
        window-by-window one stays: letting the refined joint pole replace it cost 2 MHz
        records with 1/f noise of 0.3 sigma their impulse, 1.9 % -> 18 % at 30-100 sigma,
@@ -98,6 +108,11 @@ def record_modes(detection, sensor, *, refine=True):
         Refine the joint poles by variable projection on the windows
         (``joint_structure_modes(..., refine=True)``); False: the pencil's poles, as
         before (``benchmarks/bench_realistic.py --no-refine``).
+    noise : ColouredNoise or None, optional
+        The record's white and 1/f noise (:func:`dem_check.campaign.local.record_noise`,
+        estimated here when not given): the driven test's standard errors then hold the
+        1/f noise's correlation between the windows' samples; ``None``: the white
+        residual's only.
 
     Returns
     -------
@@ -127,9 +142,18 @@ def record_modes(detection, sensor, *, refine=True):
         return modes
     candidates, significant = joint_structure_modes(windows, sensor, refine=refine)
     needed = max(2, math.ceil(HALF * len(windows))) if len(windows) > 1 else 1
-    for (frequency, zeta), hits in zip(candidates, significant.sum(axis=0), strict=True):
+    onsets = [w.onset for w in detection.impacts]
+    drives = [w.peak if w.peak > 0.0 else 0.0 for w in detection.impacts]  # nan: none
+    if noise is NOT_GIVEN:
+        noise = record_noise(detection, sensor)
+    # lags over the record and a block of it (the windows' span and a block mean)
+    lags = None if noise is None else noise.autocovariance(2 * t.size)
+    *_, driven = driven_significance(windows, onsets, drives, candidates, sensor, lags)
+    for (frequency, zeta), hits, shared in zip(
+        candidates, significant.sum(axis=0), driven, strict=True
+    ):
         near = any(abs(frequency / f - 1.0) <= 2 * FREQUENCY_TOLERANCE for f, _ in modes)
-        if hits >= needed and not near:
+        if (hits >= needed or shared) and not near:
             modes.append((frequency, zeta))
     return sorted(modes)
 

@@ -14,8 +14,10 @@ import numpy as np
 import pytest
 
 from dem_check.campaign import Effects, find_impacts, realistic_record
+from dem_check.campaign.analysis import analyse_impact
 from dem_check.campaign.drawn_records import NOISE as BENCH_NOISE
 from dem_check.campaign.drawn_records import accuracy_record
+from dem_check.campaign.local import record_noise
 from dem_check.campaign.structure import impact_crosstalk, record_modes
 
 NOISE = 0.003  # [N]: 0.1 % of the 3 N peak, so that the removal's model, not the noise, is read
@@ -62,3 +64,30 @@ def test_a_mode_the_pencil_reads_overdamped_is_refined_and_kept(hard_setup):
     # 1/f noise on windows of one to three periods of the 730 Hz mode)
     for frequency, _ in Effects().plate_modes:  # the record model's, as drawn
         assert any(abs(f / frequency - 1.0) < 0.02 for f, _ in modes), modes
+
+
+def test_a_mode_the_weaker_impacts_ring_under_the_noise_is_kept_and_the_impulse_holds(
+    hard_setup,
+):
+    # benchmarks/bench_realistic.py's record of seed 2 at 2 MHz with 2 % crosstalk (1/f
+    # noise as large as the white noise): the joint pencil's 4053 Hz pole was significant
+    # after 2 of 8 windows, so the record kept 1987 Hz alone, and the plate's 4100 Hz
+    # mode, left in, read the 33.5 sigma impact at 13.1 ms +5.12 % (the target: 5
+    # %). Its coupling to every impact, shared by the windows, is 8.4 standard errors
+    # under the record's noise (contactlab.inverse.crosstalk_driven)
+    grain, sensor, law = hard_setup
+    record = accuracy_record(2, grain, sensor, law, 2e6, crosstalk=0.02)
+    found = find_impacts(record.trace, sensor)
+    noise = record_noise(found, sensor)
+    modes = record_modes(found, sensor, noise=noise)
+    # the pencil's 4053 Hz for the model's 4100 Hz: within 2 % (1/f noise on windows of
+    # 5-16 periods)
+    assert any(abs(f / 4100.0 - 1.0) < 0.02 for f, _ in modes), modes
+    truth = record.truth.iloc[int(np.argmin(np.abs(record.truth["onset [s]"] - 13.1e-3)))]
+    (window,) = [w for w in found.impacts if abs(w.onset - truth["onset [s]"]) < 60e-6]
+    row, _ = analyse_impact(found, window, sensor, grain, modes=modes, noise=noise)
+    error = row["impulse [N*s]"] / truth["impulse [N*s]"] - 1.0
+    # within the 5 %: the impulse's bound at 33.5 sigma is 1.9 % rms with 1/f
+    # noise as large as the white noise (bench_bounds.py), and the same impact without
+    # crosstalk reads +2.9 %, with the model's three modes removed +3.3 %
+    assert abs(error) < 0.05, error
