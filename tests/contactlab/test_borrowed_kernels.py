@@ -28,7 +28,7 @@ def _borrowed_dispatchers():
     found = {}
     for info in pkgutil.iter_modules(contactlab.kernels.__path__):
         module = importlib.import_module(f"contactlab.kernels.{info.name}")
-        for name, value in vars(module).items():
+        for value in vars(module).values():
             if isinstance(value, CPUDispatcher) and value.targetoptions.get("_nrt") is False:
                 found[f"{value.py_func.__module__}.{value.py_func.__qualname__}"] = value
     return found
