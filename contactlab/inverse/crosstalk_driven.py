@@ -16,8 +16,10 @@ each started at that impact's onset with an amplitude in proportion to its peak,
 complex coupling (amplitude and phase) for the record. Fitted so, with a line of each
 window's own, the candidate has two coefficients for all the windows instead of two per
 window, and noise, which is not locked to the onsets nor in proportion to the peaks,
-does not fit them. Measured (``docs/campaign.md``): the plate's modes 7.8-23 standard
-errors; the pencil's candidates on records without crosstalk at most 4.9.
+does not fit them. Measured (``docs/campaign.md``, "Crosstalk", step 1), with the
+standard errors under the record's white and 1/f noise: the plate's modes 7.8-15.6
+standard errors; the pencil's candidates on records without crosstalk at most 3.4 (with
+the white residual's errors alone, 1/f noise near a low candidate reached 5.9).
 """
 
 import math
