@@ -265,12 +265,7 @@ def read_across(x, level, height, period, far_noise, ring):
     """A step found across an impact read on the window's samples: its height
     (:func:`height_across`), its place (:func:`place_across`) with that height and, when
     placed outside the lobe, a second step on the lobe's other side
-    (:func:`second_across`).
-
-    Parameters
-    ----------
-    x, level, height, period, far_noise, ring
-        As for :func:`place_across`; ``height`` is the period means' reading [N].
+    (:func:`second_across`). Its parameters are :func:`height_across`'s.
 
     Returns
     -------
