@@ -69,8 +69,8 @@ def njit(*args, borrowed=False, **options):
         root iteration, paid eight atomic operations a call, and they took about a third
         of the linear batch's time (perf, issue 25). An allocation in such a function
         fails to compile; returning a borrowed array would hand the caller a reference
-        it does not own, so :func:`contactlab.kernels` tests check the compiled
-        signatures (``tests/contactlab/test_borrowed_kernels.py``).
+        it does not own, so ``tests/contactlab/test_borrowed_kernels.py`` checks the
+        compiled signatures of every borrowed function in :mod:`contactlab.kernels`.
     """
     if borrowed:
         options["_nrt"] = False
