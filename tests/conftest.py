@@ -13,8 +13,17 @@ import matplotlib
 import pytest
 from hypothesis import settings
 from hypothesis.internal.conjecture import providers
+from threadpoolctl import threadpool_limits
 
 matplotlib.use("Agg")
+
+# One BLAS thread per test process: ``make test`` runs one pytest worker per core, and
+# OpenBLAS' own threads (one per core in each worker) then wait for cores the other
+# workers hold. Measured on the 2-core machine with other work running
+# (test_fit_quality.py, 17 tests): 107 s of CPU with OpenBLAS' default threads, 26 s with
+# one. The environment variable reaches the command-line tests' subprocesses.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+threadpool_limits(limits=1, user_api="blas")
 
 # Property tests draw the same examples on every run (seeded from each test's source and
 # hypothesis' pinned version), so CI runs exactly what passed here; a failure found once is
