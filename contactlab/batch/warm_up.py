@@ -33,12 +33,17 @@ COMPILED_MODULES = (
     "contactlab.kernels.oblique_events",
     "contactlab.kernels.oblique_kernel",
     "contactlab.kernels.gauss",
+    "contactlab.kernels.held_force",
     "contactlab.kernels.oblique_sample",
     "contactlab.batch.oblique_kernel",
 )
 """Modules with ``numba.njit(cache=True)`` functions compiled on their own (and so cached
 beside their source). ``contactlab.kernels.model_rhs`` is not one: its two functions are
 inlined into their callers (``inline="always"``) and cached with them."""
+
+
+_ONE_POLE = (np.array([0.5, 0.0]), np.array([1.0, -0.5]))
+"""A discrete filter ``b, a`` for the warm-up's call of the held force's signal."""
 
 
 def cache_is_warm():
@@ -88,6 +93,7 @@ def warm_up():
     from contactlab.batch.linear import linear_impacts
     from contactlab.batch.oblique import oblique_impacts
     from contactlab.bodies import Grain, Sensor
+    from contactlab.kernels.held_force import held_signal
     from contactlab.laws import HertzDamped, Mindlin
     from contactlab.solver import simulate_impact, simulate_oblique
 
@@ -112,4 +118,6 @@ def warm_up():
     oblique_impacts(
         oblique.assign(**{"radius [m]": 2.5e-3, "angle [rad]": 0.5, "spin [rad/s]": 0.0})
     )
+    shape = np.linspace(0.0, 1.0, 5)  # a triangle through a one-pole filter
+    held_signal(1e-6, 10, 5e-6, shape, 1.0 - np.abs(2.0 * shape - 1.0), *_ONE_POLE)
     return time.perf_counter() - start

@@ -18,6 +18,7 @@ import numpy as np
 from scipy import integrate, linalg, signal
 
 from contactlab.errors import ParameterError
+from contactlab.kernels.held_force import held_signal
 
 __all__ = ["FAMILIES", "FINE_PERIODS", "SHAPE_POINTS", "LobeModel", "force_shape"]
 
@@ -137,11 +138,9 @@ class LobeModel:
         signal [-]. The force starts half a fine step after a fine sample, so that the
         hold's ramp over that step centres a damped contact's force step on it.
         ``shape``: another ``(u, h)`` than the model's."""
-        step = self.dt / self.fine
-        s = np.arange(-1, self.fine * (self.t.size + 2)) * step
         u, h = (self.u, self.h) if shape is None else shape
-        force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
-        return s - 0.5 * step, signal.lfilter(*self.filter, force)
+        count = self.fine * (self.t.size + 2)
+        return held_signal(self.dt / self.fine, count, float(tau), u, h, *self.filter)
 
     def white_unit(self, tau):
         """:meth:`unit` whitened on its fine grid: ``r(s) - sum_k a_k r(s - k dt)``, the
