@@ -22,6 +22,7 @@ LAYERS = (
         "foundation",
         (
             "contactlab.errors",
+            "contactlab.blas",
             "contactlab.validation",
             "contactlab.entry_checks",
             "contactlab.roots",

@@ -4,6 +4,7 @@ the model of its set-up (:func:`compare_trace`)."""
 import numpy as np
 
 from contactlab import metrics, signals
+from contactlab.blas import with_one_blas_thread
 from contactlab.compare.comparison import Comparison, quantity_row, waveform_row
 from contactlab.compare.physics import physics_problems
 from contactlab.compare.quantities import checked_tolerances, merged_tolerances, noise_tolerances
@@ -159,6 +160,7 @@ def _without_baseline(trace, sensor, k, crosstalk):
     return remove_baseline(trace, window), noise, {"baseline": text, "baseline status": status}
 
 
+@with_one_blas_thread
 def compare_trace(
     trace, config, tolerances=None, align="onset", k=5.0, threshold=None, *, crosstalk=True
 ):

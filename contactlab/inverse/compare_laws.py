@@ -28,6 +28,7 @@ import math
 import warnings
 from dataclasses import dataclass
 
+from contactlab.blas import with_one_blas_thread
 from contactlab.entry_checks import check_names
 from contactlab.errors import ParameterError
 from contactlab.inverse.fit import IdentifiabilityWarning, fit_contact
@@ -164,6 +165,7 @@ def _fit_recording_warnings(*args, **kwargs):
     return fit, notes
 
 
+@with_one_blas_thread
 def compare_laws(t, signal, grain, sensor, laws=None, velocity=None, **fit_options):
     """Fit every candidate law to a trace and rank them by BIC.
 

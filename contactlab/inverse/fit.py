@@ -19,6 +19,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from contactlab import signals
+from contactlab.blas import with_one_blas_thread
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ContactlabWarning, ParameterError, ResolutionWarning, WindowWarning
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES, check_window, uniform_signal
@@ -261,6 +262,7 @@ def _check_fixed(spec, fixed):
     }
 
 
+@with_one_blas_thread
 def fit_contact(
     t,
     signal,

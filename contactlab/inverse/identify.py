@@ -19,6 +19,7 @@ from dataclasses import asdict, dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
+from contactlab.blas import with_one_blas_thread
 from contactlab.bodies import Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import (
@@ -314,6 +315,7 @@ def _pencil_guess(y, dt, max_samples):
     return w / (2.0 * math.pi), -pole.real / w
 
 
+@with_one_blas_thread
 def identify_sensor(t, signal, window=None, *, max_pencil_samples=1000):
     """Resonance frequency and damping ratio of a sensor from its free ringing.
 

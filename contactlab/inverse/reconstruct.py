@@ -26,6 +26,7 @@ from scipy import linalg
 from scipy.optimize import nnls
 
 from contactlab import signals
+from contactlab.blas import with_one_blas_thread
 from contactlab.bodies import Sensor
 from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
@@ -225,6 +226,7 @@ def _check_sensor(sensor):
     return sensor
 
 
+@with_one_blas_thread
 def reconstruct_force(
     t,
     signal,

@@ -6,8 +6,8 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
-from threadpoolctl import threadpool_limits
 
+from contactlab.blas import one_blas_thread
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.inverse import FIT_MODELS, lobe_onset
@@ -385,10 +385,8 @@ def run_campaign(
     file_rows = [_file_row(p.file, p.status, p.reason) for p in problems]
     impact_rows, gallery_traces, records = [], {}, {}
     bar = _Progress(len(files), progress)
-    # One BLAS thread: each impact's linear algebra is small (a few hundred unknowns), where
-    # threads cost more than they give (1.5 M-sample record, 2 cores, load 1: 7.0 s with
-    # one thread, 10-14 s with OpenBLAS' default; docs/campaign.md, Speed).
-    blas = threadpool_limits(limits=1, user_api="blas")
+    # one BLAS thread: each impact's linear algebra is small (contactlab.blas)
+    blas = one_blas_thread()
     try:
         for path in files:
             try:
