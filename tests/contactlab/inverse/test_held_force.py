@@ -7,19 +7,12 @@ import math
 
 import numpy as np
 import pytest
+from held_reference import numpy_unit
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from scipy import signal
 
 from contactlab.inverse.lobe_model import FAMILIES, FINE_PERIODS, _sensor_filter, force_shape
 from contactlab.kernels.held_force import held_signal
-
-
-def _numpy_unit(step, count, tau, u, h, b, a):
-    """``LobeModel.unit`` as it was written with ``numpy.interp`` and ``lfilter``."""
-    s = np.arange(-1, count) * step
-    force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
-    return s - 0.5 * step, signal.lfilter(b, a, force)
 
 
 @settings(max_examples=60, deadline=None)
@@ -42,7 +35,7 @@ def test_equal_to_interp_and_lfilter_to_the_last_bit(
     u, h = force_shape(family, damping)
     count = fine * (samples + 2)
     times, values = held_signal(step, count, tau, u, h, b, a)
-    s, r = _numpy_unit(step, count, tau, u, h, b, a)
+    s, r = numpy_unit(step, count, tau, u, h, b, a)
     assert np.array_equal(times, s)
     assert np.array_equal(values, r)  # same operations in the same order: bitwise
 
@@ -54,6 +47,6 @@ def test_a_zero_or_nan_duration_gives_what_interp_gives(tau):
     b, a = _sensor_filter(2.0 * np.pi * 40e3, 0.02, 1e-7)
     _, values = held_signal(1e-7, 20, tau, u, h, b, a)
     with np.errstate(divide="ignore", invalid="ignore"):  # numpy's warnings, no error
-        _, reference = _numpy_unit(1e-7, 20, tau, u, h, b, a)
+        _, reference = numpy_unit(1e-7, 20, tau, u, h, b, a)
     assert np.array_equal(values, reference, equal_nan=True)
     assert np.isnan(values).all() == np.isnan(tau)
