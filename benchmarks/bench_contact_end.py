@@ -55,7 +55,7 @@ def figures():
     }
     paper = cl.study.StudySetup.paper()
     e, nu, r = paper.grain.material()
-    tsuji = cl.laws.HertzDamped.from_material(e, nu, r, 0.5, paper.grain.mass)
+    tsuji = cl.laws.HertzDamped.from_material(cl.analytic.Material(e, nu, r), 0.5, paper.grain.mass)
 
     def single():
         return cl.simulate_impact(paper.grain, paper.sensor, tsuji, 2.0, 500e-6, rtol=1e-6)

@@ -94,7 +94,7 @@ def figures():
     out = {}
     linear = cl.laws.LinearViscoelastic(1e5, 1.0)
     e, nu, r = grain.material()
-    tsuji = cl.laws.HertzDamped.from_material(e, nu, r, 0.5, grain.mass)
+    tsuji = cl.laws.HertzDamped.from_material(cl.analytic.Material(e, nu, r), 0.5, grain.mass)
     for name, law, options in (("linear", linear, {}), ("hertz", tsuji, {"rtol": 1e-6})):
 
         def run(law=law, options=options):

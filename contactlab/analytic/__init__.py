@@ -42,6 +42,8 @@ from contactlab.analytic.linear import (
     linear_restitution,
 )
 from contactlab.analytic.materials import (
+    RIGID_FLAT,
+    Material,
     contact_modulus_radius,
     effective_mass,
     effective_modulus,
@@ -76,7 +78,9 @@ __all__ = [
     "KUWABARA_KONO_C1",
     "KUWABARA_KONO_C2",
     "KUWABARA_KONO_MAX_PARAMETER",
+    "RIGID_FLAT",
     "SOLID_SPHERE_INERTIA",
+    "Material",
     "PairRebound",
     "contact_modulus_radius",
     "damping_ratio",

@@ -174,7 +174,7 @@ class ParticleKind:
         name = check_choice("[tangential] law", table.pop("law", None), ("mindlin", "spring"))
         if name == "spring":
             return TangentialSpring(**table)
-        return Mindlin.from_material(*grain.material(), **table)
+        return Mindlin.from_material(grain.material(), **table)
 
 
 @dataclass(frozen=True)

@@ -62,7 +62,7 @@ def _drop(case, material):
 
 
 def _elastic_or_damped(body, restitution):
-    k_hertz = cl.laws.Hertz.from_material(*body.material()).k_hertz
+    k_hertz = cl.laws.Hertz.from_material(body.material()).k_hertz
     if restitution == 1.0:
         return cl.laws.Hertz(k_hertz)
     damping = analytic.tsuji_damping_coefficient(k_hertz, body.mass, restitution, "force")
@@ -127,10 +127,10 @@ def oblique_test(case, material, lammps=None, reported=None):
     """
     radius, speed, mu = (case.inputs[k] for k in ("radius [m]", "speed [m/s]", "friction [-]"))
     body = grain(material, radius)
-    normal = cl.laws.Hertz.from_material(*body.material())
+    normal = cl.laws.Hertz.from_material(body.material())
     rows, curves, others, lammps_runs = [], {}, {}, {}
     for history in HISTORIES:
-        law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
+        law = cl.laws.Mindlin.from_material(body.material(), mu, history=history)
         out = []
         for degrees in ANGLES:
             angle = math.radians(degrees)
@@ -178,7 +178,7 @@ def oblique_test(case, material, lammps=None, reported=None):
                 DEM_CONVENTIONS[preset],
                 [lammps_runs[history, a] for a in ANGLES],
             )
-    mindlin = cl.laws.Mindlin.from_material(*body.material(), mu)
+    mindlin = cl.laws.Mindlin.from_material(body.material(), mu)
     curves["attribution"] = []
     for label, (column, rules, rebounds) in runs.items():
         found = attribution.attribute(
@@ -199,7 +199,7 @@ def tangential_speed_test(case, material, lammps=None):
     body, normal, (radius, vn, mu, _) = _drop(case, material)
     rows, curves = [], {}
     for history in HISTORIES:
-        law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
+        law = cl.laws.Mindlin.from_material(body.material(), mu, history=history)
         out = []
         for degrees in ANGLES:
             angle = math.radians(degrees)
@@ -246,7 +246,7 @@ def spin_test(case, material, lammps=None):
     body, normal, (radius, vn, mu, e) = _drop(case, material)
     rows, curves = [], {}
     for history in HISTORIES:
-        law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
+        law = cl.laws.Mindlin.from_material(body.material(), mu, history=history)
         out, momenta = [], []
         for degrees in ANGLES:
             slip = vn * math.tan(math.radians(degrees))

@@ -16,13 +16,15 @@ SPEED = 3.9
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
 """Chung & Ooi's aluminium oxide sphere (test 4)."""
 
-HERTZ = Hertz.from_material(*GRAIN.material())
-DAMPED = HertzDamped.from_material(*GRAIN.material(), restitution=0.8, mass=GRAIN.mass)
+HERTZ = Hertz.from_material(GRAIN.material())
+DAMPED = HertzDamped.from_material(GRAIN.material(), restitution=0.8, mass=GRAIN.mass)
 SENSOR = cl.Sensor.from_resonance(200e3, mass=20e-3, damping_ratio=0.02)
 
 
 def mindlin(history, friction=0.092):
-    return Mindlin.from_material(3.8e11, 0.23, GRAIN.radius, friction, history=history)
+    return Mindlin.from_material(
+        cl.analytic.Material(3.8e11, 0.23, GRAIN.radius), friction, history=history
+    )
 
 
 TANGENTIAL = {

@@ -26,7 +26,7 @@ K_HERTZ = 4.0 / 3.0 * 0.35e9 / (1.0 - 0.3**2) * math.sqrt(ISSUE_GRAIN.radius)
 ISSUE_KK = KuwabaraKono(K_HERTZ, dissipation=2e-6)
 ISSUE_SPRING = TangentialSpring(2e5, 0.3)
 ISSUE_LINEAR = LinearViscoelastic(1e5, 0.0)
-ISSUE_INCREMENTAL = Mindlin.from_material(*ISSUE_GRAIN.material(), 0.3, history="incremental")
+ISSUE_INCREMENTAL = Mindlin.from_material(ISSUE_GRAIN.material(), 0.3, history="incremental")
 
 ISSUE_ROWS = {
     "kk-spring-85deg": (ISSUE_KK, ISSUE_SPRING, 85.0, 0.0),
@@ -107,7 +107,7 @@ def test_paper_grain_at_89_degrees_keeps_coulomb_at_every_spin(history):
     89 deg broke Coulomb at every spin (6-93 times max N)."""
     k_hertz = 4.0 / 3.0 * 21.6e6 / (1 - 0.2**2) * math.sqrt(PAPER_GRAIN.radius)
     normal = KuwabaraKono(k_hertz, dissipation=1e-5)
-    tangential = Mindlin.from_material(*PAPER_GRAIN.material(), 0.25, history=history)
+    tangential = Mindlin.from_material(PAPER_GRAIN.material(), 0.25, history=history)
     for spin in (-3000.0, -800.0, 0.0, 800.0, 3000.0):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", cl.errors.WindowWarning)  # the plate strikes again

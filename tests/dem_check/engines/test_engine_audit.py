@@ -113,7 +113,7 @@ def test_lammps_gains_energy_with_mindlin_as_the_solver_does(history):
     from dem_check.engines.lammps.oblique import lammps_oblique
 
     normal = cl.laws.LinearViscoelastic(1e5, 0.0)
-    tangential = cl.laws.Mindlin.from_material(*ISSUE_GRAIN.material(), 0.3, history=history)
+    tangential = cl.laws.Mindlin.from_material(ISSUE_GRAIN.material(), 0.3, history=history)
     args = (ISSUE_GRAIN, normal, tangential, 3.0, math.radians(60.0))
     engine = lammps_oblique(*args, spin=1500.0).audit()["energy"]
     ours = cl.simulate_oblique(args[0], cl.Sensor.rigid(), *args[1:], spin=1500.0)

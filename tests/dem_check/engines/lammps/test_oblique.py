@@ -18,7 +18,7 @@ SPEED = 3.9
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
 """Chung & Ooi's aluminium oxide sphere."""
 
-K_HERTZ = cl.laws.Hertz.from_material(*GRAIN.material()).k_hertz
+K_HERTZ = cl.laws.Hertz.from_material(GRAIN.material()).k_hertz
 NORMALS = {
     "elastic": cl.laws.Hertz(K_HERTZ),
     "damped": cl.laws.HertzDamped(
@@ -26,8 +26,8 @@ NORMALS = {
     ),
 }
 TANGENTIAL = {
-    "mindlin": cl.laws.Mindlin.from_material(*GRAIN.material(), 0.092),
-    "mindlin/force": cl.laws.Mindlin.from_material(*GRAIN.material(), 0.092, history="incremental"),
+    "mindlin": cl.laws.Mindlin.from_material(GRAIN.material(), 0.092),
+    "mindlin/force": cl.laws.Mindlin.from_material(GRAIN.material(), 0.092, history="incremental"),
     "linear_history": cl.laws.TangentialSpring(2e6, 0.092),
 }
 SPINS = (0.0, -1500.0, 1500.0)
