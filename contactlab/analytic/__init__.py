@@ -66,6 +66,7 @@ from contactlab.analytic.pulse import plastic_trapezoid_amplitude
 from contactlab.analytic.sensor import half_sine_residual_amplitude
 from contactlab.analytic.tangential import (
     SOLID_SPHERE_INERTIA,
+    ObliqueImpact,
     effective_shear_modulus,
     gross_sliding_rebound,
     mindlin_stiffness_coefficient,
@@ -81,6 +82,7 @@ __all__ = [
     "RIGID_FLAT",
     "SOLID_SPHERE_INERTIA",
     "Material",
+    "ObliqueImpact",
     "PairRebound",
     "contact_modulus_radius",
     "damping_ratio",

@@ -119,6 +119,12 @@ def _array(n=64):
     return np.linspace(0.0, 1e-4, n)
 
 
+def _sliding():
+    import contactlab as cl
+
+    return cl.analytic.ObliqueImpact(2.0, 10.0, 0.0, 2.5e-3, 0.8, 0.5)
+
+
 def _steel_flat():
     import contactlab as cl
 
@@ -356,9 +362,10 @@ OVERRIDES = {
     "contactlab.inverse.demo.reconstruction_demo": {"path": lambda: _temporary("demo.png")},
     "contactlab.laws.get_law": {"name": lambda: "linear", "**": lambda: {"stiffness": 1e5}},
     "contactlab.analytic.hertz.hunt_crossley_restitution_linearised": {"damping": lambda: 0.1},
-    "contactlab.analytic.tangential.gross_sliding_rebound": {"normal_velocity": lambda: 2.0,
-                                                             "tangential_velocity": lambda: 10.0},
-    "contactlab.analytic.tangential.slides_throughout": {"normal_velocity": lambda: 2.0},
+    "contactlab.analytic.tangential.ObliqueImpact": {"normal_velocity": lambda: 2.0,
+                                                     "tangential_velocity": lambda: 10.0},
+    "contactlab.analytic.tangential.gross_sliding_rebound": {"impact": lambda: _sliding()},
+    "contactlab.analytic.tangential.slides_throughout": {"impact": lambda: _sliding()},
     "contactlab.batch.hertz.hertz_impacts": {"frame": lambda: _frame("hertz")},
     "contactlab.batch.oblique.oblique_impacts": {"frame": _oblique_frame},
     "contactlab.quantities.quantity": {"name": lambda: "contact_time"},

@@ -176,8 +176,9 @@ def test_gross_sliding_rebound_is_independent_of_every_rule():
     history, damping and arm (Coulomb fixes the force, not the history)."""
     angle = math.radians(45.0)
     vn, vt = SPEED * math.cos(angle), SPEED * math.sin(angle)
-    assert analytic.slides_throughout(vn, vt, 0.0, GRAIN.radius, 1.0, MU)
-    theory = analytic.gross_sliding_rebound(vn, vt, 0.0, GRAIN.radius, 1.0, MU)[0]
+    impact = analytic.ObliqueImpact(vn, vt, 0.0, GRAIN.radius, 1.0, MU)
+    assert analytic.slides_throughout(impact)
+    theory = analytic.gross_sliding_rebound(impact)[0]
     for arm in LEVER_ARMS:
         for history in HISTORY_FORMS:
             for damping in DAMPING_FORMS:

@@ -205,12 +205,14 @@ def test_gross_sliding_gives_the_impulse_closed_form_under_kratos_cap(solved):
     res = solved["test4_kratos_45deg"]
     assert {code for _, _, code in res.phases} == {"slide-"}
     vt = analytic.gross_sliding_rebound(
-        res.normal_velocity,
-        res.incident_tangential_velocity,
-        0.0,
-        T4.radius,
-        res.restitution,
-        0.092,
+        analytic.ObliqueImpact(
+            res.normal_velocity,
+            res.incident_tangential_velocity,
+            0.0,
+            T4.radius,
+            res.restitution,
+            0.092,
+        )
     )[0]
     # the impulse closed form is exact; the solver runs at rtol 1e-9 (measured 6e-15)
     assert res.tangential_velocity == pytest.approx(vt, rel=1e-9)

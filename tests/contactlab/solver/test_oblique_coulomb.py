@@ -61,12 +61,14 @@ def test_issue_rows_keep_coulomb_and_slide_grossly(normal, tangential, degrees, 
     # every row slides throughout in rigid-body theory; the contact sticks only for the
     # instant after the touch where the damped N outgrows the elastic trial force
     assert analytic.slides_throughout(
-        res.normal_velocity,
-        res.incident_tangential_velocity,
-        spin,
-        ISSUE_GRAIN.radius,
-        min(res.restitution, 1.0),
-        0.3,
+        analytic.ObliqueImpact(
+            res.normal_velocity,
+            res.incident_tangential_velocity,
+            spin,
+            ISSUE_GRAIN.radius,
+            min(res.restitution, 1.0),
+            0.3,
+        )
     )
     ratio = -res.tangential_impulse / res.normal_impulse * math.copysign(1.0, res.slip_before)
     # the impulses are momentum changes: vt' carries the integration error, rtol 1e-9 of
@@ -82,12 +84,14 @@ def test_issue_85_degrees_rebound_is_the_closed_form(sensor):
     2.84 m/s and 184 rad/s."""
     res = cl.simulate_oblique(ISSUE_GRAIN, sensor, ISSUE_KK, ISSUE_SPRING, 3.0, math.radians(85))
     vt, spin = analytic.gross_sliding_rebound(
-        res.normal_velocity,
-        res.incident_tangential_velocity,
-        0.0,
-        ISSUE_GRAIN.radius,
-        res.restitution,
-        0.3,
+        analytic.ObliqueImpact(
+            res.normal_velocity,
+            res.incident_tangential_velocity,
+            0.0,
+            ISSUE_GRAIN.radius,
+            res.restitution,
+            0.3,
+        )
     )
     # the stick at the touch lasts 1e-11 of the contact here; 1e-6: the solver's rtol 1e-9
     # with margin

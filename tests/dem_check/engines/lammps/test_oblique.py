@@ -97,7 +97,9 @@ def test_gross_sliding_closed_form_in_lammps():
     theirs = lammps_oblique(GRAIN, NORMALS["elastic"], TANGENTIAL["mindlin/force"], SPEED, angle)
     vn, vt = SPEED * math.cos(angle), SPEED * math.sin(angle)
     e = min(theirs.rebound_normal_velocity / vn, 1.0)
-    want_vt, want_spin = analytic.gross_sliding_rebound(vn, vt, 0.0, GRAIN.radius, e, 0.092)
+    want_vt, want_spin = analytic.gross_sliding_rebound(
+        analytic.ObliqueImpact(vn, vt, 0.0, GRAIN.radius, e, 0.092)
+    )
     # the normal step error of elastic Hertz at t_c/2000 is ~1e-7 of the speed
     assert theirs.tangential_velocity == pytest.approx(want_vt, rel=1e-5)
     assert theirs.angular_velocity == pytest.approx(want_spin, rel=1e-5)
