@@ -44,6 +44,7 @@ __all__ = [
     "load_config",
     "load_preset",
     "read_document",
+    "second_body",
     "sensor_from_table",
 ]
 
@@ -127,21 +128,39 @@ def _build(name, function, *args, **table):
     return function(*args, **table)
 
 
-def _other_body(table):
-    """The second body's keys (:data:`OTHER_BODY_KEYS`) taken from a from_material table
-    as ``{"other": Material}``, the rigid flat's value for a key not given; nothing if
-    none is given."""
+def second_body(table):
+    """A law table's keys of the second body (:data:`OTHER_BODY_KEYS`) as ``other``, the
+    :class:`~contactlab.analytic.Material` the laws' ``from_material`` take.
+
+    Parameters
+    ----------
+    table : dict
+        A ``[contact]`` (``from_material = true``) or ``[tangential]`` table.
+
+    Returns
+    -------
+    dict
+        A copy of ``table`` without those keys and, if any was given, with ``other``:
+        their Material (a rigid flat's value for a key not given).
+
+    Raises
+    ------
+    ParameterError
+        For a table that is not a dict, a key ``other`` (a table gives the second body by
+        the three keys) or a bad value, each named.
+    """
+    table = dict(_table("table", table))
     if "other" in table:
         raise ParameterError(
-            f"[contact] gives the second body as {', '.join(OTHER_BODY_KEYS)}; not other"
+            f"a table gives the second body as {', '.join(OTHER_BODY_KEYS)}; not other"
         )
     given = {key: table.pop(key) for key in OTHER_BODY_KEYS if key in table}
-    if not given:
-        return {}
-    try:
-        return {"other": Material(*map(given.get, OTHER_BODY_KEYS, RIGID_FLAT))}
-    except ParameterError as exc:
-        raise ParameterError(f"[contact] the second body (other_*): {exc}") from None
+    if given:
+        try:
+            table["other"] = Material(*map(given.get, OTHER_BODY_KEYS, RIGID_FLAT))
+        except ParameterError as exc:
+            raise ParameterError(f"the second body ({', '.join(given)}): {exc}") from None
+    return table
 
 
 def _law(table, grain):
@@ -158,7 +177,7 @@ def _law(table, grain):
         if "mass" in parameters:
             table.setdefault("mass", grain.mass)
         names = [key for key in parameters if key != "other"] + list(OTHER_BODY_KEYS)
-        table.update(_other_body(table))
+        table = second_body(table)
         unknown_keywords("[contact]", from_material, (grain.material(),), table, "key", 1, names)
         return from_material(grain.material(), **table)
     return _build("contact", LAWS[name], **table)

@@ -362,6 +362,7 @@ OVERRIDES = {
     "contactlab.inverse.demo.reconstruction_demo": {"path": lambda: _temporary("demo.png")},
     "contactlab.laws.get_law": {"name": lambda: "linear", "**": lambda: {"stiffness": 1e5}},
     "contactlab.analytic.hertz.hunt_crossley_restitution_linearised": {"damping": lambda: 0.1},
+    "contactlab.config.second_body": {"table": lambda: {"other_youngs_modulus": 2e11}},
     "contactlab.analytic.tangential.ObliqueImpact": {"normal_velocity": lambda: 2.0,
                                                      "tangential_velocity": lambda: 10.0},
     "contactlab.analytic.tangential.gross_sliding_rebound": {"impact": lambda: _sliding()},
