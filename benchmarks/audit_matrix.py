@@ -114,12 +114,14 @@ def run_oblique(examples, seed_value):
             mu >= MIN_FRICTION
             and res.restitution >= 0.0
             and analytic.slides_throughout(
-                res.normal_velocity,
-                res.incident_tangential_velocity,
-                case["spin"],
-                case["grain"].radius,
-                min(res.restitution, 1.0),
-                mu,
+                analytic.ObliqueImpact(
+                    res.normal_velocity,
+                    res.incident_tangential_velocity,
+                    case["spin"],
+                    case["grain"].radius,
+                    min(res.restitution, 1.0),
+                    mu,
+                )
             )
         )
         if slides and res.slip_before != 0.0:

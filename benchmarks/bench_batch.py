@@ -39,7 +39,7 @@ ROWS = 100_000
 HERTZ_ROWS = 20_000
 LOOP_ROWS = 400
 GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-TSUJI = cl.laws.HertzDamped.from_material(*GRAIN.material(), 0.5, GRAIN.mass)
+TSUJI = cl.laws.HertzDamped.from_material(GRAIN.material(), 0.5, GRAIN.mass)
 
 
 def _sensors(n):

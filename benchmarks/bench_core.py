@@ -93,8 +93,10 @@ def figures():
     cl, grain, sensor = _setup()
     out = {}
     linear = cl.laws.LinearViscoelastic(1e5, 1.0)
-    e, nu, r = grain.material()
-    tsuji = cl.laws.HertzDamped.from_material(e, nu, r, 0.5, grain.mass)
+    # the measured tree's from_material: the grain's Material, or (before it) its numbers
+    material = grain.material()
+    grain_data = (material,) if hasattr(cl.analytic, "Material") else tuple(material)
+    tsuji = cl.laws.HertzDamped.from_material(*grain_data, 0.5, grain.mass)
     for name, law, options in (("linear", linear, {}), ("hertz", tsuji, {"rtol": 1e-6})):
 
         def run(law=law, options=options):

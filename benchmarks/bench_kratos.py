@@ -48,7 +48,9 @@ def drop_tests():
     laws = {
         "linear": cl.laws.LinearViscoelastic(1e5, 1.0),
         "hertz": cl.laws.Hertz(k_hertz),
-        "hertz_damped": cl.laws.HertzDamped.from_material(21.6e6, 0.2, body.radius, 0.5, body.mass),
+        "hertz_damped": cl.laws.HertzDamped.from_material(
+            cl.analytic.Material(21.6e6, 0.2, body.radius), 0.5, body.mass
+        ),
     }
     sensors = {
         "rigid": cl.Sensor.rigid(),
@@ -113,13 +115,13 @@ def attribution(restitution=1.0, figure=None, steps=None):
     material = case.materials[0]
     body = grain(material, case.inputs["radius [m]"])
     mu, speed = case.inputs["friction [-]"], case.inputs["speed [m/s]"]
-    normal = cl.laws.Hertz.from_material(*body.material())
+    normal = cl.laws.Hertz.from_material(body.material())
     if restitution < 1.0:
         damping = analytic.tsuji_damping_coefficient(
             normal.k_hertz, body.mass, restitution, "force"
         )
         normal = cl.laws.HertzDamped(normal.k_hertz, damping)
-    mindlin = cl.laws.Mindlin.from_material(*body.material(), mu)
+    mindlin = cl.laws.Mindlin.from_material(body.material(), mu)
     rebounds = []
     for degrees in ANGLES:
         angle = math.radians(degrees)

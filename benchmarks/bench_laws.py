@@ -12,16 +12,16 @@ REPEATS = 15
 def main():
     grain = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
     mass = grain.mass
-    e, nu, r = grain.material()
+    material = grain.material()
     cases = {
         "linear": laws.LinearViscoelastic(1e5, 1.0),
-        "hertz": laws.Hertz.from_material(e, nu, r),
-        "hertz_damped": laws.HertzDamped.from_material(e, nu, r, 0.5, mass),
-        "kuwabara_kono": laws.KuwabaraKono(laws.Hertz.from_material(e, nu, r).k_hertz, 1e-6),
-        "hunt_crossley": laws.HuntCrossley(laws.Hertz.from_material(e, nu, r).k_hertz, 1.5, 0.2),
+        "hertz": laws.Hertz.from_material(material),
+        "hertz_damped": laws.HertzDamped.from_material(material, 0.5, mass),
+        "kuwabara_kono": laws.KuwabaraKono(laws.Hertz.from_material(material).k_hertz, 1e-6),
+        "hunt_crossley": laws.HuntCrossley(laws.Hertz.from_material(material).k_hertz, 1.5, 0.2),
         "walton_braun": laws.WaltonBraun(1e5, 2e5),
         "linear_plastic": laws.LinearPlastic(1e5, 3.0),
-        "thornton": laws.Thornton.from_material(e, nu, r, 1e6),
+        "thornton": laws.Thornton.from_material(material, 1e6),
         "plastic_trapezoid": laws.PlasticTrapezoid(70e-6, 7e-6),
     }
     print("Rigid-wall impact per law (v0 = 2 m/s, 20 001 output samples), median of", REPEATS)

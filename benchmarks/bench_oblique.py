@@ -47,8 +47,17 @@ from oblique_reference import ObliqueReference
 from timing import wall_times
 
 REPEATS = 41
+
+
+def _from_material(law, material, *rest, **options):
+    """``law.from_material`` of the code running (``--before`` runs an older checkout): the
+    grain's Material, or in a checkout from before ``analytic.Material`` its three numbers."""
+    first = (cl.analytic.Material(*material),) if hasattr(cl.analytic, "Material") else material
+    return law.from_material(*first, *rest, **options)
+
+
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
-NORMAL = cl.laws.Hertz.from_material(*GRAIN.material())
+NORMAL = _from_material(cl.laws.Hertz, GRAIN.material())
 SPEED, RTOL = 3.9, 1e-9
 SWEEP = 50
 """Angles and spins of the batch sweep (SWEEP**2 impacts)."""
@@ -160,9 +169,14 @@ def kratos_cases():
     Kratos' elastic cap (the cases of ``tests/contactlab/solver/test_elastic_cap.py``)."""
     grain = cl.Grain(diameter=5e-3, density=2500.0, youngs_modulus=7e10, poisson_ratio=0.25)
     sensor = cl.Sensor(mass=2e-3, stiffness=5e7, damping=2.0)
-    normal = cl.laws.HertzDamped.from_material(*grain.material(), 0.6, grain.mass)
-    tangential = cl.laws.Mindlin.from_material(
-        *grain.material(), 0.3, history="incremental", damping="tied", coulomb_cap="elastic"
+    normal = _from_material(cl.laws.HertzDamped, grain.material(), 0.6, grain.mass)
+    tangential = _from_material(
+        cl.laws.Mindlin,
+        grain.material(),
+        0.3,
+        history="incremental",
+        damping="tied",
+        coulomb_cap="elastic",
     )
     cases = {"sensor 20 deg": ((grain, sensor, normal, tangential, 1.0, math.radians(20)), {})}
     damped = cl.laws.HertzDamped(
@@ -170,7 +184,7 @@ def kratos_cases():
         analytic.tsuji_damping_coefficient(NORMAL.k_hertz, GRAIN.mass, 0.98, "force"),
     )
     kratos = DEM_CONVENTIONS["kratos"].mindlin(
-        cl.laws.Mindlin.from_material(*GRAIN.material(), 0.092)
+        _from_material(cl.laws.Mindlin, GRAIN.material(), 0.092)
     )
     for degrees in (5, 30):
         laws = (GRAIN, cl.Sensor.rigid(), damped, kratos, SPEED, math.radians(degrees))
@@ -258,7 +272,7 @@ def print_elastic_cap(before=None):
 def main():
     print(f"oblique Hertz-Mindlin impact, R = {GRAIN.radius * 1e3} mm, {SPEED} m/s, rtol {RTOL}")
     for history in ("total", "incremental"):
-        law = cl.laws.Mindlin.from_material(3.8e11, 0.23, GRAIN.radius, 0.092, history=history)
+        law = _from_material(cl.laws.Mindlin, (3.8e11, 0.23, GRAIN.radius), 0.092, history=history)
         for degrees in (5.0, 45.0):
             angle = math.radians(degrees)
             a, b = ours(law, angle), scipy_reference(law, angle)

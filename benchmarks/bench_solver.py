@@ -93,8 +93,7 @@ class PythonStepperHertzDamped(cl.laws.HertzDamped):
 
 
 def hertz_case(grain, sensor):
-    e, nu, r = grain.material()
-    law = cl.laws.HertzDamped.from_material(e, nu, r, 0.5, grain.mass)
+    law = cl.laws.HertzDamped.from_material(grain.material(), 0.5, grain.mass)
     python_law = PythonStepperHertzDamped(**law.parameters())
 
     def run(rtol, law=law):

@@ -151,7 +151,8 @@ class Grain(KeywordChecked):
         return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
 
     def material(self):
-        """``(youngs_modulus, poisson_ratio, radius)`` for the laws' ``from_material``.
+        """The grain's :class:`~contactlab.analytic.Material` (Young's modulus [Pa],
+        Poisson ratio [-], radius [m]) for the laws' ``from_material``.
 
         Raises
         ------
@@ -163,7 +164,7 @@ class Grain(KeywordChecked):
                 "this grain has no material data: give youngs_modulus (or shear_modulus) "
                 "and poisson_ratio to build a Hertz-family law from it"
             )
-        return self.youngs_modulus, self.poisson_ratio, self.radius
+        return analytic.Material(self.youngs_modulus, self.poisson_ratio, self.radius)
 
     def to_dict(self):
         """Grain data with unit-bearing keys."""

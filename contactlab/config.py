@@ -6,7 +6,9 @@ A file has four tables, every value in SI units::
                   or shear_modulus [Pa] and poisson_ratio [-]
     [contact]     law = "<name>" (see contactlab.laws.LAWS) and that law's parameters;
                   Hertz-family laws may instead say from_material = true and take the
-                  grain's material data (plus restitution or yield_pressure as needed)
+                  grain's material data (plus restitution or yield_pressure as needed,
+                  and other_youngs_modulus, other_poisson_ratio, other_radius for a
+                  second body other than a rigid flat)
     [sensor]      rigid = true; or mass [kg], stiffness [N/m], damping [N*s/m];
                   or resonance [Hz] with mass [kg] and damping_ratio [-] or damping;
                   or resonance [Hz] with a disc: diameter [m], thickness [m],
@@ -24,6 +26,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from contactlab.analytic import RIGID_FLAT, Material
 from contactlab.bodies import Grain, Sensor
 from contactlab.errors import ParameterError
 from contactlab.laws import LAWS
@@ -41,6 +44,7 @@ __all__ = [
     "load_config",
     "load_preset",
     "read_document",
+    "second_body",
     "sensor_from_table",
 ]
 
@@ -49,6 +53,9 @@ PRESET_DIR = Path(__file__).resolve().parent / "data" / "presets"
 
 _TABLES = ("grain", "contact", "sensor", "simulation")
 _SIMULATION_KEYS = ("velocity", "duration", "sample_rate", "method", "threshold")
+OTHER_BODY_KEYS = tuple(f"other_{field}" for field in Material._fields)
+"""A ``[contact]`` table's keys of a from_material law's second body (its ``other``;
+a rigid flat where none is given)."""
 
 
 @dataclass
@@ -121,6 +128,41 @@ def _build(name, function, *args, **table):
     return function(*args, **table)
 
 
+def second_body(table):
+    """A law table's keys of the second body (:data:`OTHER_BODY_KEYS`) as ``other``, the
+    :class:`~contactlab.analytic.Material` the laws' ``from_material`` take.
+
+    Parameters
+    ----------
+    table : dict
+        A ``[contact]`` (``from_material = true``) or ``[tangential]`` table.
+
+    Returns
+    -------
+    dict
+        A copy of ``table`` without those keys and, if any was given, with ``other``:
+        their Material (a rigid flat's value for a key not given).
+
+    Raises
+    ------
+    ParameterError
+        For a table that is not a dict, a key ``other`` (a table gives the second body by
+        the three keys) or a bad value, each named.
+    """
+    table = dict(_table("table", table))
+    if "other" in table:
+        raise ParameterError(
+            f"a table gives the second body as {', '.join(OTHER_BODY_KEYS)}; not other"
+        )
+    given = {key: table.pop(key) for key in OTHER_BODY_KEYS if key in table}
+    if given:
+        try:
+            table["other"] = Material(*map(given.get, OTHER_BODY_KEYS, RIGID_FLAT))
+        except ParameterError as exc:
+            raise ParameterError(f"the second body ({', '.join(given)}): {exc}") from None
+    return table
+
+
 def _law(table, grain):
     table = dict(table)
     if "law" not in table:
@@ -131,9 +173,13 @@ def _law(table, grain):
         if from_material is None:
             have = ", ".join(key for key, cls in LAWS.items() if hasattr(cls, "from_material"))
             raise ParameterError(f"from_material is for Hertz-family laws ({have}), not {name!r}")
-        if "mass" in inspect.signature(from_material).parameters:
+        parameters = list(inspect.signature(from_material).parameters)[1:]
+        if "mass" in parameters:
             table.setdefault("mass", grain.mass)
-        return _build("contact", from_material, *grain.material(), **table)
+        names = [key for key in parameters if key != "other"] + list(OTHER_BODY_KEYS)
+        table = second_body(table)
+        unknown_keywords("[contact]", from_material, (grain.material(),), table, "key", 1, names)
+        return from_material(grain.material(), **table)
     return _build("contact", LAWS[name], **table)
 
 

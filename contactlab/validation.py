@@ -334,7 +334,7 @@ def _signature(function):
     return inspect.signature(function)
 
 
-def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
+def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0, names=None):
     """Bind ``args, kwargs`` to ``function``'s signature; a bad call raises, naming the
     unknown names with the nearest valid one (:mod:`difflib`).
 
@@ -352,6 +352,10 @@ def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
         What the names are called in the message (``"key"`` for TOML tables).
     skip : int, default 0
         Leading signature parameters not listed as valid (``self``).
+    names : sequence of str, optional
+        The valid names as the caller's callers spell them, where they are not the
+        signature's (a TOML table's keys that the caller gathers into one argument);
+        default the signature's parameters after ``skip``.
 
     Raises
     ------
@@ -363,14 +367,15 @@ def unknown_keywords(owner, function, args, kwargs, noun="parameter", skip=0):
     try:
         signature.bind(*args, **kwargs)
     except TypeError as exc:
-        valid = list(signature.parameters)[skip:]
-        unknown = [k for k in kwargs if k not in valid]
+        parameters = list(signature.parameters)[skip:]
+        valid = parameters if names is None else list(names)
+        unknown = [k for k in kwargs if k not in parameters]
         if unknown:
             problem = f"unknown {noun}(s) {', '.join(with_suggestion(k, valid) for k in unknown)}"
             given = len(args) - skip
             missing = [
                 name
-                for i, name in enumerate(valid)
+                for i, name in enumerate(parameters)
                 if i >= given
                 and name not in kwargs
                 and signature.parameters[name].default is inspect.Parameter.empty

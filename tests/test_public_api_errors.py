@@ -122,7 +122,9 @@ def test_simulate_oblique_answers_any_value_with_parameter_error(name, value):
     if name == "spin" and number and math.isfinite(value) and abs(value) < 1e6:
         return  # a valid spin: a simulation, not the subject here
     normal = cl.laws.HertzDamped(1.5e6, 4.0)
-    tangential = cl.laws.Mindlin.from_material(21.6e6, 0.2, GRAIN.radius, friction=0.5)
+    tangential = cl.laws.Mindlin.from_material(
+        cl.analytic.Material(21.6e6, 0.2, GRAIN.radius), friction=0.5
+    )
     arguments = {**OBLIQUE, name: value}
     _call(cl.simulate_oblique, grain=GRAIN, sensor=SENSOR, normal_law=normal,
           tangential_law=tangential, **arguments)  # fmt: skip

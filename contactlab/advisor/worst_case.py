@@ -36,7 +36,7 @@ def _setup(species, velocity, sensor_mass, damping_ratio):
     return StudySetup(
         grain=grain,
         sensor=Sensor.from_resonance(40e3, mass=sensor_mass, damping_ratio=damping_ratio),
-        law=Hertz.from_material(*grain.material()),
+        law=Hertz.from_material(grain.material()),
         velocity=velocity,
         scatter=Scatter(repetitions=1, spread=0.0),
         size_dependence="material",

@@ -42,6 +42,8 @@ from contactlab.analytic.linear import (
     linear_restitution,
 )
 from contactlab.analytic.materials import (
+    RIGID_FLAT,
+    Material,
     contact_modulus_radius,
     effective_mass,
     effective_modulus,
@@ -64,6 +66,7 @@ from contactlab.analytic.pulse import plastic_trapezoid_amplitude
 from contactlab.analytic.sensor import half_sine_residual_amplitude
 from contactlab.analytic.tangential import (
     SOLID_SPHERE_INERTIA,
+    ObliqueImpact,
     effective_shear_modulus,
     gross_sliding_rebound,
     mindlin_stiffness_coefficient,
@@ -76,7 +79,10 @@ __all__ = [
     "KUWABARA_KONO_C1",
     "KUWABARA_KONO_C2",
     "KUWABARA_KONO_MAX_PARAMETER",
+    "RIGID_FLAT",
     "SOLID_SPHERE_INERTIA",
+    "Material",
+    "ObliqueImpact",
     "PairRebound",
     "contact_modulus_radius",
     "damping_ratio",

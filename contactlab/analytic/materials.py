@@ -1,8 +1,9 @@
 """Effective mass, radius and modulus of two bodies; Hertz stiffness; the Rayleigh time step."""
 
 import math
+from typing import NamedTuple
 
-from contactlab.errors import ParameterError
+from contactlab.entry_checks import check_instance
 from contactlab.validation import (
     check_number,
     check_poisson_ratio,
@@ -10,6 +11,8 @@ from contactlab.validation import (
 )
 
 __all__ = [
+    "RIGID_FLAT",
+    "Material",
     "check_elastic_pair",
     "contact_modulus_radius",
     "effective_mass",
@@ -19,6 +22,42 @@ __all__ = [
     "rayleigh_time",
     "youngs_from_shear",
 ]
+
+
+class _MaterialFields(NamedTuple):
+    youngs_modulus: float
+    poisson_ratio: float
+    radius: float
+
+
+class Material(_MaterialFields):
+    """A body's elastic data and radius of curvature, as the laws' ``from_material`` take
+    them (:meth:`contactlab.Grain.material` gives a grain's); the defaults are a rigid
+    flat (:data:`RIGID_FLAT`).
+
+    Parameters
+    ----------
+    youngs_modulus : float, default inf
+        Young's modulus [Pa], > 0; ``inf`` is rigid.
+    poisson_ratio : float, default 0.0
+        Poisson ratio [-] in (-1, 0.5].
+    radius : float, default inf
+        Radius of curvature [m], > 0; ``inf`` is a flat.
+    """
+
+    __slots__ = ()
+
+    def __new__(cls, youngs_modulus=math.inf, poisson_ratio=0.0, radius=math.inf):
+        return super().__new__(
+            cls,
+            check_number("youngs_modulus", youngs_modulus, low=0.0, unit="Pa", allow_inf=True),
+            check_poisson_ratio("poisson_ratio", poisson_ratio),
+            check_number("radius", radius, low=0.0, unit="m", allow_inf=True),
+        )
+
+
+RIGID_FLAT = Material()
+"""The second body a grain meets unless another is given: rigid and flat."""
 
 
 def effective_mass(mass, other_mass=math.inf):
@@ -163,16 +202,15 @@ def youngs_from_shear(shear_modulus, poisson_ratio):
     return 2.0 * g * (1.0 + nu)
 
 
-def contact_modulus_radius(youngs_modulus, poisson_ratio, radius, other):
+def contact_modulus_radius(material, other=RIGID_FLAT):
     """Effective modulus [Pa] and radius [m] of a grain against a second body.
 
     Parameters
     ----------
-    youngs_modulus, poisson_ratio, radius : float
-        The grain's Young's modulus [Pa], Poisson ratio [-] and radius [m].
-    other : tuple of float
-        ``(youngs_modulus [Pa], poisson_ratio [-], radius [m])`` of the second body;
-        ``inf`` modulus and radius make it a rigid flat.
+    material : Material
+        The grain's ``(youngs_modulus [Pa], poisson_ratio [-], radius [m])``.
+    other : Material, default RIGID_FLAT
+        The second body's; ``inf`` modulus and radius make it a rigid flat.
 
     Returns
     -------
@@ -180,14 +218,11 @@ def contact_modulus_radius(youngs_modulus, poisson_ratio, radius, other):
         ``(E*, R*)`` with ``1/E* = (1-nu1**2)/E1 + (1-nu2**2)/E2`` and
         ``1/R* = 1/R1 + 1/R2``.
     """
-    if not isinstance(other, (tuple, list)) or len(other) != 3:
-        raise ParameterError(
-            "other must be the second body's (youngs_modulus [Pa], poisson_ratio [-], "
-            f"radius [m]); got {other!r}"
-        )
+    grain = check_instance("material", material, Material, "Grain.material")
+    other = check_instance("other", other, Material)
     return (
-        effective_modulus(youngs_modulus, poisson_ratio, other[0], other[1]),
-        effective_radius(radius, other[2]),
+        effective_modulus(*grain[:2], *other[:2]),
+        effective_radius(grain.radius, other.radius),
     )
 
 

@@ -17,13 +17,16 @@ Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656. DOI 10.1007/s10035-011-
 """
 
 import math
+from typing import NamedTuple
 
 from contactlab.analytic.materials import check_elastic_pair
+from contactlab.entry_checks import check_instance
 from contactlab.errors import ParameterError
 from contactlab.validation import check_inertia_factor, check_number
 
 __all__ = [
     "SOLID_SPHERE_INERTIA",
+    "ObliqueImpact",
     "effective_shear_modulus",
     "gross_sliding_rebound",
     "mindlin_stiffness_coefficient",
@@ -83,44 +86,20 @@ def mindlin_stiffness_coefficient(effective_shear_modulus, effective_radius):
     return 8.0 * g * math.sqrt(r)
 
 
-def _slip_gain(inertia_factor):
-    """Change of contact-point slip per unit of centre velocity change: ``1 + 1/kappa``."""
-    kappa = check_inertia_factor("inertia_factor", inertia_factor)
-    return 1.0 + 1.0 / kappa
+class _ObliqueFields(NamedTuple):
+    normal_velocity: float
+    tangential_velocity: float
+    spin: float
+    radius: float
+    restitution: float
+    friction: float
+    inertia_factor: float
 
 
-def _impact_inputs(normal_velocity, tangential_velocity, spin, radius, restitution, friction):
-    vn = check_number("normal_velocity", normal_velocity, low=0.0, unit="m/s")
-    vt = check_number("tangential_velocity", tangential_velocity, unit="m/s")
-    w = check_number("spin", spin, unit="rad/s")
-    r = check_number("radius", radius, low=0.0, unit="m")
-    e = check_number("restitution", restitution, low=0.0, high=1.0, low_open=False)
-    mu = check_number("friction", friction, low=0.0, low_open=False)
-    return vn, vt, w, r, e, mu
-
-
-def _slip_and_reach(vn, vt, w, r, e, mu, kappa):
-    """The initial slip ``vt - R spin`` [m/s] and how far Coulomb friction moves it over
-    the impact, ``(1 + 1/kappa) mu (1 + e) vn`` [m/s], of checked inputs."""
-    return vt - r * w, _slip_gain(kappa) * mu * (1.0 + e) * vn
-
-
-def slides_throughout(
-    normal_velocity,
-    tangential_velocity,
-    spin,
-    radius,
-    restitution,
-    friction,
-    inertia_factor=SOLID_SPHERE_INERTIA,
-):
-    """Whether the contact point slides in one direction for the whole impact [bool].
-
-    Rigid-body Coulomb theory: the tangential impulse is ``mu`` times the normal one
-    ``(1 + e) m vn`` and changes the slip by ``(1 + 1/kappa) mu (1 + e) vn``; the contact
-    slides throughout when that does not exhaust the initial slip ``|vt - R spin|``.
-    A compliant contact (Mindlin) slides throughout under the same condition, except near
-    it, where its stick phases start earlier (Maw et al. 1976).
+class ObliqueImpact(_ObliqueFields):
+    """A sphere's oblique impact on a flat in rigid-body terms, as
+    :func:`slides_throughout` and :func:`gross_sliding_rebound` read it (each value
+    checked here).
 
     Parameters
     ----------
@@ -139,22 +118,57 @@ def slides_throughout(
     inertia_factor : float, default 0.4
         ``kappa = I / (m R**2)`` [-].
     """
-    inputs = _impact_inputs(
-        normal_velocity, tangential_velocity, spin, radius, restitution, friction
-    )
-    slip, reach = _slip_and_reach(*inputs, inertia_factor)
+
+    __slots__ = ()
+
+    def __new__(
+        cls,
+        normal_velocity,
+        tangential_velocity,
+        spin,
+        radius,
+        restitution,
+        friction,
+        inertia_factor=SOLID_SPHERE_INERTIA,
+    ):
+        return super().__new__(
+            cls,
+            check_number("normal_velocity", normal_velocity, low=0.0, unit="m/s"),
+            check_number("tangential_velocity", tangential_velocity, unit="m/s"),
+            check_number("spin", spin, unit="rad/s"),
+            check_number("radius", radius, low=0.0, unit="m"),
+            check_number("restitution", restitution, low=0.0, high=1.0, low_open=False),
+            check_number("friction", friction, low=0.0, low_open=False),
+            check_inertia_factor("inertia_factor", inertia_factor),
+        )
+
+
+def _slip_and_reach(impact):
+    """The initial slip ``vt - R spin`` [m/s] and how far Coulomb friction moves it over
+    the impact, ``(1 + 1/kappa) mu (1 + e) vn`` [m/s]."""
+    vn, vt, w, r, e, mu, kappa = check_instance("impact", impact, ObliqueImpact)
+    return vt - r * w, (1.0 + 1.0 / kappa) * mu * (1.0 + e) * vn
+
+
+def slides_throughout(impact):
+    """Whether the contact point slides in one direction for the whole impact [bool].
+
+    Rigid-body Coulomb theory: the tangential impulse is ``mu`` times the normal one
+    ``(1 + e) m vn`` and changes the slip by ``(1 + 1/kappa) mu (1 + e) vn``; the contact
+    slides throughout when that does not exhaust the initial slip ``|vt - R spin|``.
+    A compliant contact (Mindlin) slides throughout under the same condition, except near
+    it, where its stick phases start earlier (Maw et al. 1976).
+
+    Parameters
+    ----------
+    impact : ObliqueImpact
+        The impact's speeds, spin, radius, restitution, friction and inertia factor.
+    """
+    slip, reach = _slip_and_reach(impact)
     return abs(slip) >= reach
 
 
-def gross_sliding_rebound(
-    normal_velocity,
-    tangential_velocity,
-    spin,
-    radius,
-    restitution,
-    friction,
-    inertia_factor=SOLID_SPHERE_INERTIA,
-):
+def gross_sliding_rebound(impact):
     """Tangential velocity [m/s] and spin [rad/s] after an impact in gross sliding.
 
     The tangential impulse is ``-mu (1 + e) m vn sign(s)``, with ``s = vt - R spin`` the
@@ -165,8 +179,8 @@ def gross_sliding_rebound(
 
     Parameters
     ----------
-    normal_velocity, tangential_velocity, spin, radius, restitution, friction, inertia_factor
-        As in :func:`slides_throughout`.
+    impact : ObliqueImpact
+        The impact's speeds, spin, radius, restitution, friction and inertia factor.
 
     Returns
     -------
@@ -183,15 +197,12 @@ def gross_sliding_rebound(
     Maw N., Barber J.R., Fawcett J.N. (1976) Wear 38, 101-114 (gross slip regime).
     Chung Y.C., Ooi J.Y. (2011) Granular Matter 13, 643-656 (tests 4-8, sliding branches).
     """
-    vn, vt, w, r, e, mu = _impact_inputs(
-        normal_velocity, tangential_velocity, spin, radius, restitution, friction
-    )
-    kappa = check_inertia_factor("inertia_factor", inertia_factor)
-    slip, reach = _slip_and_reach(vn, vt, w, r, e, mu, kappa)
+    slip, reach = _slip_and_reach(impact)
     if abs(slip) < reach:
         raise ParameterError(
             f"the contact does not slide throughout: |vt - R spin| = {abs(slip):.6g} m/s "
             f"< (1 + 1/kappa) mu (1 + e) vn = {reach:.6g} m/s"
         )
+    vn, vt, w, r, e, mu, kappa = impact
     change = mu * (1.0 + e) * vn * math.copysign(1.0, slip)
     return vt - change, w + change / (kappa * r)

@@ -62,6 +62,8 @@ __all__ = [
     "StructureMode",
     "fit_crosstalk",
     "joint_structure_modes",
+    "linear_least_squares",
+    "structure_band",
     "structure_modes",
 ]
 
@@ -163,7 +165,7 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None, refine=Fal
         raise ParameterError(f"t and y must be equal 1-D windows of >= 16 samples; got {t.size}")
     refine = check_flag("refine", refine)
     order = 2 * max_modes + SLOW_POLES
-    tau, decimated, step = _band(t, y, sensor, degree=1 if refine else 2, blocks=refine)
+    tau, decimated, step = structure_band(t, y, sensor, degree=1 if refine else 2, blocks=refine)
     if t.size // round(step / float(t[1] - t[0])) < 3 * order:
         raise ParameterError(
             f"the window of {np.ptp(t):.3g} s is too short to identify {max_modes} structure "
@@ -233,7 +235,7 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
             raise ParameterError(
                 f"each window must be equal t and y of >= 16 samples; got {t.size}"
             )
-        bands.append(_band(t, y, sensor, degree=1, blocks=True))
+        bands.append(structure_band(t, y, sensor, degree=1, blocks=True))
     order = 2 * max_modes + SLOW_POLES
     pencil = JOINT_PENCIL * order
     views = np.lib.stride_tricks.sliding_window_view
@@ -258,14 +260,32 @@ def joint_structure_modes(windows, sensor, *, max_modes=MAX_MODES, refine=True):
     return [(f, z) for f, z, _ in candidates], significant
 
 
-def _band(t, y, sensor, degree, blocks=False):
-    """The window less a polynomial of ``degree`` and the sensor's free ringing (fitted
-    together by least squares), low-passed at :data:`BAND_FRACTION` of the sensor
-    resonance and decimated to :data:`DECIMATED_PER_CUTOFF` samples per cutoff period:
-    ``(tau [s] from the window's start, samples, decimated interval [s])``. With
-    ``blocks``, the decimated samples are the means of consecutive blocks instead (a
-    boxcar: a damped exponential stays one, with the same pole, to the window's edges,
-    where the zero-phase low-pass's end extension bends a window of a few periods)."""
+def structure_band(t, y, sensor, degree, blocks=False):
+    """The band in which structure modes are sought: a window less a polynomial and the
+    sensor's free ringing, low-passed and decimated.
+
+    Parameters
+    ----------
+    t, y : numpy.ndarray
+        The window's uniform times [s] and samples (unit of the record, N).
+    sensor : contactlab.Sensor
+        The sensor whose free ringing (resonance and damping ratio) is fitted by least
+        squares together with the polynomial.
+    degree : int
+        Degree of the polynomial [-] (0: the mean only).
+    blocks : bool, default False
+        Decimate by the means of consecutive blocks instead of a low-pass at
+        :data:`BAND_FRACTION` of the sensor resonance (a boxcar: a damped exponential
+        stays one, with the same pole, to the window's edges, where the zero-phase
+        low-pass's end extension bends a window of a few periods).
+
+    Returns
+    -------
+    tuple
+        ``(tau, samples, interval)``: the decimated times from the window's start [s],
+        the band's samples (unit of ``y``) and the decimated interval [s]
+        (:data:`DECIMATED_PER_CUTOFF` samples per cutoff period).
+    """
     dt = float(t[1] - t[0])
     rest = free_ringing_residual(t, y, sensor, degree)
     cutoff = BAND_FRACTION * sensor.resonance
@@ -295,13 +315,13 @@ def _in_band(poles, low, cutoff, growing=False):
 
 
 def _autocovariance(noise, sensor, lags):
-    """Biased autocovariance of a noise stretch's band (:func:`_band` less its mean only:
-    a quadratic would take 1/f power near a low pole out of a short pre-trigger) at
+    """Biased autocovariance of a noise stretch's band (:func:`structure_band` less its
+    mean only: a quadratic would take 1/f power near a low pole out of a short pre-trigger) at
     ``lags`` decimated lags, zero beyond the stretch."""
     t, y = check_samples("noise t", noise[0]), check_samples("noise y", noise[1])
     if t.shape != y.shape or t.size < 16:
         raise ParameterError(f"noise must be equal t and y of >= 16 samples; got {t.size}")
-    _, band, _ = _band(t, y, sensor, degree=0)
+    _, band, _ = structure_band(t, y, sensor, degree=0)
     full = signal.correlate(band, band, mode="full", method="fft")[band.size - 1 :] / band.size
     return np.concatenate([full, np.zeros(max(lags - full.size, 0))])[:lags]
 
@@ -338,7 +358,7 @@ def _significant(tau, y, candidates, degree, autocovariance=None):
     polynomial = np.vander(tau - tau.mean(), degree + 1, increasing=True)
     columns = [polynomial] + [_free(tau, 0.0, pole) for *_, pole in candidates]
     design = np.concatenate(columns, axis=1)
-    coefficients, covariance = _least_squares(design, y)
+    coefficients, covariance = linear_least_squares(design, y)
     if autocovariance is not None:
         coloured = _coloured(design, autocovariance)
         return [
@@ -349,8 +369,23 @@ def _significant(tau, y, candidates, degree, autocovariance=None):
     return [_pair(coefficients, covariance, degree + 1 + 2 * k)[1] for k in range(len(candidates))]
 
 
-def _least_squares(design, y):
-    """Coefficients and their covariance (white residual) of ``design @ c = y``."""
+def linear_least_squares(design, y):
+    """Least-squares coefficients of ``design @ c = y`` and their covariance under white
+    noise (the residual's variance over the degrees of freedom).
+
+    Parameters
+    ----------
+    design : numpy.ndarray
+        ``(samples, columns)`` design matrix.
+    y : numpy.ndarray
+        ``(samples,)`` values fitted (any unit; the coefficients carry it over the
+        columns').
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``(coefficients, covariance)``: ``(columns,)`` and ``(columns, columns)``.
+    """
     coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
     residual = y - design @ coefficients
     dof = max(design.shape[0] - design.shape[1], 1)
@@ -443,7 +478,7 @@ def fit_crosstalk(
         if not parts:
             return Crosstalk((), np.zeros(t.size))
         design = np.concatenate(columns, axis=1)
-        coefficients, covariance = _least_squares(design[fitted], y[fitted])
+        coefficients, covariance = linear_least_squares(design[fitted], y[fitted])
         significant, found, index = [], [], base.shape[1]
         for frequency, zeta, gain, free in parts:
             norm, enough = _pair(coefficients, covariance, index)

@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.crosstalk import SIGNIFICANCE, _band, _least_squares
+from contactlab.inverse.crosstalk import SIGNIFICANCE, linear_least_squares, structure_band
 from contactlab.validation import check_samples
 
 __all__ = ["driven_significance"]
@@ -97,7 +97,7 @@ def driven_significance(windows, onsets, drives, candidates, sensor, autocovaria
     for k, (t, y) in enumerate(windows):
         t = check_samples("t", t)
         dt = float(t[1] - t[0])
-        tau, means, step = _band(t, check_samples("y", y), sensor, degree=1, blocks=True)
+        tau, means, step = structure_band(t, check_samples("y", y), sensor, degree=1, blocks=True)
         lines = np.zeros((tau.size, 2 * count))
         lines[:, 2 * k], lines[:, 2 * k + 1] = 1.0, tau - tau.mean()
         driven = [_driven_columns(t[0] + tau, onsets, drives, f, z) for f, z in candidates]
@@ -108,7 +108,7 @@ def driven_significance(windows, onsets, drives, candidates, sensor, autocovaria
     design, values = np.concatenate(blocks), np.concatenate(targets)
     if design.shape[0] <= design.shape[1]:
         return none
-    coefficients, covariance = _least_squares(design, values)
+    coefficients, covariance = linear_least_squares(design, values)
     if autocovariance is not None:
         blocked = _block_covariance(np.concatenate(starts), size, autocovariance)
         coloured = _sandwich(design, blocked)

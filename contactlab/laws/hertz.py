@@ -189,31 +189,24 @@ class Hertz(SmoothLaw):
         self._keep(k_hertz=(check_positive, k_hertz))
 
     @classmethod
-    def from_material(
-        cls,
-        youngs_modulus,
-        poisson_ratio,
-        radius,
-        other_youngs_modulus=math.inf,
-        other_poisson_ratio=0.0,
-        other_radius=math.inf,
-    ):
-        """Hertz law from material data [Pa, -, m]; a rigid flat unless a second body is given.
+    def from_material(cls, material, other=analytic.RIGID_FLAT):
+        """Hertz law from material data; a rigid flat unless a second body is given.
 
-        The second body (another grain, a compliant plate) enters through
-        ``1/E* = (1-nu1**2)/E1 + (1-nu2**2)/E2`` and ``1/R* = 1/R1 + 1/R2``.
+        Parameters
+        ----------
+        material : contactlab.analytic.Material
+            The grain's ``(youngs_modulus [Pa], poisson_ratio [-], radius [m])``
+            (:meth:`contactlab.Grain.material`).
+        other : contactlab.analytic.Material, default RIGID_FLAT
+            The second body (another grain, a compliant plate), entering through
+            ``1/E* = (1-nu1**2)/E1 + (1-nu2**2)/E2`` and ``1/R* = 1/R1 + 1/R2``.
         """
-        modulus, radius_eff = analytic.contact_modulus_radius(
-            youngs_modulus,
-            poisson_ratio,
-            radius,
-            (other_youngs_modulus, other_poisson_ratio, other_radius),
-        )
-        return cls(k_hertz=analytic.hertz_stiffness(modulus, radius_eff))
+        modulus, radius = analytic.contact_modulus_radius(material, other)
+        return cls(k_hertz=analytic.hertz_stiffness(modulus, radius))
 
     def _resized(self, mass, grain, velocity):
         """The law for ``grain`` (another size): from its material data."""
-        return type(self).from_material(*grain.material())
+        return type(self).from_material(grain.material())
 
     def _raw(self, overlap, rate):
         return _hertz_raw(overlap, self.k_hertz)
@@ -283,23 +276,13 @@ class HertzDamped(_HertzDashpot):
     """Damping factor alpha up to about 0.3 for the paper's grain."""
 
     @classmethod
-    def from_material(
-        cls,
-        youngs_modulus,
-        poisson_ratio,
-        radius,
-        restitution,
-        mass,
-        other_youngs_modulus=math.inf,
-        other_poisson_ratio=0.0,
-        other_radius=math.inf,
-    ):
+    def from_material(cls, material, restitution, mass, other=analytic.RIGID_FLAT):
         """Hertz-Mindlin normal law as EDEM and LIGGGHTS build it.
 
         Parameters
         ----------
-        youngs_modulus, poisson_ratio, radius : float
-            Grain data [Pa, -, m]; the optional second body as in :meth:`Hertz.from_material`.
+        material, other : contactlab.analytic.Material
+            The grain's and the optional second body's, as for :meth:`Hertz.from_material`.
         restitution : float
             Target restitution in (0, 1] [-].
         mass : float
@@ -315,14 +298,7 @@ class HertzDamped(_HertzDashpot):
         """
         check_probability("restitution", restitution, low_open=True)
         mass = check_positive("mass", mass, "kg")
-        k_hertz = Hertz.from_material(
-            youngs_modulus,
-            poisson_ratio,
-            radius,
-            other_youngs_modulus,
-            other_poisson_ratio,
-            other_radius,
-        ).k_hertz
+        k_hertz = Hertz.from_material(material, other).k_hertz
         return cls(k_hertz, analytic.tsuji_damping_coefficient(k_hertz, mass, restitution))
 
     def _resized(self, mass, grain, velocity):
@@ -330,7 +306,7 @@ class HertzDamped(_HertzDashpot):
         damping factor ``eta / sqrt(m kH)`` for a grain of ``mass`` [kg] (so its
         restitution)."""
         factor = self.damping / math.sqrt(mass * self.k_hertz)
-        k_hertz = Hertz.from_material(*grain.material()).k_hertz
+        k_hertz = Hertz.from_material(grain.material()).k_hertz
         return type(self)(k_hertz, factor * math.sqrt(grain.mass * k_hertz))
 
     def _raw(self, overlap, rate):

@@ -116,7 +116,7 @@ class LinearViscoelastic(SmoothLaw):
         the stiffness ``m (pi / t_H)**2`` of the elastic Hertz contact with the same
         rigid-wall contact time ``t_H``, and this law's damping ratio for a grain of
         ``mass`` [kg]."""
-        k_hertz = Hertz.from_material(*grain.material()).k_hertz
+        k_hertz = Hertz.from_material(grain.material()).k_hertz
         t_hertz = analytic.hertz_contact_time(k_hertz, grain.mass, velocity)
         stiffness = grain.mass * (math.pi / t_hertz) ** 2
         ratio = self.damping / (2.0 * math.sqrt(self.stiffness * mass))

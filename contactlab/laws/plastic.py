@@ -232,24 +232,12 @@ class Thornton(ContactLaw):
         )
 
     @classmethod
-    def from_material(
-        cls,
-        youngs_modulus,
-        poisson_ratio,
-        radius,
-        yield_pressure,
-        other_youngs_modulus=math.inf,
-        other_poisson_ratio=0.0,
-        other_radius=math.inf,
-    ):
-        """Thornton law from grain data [Pa, -, m] and yield pressure [Pa]; rigid flat default."""
-        modulus, radius_eff = analytic.contact_modulus_radius(
-            youngs_modulus,
-            poisson_ratio,
-            radius,
-            (other_youngs_modulus, other_poisson_ratio, other_radius),
-        )
-        return cls(modulus, radius_eff, yield_pressure)
+    def from_material(cls, material, yield_pressure, other=analytic.RIGID_FLAT):
+        """Thornton law from the grain's :class:`~contactlab.analytic.Material` and the
+        yield pressure [Pa]; a rigid flat unless ``other`` (as for
+        :meth:`~contactlab.laws.Hertz.from_material`) is given."""
+        modulus, radius = analytic.contact_modulus_radius(material, other)
+        return cls(modulus, radius, yield_pressure)
 
     @property
     def _material(self):

@@ -44,10 +44,12 @@ from typing import ClassVar
 
 import numpy as np
 
+from contactlab.analytic.materials import RIGID_FLAT, Material
 from contactlab.analytic.tangential import (
     effective_shear_modulus,
     mindlin_stiffness_coefficient,
 )
+from contactlab.entry_checks import check_instance
 from contactlab.errors import ParameterError
 from contactlab.laws.base import ContactLaw, stated
 from contactlab.laws.tangential_form import TangentialForm
@@ -391,12 +393,9 @@ class Mindlin(TangentialLaw):
     @classmethod
     def from_material(
         cls,
-        youngs_modulus,
-        poisson_ratio,
-        radius,
+        material,
         friction,
-        other_youngs_modulus=math.inf,
-        other_poisson_ratio=0.0,
+        other=RIGID_FLAT,
         history="total",
         damping="none",
         coulomb_cap="total",
@@ -405,25 +404,35 @@ class Mindlin(TangentialLaw):
 
         Parameters
         ----------
-        youngs_modulus, poisson_ratio : float
-            The grain's Young's modulus [Pa] and Poisson ratio [-].
-        radius : float
-            The grain's radius [m] (``R*`` on a flat).
+        material : contactlab.analytic.Material
+            The grain's Young's modulus [Pa], Poisson ratio [-] and radius [m] (``R*`` on
+            a flat; :meth:`contactlab.Grain.material`).
         friction : float
             Coulomb friction coefficient [-].
-        other_youngs_modulus, other_poisson_ratio : float
-            The flat's [Pa, -]; ``inf`` is rigid.
+        other : contactlab.analytic.Material, default RIGID_FLAT
+            The flat's Young's modulus [Pa] (``inf`` is rigid) and Poisson ratio [-]; its
+            radius must be ``inf``.
         history : {"total", "incremental", "incremental_rescaled"}
             See the class docstring.
         damping : {"none", "tied"}
             See the class docstring.
         coulomb_cap : {"total", "elastic"}
             See the class docstring.
+
+        Raises
+        ------
+        ParameterError
+            For a curved second body (``other.radius`` not ``inf``), or bad numbers.
         """
-        g_eff = effective_shear_modulus(
-            youngs_modulus, poisson_ratio, other_youngs_modulus, other_poisson_ratio
-        )
-        radius = check_number("radius", radius, low=0.0, unit="m")
+        grain = check_instance("material", material, Material, "Grain.material")
+        flat = check_instance("other", other, Material)
+        if flat.radius != math.inf:
+            raise ParameterError(
+                f"Mindlin.from_material is for a sphere on a flat: other.radius must be inf; "
+                f"got {flat.radius!r}"
+            )
+        g_eff = effective_shear_modulus(*grain[:2], *flat[:2])
+        radius = check_number("radius", grain.radius, low=0.0, unit="m")
         return cls(
             mindlin_stiffness_coefficient(g_eff, radius), friction, history, damping, coulomb_cap
         )

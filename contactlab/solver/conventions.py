@@ -7,7 +7,7 @@ A DEM code's Hertz-Mindlin contact hard-wires three rules its law's name does no
 choice; :meth:`Conventions.mindlin` and :attr:`Conventions.lever_arm` apply it::
 
     rules = DEM_CONVENTIONS["kratos"]
-    law = rules.mindlin(Mindlin.from_material(E, nu, R, mu))
+    law = rules.mindlin(Mindlin.from_material(Material(E, nu, R), mu))
     simulate_oblique(grain, sensor, normal, law, v, angle, lever_arm=rules.lever_arm)
 """
 

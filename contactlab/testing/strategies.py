@@ -272,7 +272,7 @@ def restitution_laws(grain, velocity, name=None, restitution=(0.05, 1.0)):
     lo, hi = _bounds("restitution", restitution, "-", high=1.0)
     e = st.floats(lo, hi)
     mass = grain.mass
-    k_hertz = Hertz.from_material(*grain.material()).k_hertz
+    k_hertz = Hertz.from_material(grain.material()).k_hertz
     scale = 1.5 * (k_hertz / mass) ** 0.4 * velocity**0.2
     options = {
         "linear": st.builds(
@@ -284,7 +284,7 @@ def restitution_laws(grain, velocity, name=None, restitution=(0.05, 1.0)):
         ),
         "hertz": st.just(Hertz(k_hertz)),
         "hertz_damped": e.map(
-            lambda r: HertzDamped.from_material(*grain.material(), restitution=r, mass=mass)
+            lambda r: HertzDamped.from_material(grain.material(), restitution=r, mass=mass)
         ),
         "kuwabara_kono": st.floats(0.0, -math.log(lo)).map(
             lambda x: KuwabaraKono(k_hertz, x / scale)
@@ -322,7 +322,7 @@ def tangential_laws(grain, friction=(0.0, 1.0)):
         st.one_of(st.just(0.0), st.floats(0.0, 0.5)),
     )
     mindlin = st.builds(
-        lambda mu, history: Mindlin.from_material(*grain.material(), mu, history=history),
+        lambda mu, history: Mindlin.from_material(grain.material(), mu, history=history),
         mu,
         st.sampled_from(("total", "incremental")),
     )

@@ -203,6 +203,8 @@ def end_pairs(values, runs, period, masked, slopes):
     Returns
     -------
     list of OffsetStep
+        Both steps of every run the model with two changes explains; a run it does not
+        explain gives none.
     """
     values = np.asarray(values, dtype=float)
     noise = period_noise(values, period)
@@ -308,6 +310,8 @@ def head_steps(values, runs, period, masked, slopes):
     Returns
     -------
     list of OffsetStep
+        One step for each run whose head holds one; its window runs from the
+        neighbourhood's start to the head's end (sample indices).
     """
     values = np.asarray(values, dtype=float)
     noise = period_noise(values, period)

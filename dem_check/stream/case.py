@@ -32,7 +32,7 @@ import pandas as pd
 
 from contactlab.advisor.species import value_range
 from contactlab.bodies import Grain, Sensor
-from contactlab.config import law_from_table, read_document, sensor_from_table
+from contactlab.config import law_from_table, read_document, second_body, sensor_from_table
 from contactlab.entry_checks import check_instance
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
@@ -174,7 +174,7 @@ class ParticleKind:
         name = check_choice("[tangential] law", table.pop("law", None), ("mindlin", "spring"))
         if name == "spring":
             return TangentialSpring(**table)
-        return Mindlin.from_material(*grain.material(), **table)
+        return Mindlin.from_material(grain.material(), **second_body(table))
 
 
 @dataclass(frozen=True)

@@ -140,6 +140,22 @@ def test_config_from_material(tmp_path):
     assert type(config.law).__name__ == "Hertz"
 
 
+def test_config_second_body_keys_give_the_hertz_closed_form():
+    """A [contact] table's other_* keys are the second body of from_material: kH =
+    4/3 E* sqrt(R*) with 1/E* = (1 - nu1**2)/E1 + (1 - nu2**2)/E2 and 1/R* = 1/R1 + 1/R2,
+    written out here; a key not given is the rigid flat's (other_poisson_ratio here)."""
+    grain = cl.Grain(diameter=5e-3, density=765.0, youngs_modulus=21.6e6, poisson_ratio=0.2)
+    table = {"law": "hertz", "from_material": True}
+    table |= {"other_youngs_modulus": 2.1e11, "other_radius": 0.01}
+    law = cl.config.law_from_table(table, grain)
+    modulus = 1.0 / ((1.0 - 0.2**2) / 21.6e6 + 1.0 / 2.1e11)
+    radius = 1.0 / (1.0 / 2.5e-3 + 1.0 / 0.01)
+    # the same formulas in another order: a few ulps
+    assert law.k_hertz == pytest.approx(4.0 / 3.0 * modulus * radius**0.5, rel=1e-14)
+    with pytest.raises(ParameterError, match="did you mean 'other_radius'"):
+        cl.config.law_from_table({**table, "other_radus": 0.01}, grain)
+
+
 def test_demo_writes_figure_and_summary(tmp_path, capsys):
     assert contactlab_main(["demo", "--out", str(tmp_path), "--quick"]) == 0
 

@@ -62,7 +62,9 @@ def oblique():
     import contactlab as cl
 
     normal = cl.laws.HertzDamped(1.5e6, 4.0)
-    tangential = cl.laws.Mindlin.from_material(21.6e6, 0.2, grain().radius, friction=0.5)
+    tangential = cl.laws.Mindlin.from_material(
+        cl.analytic.Material(21.6e6, 0.2, grain().radius), friction=0.5
+    )
     return cl.simulate_oblique(grain(), sensor(), normal, tangential, 2.0, 0.5,
                                duration=5e-4, sample_rate=1e6)  # fmt: skip
 
@@ -117,6 +119,18 @@ def _array(n=64):
     return np.linspace(0.0, 1e-4, n)
 
 
+def _sliding():
+    import contactlab as cl
+
+    return cl.analytic.ObliqueImpact(2.0, 10.0, 0.0, 2.5e-3, 0.8, 0.5)
+
+
+def _steel_flat():
+    import contactlab as cl
+
+    return cl.analytic.Material(210e9, 0.3, float("inf"))
+
+
 def _pulse(n=64):
     return np.sin(np.linspace(0.0, np.pi, n)) ** 2
 
@@ -133,7 +147,9 @@ VALUES = {
     "effective_modulus": lambda: 20e6, "effective_radius": lambda: 2.5e-3,
     "effective_shear_modulus": lambda: 8e6, "yield_pressure": lambda: 5e6,
     "youngs_modulus": lambda: 21.6e6, "shear_modulus": lambda: 9e6,
-    "poisson_ratio": lambda: 0.2, "radius": lambda: 2.5e-3, "other": lambda: 2.5e-3,
+    "poisson_ratio": lambda: 0.2, "radius": lambda: 2.5e-3,
+    "other": lambda: _steel_flat(),
+    "material": lambda: grain().material(),
     "density": lambda: 765.0, "diameter": lambda: 5e-3, "thickness": lambda: 2e-3,
     "resonance": lambda: 40e3, "damping_ratio": lambda: 0.02, "friction": lambda: 0.5,
     "restitution": lambda: 0.8, "alpha": lambda: 0.5, "contact_time": lambda: 1e-4,
@@ -345,12 +361,12 @@ OVERRIDES = {
     "contactlab.inverse.export.contact.read_fit": {"path": lambda: _fit_file()},
     "contactlab.inverse.demo.reconstruction_demo": {"path": lambda: _temporary("demo.png")},
     "contactlab.laws.get_law": {"name": lambda: "linear", "**": lambda: {"stiffness": 1e5}},
-    "contactlab.analytic.materials.contact_modulus_radius": {
-        "other": lambda: (210e9, 0.3, float("inf"))},
     "contactlab.analytic.hertz.hunt_crossley_restitution_linearised": {"damping": lambda: 0.1},
-    "contactlab.analytic.tangential.gross_sliding_rebound": {"normal_velocity": lambda: 2.0,
-                                                             "tangential_velocity": lambda: 10.0},
-    "contactlab.analytic.tangential.slides_throughout": {"normal_velocity": lambda: 2.0},
+    "contactlab.config.second_body": {"table": lambda: {"other_youngs_modulus": 2e11}},
+    "contactlab.analytic.tangential.ObliqueImpact": {"normal_velocity": lambda: 2.0,
+                                                     "tangential_velocity": lambda: 10.0},
+    "contactlab.analytic.tangential.gross_sliding_rebound": {"impact": lambda: _sliding()},
+    "contactlab.analytic.tangential.slides_throughout": {"impact": lambda: _sliding()},
     "contactlab.batch.hertz.hertz_impacts": {"frame": lambda: _frame("hertz")},
     "contactlab.batch.oblique.oblique_impacts": {"frame": _oblique_frame},
     "contactlab.quantities.quantity": {"name": lambda: "contact_time"},

@@ -63,7 +63,7 @@ def hertz_test(case, material, pair, engines=None):
         radius = analytic.effective_radius(radius, radius)
     else:
         mass = grain(material, radius).mass
-        k_hertz = cl.laws.Hertz.from_material(*grain(material, radius).material()).k_hertz
+        k_hertz = cl.laws.Hertz.from_material(grain(material, radius).material()).k_hertz
         speed = case.inputs["speed [m/s]"]
     law = cl.laws.Hertz(k_hertz)
     res = cl.simulate_impact(cl.Grain.from_mass(mass), cl.Sensor.rigid(), law, speed)
@@ -106,7 +106,7 @@ def restitution_test(case, material, pair, engines=None):
     else:
         body = grain(material, radius)
         mass = body.mass
-        k_hertz = cl.laws.Hertz.from_material(*body.material()).k_hertz
+        k_hertz = cl.laws.Hertz.from_material(body.material()).k_hertz
         speeds = [case.inputs["speed [m/s]"]]
     rows, realised = [], {name: [] for name in ["contactlab", *(engines or {})]}
     for e in case.inputs["restitution [-]"]:

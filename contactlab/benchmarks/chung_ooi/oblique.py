@@ -62,7 +62,7 @@ def _drop(case, material):
 
 
 def _elastic_or_damped(body, restitution):
-    k_hertz = cl.laws.Hertz.from_material(*body.material()).k_hertz
+    k_hertz = cl.laws.Hertz.from_material(body.material()).k_hertz
     if restitution == 1.0:
         return cl.laws.Hertz(k_hertz)
     damping = analytic.tsuji_damping_coefficient(k_hertz, body.mass, restitution, "force")
@@ -127,10 +127,10 @@ def oblique_test(case, material, lammps=None, reported=None):
     """
     radius, speed, mu = (case.inputs[k] for k in ("radius [m]", "speed [m/s]", "friction [-]"))
     body = grain(material, radius)
-    normal = cl.laws.Hertz.from_material(*body.material())
+    normal = cl.laws.Hertz.from_material(body.material())
     rows, curves, others, lammps_runs = [], {}, {}, {}
     for history in HISTORIES:
-        law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
+        law = cl.laws.Mindlin.from_material(body.material(), mu, history=history)
         out = []
         for degrees in ANGLES:
             angle = math.radians(degrees)
@@ -149,8 +149,9 @@ def oblique_test(case, material, lammps=None, reported=None):
                 )
             )
             e = min(ours[0] / vn, 1.0)  # elastic: 1 to ~1e-9
-            if analytic.slides_throughout(vn, vt, 0.0, radius, e, mu):
-                theory = analytic.gross_sliding_rebound(vn, vt, 0.0, radius, e, mu)[0]
+            rigid = analytic.ObliqueImpact(vn, vt, 0.0, radius, e, mu)
+            if analytic.slides_throughout(rigid):
+                theory = analytic.gross_sliding_rebound(rigid)[0]
                 rows.append(
                     row(
                         case,
@@ -178,7 +179,7 @@ def oblique_test(case, material, lammps=None, reported=None):
                 DEM_CONVENTIONS[preset],
                 [lammps_runs[history, a] for a in ANGLES],
             )
-    mindlin = cl.laws.Mindlin.from_material(*body.material(), mu)
+    mindlin = cl.laws.Mindlin.from_material(body.material(), mu)
     curves["attribution"] = []
     for label, (column, rules, rebounds) in runs.items():
         found = attribution.attribute(
@@ -199,7 +200,7 @@ def tangential_speed_test(case, material, lammps=None):
     body, normal, (radius, vn, mu, _) = _drop(case, material)
     rows, curves = [], {}
     for history in HISTORIES:
-        law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
+        law = cl.laws.Mindlin.from_material(body.material(), mu, history=history)
         out = []
         for degrees in ANGLES:
             angle = math.radians(degrees)
@@ -216,8 +217,9 @@ def tangential_speed_test(case, material, lammps=None):
             psi2, omega = normalised(ours)
             out.append((vt / (mu * vn), psi2, omega, *normalised(theirs)))
             realised = min(ours[0] / vn, 1.0)
-            if analytic.slides_throughout(vn, vt, 0.0, radius, realised, mu):
-                vt_th, spin_th = analytic.gross_sliding_rebound(vn, vt, 0.0, radius, realised, mu)
+            rigid = analytic.ObliqueImpact(vn, vt, 0.0, radius, realised, mu)
+            if analytic.slides_throughout(rigid):
+                vt_th, spin_th = analytic.gross_sliding_rebound(rigid)
                 psi2_th = (vt_th - radius * spin_th) / (mu * realised * vn)
                 lam_psi2, lam_omega = normalised(theirs) if theirs else (None, None)
                 label = f"at psi1 = {vt / (mu * vn):.4g}, {history}"
@@ -246,7 +248,7 @@ def spin_test(case, material, lammps=None):
     body, normal, (radius, vn, mu, e) = _drop(case, material)
     rows, curves = [], {}
     for history in HISTORIES:
-        law = cl.laws.Mindlin.from_material(*body.material(), mu, history=history)
+        law = cl.laws.Mindlin.from_material(body.material(), mu, history=history)
         out, momenta = [], []
         for degrees in ANGLES:
             slip = vn * math.tan(math.radians(degrees))
@@ -262,7 +264,7 @@ def spin_test(case, material, lammps=None):
             momenta.append((contact_momentum(body, ours), before))
             label = f"beta at tan = {slip / vn:.3g}, {history} [-]"
             if closed_form_holds(e) and analytic.slides_throughout(
-                vn, 0.0, spin, radius, realised, mu
+                analytic.ObliqueImpact(vn, 0.0, spin, radius, realised, mu)
             ):
                 theory = 3.5 * mu * (1 + realised) * vn / slip - 1.0
                 lam = beta(theirs) if theirs else None

@@ -167,7 +167,7 @@ def unequal_pair_test(case, material):
                 )
             )
             if closed_form_holds(e) and analytic.slides_throughout(
-                vn, 0.0, -slip / radius, radius, realised, mu
+                analytic.ObliqueImpact(vn, 0.0, -slip / radius, radius, realised, mu)
             ):
                 theory = 3.5 * mu * (1 + realised) * vn / slip - 1.0
                 label = f"beta at tan = {slip / vn:.3g}, {history} [-]"

@@ -116,7 +116,7 @@ def test_identical_spheres_are_one_sphere_on_a_plane():
     before = analytic.PairRebound(0.2, -0.2, 0.1, 0.1, spin, -spin)
     after, pair = pair_impact(((NYLON, radius), (NYLON, radius)), before, 0.5, 0.4)
     body = grain(NYLON, radius)
-    k_hertz = cl.laws.Hertz.from_material(*body.material()).k_hertz  # rigid flat: E/(1-nu^2)
+    k_hertz = cl.laws.Hertz.from_material(body.material()).k_hertz  # rigid flat: E/(1-nu^2)
     normal = cl.laws.HertzDamped(
         k_hertz, analytic.tsuji_damping_coefficient(k_hertz, body.mass, 0.5, "force")
     )

@@ -12,8 +12,8 @@ from contactlab.batch.oblique import OBLIQUE_RESULTS, oblique_impacts
 from contactlab.errors import ParameterError
 
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
-HERTZ = cl.laws.Hertz.from_material(*GRAIN.material())
-MINDLIN = cl.laws.Mindlin.from_material(3.8e11, 0.23, GRAIN.radius, 0.092)
+HERTZ = cl.laws.Hertz.from_material(GRAIN.material())
+MINDLIN = cl.laws.Mindlin.from_material(cl.analytic.Material(3.8e11, 0.23, GRAIN.radius), 0.092)
 ETA = 0.3 * math.sqrt(HERTZ.k_hertz * GRAIN.mass)
 
 

@@ -14,8 +14,8 @@ from contactlab.solver.conventions import DEM_CONVENTIONS, Conventions
 
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
 MU, SPEED, ANGLES = 0.092, 3.9, (5, 20, 45)
-ELASTIC = cl.laws.Hertz.from_material(*GRAIN.material())
-MINDLIN = cl.laws.Mindlin.from_material(*GRAIN.material(), MU)
+ELASTIC = cl.laws.Hertz.from_material(GRAIN.material())
+MINDLIN = cl.laws.Mindlin.from_material(GRAIN.material(), MU)
 KRATOS = DEM_CONVENTIONS["kratos"]
 
 

@@ -10,7 +10,7 @@ import pytest
 from plate_windows import SENSOR, damped, flicker
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.crosstalk import _band, _significant
+from contactlab.inverse.crosstalk import _significant, structure_band
 from contactlab.inverse.crosstalk_driven import _block_covariance, driven_significance
 
 RATE = 2e6
@@ -46,7 +46,7 @@ def test_a_mode_each_window_cannot_show_is_found_by_its_shared_coupling(seed):
     # window by window (the joint pencil's test, each window its own amplitude and phase)
     # the mode is significant after 2-3 of the 8 impacts: the record lost it
     hits = sum(
-        _significant(*_band(t, y, SENSOR, 1, True)[:2], [(*MODE, _pole())], 1)[0]
+        _significant(*structure_band(t, y, SENSOR, 1, True)[:2], [(*MODE, _pole())], 1)[0]
         for t, y in windows
     )
     assert hits < len(windows) / 2

@@ -81,7 +81,7 @@ def test_fit_serialises_to_json(linear_fit, tmp_path):
 
 
 def test_damped_hertz_with_measured_velocity():
-    law = cl.laws.HertzDamped.from_material(*GRAIN.material(), restitution=0.5, mass=GRAIN.mass)
+    law = cl.laws.HertzDamped.from_material(GRAIN.material(), restitution=0.5, mass=GRAIN.mass)
     t, signal, _ = synthetic_trace(GRAIN, SENSOR, law, 2.0, seed=2, sample_rate=2.5e6)
     fit = fit_contact(t, signal, GRAIN, SENSOR, "hertz_damped", velocity=2.0)
     modulus = cl.analytic.effective_modulus(GRAIN.youngs_modulus, GRAIN.poisson_ratio)

@@ -220,7 +220,9 @@ def test_a_wrong_law_hidden_by_noise_is_caught_by_whiteness():
     """10 % white noise on the damped-Hertz model: the linear law's chi-squared is
     within the noise (measured 1.03, p = 0.6) and its velocity interval [1.78, 1.83] m/s
     misses the true 2.0, but its residuals keep the misfit's shape (Ljung-Box p = 2e-4)."""
-    law = cl.laws.HertzDamped.from_material(21.6e6, 0.2, 2.5e-3, restitution=0.5, mass=GRAIN.mass)
+    law = cl.laws.HertzDamped.from_material(
+        cl.analytic.Material(21.6e6, 0.2, 2.5e-3), restitution=0.5, mass=GRAIN.mass
+    )
     t, y, _ = synthetic_trace(
         GRAIN, SENSOR, law, 2.0, noise=0.1, duration=800e-6, pre_trigger=200e-6, seed=11
     )

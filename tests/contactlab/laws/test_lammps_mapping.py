@@ -52,7 +52,9 @@ def test_kuwabara_kono_is_viscoelastic_damping():
 
 @pytest.mark.parametrize("restitution", [0.05, 0.3, 0.5, 0.9, 0.999])
 def test_hertz_damped_restitution_input_gives_the_laws_damping(restitution):
-    law = cl.laws.HertzDamped.from_material(21.6e6, 0.2, RADIUS, restitution, MASS)
+    law = cl.laws.HertzDamped.from_material(
+        cl.analytic.Material(21.6e6, 0.2, RADIUS), restitution, MASS
+    )
     model = granular_model(law, MASS, RADIUS)
     assert model.damping == "coeff_restitution"
     log_e = math.log(model.damping_coefficient)

@@ -67,41 +67,47 @@ def test_linear_from_restitution_overlap_convention_realises_more():
 
 @pytest.mark.parametrize("velocity", [0.5, 2.0, 8.0])
 def test_hertz_matches_closed_form(velocity):
-    assert_matches_closed_form(Hertz.from_material(E_GRAIN, NU, R), GRAIN, velocity, rtol=EXACT)
+    assert_matches_closed_form(
+        Hertz.from_material(cl.analytic.Material(E_GRAIN, NU, R)), GRAIN, velocity, rtol=EXACT
+    )
 
 
 def test_hertz_paper_contact_times(paper_grain, paper_grain_small):
     # the notes' numbers are rounded to 0.1 us, hence the absolute 0.05 us
     for grain, expected in ((paper_grain, 180.6e-6), (paper_grain_small, 90.3e-6)):
-        law = Hertz.from_material(*grain.material())
+        law = Hertz.from_material(grain.material())
         assert_contact_time(
             law, grain, 2.0, expected, rtol=0.0, atol=0.05e-6, source="paper/NOTES.md"
         )
 
 
 def test_hertz_second_body_softens_contact():
-    rigid = Hertz.from_material(E_GRAIN, NU, R)
-    grain_on_grain = Hertz.from_material(E_GRAIN, NU, R, E_GRAIN, NU, R)
+    rigid = Hertz.from_material(cl.analytic.Material(E_GRAIN, NU, R))
+    grain_on_grain = Hertz.from_material(
+        cl.analytic.Material(E_GRAIN, NU, R), cl.analytic.Material(E_GRAIN, NU, R)
+    )
     # two equal grains: E* halves, R* halves -> kH drops by 2 * sqrt(2)
     assert grain_on_grain.k_hertz == pytest.approx(rigid.k_hertz / 2 / math.sqrt(2), rel=1e-12)
 
 
 @pytest.mark.parametrize("velocity", [0.5, 2.0, 6.0])
 def test_hertz_damped_restitution_is_velocity_independent(velocity):
-    law = HertzDamped.from_material(E_GRAIN, NU, R, 0.5, M)
+    law = HertzDamped.from_material(cl.analytic.Material(E_GRAIN, NU, R), 0.5, M)
     e_ref = wall(law, 1.0).restitution
     # Tsuji scaling: e depends only on alpha; both solves are accurate to ~1e-9
     assert_restitution(law, GRAIN, velocity, e_ref, rtol=EXACT, source="the impact at 1 m/s")
 
 
 def test_hertz_damped_matches_tsuji_restitution():
-    law = HertzDamped.from_material(E_GRAIN, NU, R, 0.5, M)
+    law = HertzDamped.from_material(cl.analytic.Material(E_GRAIN, NU, R), 0.5, M)
     assert_matches_closed_form(law, GRAIN, V, rtol=EXACT)
 
 
 @pytest.mark.parametrize("dissipation", [1e-7, 5e-7])
 def test_kuwabara_kono_series(dissipation):
-    law = KuwabaraKono(Hertz.from_material(E_GRAIN, NU, R).k_hertz, dissipation)
+    law = KuwabaraKono(
+        Hertz.from_material(cl.analytic.Material(E_GRAIN, NU, R)).k_hertz, dissipation
+    )
     # rtol 0: the tolerance is the closed form's own allowance 0.5 x**2.5 (the two-term
     # series leaves an O(x**2.5) remainder, Schwager & Poeschel 2008 expand in
     # half-integer powers; measured 0.24 x**2.5 here)

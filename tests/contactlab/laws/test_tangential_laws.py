@@ -5,6 +5,7 @@ import math
 import pytest
 
 from contactlab import analytic
+from contactlab.analytic import Material
 from contactlab.errors import ParameterError
 from contactlab.laws import Mindlin, TangentialSpring
 
@@ -12,7 +13,7 @@ from contactlab.laws import Mindlin, TangentialSpring
 def test_mindlin_from_material_rigid_flat():
     """kt = 8 G* a with G* = G / (2 - nu) on a rigid flat (Mindlin 1949)."""
     e, nu, r = 7.0e10, 0.33, 0.1
-    law = Mindlin.from_material(e, nu, r, 0.4)
+    law = Mindlin.from_material(Material(e, nu, r), 0.4)
     shear = e / (2 * (1 + nu))
     assert law.k_mindlin == pytest.approx(8 * shear / (2 - nu) * math.sqrt(r), rel=1e-14)
     d = 1e-6

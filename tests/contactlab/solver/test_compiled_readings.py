@@ -9,7 +9,7 @@ import pytest
 import contactlab as cl
 
 GRAIN = cl.Grain(diameter=5e-3, density=765.0, shear_modulus=9e6, poisson_ratio=0.2)
-TSUJI = cl.laws.HertzDamped.from_material(*GRAIN.material(), 0.5, GRAIN.mass)
+TSUJI = cl.laws.HertzDamped.from_material(GRAIN.material(), 0.5, GRAIN.mass)
 READINGS = (
     "peak_contact_force",
     "peak_contact_time",

@@ -27,12 +27,12 @@ _SPEC.loader.exec_module(rules)
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
 """Chung & Ooi's test-4 aluminium oxide sphere."""
 MU, SPEED = 0.092, 3.9
-ELASTIC = cl.laws.Hertz.from_material(*GRAIN.material())
+ELASTIC = cl.laws.Hertz.from_material(GRAIN.material())
 DAMPED = cl.laws.HertzDamped(  # e = 0.98, Kratos' own test-4 input
     ELASTIC.k_hertz,
     analytic.tsuji_damping_coefficient(ELASTIC.k_hertz, GRAIN.mass, 0.98, "force"),
 )
-BASE = Mindlin.from_material(*GRAIN.material(), MU)
+BASE = Mindlin.from_material(GRAIN.material(), MU)
 KRATOS = DEM_CONVENTIONS["kratos"]
 TEST4_ANGLES = tuple(range(5, 90, 5))
 """Chung & Ooi's (and Kratos') 17 incidence angles [deg]."""
@@ -176,8 +176,9 @@ def test_gross_sliding_rebound_is_independent_of_every_rule():
     history, damping and arm (Coulomb fixes the force, not the history)."""
     angle = math.radians(45.0)
     vn, vt = SPEED * math.cos(angle), SPEED * math.sin(angle)
-    assert analytic.slides_throughout(vn, vt, 0.0, GRAIN.radius, 1.0, MU)
-    theory = analytic.gross_sliding_rebound(vn, vt, 0.0, GRAIN.radius, 1.0, MU)[0]
+    impact = analytic.ObliqueImpact(vn, vt, 0.0, GRAIN.radius, 1.0, MU)
+    assert analytic.slides_throughout(impact)
+    theory = analytic.gross_sliding_rebound(impact)[0]
     for arm in LEVER_ARMS:
         for history in HISTORY_FORMS:
             for damping in DAMPING_FORMS:

@@ -26,7 +26,7 @@ K_HERTZ = 4.0 / 3.0 * 0.35e9 / (1.0 - 0.3**2) * math.sqrt(ISSUE_GRAIN.radius)
 ISSUE_KK = KuwabaraKono(K_HERTZ, dissipation=2e-6)
 ISSUE_SPRING = TangentialSpring(2e5, 0.3)
 ISSUE_LINEAR = LinearViscoelastic(1e5, 0.0)
-ISSUE_INCREMENTAL = Mindlin.from_material(*ISSUE_GRAIN.material(), 0.3, history="incremental")
+ISSUE_INCREMENTAL = Mindlin.from_material(ISSUE_GRAIN.material(), 0.3, history="incremental")
 
 ISSUE_ROWS = {
     "kk-spring-85deg": (ISSUE_KK, ISSUE_SPRING, 85.0, 0.0),
@@ -61,12 +61,14 @@ def test_issue_rows_keep_coulomb_and_slide_grossly(normal, tangential, degrees, 
     # every row slides throughout in rigid-body theory; the contact sticks only for the
     # instant after the touch where the damped N outgrows the elastic trial force
     assert analytic.slides_throughout(
-        res.normal_velocity,
-        res.incident_tangential_velocity,
-        spin,
-        ISSUE_GRAIN.radius,
-        min(res.restitution, 1.0),
-        0.3,
+        analytic.ObliqueImpact(
+            res.normal_velocity,
+            res.incident_tangential_velocity,
+            spin,
+            ISSUE_GRAIN.radius,
+            min(res.restitution, 1.0),
+            0.3,
+        )
     )
     ratio = -res.tangential_impulse / res.normal_impulse * math.copysign(1.0, res.slip_before)
     # the impulses are momentum changes: vt' carries the integration error, rtol 1e-9 of
@@ -82,12 +84,14 @@ def test_issue_85_degrees_rebound_is_the_closed_form(sensor):
     2.84 m/s and 184 rad/s."""
     res = cl.simulate_oblique(ISSUE_GRAIN, sensor, ISSUE_KK, ISSUE_SPRING, 3.0, math.radians(85))
     vt, spin = analytic.gross_sliding_rebound(
-        res.normal_velocity,
-        res.incident_tangential_velocity,
-        0.0,
-        ISSUE_GRAIN.radius,
-        res.restitution,
-        0.3,
+        analytic.ObliqueImpact(
+            res.normal_velocity,
+            res.incident_tangential_velocity,
+            0.0,
+            ISSUE_GRAIN.radius,
+            res.restitution,
+            0.3,
+        )
     )
     # the stick at the touch lasts 1e-11 of the contact here; 1e-6: the solver's rtol 1e-9
     # with margin
@@ -107,7 +111,7 @@ def test_paper_grain_at_89_degrees_keeps_coulomb_at_every_spin(history):
     89 deg broke Coulomb at every spin (6-93 times max N)."""
     k_hertz = 4.0 / 3.0 * 21.6e6 / (1 - 0.2**2) * math.sqrt(PAPER_GRAIN.radius)
     normal = KuwabaraKono(k_hertz, dissipation=1e-5)
-    tangential = Mindlin.from_material(*PAPER_GRAIN.material(), 0.25, history=history)
+    tangential = Mindlin.from_material(PAPER_GRAIN.material(), 0.25, history=history)
     for spin in (-3000.0, -800.0, 0.0, 800.0, 3000.0):
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", cl.errors.WindowWarning)  # the plate strikes again

@@ -18,9 +18,9 @@ SENSOR = cl.Sensor(mass=2e-3, stiffness=5e7, damping=2.0)
 def _kratos_like():
     """Damped Hertz and a tied-damping Mindlin law with Kratos' elastic Coulomb cap (its
     own compiled phase loop), at an angle that sticks, then slides."""
-    normal = cl.laws.HertzDamped.from_material(*GRAIN.material(), 0.6, GRAIN.mass)
+    normal = cl.laws.HertzDamped.from_material(GRAIN.material(), 0.6, GRAIN.mass)
     tangential = cl.laws.Mindlin.from_material(
-        *GRAIN.material(), 0.3, history="incremental", damping="tied", coulomb_cap="elastic"
+        GRAIN.material(), 0.3, history="incremental", damping="tied", coulomb_cap="elastic"
     )
     return cl.simulate_oblique(GRAIN, SENSOR, normal, tangential, 1.0, math.radians(20.0))
 

@@ -14,7 +14,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from oblique_reference import ObliqueReference
 
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
-HERTZ = cl.laws.Hertz.from_material(*GRAIN.material())
+HERTZ = cl.laws.Hertz.from_material(GRAIN.material())
 DAMPED = cl.laws.HertzDamped(HERTZ.k_hertz, 0.3 * math.sqrt(HERTZ.k_hertz * GRAIN.mass))
 SENSOR = cl.Sensor(mass=1e-3, stiffness=1e7, damping=2.0)
 SPEED, RTOL = 3.9, 1e-10
@@ -26,7 +26,9 @@ SPEED, RTOL = 3.9, 1e-10
 @pytest.mark.parametrize(("degrees", "spin"), [(5.0, 0.0), (20.0, 300.0)])
 def test_rebound_and_phases_match_solve_ivp(sensor, normal, history, degrees, spin):
     """Chung & Ooi's alumina grain: stick-slip-stick at 5 deg, with spin at 20 deg."""
-    law = cl.laws.Mindlin.from_material(3.8e11, 0.23, GRAIN.radius, 0.092, history=history)
+    law = cl.laws.Mindlin.from_material(
+        cl.analytic.Material(3.8e11, 0.23, GRAIN.radius), 0.092, history=history
+    )
     angle = math.radians(degrees)
     res = cl.simulate_oblique(GRAIN, sensor, normal, law, SPEED, angle, spin=spin, rtol=RTOL)
     length = SPEED * 1e-6

@@ -14,9 +14,9 @@ from contactlab.errors import ParameterError
 from contactlab.kernels.dop853 import interpolate
 
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
-HERTZ = cl.laws.Hertz.from_material(*GRAIN.material())
+HERTZ = cl.laws.Hertz.from_material(GRAIN.material())
 SENSOR = cl.Sensor(mass=1e-3, stiffness=1e7, damping=2.0)
-MINDLIN = cl.laws.Mindlin.from_material(3.8e11, 0.23, GRAIN.radius, 0.092)
+MINDLIN = cl.laws.Mindlin.from_material(cl.analytic.Material(3.8e11, 0.23, GRAIN.radius), 0.092)
 
 
 def _impact(sensor):

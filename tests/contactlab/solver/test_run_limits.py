@@ -64,6 +64,8 @@ def test_an_impossible_inertia_factor_is_refused(kappa):
     """Outside [1e-3, 2/3]: no sphere has more than a thin shell's 2/3; 1e-12 hung the
     oblique solver (a spin mode too fast to follow)."""
     normal = cl.laws.HertzDamped(1.5e6, 4.0)
-    tangential = cl.laws.Mindlin.from_material(21.6e6, 0.2, GRAIN.radius, friction=0.5)
+    tangential = cl.laws.Mindlin.from_material(
+        cl.analytic.Material(21.6e6, 0.2, GRAIN.radius), friction=0.5
+    )
     with pytest.raises(ParameterError, match="inertia_factor"):
         cl.simulate_oblique(GRAIN, SENSOR, normal, tangential, 2.0, 0.5, inertia_factor=kappa)

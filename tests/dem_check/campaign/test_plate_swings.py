@@ -33,6 +33,12 @@ PHASES = st.tuples(*[st.floats(0.0, 2.0 * math.pi)] * 3)
 """The three modes' phases [rad]."""
 
 
+def _ringing(slope, seed):
+    """Windows of :func:`_window` with every mode at an amplitude of :data:`AMPLITUDES`
+    and phases of :data:`PHASES` (hypothesis draws them)."""
+    return st.builds(_window, AMPLITUDES, PHASES, st.just(slope), st.just(seed))
+
+
 def _window(amplitude, phases, slope, seed, length=4e-3):
     """A window of the plate's free ringing (every mode at ``amplitude`` [N] with its
     phase), a drift of ``slope`` [N/s] and white noise; its times and its noise-free part."""
@@ -71,16 +77,11 @@ def test_the_plate_ringing_is_predicted_across_a_gap(hard_setup):
 
 
 @settings(max_examples=12, deadline=None)
-@given(
-    amplitude=AMPLITUDES,
-    phases=PHASES,
-    at=st.floats(1.2e-3, 2.6e-3),
-    sigmas=st.floats(10.0, 30.0),
-)
-def test_a_pulse_in_the_ringing_is_not_predicted(hard_setup, amplitude, phases, at, sigmas):
+@given(ringing=_ringing(0.0, seed=1), at=st.floats(1.2e-3, 2.6e-3), sigmas=st.floats(10.0, 30.0))
+def test_a_pulse_in_the_ringing_is_not_predicted(hard_setup, ringing, at, sigmas):
     # a contact's negative lobe of 10-30 sigmas of the smoothed noise inside the left-out
     # samples: the model fitted without them keeps it (it predicts only the ringing)
-    t, _, y = _window(amplitude, phases, 0.0, seed=1)
+    t, _, y = ringing
     smoothed_noise = NOISE / math.sqrt(2.0 * math.sqrt(math.pi) * KERNEL * RATE)  # [N]
     height = -sigmas * smoothed_noise
     gap = (t >= at - 5e-6) & (t < at + 105e-6)
@@ -93,18 +94,17 @@ def test_a_pulse_in_the_ringing_is_not_predicted(hard_setup, amplitude, phases, 
 
 @settings(max_examples=12, deadline=None)
 @given(
-    amplitude=AMPLITUDES,
-    phases=PHASES,
+    ringing=_ringing(10.0, seed=2),
     at=st.floats(1.0e-3, 3.0e-3),
     sigmas=st.floats(8.0, 30.0),
     sign=st.sampled_from((-1.0, 1.0)),
 )
 def test_a_step_in_the_ringing_is_a_step_and_the_ringing_alone_is_not(
-    hard_setup, amplitude, phases, at, sigmas, sign
+    hard_setup, ringing, at, sigmas, sign
 ):
     # a step of 8-30 standard errors of a level read on 16 periods either side (the
     # period means' noise, STEP_SIGMAS = 8 of steps.find_steps) on the plate's ringing
-    t, _, y = _window(amplitude, phases, 10.0, seed=2)
+    t, _, y = ringing
     dt, period = 1.0 / RATE, round(hard_setup[1].period * RATE)
     height = sign * sigmas * NOISE / math.sqrt(period) * math.sqrt(2.0 / 16.0)
     index = int(np.searchsorted(t, at))

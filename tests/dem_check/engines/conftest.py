@@ -24,7 +24,7 @@ def laws(grain):
         "linear": cl.laws.LinearViscoelastic(1e5, 1.0),
         "hertz": cl.laws.Hertz(k_hertz),
         "hertz_damped": cl.laws.HertzDamped.from_material(
-            E_STAR, 0.2, grain.radius, 0.5, grain.mass
+            cl.analytic.Material(E_STAR, 0.2, grain.radius), 0.5, grain.mass
         ),
         "kuwabara_kono": cl.laws.KuwabaraKono(k_hertz, 2e-6),
     }

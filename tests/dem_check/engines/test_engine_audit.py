@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import contactlab as cl
-from contactlab.analytic import gross_sliding_rebound
+from contactlab.analytic import ObliqueImpact, gross_sliding_rebound
 from contactlab.config import ImpactConfig
 from dem_check import drop_test
 from dem_check.engines.result import EngineResult
@@ -88,12 +88,14 @@ def test_lammps_confirms_gross_sliding_in_the_issue_row():
     engine = lammps_oblique(ISSUE_GRAIN, normal, spring, 3.0, angle)
     ours = cl.simulate_oblique(ISSUE_GRAIN, cl.Sensor.rigid(), normal, spring, 3.0, angle)
     vt, _ = gross_sliding_rebound(
-        3.0 * math.cos(angle),
-        3.0 * math.sin(angle),
-        0.0,
-        ISSUE_GRAIN.radius,
-        engine.rebound_normal_velocity / (3.0 * math.cos(angle)),
-        0.3,
+        ObliqueImpact(
+            3.0 * math.cos(angle),
+            3.0 * math.sin(angle),
+            0.0,
+            ISSUE_GRAIN.radius,
+            engine.rebound_normal_velocity / (3.0 * math.cos(angle)),
+            0.3,
+        )
     )
     # LAMMPS' first-order step error at 2000 steps per contact (measured 2e-7 of 3 m/s)
     assert engine.tangential_velocity == pytest.approx(ours.tangential_velocity, abs=1e-5 * 3.0)
@@ -113,7 +115,7 @@ def test_lammps_gains_energy_with_mindlin_as_the_solver_does(history):
     from dem_check.engines.lammps.oblique import lammps_oblique
 
     normal = cl.laws.LinearViscoelastic(1e5, 0.0)
-    tangential = cl.laws.Mindlin.from_material(*ISSUE_GRAIN.material(), 0.3, history=history)
+    tangential = cl.laws.Mindlin.from_material(ISSUE_GRAIN.material(), 0.3, history=history)
     args = (ISSUE_GRAIN, normal, tangential, 3.0, math.radians(60.0))
     engine = lammps_oblique(*args, spin=1500.0).audit()["energy"]
     ours = cl.simulate_oblique(args[0], cl.Sensor.rigid(), *args[1:], spin=1500.0)

@@ -63,7 +63,7 @@ def test_read_case_builds_the_species_laws(tmp_path):
     assert len(classes) == 2
     grain, law, tangential = classes[0]
     # the class law is the toolkit's own Hertz-Mindlin law of that grain
-    expected = cl.laws.HertzDamped.from_material(*grain.material(), 0.5, grain.mass)
+    expected = cl.laws.HertzDamped.from_material(grain.material(), 0.5, grain.mass)
     assert law.k_hertz == expected.k_hertz and law.damping == expected.damping
     assert tangential is None
     assert case.sensor.resonance == pytest.approx(40e3, rel=1e-12)  # rounding of k1/m1

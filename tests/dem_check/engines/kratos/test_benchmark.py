@@ -76,8 +76,8 @@ def test_kratos_spin_in_gross_sliding_is_lower_by_its_lever_arm(report):
 
     case = next(c for c in CASES if c.number == 4)
     body = grain(case.materials[0], case.inputs["radius [m]"])
-    normal = cl.laws.Hertz.from_material(*body.material())
-    law = cl.laws.Mindlin.from_material(*body.material(), case.inputs["friction [-]"])
+    normal = cl.laws.Hertz.from_material(body.material())
+    law = cl.laws.Mindlin.from_material(body.material(), case.inputs["friction [-]"])
     angle = math.radians(45.0)
     speed = case.inputs["speed [m/s]"]
     theirs = kratos_oblique(body, normal, law, speed, angle)

@@ -71,7 +71,9 @@ def test_impact_agrees_with_the_exact_solver(grain, paper_sensor, laws, name, ri
 def test_damped_hertz_over_the_users_range(restitution, velocity, diameter, modulus):
     """Grains of 1-10 mm, E* 1 MPa-10 GPa, 0.2-10 m/s, e 0.1-0.95 on a rigid sensor."""
     grain = cl.Grain(diameter=diameter, density=1200.0)
-    law = cl.laws.HertzDamped.from_material(modulus, 0.3, grain.radius, restitution, grain.mass)
+    law = cl.laws.HertzDamped.from_material(
+        cl.analytic.Material(modulus, 0.3, grain.radius), restitution, grain.mass
+    )
     res = drop_test(ImpactConfig(grain, cl.Sensor.rigid(), law, {"velocity": velocity}))
     ref = cl.simulate_impact(grain, cl.Sensor.rigid(), law, velocity)
     # first order in the step at 1000 steps per contact: errors scale with the damping,

@@ -25,14 +25,14 @@ _SPEC.loader.exec_module(rules)
 CASE = next(c for c in CASES if c.number == 4)
 BODY = grain(CASE.materials[0], CASE.inputs["radius [m]"])  # aluminium oxide, R = 2.5 mm
 MU, SPEED = CASE.inputs["friction [-]"], CASE.inputs["speed [m/s]"]
-ELASTIC = cl.laws.Hertz.from_material(*BODY.material())
+ELASTIC = cl.laws.Hertz.from_material(BODY.material())
 DAMPED = cl.laws.HertzDamped(  # e = 0.98, Kratos' own test-4 input
     ELASTIC.k_hertz, analytic.tsuji_damping_coefficient(ELASTIC.k_hertz, BODY.mass, 0.98, "force")
 )
 
 
 def _mindlin(history="total"):
-    return cl.laws.Mindlin.from_material(*BODY.material(), MU, history=history)
+    return cl.laws.Mindlin.from_material(BODY.material(), MU, history=history)
 
 
 def _replica(normal, degrees, dt, chosen=rules.KRATOS):

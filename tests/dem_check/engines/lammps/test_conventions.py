@@ -16,8 +16,8 @@ pytestmark = pytest.mark.lammps
 SPEED, MU = 3.9, 0.092
 GRAIN = cl.Grain(diameter=5e-3, density=4000.0, youngs_modulus=3.8e11, poisson_ratio=0.23)
 """Chung & Ooi's test-4 aluminium oxide sphere."""
-NORMAL = cl.laws.Hertz.from_material(*GRAIN.material())
-BASE = cl.laws.Mindlin.from_material(*GRAIN.material(), MU)
+NORMAL = cl.laws.Hertz.from_material(GRAIN.material())
+BASE = cl.laws.Mindlin.from_material(GRAIN.material(), MU)
 LAMMPS_PRESETS = [name for name in DEM_CONVENTIONS if name.startswith("lammps")]
 
 
