@@ -20,12 +20,18 @@ from dem_check.campaign import find_impacts, onsets
 from dem_check.campaign.detection import ANALYSED
 
 
-def main():
+def strongest_lobes():
+    """The speed record's sensor and the first lobes of its ``onsets.FAMILY_IMPACTS`` most
+    significant analysed impacts, as ``dem_check.campaign.onsets`` reads the family on."""
     _, sensor, _ = bench_realistic.hard()
     found = find_impacts(bench_realistic.speed_record().trace, sensor, fit_onsets=False)
     windows = [w for w in found.impacts if w.status in ANALYSED]
     strongest = sorted(windows, key=lambda w: -w.significance)[: onsets.FAMILY_IMPACTS]
-    lobes = [onsets._lobe(found, w, sensor) for w in strongest]
+    return sensor, [onsets._lobe(found, w, sensor) for w in strongest]
+
+
+def main():
+    sensor, lobes = strongest_lobes()
     fit_lobe, fits = lobe_onset.fit_lobe, {"started": 0, "scanned": 0}
 
     def counted(*args, **kwargs):

@@ -17,11 +17,9 @@ import sys
 import time
 from pathlib import Path
 
-import bench_realistic  # beside this script: its speed record
+import bench_family_read  # beside this script: the speed record's strongest lobes
 
 from contactlab.inverse import lobe_model, lobe_onset
-from dem_check.campaign import find_impacts, onsets
-from dem_check.campaign.detection import ANALYSED
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "support"))
 from held_reference import numpy_unit
@@ -35,11 +33,7 @@ def _reference_unit(model, tau, shape=None):
 
 
 def main():
-    _, sensor, _ = bench_realistic.hard()
-    found = find_impacts(bench_realistic.speed_record().trace, sensor, fit_onsets=False)
-    windows = [w for w in found.impacts if w.status in ANALYSED]
-    strongest = sorted(windows, key=lambda w: -w.significance)[: onsets.FAMILY_IMPACTS]
-    lobes = [onsets._lobe(found, w, sensor) for w in strongest]
+    sensor, lobes = bench_family_read.strongest_lobes()
     compiled_unit = lobe_model.LobeModel.unit
     lobe_onset.lobe_family(lobes[:1], sensor)  # the kernel loaded once, not timed
     print(f"load average before: {os.getloadavg()[0]:.1f} (1 min)")
