@@ -22,6 +22,12 @@ GROWTH_FACTOR = 1.5
 """Largest growth of the ringing envelope from one sensor period to the next that is
 not a new impact: free ringing shrinks by ``exp(-2 pi zeta)`` per period."""
 
+RISE_PERIODS = 2
+"""Sensor periods over which the envelope's growth is counted [-]: each period's largest
+value is weighed against the least of the periods before, up to this many back. A weak
+contact's lobe rises over about half its contact (two periods of the 40 kHz sensor for a
+100 us contact), by less than the factor in each period."""
+
 
 def later_impacts(z, ratio, first_lobe_end, last, period, levels):
     """Where the ringing envelope grows to the detection threshold by a force: later
@@ -62,13 +68,24 @@ def later_impacts(z, ratio, first_lobe_end, last, period, levels):
     level = np.mean(np.sign(periods) * sigmas, axis=1)  # the period's mean [local sigmas]
 
     def grown(values):
-        return values[1:] > GROWTH_FACTOR * values[:-1] + levels[0]
+        # against the least of the RISE_PERIODS periods before: a contact's lobe can
+        # rise over two, neither growing by the factor from the one before
+        reference = values[:-1].copy()
+        for back in range(2, RISE_PERIODS + 1):
+            reference[back - 1 :] = np.minimum(reference[back - 1 :], values[:-back])
+        return values[1:] > GROWTH_FACTOR * reference + levels[0], reference
 
-    force = grown(centred) | (level[1:] >= levels[1])
-    grows = (reached[1:] >= levels[1]) & grown(envelope) & force
+    # the level at the threshold in the period of the growth or the next: the lobe
+    # fills the period where it started only in part
+    rising = np.maximum(level[1:], np.append(level[2:], -np.inf))
+    force = grown(centred)[0] | (rising >= levels[1])
+    larger, reference = grown(envelope)
+    grows = (reached[1:] >= levels[1]) & larger & force
     runs = np.flatnonzero(grows & ~np.concatenate([[False], grows[:-1]])) + 1
     found = []
     for k in runs:
-        threshold = GROWTH_FACTOR * envelope[k - 1] + levels[0]
-        found.append(start + k * period + int(np.argmax(np.abs(periods[k]) > threshold)))
+        threshold = GROWTH_FACTOR * reference[k - 1] + levels[0]
+        first = max(0, k - RISE_PERIODS + 1)  # where a growth over two periods started
+        samples = np.abs(periods[first : k + 1].ravel())
+        found.append(start + first * period + int(np.argmax(samples > threshold)))
     return found
