@@ -70,7 +70,7 @@ noise or a glitch."""
 def _scenario(draw):
     rate = draw(st.sampled_from([1e6, 2e6, 5e6]))
     count = draw(st.integers(0, 4))
-    delay = draw(st.floats(1.5e-3, 3e-3))  # see the module docstring
+    delay = draw(st.floats(0.3e-3, 3e-3))  # see the module docstring
     gaps = [draw(st.floats(delay + 1.5e-3, 8e-3)) for _ in range(count)]
     first = draw(st.sampled_from([0.0, 2.0 / rate, 1e-3]))
     onsets = first + np.concatenate([[0.0], np.cumsum(gaps[:-1])]) if count else np.array([])
