@@ -20,10 +20,9 @@ Offset steps are in the sweep (0-2 per record, 3-30 noise sigmas, up or down, wi
 0.2 ms of the record's end or anywhere :data:`STEP_CLEAR` from the impacts and each
 other, from 0.02 ms after the record's start): each step row must lie within :data:`MATCH` of
 a true step. Closer to an impact, a step can still invent or displace one (the hard mix
-of ``benchmarks/bench_steps.py``, docs/campaign.md). Bounces come 1.5-3 ms after their
-impact: a weak one (13 sigma) 1 ms after a 2.5 m/s impact was missed, merged into the
-run of the first impact's ringing without the envelope growing enough to flag an
-overlap (known limit, ``docs/campaign.md``).
+of ``benchmarks/bench_steps.py``, docs/campaign.md). Bounces come 0.3-3 ms after their
+impact (1.5-3 ms while a weak one in a strong one's ringing could be missed:
+``test_weak_impact_in_ringing.py``, docs/campaign.md).
 """
 
 import dataclasses
