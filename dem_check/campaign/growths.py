@@ -11,12 +11,17 @@ without either: a plate mode's slow swing (the record model's crosstalk is the p
 response to the force, which swings the level by 0.1-0.15 N within 0.1-0.3 ms after a
 2-3.6 N impact), or a block level chosen for a stretch (seeds 60 and 82 of
 ``benchmarks/bench_steps.py``: 'overlap' rows invented 0.17-0.29 ms after an impact).
+A weak contact's lobe rises over about two periods, by less than the factor in each, and
+fills the period it starts in only in part: the growth is counted against the least of
+the :data:`RISE_PERIODS` periods before, and the level may reach the threshold in the
+growth's period or the next (``benchmarks/bench_weak_impacts.py``: 10-15 sigma impacts
+0.3-1.5 ms after a strong one, 24 of 400 missed with one period, 1 with two).
 """
 
 import numpy as np
 from scipy.ndimage import uniform_filter1d
 
-__all__ = ["GROWTH_FACTOR", "later_impacts"]
+__all__ = ["GROWTH_FACTOR", "RISE_PERIODS", "later_impacts"]
 
 GROWTH_FACTOR = 1.5
 """Largest growth of the ringing envelope from one sensor period to the next that is
