@@ -15,7 +15,8 @@ A weak contact's lobe rises over about two periods, by less than the factor in e
 fills the period it starts in only in part: the growth is counted against the least of
 the :data:`RISE_PERIODS` periods before, and the level may reach the threshold in the
 growth's period or the next (``benchmarks/bench_weak_impacts.py``: 10-15 sigma impacts
-0.3-1.5 ms after a strong one, 24 of 400 missed with one period, 1 with two).
+0.3-1.5 ms after a strong one: 24 of 400 missed before, 2 of them in a clipped impact's
+ringing, which was not checked then; 1 after).
 """
 
 import numpy as np
