@@ -45,7 +45,8 @@ in newtons:
    flagged ``"overlap"``, never merged. Not with fewer than
    :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period (ringing not resolved).
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
-   inside an impact flag it ``"clipped"``: its peak is a lower bound.
+   inside an impact flag it ``"clipped"``: its peak is a lower bound; impacts its
+   ringing holds (step 5) are listed ``"overlap"``, not analysed.
 """
 
 import dataclasses
@@ -457,6 +458,11 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
             "decayed below the noise floor"
         )
         return [window(onset, "truncated", reason)]
+    lobe_end = detected + int(np.argmax(z[detected : last + 1] <= 0.0))
+    resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
+    growths = resolved and lobe_end > detected
+    levels = (FLOOR_SIGMAS * floor.smoothed_noise, floor.sigmas)  # [N], [local sigmas]
+    later = later_impacts(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
     for kind, what in (
         ("overrange", "the instrument's range was exceeded, the true signal is unknown"),
         ("clipped", "held at the record's rail: the peak is a lower bound"),
@@ -465,12 +471,11 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
         inside = indices[(indices >= segment_first) & (indices < stop)]
         if inside.size:
             reason = f"{inside.size} {kind} samples (first at {t[inside[0]]:.6g} s): {what}"
-            return [window(onset, kind, reason)]
-    lobe_end = detected + int(np.argmax(z[detected : last + 1] <= 0.0))
-    resolved = scales["period"] >= RESOLVED_PERIOD_SAMPLES  # the ringing can be followed
-    growths = resolved and lobe_end > detected
-    levels = (FLOOR_SIGMAS * floor.smoothed_noise, floor.sigmas)  # [N], [local sigmas]
-    later = later_impacts(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
+            ringing = f"in the ringing of the {kind} impact at {onset:.6g} s: not analysed alone"
+            return [window(onset, kind, reason)] + [
+                window(float(t[i]), "overlap", f"the ringing grew: an impact {ringing}")
+                for i in later
+            ]
     if not later:
         if after:
             reason = (

@@ -11,13 +11,19 @@ hum of 1.5 sigma, crosstalk of 2 % as the plate's response to the force, a 16-bi
 clipping at 1.2 times the largest peak plus the drift and the steps), drift of 20-50
 noise sigmas (10 when the record starts at its impact) and two offset steps of 3-30 noise
 sigmas, up or down, each at a random place of one of :data:`STEP_KINDS`.
+:func:`weak_in_ringing`: a weak impact in a strong one's ringing, as
+``benchmarks/bench_weak_impacts.py`` counts them
+(``tests/dem_check/campaign/test_weak_impact_in_ringing.py``).
 """
 
+import math
+
 import numpy as np
+import pandas as pd
 
-from dem_check.campaign.records import Effects, realistic_record
+from dem_check.campaign.records import Effects, realistic_record, ringing_at_onsets
 
-__all__ = ["NOISE", "STEP_KINDS", "accuracy_record", "hard_mix"]
+__all__ = ["NOISE", "STEP_KINDS", "accuracy_record", "hard_mix", "weak_in_ringing"]
 
 NOISE = 0.03
 """White noise of the records [N]: 1 % of the hard grain's 3 N peak at 2 m/s."""
@@ -87,6 +93,60 @@ def hard_mix(seed, grain, sensor, law):
         bounce_delay=delay,
     )
     sampling = {"length": length, "sample_rate": rate, "noise": NOISE}
+    record = realistic_record(
+        grain, sensor, law, velocities, onsets, **sampling, effects=effects, seed=seed
+    )
+    return record, effects
+
+
+def weak_in_ringing(seed, grain, sensor, law, *, alone=False):
+    """A strong impact and a weak one 0.3-1.5 ms later, in its ringing, every effect on.
+
+    The strong impact (1-2.5 m/s) is at 1 ms; the weak one's peak signal is 10-15 times
+    the noise the realistic sweep counts (white, 1/f and quantisation noise with the
+    structure's ringing at its onset, as
+    :func:`~dem_check.campaign.records.ringing_at_onsets`), from the hard grain's 1.5 N
+    of peak signal per m/s. At 1, 2 or 5 MHz, the effects at random levels over the
+    realistic sweep's ranges (``tests/dem_check/campaign/test_realistic_detection.py``:
+    1/f noise up to 2 noise sigmas, drift up to 50, hum up to 2, crosstalk up to 3 % as
+    the plate's response, a 12-24 bit ADC clipping at 0.8-3 times a 2.5 m/s impact's
+    peak); no offset steps. 6 ms.
+
+    Parameters
+    ----------
+    seed : int
+        The record's number: it draws the record's parameters and its noise.
+    grain, sensor, law
+        As for :func:`~dem_check.campaign.realistic_record` (the hard test grain's).
+    alone : bool, default False
+        Leave the weak impact out (the same record otherwise): nothing may be found in
+        the ringing then.
+
+    Returns
+    -------
+    (RealisticRecord, Effects)
+    """
+    rng = np.random.default_rng(seed)
+    rate = float(rng.choice([1e6, 2e6, 5e6]))
+    strong, delay, sigmas = rng.uniform(1.0, 2.5), rng.uniform(0.3e-3, 1.5e-3), rng.uniform(10, 15)
+    largest = 1.5 * 2.5  # the hard grain's peak signal at 2.5 m/s [N]
+    effects = Effects(
+        pink=rng.uniform(0.0, 2.0) * NOISE,
+        drift=rng.uniform(0.0, 50.0) * NOISE,
+        hum=rng.uniform(0.0, 2.0) * NOISE,
+        mains=float(rng.choice([50.0, 60.0])),
+        crosstalk=rng.uniform(0.0, 0.03),
+        full_scale=rng.uniform(0.8, 3.0) * largest,
+        bits=int(rng.choice([12, 16, 24])),
+    )
+    onsets = np.array([1e-3, 1e-3 + delay])
+    truth = pd.DataFrame({"onset [s]": onsets, "peak_sensor_force [N]": [1.5 * strong, 0.0]})
+    structure = ringing_at_onsets(truth, effects)[1]
+    lsb = 2.0 * effects.full_scale / 2**effects.bits
+    random_noise = math.sqrt(NOISE**2 + effects.pink**2 + lsb**2 / 12.0)
+    weak = sigmas * math.hypot(random_noise, structure / math.sqrt(2.0)) / 1.5
+    velocities, onsets = ([strong], onsets[:1]) if alone else ([strong, weak], onsets)
+    sampling = {"length": 6e-3, "sample_rate": rate, "noise": NOISE}
     record = realistic_record(
         grain, sensor, law, velocities, onsets, **sampling, effects=effects, seed=seed
     )

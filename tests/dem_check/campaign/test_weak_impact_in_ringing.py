@@ -1,0 +1,107 @@
+"""A weak impact (10-15 noise sigmas) 0.3-1.5 ms after a strong one, inside its ringing
+(issue 22: every true impact of at least 10 sigma found, none invented).
+
+The records are ``benchmarks/bench_weak_impacts.py``'s
+(:func:`dem_check.campaign.drawn_records.weak_in_ringing`, every effect but offset steps
+at random levels), those its first run missed: the weak impact was merged into the run
+of the strong one's ringing and the ringing check (:mod:`dem_check.campaign.growths`)
+did not flag it. Its lobe rises over two sensor periods, by less than the growth factor
+in each, and fills the period where it starts only in part, so its level stands at the
+threshold only in the next period (seeds 16, 37, 63, 192); the ringing of a clipped
+impact was not checked at all (seed 8). Each record is read also without the weak
+impact: nothing may then be found in the strong one's ringing.
+"""
+
+import numpy as np
+import pytest
+
+from dem_check.campaign import find_impacts, growths
+from dem_check.campaign.drawn_records import weak_in_ringing
+from dem_check.campaign.growths import GROWTH_FACTOR, later_impacts
+
+MATCH = 60e-6
+"""Largest distance of a detected onset from the true one [s], as the realistic sweep
+and the benchmarks count them (two and a half periods of the 40 kHz sensor)."""
+
+
+def _onsets(found):
+    return np.array([w.onset for w in found.impacts])
+
+
+@pytest.mark.parametrize(
+    ("seed", "statuses"),
+    [
+        (16, ["overlap", "overlap"]),  # 2 MHz, 0.413 ms after a 2.3 m/s impact
+        (37, ["overlap", "overlap"]),  # 1 MHz, 0.383 ms
+        (63, ["overlap", "overlap"]),  # 2 MHz, 0.536 ms
+        (192, ["overlap", "overlap"]),  # 5 MHz, 0.311 ms
+        (8, ["clipped", "overlap"]),  # 5 MHz, 0.682 ms after a clipped impact
+    ],
+)
+def test_a_weak_impact_in_a_strong_ones_ringing_is_found(hard_setup, seed, statuses):
+    record, _ = weak_in_ringing(seed, *hard_setup)
+    found = find_impacts(record.trace, hard_setup[1])
+    truth = record.truth["onset [s]"].to_numpy()
+    assert [w.status for w in found.impacts] == statuses
+    # each row is a true impact, placed within MATCH (the later one at the period
+    # where the ringing grew)
+    assert np.abs(_onsets(found) - truth).max() <= MATCH
+    alone, _ = weak_in_ringing(seed, *hard_setup, alone=True)
+    (only,) = find_impacts(alone.trace, hard_setup[1]).impacts  # nothing in its ringing
+    assert abs(only.onset - truth[0]) <= MATCH
+
+
+REMAINING = (
+    "known limit (issue 22): the strong impact's (3.69 N) sensor ringing is still 0.19 N "
+    "0.39 ms later, and the weak lobe (0.39 N, 13 noise sigmas) on it raises the "
+    "envelope to 0.30 N, under 1.5 times 0.19 N plus the floor (0.31 N); its level (0.19 "
+    "N, 23 local sigmas) would show it, but a level alone is also what a plate mode's "
+    "swing and a block level of the running baseline move (module growths)"
+)
+
+
+@pytest.mark.xfail(strict=True, reason=REMAINING)
+def test_a_weak_lobe_under_half_the_ringing(hard_setup):
+    record, _ = weak_in_ringing(98, *hard_setup)  # 2 MHz, 0.387 ms after a 2.46 m/s impact
+    found = find_impacts(record.trace, hard_setup[1])
+    truth = record.truth["onset [s]"].to_numpy()
+    assert len(found.impacts) == 2
+    assert np.abs(_onsets(found) - truth).max() <= MATCH
+
+
+def _ringing_and_lobe(lobe_height):
+    """Free ringing of a 40 kHz sensor (zeta 0.02, 20 samples a period, 1 N) from sample
+    0 and a raised-cosine lobe of ``lobe_height`` [N] from period 12 over four periods
+    (it rises over two), with the ratio to a local noise of 0.01 N."""
+    period, zeta = 20, 0.02
+    n = np.arange(40 * period)
+    phase = 2.0 * np.pi * n / period
+    z = np.exp(-zeta * phase) * np.sin(phase)
+    at, width = 12 * period, 4 * period
+    inside = (n >= at) & (n < at + width)
+    z[inside] += lobe_height * 0.5 * (1.0 - np.cos(2.0 * np.pi * (n[inside] - at) / width))
+    return z, np.abs(z) / 0.01, period
+
+
+def test_a_lobe_that_rises_over_two_periods_is_a_later_impact(monkeypatch):
+    # closed form: the ringing's envelope is 0.24 N in period 11; a 0.25 N lobe from
+    # period 12 raises the envelope of periods 12-14 to 0.22, 0.36 and 0.41 N, each under
+    # GROWTH_FACTOR times the period before plus the 0.03 N floor (0.36 < 0.37), period
+    # 14 over it against period 12 (0.41 > 0.37)
+    z, ratio, period = _ringing_and_lobe(0.25)
+    envelope = np.abs(z[: 15 * period]).reshape(15, period).max(axis=1)
+    assert np.all(envelope[12:15] <= GROWTH_FACTOR * envelope[11:14] + 0.03)
+    assert envelope[14] > GROWTH_FACTOR * envelope[12] + 0.03
+    (found,) = later_impacts(z, ratio, period // 2, z.size - 1, period, (0.03, 7.0))
+    # where the lobe passes 1.5 times the envelope two periods before plus the floor:
+    # in period 14, two periods after its start (the 40 kHz sensor's 50 us, under the
+    # 60 us the realistic sweep places impacts to)
+    assert 12 * period <= found < 15 * period
+    # growth counted from one period back only (before): not found
+    monkeypatch.setattr(growths, "RISE_PERIODS", 1)
+    assert later_impacts(z, ratio, period // 2, z.size - 1, period, (0.03, 7.0)) == []
+
+
+def test_free_ringing_alone_is_no_later_impact():
+    z, ratio, period = _ringing_and_lobe(0.0)
+    assert later_impacts(z, ratio, period // 2, z.size - 1, period, (0.03, 7.0)) == []
