@@ -12,6 +12,8 @@ import functools
 
 from threadpoolctl import ThreadpoolController
 
+from contactlab.errors import ParameterError
+
 __all__ = ["one_blas_thread", "with_one_blas_thread"]
 
 _CONTROLLER = None
@@ -38,7 +40,15 @@ def one_blas_thread():
 
 def with_one_blas_thread(function):
     """Decorate ``function`` to run with :func:`one_blas_thread` (its signature and
-    docstring kept)."""
+    docstring kept).
+
+    Raises
+    ------
+    ParameterError
+        If ``function`` is not callable.
+    """
+    if not callable(function):
+        raise ParameterError(f"function must be callable, not {type(function).__name__}")
 
     @functools.wraps(function)
     def limited(*args, **kwargs):
