@@ -219,10 +219,17 @@ def _level_changes(levels, firsts, stops):
     spread = MAD_TO_SIGMA * np.median(np.abs(reference - np.median(reference)))
     spread = np.maximum(spread, _local_spread(corrected / scale, DRIFT_WINDOWS * size))
     spread = np.maximum(spread, _gap_spread(levels, firsts, stops, slope, (n_before, n_after)))
-    significance = np.abs(corrected) / np.maximum(spread * scale, np.finfo(float).tiny)
+    error = np.maximum(spread * scale, np.finfo(float).tiny)
+    significance = np.abs(corrected) / error
     edge = firsts[j].astype(float)
     level = before + slope * (edge - left)  # the old level at the boundary
-    return {"height": corrected, "significance": significance, "slope": slope, "level": level}
+    return {
+        "height": corrected,
+        "significance": significance,
+        "slope": slope,
+        "level": level,
+        "error": error,
+    }
 
 
 def split(x, level, height, noise):
@@ -265,7 +272,16 @@ def _one_pass(values, period, masked, ring):
     found = []
     high = np.abs(changes["height"]) >= LEAST_HEIGHT * noise[1]
     chosen = []  # medians tie: equal largest changes at neighbouring boundaries are one
-    for k in np.flatnonzero((significance >= STEP_SIGMAS) & largest & high):
+    # a change across an impact under the threshold may be a step pair's sum, whose own
+    # level changes inflate its noise: it is read too (_pair_significance)
+    j = np.arange(1, levels.size)
+    held = np.r_[0, np.cumsum(masked)]  # masked samples before each index
+    windows = (
+        firsts[np.maximum(j - size // 2, 0)],
+        stops[np.minimum(j + size // 2, levels.size - 1)],
+    )
+    across = (held[windows[1]] > held[windows[0]]) & (ring is not None)
+    for k in np.flatnonzero(((significance >= STEP_SIGMAS) | across) & largest & high):
         if not chosen or k - chosen[-1] > size:
             chosen.append(k)
     for k in chosen:
@@ -287,11 +303,36 @@ def _one_pass(values, period, masked, ring):
                 lobe = None if placed[1] is None else tuple(first + i for i in placed[1])
             sigmas = _both(other, period, noise)
             if sigmas:  # a step before the impact and one in its ringing
-                for at, h, sigma in zip((index, first + other[0]), other[1], sigmas, strict=True):
-                    found.append(OffsetStep(at, h, sigma, window))
+                pair = [
+                    OffsetStep(at, h, sigma, window)
+                    for at, h, sigma in zip(
+                        (index, first + other[0]), other[1], sigmas, strict=True
+                    )
+                ]
+                if (
+                    significance[k] >= STEP_SIGMAS
+                    or _pair_significance(values, period, masked, pair, k, changes) >= STEP_SIGMAS
+                ):
+                    found += pair
                 continue
-        found.append(OffsetStep(index, height, float(significance[k]), window, lobe))
+        if significance[k] >= STEP_SIGMAS:
+            found.append(OffsetStep(index, height, float(significance[k]), window, lobe))
     return found
+
+
+def _pair_significance(values, period, masked, pair, k, changes):
+    """The level change at boundary ``k`` across an impact (the sum of a step ``pair``
+    before it and in its ringing, :func:`second_across`) over its noise read on the
+    record with the pair taken out [-]. The noise of a level change is the spread of the
+    record's changes where there is no step; the pair's sum moves the changes at the
+    boundaries within half a window of it (a quarter of a 5 ms record's boundaries) and
+    the drift's slope read over four windows, so read on the record as it comes it
+    counts the pair's own changes as noise (seed 4 of a step before an impact and one
+    in its ringing: 0.048 N, against 0.034 N with the two true steps taken out)."""
+    rest = remove_steps(values, pair)
+    levels, firsts, stops = block_levels(rest, period, masked)
+    error = _level_changes(levels, firsts, stops)["error"][k]
+    return abs(float(changes["height"][k])) / error
 
 
 def _both(other, period, noise):
