@@ -119,24 +119,7 @@ def test_a_step_that_starts_the_run_of_an_impact(hard_setup, seed):
     assert np.abs(onsets - truth).max() <= MATCH
 
 
-WEAK_BETWEEN = (
-    "known limit (issue 22): on seed 4 (1, 2, 3 pass) one first-pass run holds both steps "
-    "and the weak impact (0.811-1.632 ms); the period means read their sum across it "
-    "(-0.346 N of -0.408, 12.3 sigmas), the pair before and in the ringing is not "
-    "accepted, so one step is flagged inside the lobe at 1.043 ms and the first step "
-    "read as an 'ok' impact at 0.807 ms"
-)
-
-
-@pytest.mark.parametrize(
-    "seed",
-    [
-        1,
-        2,
-        3,
-        pytest.param(4, marks=pytest.mark.xfail(strict=True, reason=WEAK_BETWEEN)),
-    ],
-)
+@pytest.mark.parametrize("seed", [1, 2, 3, 4])
 def test_a_weak_impact_between_two_steps(hard_setup, seed):
     # seed 27 of the hard mix: a 0.22 m/s impact (0.36 N, under the 10 sigmas that must
     # be found) between a 0.417 N step 0.18 ms before it and a -0.825 N step 0.26 ms
