@@ -1,7 +1,7 @@
 """A run at a record's edge: a level step or an impact's lobe, told apart by their fits
 (issue 22).
 
-:func:`dem_check.campaign.steps.edge_steps` reads a first-pass run from the record's
+:func:`dem_check.campaign.step_edges.edge_steps` reads a first-pass run from the record's
 first sample, or to its last, as a DC offset step when one side of a split stays at one
 level. Two records fooled a flatness test of that side:
 

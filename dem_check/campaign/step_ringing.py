@@ -104,11 +104,16 @@ def rise(x, start, band, period):
     excursion), searched from ``start`` (the period means' conservative start): the
     first sample that leaves the ``band`` ``(low, high)`` between the two levels [N] by
     more than :data:`RISE_SIGMAS` sample-noise sigmas or the median of the
-    :data:`QUIET_FRACTION` of a period before it by twice that, unless the samples from
-    it on settle as a step does (as many, within the band and spread over no more than
+    :data:`QUIET_FRACTION` of a period before it by twice that, unless the samples after
+    it settle as a step does (as many, within the band and spread over no more than
     twice that), less half that stretch as a margin. Before its impact the sensor is at
     rest, so the samples there place a step a period or more nearer the onset than the
-    period means do (a step 19 us before an onset at 1 MHz: seed 14 of the hard mix)."""
+    period means do (a step 19 us before an onset at 1 MHz: seed 14 of the hard mix).
+    The samples after the one that leaves are judged, not it: a lobe's rise goes on, a
+    single sample out with the next ones back in the band is the noise's tail (1/f noise
+    and hum move the level under white noise, and one sample 0.144 N off the head's
+    level, 4.4 of these sigmas, 0.1 ms before the lobe, ended the head of seed 4 of a weak
+    impact between two steps at 96 of the 100 samples it needs)."""
     quiet = max(2, round(QUIET_FRACTION * period))
     reach = RISE_SIGMAS * difference_sigma(x)
 
@@ -118,7 +123,7 @@ def rise(x, start, band, period):
     i = start + quiet
     while i < x.size:
         if not within(x[i : i + 1]) or abs(x[i] - np.median(x[i - quiet : i])) > 2.0 * reach:
-            ahead = x[i : i + quiet]
+            ahead = x[i + 1 : i + 1 + quiet]
             if ahead.size < quiet or np.ptp(ahead) > 2.0 * reach or not within(ahead):
                 return max(start, i - quiet // 2)
             i += quiet  # a step: the level it settles at is the one to follow

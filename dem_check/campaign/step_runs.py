@@ -48,6 +48,7 @@ from scipy.ndimage import median_filter, uniform_filter1d
 from contactlab.signals import robust_noise
 from dem_check.campaign.edge_models import tail_fit
 from dem_check.campaign.plate_swings import judged_steps
+from dem_check.campaign.step_edges import edge_steps
 from dem_check.campaign.step_ringing import difference_sigma, rise
 from dem_check.campaign.steps import (
     FLAT_RATIO,
@@ -57,7 +58,6 @@ from dem_check.campaign.steps import (
     OffsetStep,
     block_levels,
     drift_slopes,
-    edge_steps,
     find_steps,
     level_error,
     period_noise,
@@ -187,7 +187,7 @@ def _net(pieces, period, noise):
 def end_pairs(values, runs, period, masked, slopes):
     """Two offset steps in a run to the record's last sample, closer than
     :data:`BOX_PERIODS` (which a single step's test at the edge,
-    :func:`dem_check.campaign.steps.edge_steps`, does not read): the change point model
+    :func:`dem_check.campaign.step_edges.edge_steps`, does not read): the change point model
     with two changes on the run and the unmasked periods before it, the level at the end
     not the one before the run (seed 48 of the hard mix of ``benchmarks/bench_steps.py``:
     steps of -0.72 and 0.16 N 76 us apart, 0.12 ms before the end at 1 MHz, read as a
@@ -237,7 +237,7 @@ def run_steps(values, runs, period, masked, slopes):
     runs : list of tuple
         ``(first, last, lo, hi)``: a run's first and last sample and its mask
         ``[lo, hi)`` (sample indices); runs at the record's edges are left to
-        :func:`dem_check.campaign.steps.edge_steps`.
+        :func:`dem_check.campaign.step_edges.edge_steps`.
     period : int
         The sensor's period [samples].
     masked : numpy.ndarray of bool
@@ -363,19 +363,19 @@ def search_steps(values, runs, period, hold, ring=None):
     """Every offset step of a record, from its first pass's candidate runs: runs that
     are steps (:func:`run_steps`), steps on the period means outside the other runs
     (:func:`dem_check.campaign.steps.find_steps`) and at the record's edges
-    (:func:`dem_check.campaign.steps.edge_steps`).
+    (:func:`dem_check.campaign.step_edges.edge_steps`).
 
     Parameters
     ----------
     values, runs, period
-        As for :func:`dem_check.campaign.steps.edge_steps`.
+        As for :func:`dem_check.campaign.step_edges.edge_steps`.
     hold : int
         Samples past a run's last one that still belong to it (its quiet hold; the
-        ``reach`` of :func:`~dem_check.campaign.steps.edge_steps`).
+        ``reach`` of :func:`~dem_check.campaign.step_edges.edge_steps`).
     ring : tuple, optional
         ``(sensor, dt)``, for steps found across an impact
         (:func:`dem_check.campaign.steps.find_steps`) and at the record's edges
-        (:func:`dem_check.campaign.steps.edge_steps`).
+        (:func:`dem_check.campaign.step_edges.edge_steps`).
 
     Returns
     -------

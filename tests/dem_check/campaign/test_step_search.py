@@ -10,7 +10,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from contactlab.inverse.local_baseline import _ringing
-from dem_check.campaign.step_ringing import height_across, place_across, second_across
+from dem_check.campaign.step_ringing import (
+    height_across,
+    place_across,
+    rise,
+    second_across,
+)
 from dem_check.campaign.step_runs import run_steps
 from dem_check.campaign.steps import find_steps, remove_steps, split
 
@@ -163,6 +168,20 @@ def test_the_split_is_the_least_absolute_deviation_one():
     # the closed form: for a clean step the cost is least exactly at it
     x = np.r_[np.zeros(30), np.ones(70)]
     assert split(x, 0.0, 1.0, 0.01) == (30, 0)
+
+
+def test_a_lobe_rises_where_it_leaves_the_level_not_at_one_sample_out():
+    # a level of 0 N with white noise of 0.03 N (1 MHz, 25-sample periods), one sample
+    # 0.2 N off it (6.7 sigma, over the 4 of a rise) at 300 and a half sine of 1 N over
+    # 100 samples from 400: the rise is the lobe's (within the quarter period's half
+    # margin it is returned with, and the half sine's first samples, under 4 sigma)
+    x = np.random.default_rng(4).normal(0.0, 0.03, 600)
+    x[300] += 0.2
+    x[400:500] += np.sin(np.pi * np.arange(100) / 100)
+    at = rise(x[:450], 0, (0.0, 0.0), 25)
+    assert 390 <= at <= 405
+    x[300] -= 0.2  # without the sample out: the same place
+    assert rise(x[:450], 0, (0.0, 0.0), 25) == at
 
 
 def test_a_plate_modes_slow_ringing_is_no_step_and_a_step_beside_it_is():
