@@ -179,6 +179,7 @@ def _errors(row, true, rate, noise):
         "onset [s]": true["onset [s]"],
         "significance": true["peak_sensor_force [N]"] / noise,
         "onset [samples]": (row["onset [s]"] - true["onset [s]"]) * rate,
+        "onset_uncertainty [samples]": row.get("onset_uncertainty [s]", np.nan) * rate,
         "peak_sensor_force": relative("peak_sensor_force [N]"),
         "impulse": relative("impulse [N*s]"),
         "peak_force": relative("peak_contact_force [N]"),
