@@ -17,8 +17,10 @@ resonance over the contact window, through the sensor (what an unbiased deconvol
 that bandwidth can reach; the contact time has no band bound: a band-limited force has
 no edges). Every model has a line for the baseline. Printed relative to the truth at a
 significance (peak signal over ``sqrt(white**2 + pink**2)``) of 30 and 100: the errors
-scale as 1 / significance. Then, for the targets of issue 22 (peak signal 2 %, impulse,
-peak contact force and contact time 5 %), the significance from which a reader at the
+scale as 1 / significance; with them the first touch's standard deviation in samples
+under the law's model (the onset fit's Cramer-Rao bound under the records' noise).
+Then, for the targets of issue 22 (peak signal 2 %, impulse, peak contact force and
+contact time 5 %), the significance from which a reader at the
 bound keeps the largest error of 17 impacts under the target (2.05 standard
 deviations: the median of the largest of 17 half-normal draws).
 
@@ -33,8 +35,14 @@ deviation with the ordinary line and with the noise under the pulse predicted fr
 sides (white and 1/f levels estimated on the rest of each record), against the ``free``
 bound of the same windows (same draws for both readers).
 
+``--law hertz``: the same impacts with ``bench_realistic.py``'s undamped Hertz contact
+(``HERTZ``, k_hertz = 1.5e6 N/m**1.5; its ``"law"`` model has the velocity, k_hertz and
+the first touch unknown; a Hertz pulse's shape depends on the velocity, the contact
+time as ``v**-0.2``, so its relative bounds are those of the 1.5 m/s impact, not of
+every velocity).
+
 Run: ``.venv/bin/python benchmarks/bench_bounds.py [--readers DRAWS] [--rate HZ]
-[--pink RATIO]``
+[--pink RATIO] [--law hertz]``
 """
 
 import argparse
@@ -79,29 +87,38 @@ COLUMNS = [
     ("contact time", "law"),
 ]
 """The printed standard deviations: (reading, model)."""
-TARGETS = {"peak signal": 2.0, "impulse": 5.0, "peak force": 5.0, "contact time": 5.0}  # [%]
+TARGETS = {"peak signal": 2.0, "impulse": 5.0, "peak force": 5.0, "contact time": 5.0, "onset": 2.0}
+"""Issue 22's targets: relative [%], the onset's [samples]."""
 
 
-def _model():
+LAWS = {
+    "linear": cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5),
+    "hertz": cl.laws.Hertz(k_hertz=1.5e6),  # bench_realistic.py's HERTZ
+}
+"""The contact laws of ``--law``: the hard grain's linear contact, undamped Hertz."""
+
+
+def _model(name="linear"):
     config = load_config(ROOT / "data" / "traces" / "model_hard.toml")
-    return config.grain, config.sensor, cl.laws.LinearViscoelastic(stiffness=4e4, damping=0.5)
+    return config.grain, config.sensor, LAWS[name]
 
 
-def bounds(rate, pink):
+def bounds(rate, pink, name="linear"):
     """Standard deviations [N], [N*s] of the peak and impulse under the three models,
-    the truth and the noise scale."""
-    grain, sensor, law = _model()
-    contact = cl.simulate_impact(grain, sensor, law, VELOCITY).contact_time
+    the truth and the noise scale, for the contact law ``name`` of :data:`LAWS`."""
+    grain, sensor, law = _model(name)
     dt = 1.0 / rate
+    impact = cl.simulate_impact(grain, sensor, law, VELOCITY, sample_rate=32.0 / dt)
+    contact = impact.contact_time
     onset = PERIODS * sensor.period
     window = (onset, onset + contact + sensor.period)
     t = np.arange(round((window[1] + PERIODS * sensor.period) / dt)) * dt
     effects = Effects.everything(WHITE, 3.0, pink=pink * WHITE)
     autocovariance = noise_autocovariance(t.size, dt, WHITE, effects, RECORD)
     design, functionals, truth = law_design(grain, sensor, law, VELOCITY, t, onset)
-    peak = truth[0]
     law_sd = np.sqrt(blue_variance(autocovariance, design, functionals))
-    top = int(np.argmin(np.abs(design[:, 0] * VELOCITY - peak)))  # the sample nearest the peak
+    touch_to_peak = impact.t[int(np.argmax(impact.sensor_force))]  # to 1/32 of a sample
+    top = int(np.argmin(np.abs(t - onset - touch_to_peak)))  # the sample nearest the peak
     band, terms = band_design(t, window, 2.0 * sensor.resonance, sensor)
     w, zeta = sensor.angular_frequency, sensor.damping_ratio
     inside = (t >= window[0]) & (t < window[1])
@@ -119,11 +136,14 @@ def bounds(rate, pink):
     single[top] = 1.0
     free_peak = free_variance(autocovariance, ~inside, inside, baseline, single, 0.0 * tail[terms:])
     force_band, forces = force_band_design(t, window, 2.0 * sensor.resonance, sensor)
-    contact_force = cl.simulate_impact(grain, sensor, law, VELOCITY).peak_contact_time
+    contact_force = impact.peak_contact_time
     at = int(np.argmin(np.abs(t - onset - contact_force)))  # the sample nearest the force's top
     functional = np.concatenate([forces[at], np.zeros(2)])[:, None]
     force_band_sd = math.sqrt(blue_variance(autocovariance, force_band, functional)[0])
+    touch = np.zeros((design.shape[1], 1))
+    touch[-3] = 1.0  # the first touch's column: the law's parameters, the touch, the line
     return {
+        "onset": math.sqrt(blue_variance(autocovariance, design, touch)[0]) / dt,
         "law": law_sd,
         "band": band_sd,
         "free": (math.sqrt(free_peak), math.sqrt(free_impulse)),
@@ -133,11 +153,11 @@ def bounds(rate, pink):
     }
 
 
-def readers(rate, pink, draws, seed=1):
+def readers(rate, pink, draws, seed=1, name="linear"):
     """Standard deviations [N*s] of the impulse read on noise alone with the ordinary
     line and with the predicted noise, the ``free`` bound of the same windows, the
     truth [N*s] and the noise scale [N] (``--readers``)."""
-    grain, sensor, law = _model()
+    grain, sensor, law = _model(name)
     impact = cl.simulate_impact(grain, sensor, law, VELOCITY)
     dt, period = 1.0 / rate, sensor.period
     onset = PERIODS * period
@@ -177,16 +197,17 @@ def main():
     parser.add_argument("--readers", type=int, default=0, help="draws of the readers' check")
     parser.add_argument("--rate", type=float, action="append", help="sample rate [Hz]")
     parser.add_argument("--pink", type=float, action="append", help="1/f over white noise")
+    parser.add_argument("--law", choices=list(LAWS), default="linear", help="contact law")
     args = parser.parse_args()
     rates, pinks = args.rate or (1e6, 2e6, 5e6), args.pink or (1.0, 0.3, 0.0)
-    print(f"load average {os.getloadavg()[0]:.1f}")
+    print(f"load average {os.getloadavg()[0]:.1f}, contact law {args.law}")
     if args.readers:
         print(f"impulse readers on noise alone, {args.readers} draws, % of the truth at 30 sigma")
         print("| rate | 1/f | line | predicted | free bound | line / bound | predicted / bound |")
         for pink in pinks:
             for rate in rates:
                 started = time.perf_counter()
-                spread, bound, impact, noise = readers(rate, pink, args.readers)
+                spread, bound, impact, noise = readers(rate, pink, args.readers, name=args.law)
                 scale = 100.0 / (30.0 * noise / impact.peak_sensor_force * impact.impulse)
                 cells = [spread["line"] * scale, spread["predicted"] * scale, bound * scale]
                 ratios = [spread["line"] / bound, spread["predicted"] / bound]
@@ -203,7 +224,7 @@ def main():
     for pink in pinks:
         for rate in rates:
             started = time.perf_counter()
-            found = bounds(rate, pink)
+            found = bounds(rate, pink, args.law)
             truth = found["truth"]
             at30 = {}
             for significance in (30.0, 100.0):
@@ -225,8 +246,13 @@ def main():
                     + " | ".join(f"{c:.2f}" for c in cells)
                     + " |"
                 )
+            onset = [found["onset"] * truth[0] / (s * found["noise"]) for s in (30.0, 100.0)]
+            print(
+                "  first touch under the law's model, standard deviation at 30 / 100 sigma: "
+                + f"{onset[0]:.2f} / {onset[1]:.2f} samples"
+            )
             print(f"  ({time.perf_counter() - started:.1f} s, load {os.getloadavg()[0]:.1f})")
-            needed.append((rate, pink, at30))
+            needed.append((rate, pink, {**at30, ("onset", "law"): onset[0]}))
     print("significance from which the largest error of 17 impacts at the bound meets the target")
     names = [
         ("peak signal", "law"),
@@ -236,6 +262,7 @@ def main():
         ("peak force", "law"),
         ("peak force", "force band"),
         ("contact time", "law"),
+        ("onset", "law"),
     ]
     print("| rate | 1/f | " + " | ".join(f"{target}: {model}" for target, model in names) + " |")
     for rate, pink, at30 in needed:

@@ -31,13 +31,16 @@ ADC, offset steps, bounces; white noise 1 % of the 3 N peak at 2 m/s).
   (as before the family was passed to the reconstruction); ``--largest-value``: the
   reconstructed peak as the regularised force's largest value and the contact time from
   its significance edges (``read_family=False``: as before the peak and contact were
-  read from the family fitted to the signal).
+  read from the family fitted to the signal). ``--law hertz-damped``: Tsuji's damped
+  Hertz contact (:func:`hertz_damped`, restitution about that of the linear contact).
+  ``--rows FILE``: every analysed impact's errors, the family read on its record and its
+  velocity, written as CSV (to trace a row).
 
 Run: ``.venv/bin/python benchmarks/bench_realistic.py [--speed] [--accuracy]
 [--configuration NAME] [--crosstalk-only] [--no-crosstalk] [--no-refine]
 [--no-prediction] [--records N]
 [--noise-model white] [--contact-edges level] [--law hertz] [--linear-flanks]
-[--largest-value]``
+[--largest-value] [--law hertz-damped] [--rows FILE]``
 """
 
 import argparse
@@ -70,6 +73,20 @@ MATCH = 60e-6  # [s] a detected onset this close to a true one is that impact
 HERTZ = cl.laws.Hertz(k_hertz=1.5e6)
 """The Hertz contact of ``--law hertz`` (``bench_onsets.py``'s) on the hard grain and
 sensor: its force rises as t**1.5."""
+
+TSUJI_ALPHA = 0.394
+"""Tsuji's damping factor of ``--law hertz-damped`` [-]: EDEM's mapping
+``sqrt(5) (-ln e) / sqrt(pi**2 + ln(e)**2)`` for e = 0.57, the hard grain's linear
+contact's restitution (``exp(-pi zeta / sqrt(1 - zeta**2))``, zeta = 0.177)."""
+
+
+def hertz_damped(grain):
+    """The damped Hertz contact of ``--law hertz-damped`` (Tsuji's, as EDEM and LIGGGHTS
+    build it) on ``grain``: :data:`HERTZ`'s stiffness, ``eta = alpha sqrt(m kH)``
+    [N*s/m**1.25] with alpha :data:`TSUJI_ALPHA` and m the grain's mass (the sensor is
+    2000 times stiffer than the contact)."""
+    eta = TSUJI_ALPHA * np.sqrt(grain.mass * HERTZ.k_hertz)
+    return cl.laws.HertzDamped(k_hertz=HERTZ.k_hertz, damping=float(eta))
 
 
 def hard():
@@ -158,8 +175,11 @@ def _errors(row, true, rate, noise):
 
     return {
         "status": row["status"],
+        "velocity [m/s]": true["velocity [m/s]"],
+        "onset [s]": true["onset [s]"],
         "significance": true["peak_sensor_force [N]"] / noise,
         "onset [samples]": (row["onset [s]"] - true["onset [s]"]) * rate,
+        "onset_uncertainty [samples]": row.get("onset_uncertainty [s]", np.nan) * rate,
         "peak_sensor_force": relative("peak_sensor_force [N]"),
         "impulse": relative("impulse [N*s]"),
         "peak_force": relative("peak_contact_force [N]"),
@@ -187,7 +207,8 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True, p
         row, _ = analyse_impact(
             found, window, sensor, grain, crosstalk=crosstalk, modes=modes, noise=noise
         )
-        rows.append(_errors(row, true, rate, record.noise) if row["status"] == "ok" else row)
+        errors = _errors(row, true, rate, record.noise) if row["status"] == "ok" else row
+        rows.append({"family": found.contact_family, **errors})
     onsets = np.array([w.onset for w in found.impacts])
     for onset in truth["onset [s]"]:
         hit = onsets.size and np.abs(onsets - onset).min() <= MATCH
@@ -195,18 +216,22 @@ def _analyse(record, sensor, grain, rate, counts, crosstalk=True, refine=True, p
     return rows
 
 
-def accuracy(names=None, crosstalk=True, refine=True, predict=True, records=RECORDS, law=None):
+def accuracy(
+    names=None, crosstalk=True, refine=True, predict=True, records=RECORDS, law=None, save=None
+):
     grain, sensor, _ = hard()
     rows, counts = [], {"found": 0, "missed": 0, "invented": 0}
     print(f"crosstalk removal {'on' if crosstalk else 'off'}, joint poles refined: {refine}")
     print(f"noise under the pulse predicted from both sides: {predict}")
     for name in names or CONFIGURATIONS:
         rate, changes = CONFIGURATIONS[name]
-        for record in _records(rate, range(records), changes, law):
+        for seed, record in enumerate(_records(rate, range(records), changes, law)):
             analysed = _analyse(record, sensor, grain, rate, counts, crosstalk, refine, predict)
             for row in analysed:
-                rows.append({"configuration": name, **row})
+                rows.append({"configuration": name, "seed": seed, **row})
     table = pd.DataFrame(rows)
+    if save:
+        table.to_csv(save, index=False)
     print(counts)
     print(table["status"].value_counts().to_string())
     ok = table[table["status"] == "ok"].copy()
@@ -268,10 +293,12 @@ def main():
     )
     parser.add_argument(
         "--law",
-        choices=["linear", "hertz"],
+        choices=["linear", "hertz", "hertz-damped"],
         default="linear",
-        help="the contact law of --accuracy's records (hertz: k_hertz = 1.5e6 N/m**1.5)",
+        help="the contact law of --accuracy's records (hertz: k_hertz = 1.5e6 N/m**1.5; "
+        "hertz-damped: with Tsuji's damping, alpha 0.394)",
     )
+    parser.add_argument("--rows", help="CSV file for every impact's errors (--accuracy)")
     parser.add_argument(
         "--linear-flanks",
         action="store_true",
@@ -302,7 +329,8 @@ def main():
         names = args.configuration
         if args.crosstalk_only:
             names = [n for n in names or CONFIGURATIONS if CONFIGURATIONS[n][1]["crosstalk"]]
-        law = HERTZ if args.law == "hertz" else None
+        laws = {"hertz": HERTZ, "hertz-damped": hertz_damped(hard()[0])}
+        law = laws.get(args.law)
         print(f"contact law {args.law}, flanks {'linear' if args.linear_flanks else 'family'}")
         print(f"peak and contact: {'largest value' if args.largest_value else 'family fit'}")
         accuracy(
@@ -312,6 +340,7 @@ def main():
             predict=not args.no_prediction,
             records=args.records,
             law=law,
+            save=args.rows,
         )
 
 

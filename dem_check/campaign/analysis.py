@@ -159,15 +159,30 @@ def _main_lobe_start(y, level):
     return int(under[-1]) if under.size else 0
 
 
+class _NoLobe(Exception):
+    """The segment holds no whole first lobe to read the signal's numbers on (the
+    message says why)."""
+
+
 def _signal_numbers(t, record, raw, smooth, flat, window, sensor, noise, held):
     """Peak, response time and impulse of the signal (module docstring), and the record
-    less its local baseline (``held``: the samples of other impacts, :func:`_held`)."""
+    less its local baseline (``held``: the samples of other impacts, :func:`_held`).
+    Raises :class:`_NoLobe` where the smoothed signal does not rise above, or does not
+    return to, the onset level inside the segment."""
     base = window.baseline_window
     in_base = (t >= base[0]) & (t < base[1])
     level = ONSET_SIGMAS * float(np.std(smooth[in_base], ddof=1))
     above = smooth - smooth[in_base].mean()
     first = _main_lobe_start(above, level)
     lobe = first_lobe(t[first:], above[first:], level, hysteresis=level)
+    if not (math.isfinite(lobe[0]) and math.isfinite(lobe[1])):
+        edge = "return to" if math.isfinite(lobe[0]) else "rise above"
+        raise _NoLobe(
+            f"the smoothed signal less its baseline window's mean does not {edge} "
+            f"{ONSET_SIGMAS:g} sigma of that window's noise ({level:.3g} N) between "
+            f"{t[first]:.6g} and {t[-1]:.6g} s: no first lobe to read the peak signal, the "
+            "impulse and the contact on"
+        )
     in_lobe = (t >= lobe[0]) & (t <= lobe[1])
     # a contact cannot outlast one lobe-length after the signal's first lobe
     # (contactlab.inverse.reconstruct_force's window)
@@ -357,7 +372,9 @@ def read_impact(
     -------
     row : dict
         Unit-bearing columns (module docstring); ``status`` is ``"ok"``, or
-        ``"reconstruction failed"`` / ``"fit failed"`` with the error in ``reason``.
+        ``"reconstruction failed"`` / ``"fit failed"`` with the error in ``reason``
+        (``"reconstruction failed"`` also where the segment holds no whole first lobe of
+        the signal: its numbers are not read).
     traces : ImpactTraces or None
         For the gallery (``None`` when the reconstruction failed).
     baseline : LocalBaseline or None
@@ -378,20 +395,24 @@ def read_impact(
     if noise is NOT_GIVEN:
         noise = record_noise(detection, sensor)
     held = _held(detection, window, t, sensor)
-    numbers, detrended, contact_end = _signal_numbers(
-        t, record, raw, smooth, flat, window, sensor, noise, held
-    )
-    if crosstalk:
-        if modes is None:
-            modes = record_modes(detection, sensor)
-        found = impact_crosstalk(detection, window, sensor, contact_end, part, modes, noise)
-        row["crosstalk [N]"] = sum(m.amplitude for m in found.modes)
-        row["crosstalk_modes"] = found.describe()
-        if found.modes:
-            record, raw, smooth, flat = (v - found.values for v in (record, raw, smooth, flat))
-            numbers, detrended, contact_end = _signal_numbers(
-                t, record, raw, smooth, flat, window, sensor, noise, held
-            )
+    try:
+        numbers, detrended, contact_end = _signal_numbers(
+            t, record, raw, smooth, flat, window, sensor, noise, held
+        )
+        if crosstalk:
+            if modes is None:
+                modes = record_modes(detection, sensor)
+            found = impact_crosstalk(detection, window, sensor, contact_end, part, modes, noise)
+            row["crosstalk [N]"] = sum(m.amplitude for m in found.modes)
+            row["crosstalk_modes"] = found.describe()
+            if found.modes:
+                record, raw, smooth, flat = (v - found.values for v in (record, raw, smooth, flat))
+                numbers, detrended, contact_end = _signal_numbers(
+                    t, record, raw, smooth, flat, window, sensor, noise, held
+                )
+    except _NoLobe as exc:
+        row.update(status="reconstruction failed", reason=str(exc))
+        return row, None, None
     row.update(numbers)
     if grain is not None:
         row["velocity_change [m/s]"] = row["impulse [N*s]"] / grain.mass

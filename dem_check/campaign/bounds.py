@@ -14,10 +14,11 @@ hum with random phases; :func:`noise_autocovariance`); drift is slow enough over
 ~1 ms read to be a line (two parameters in every model). Three models of the impact's
 signal, from the most to the least informed:
 
-- ``"law"``: the signal of the true contact law with unknown velocity, stiffness,
-  damping and first touch (:func:`law_design`): the bound for an estimator that knows
-  the law's family (the fit); the only model here that bounds the contact time, and
-  the lowest bound of the peak contact force;
+- ``"law"``: the signal of the true contact law with unknown velocity, parameters
+  (a linear contact's stiffness and damping, Hertz's stiffness) and first touch
+  (:func:`law_design`): the bound for an estimator that knows the law's family (the
+  fit); the only model here that bounds the contact time, and the lowest bound of the
+  peak contact force;
 - ``"band"``: any signal whose spectrum over the contact window lies below a cutoff
   (a cosine series, :func:`band_design`), then the sensor's free ringing: the bound for
   an unbiased reading of the low-passed record;
@@ -43,6 +44,7 @@ from scipy.linalg import cho_factor, cho_solve, solve_toeplitz, toeplitz
 
 from contactlab.inverse.local_baseline import _ringing
 from contactlab.inverse.noise_prediction import pink_autocovariance
+from contactlab.laws.linear import LinearViscoelastic
 from contactlab.solver.impact import simulate_impact
 
 __all__ = [
@@ -174,13 +176,18 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
     Parameters
     ----------
     grain, sensor : Grain, Sensor
-    law : LinearViscoelastic
-        Its ``stiffness`` [N/m] and ``damping`` [N*s/m] are parameters (central
-        differences of relative ``step``).
+    law : contactlab.laws.ContactLaw
+        Each of its positive parameters (``law.parameters()``: a
+        :class:`~contactlab.laws.LinearViscoelastic`'s ``stiffness`` [N/m] and
+        ``damping`` [N*s/m], an undamped :class:`~contactlab.laws.Hertz`'s ``k_hertz``
+        [N/m**1.5]) is unknown (central differences of relative ``step``; a parameter
+        at zero, such as a damping switched off, is held: it has no relative step).
     velocity : float
-        Impact velocity [m/s]. The law is linear: the signal, the peak signal, the
-        impulse and the peak contact force are proportional to it, the contact time
-        does not depend on it.
+        Impact velocity [m/s]. A ``LinearViscoelastic`` law is linear: its signal, peak
+        signal, impulse and peak contact force are proportional to the velocity, its
+        contact time does not depend on it (the velocity's column is exact). Any other
+        law's velocity column and gradients are central differences of relative
+        ``step``.
     t : numpy.ndarray
         Sample times [s] of the segment read.
     onset : float
@@ -191,21 +198,32 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
     Returns
     -------
     design : numpy.ndarray
-        ``(n, 6)``: d/dvelocity, d/dstiffness, d/ddamping, d/donset, then a line.
+        ``(n, p + 4)``: d/dvelocity, d/d each of the law's ``p`` unknown parameters,
+        d/donset, then a line (a linear law: ``(n, 6)``).
     functionals : numpy.ndarray
-        ``(6, 4)``: gradients of the peak signal [N], impulse [N*s], peak contact force
-        [N] and contact time [s].
+        ``(p + 4, 4)``: gradients of the peak signal [N], impulse [N*s], peak contact
+        force [N] and contact time [s].
     truth : numpy.ndarray
         The four readings.
     """
     values, truth = _signal(grain, sensor, law, velocity, t, onset)
-    columns = [values / velocity]
-    gradients = [truth * np.array([1.0, 1.0, 1.0, 0.0]) / velocity]
-    for name in ("stiffness", "damping"):
-        size = step * getattr(law, name)
+    if isinstance(law, LinearViscoelastic):
+        columns = [values / velocity]
+        gradients = [truth * np.array([1.0, 1.0, 1.0, 0.0]) / velocity]
+    else:
+        size = step * velocity
+        faster = _signal(grain, sensor, law, velocity + size, t, onset)
+        slower = _signal(grain, sensor, law, velocity - size, t, onset)
+        columns = [(faster[0] - slower[0]) / (2.0 * size)]
+        gradients = [(faster[1] - slower[1]) / (2.0 * size)]
+    parameters = law.parameters()
+    for name, value in parameters.items():
+        if value == 0.0:
+            continue
+        size = step * value
         shifted = []
         for sign in (1.0, -1.0):
-            changed = type(law)(**{**_law_parameters(law), name: getattr(law, name) + sign * size})
+            changed = type(law)(**{**parameters, name: value + sign * size})
             shifted.append(_signal(grain, sensor, changed, velocity, t, onset))
         columns.append((shifted[0][0] - shifted[1][0]) / (2.0 * size))
         gradients.append((shifted[0][1] - shifted[1][1]) / (2.0 * size))
@@ -217,10 +235,6 @@ def law_design(grain, sensor, law, velocity, t, onset, step=1e-4):
     design = np.column_stack([*columns, _line(t)])
     functionals = np.vstack([np.array(gradients), np.zeros((2, len(LAW_READINGS)))])
     return design, functionals, truth
-
-
-def _law_parameters(law):
-    return {"stiffness": law.stiffness, "damping": law.damping}
 
 
 def band_design(t, window, cutoff, sensor):

@@ -79,6 +79,27 @@ def test_a_second_contact_right_after_the_first_lobe_is_flagged(hard_setup):
     assert 1.8 < ratio < 2.2  # two equal impacts: twice the first contact's impulse
 
 
+def test_a_segment_without_a_whole_first_lobe_is_a_failed_row_not_an_error(hard_setup):
+    """A segment that ends before the signal returns to its onset level (here the
+    window's last sample moved to the first lobe's top) is a ``reconstruction failed``
+    row that says why: it was a ParameterError on a NaN contact end, which cost
+    ``run_campaign`` every row of the file (found on a Hertz record of
+    ``bench_realistic.py``)."""
+    import dataclasses
+
+    from dem_check.campaign.analysis import analyse_impact
+
+    grain, sensor, _ = hard_setup
+    trace, _ = _record(hard_setup, [1e-3], 3e-3)
+    found = find_impacts(trace, sensor)
+    (window,) = found.impacts
+    smoothed = np.asarray(found.smoothed.values[window.first : window.stop])
+    cut = dataclasses.replace(window, stop=window.first + int(np.argmax(smoothed)))
+    row, traces = analyse_impact(found, cut, sensor, grain, crosstalk=False)
+    assert row["status"] == "reconstruction failed" and traces is None
+    assert "does not return to" in row["reason"], row["reason"]
+
+
 def test_impacts_after_the_ringing_decayed_are_separate(hard_setup):
     """1 ms later the first ringing is under the noise floor: two ok impacts (at 900 us
     it is in 4 of 8 seeds: the local noise, read without the impacts, sets a lower floor
