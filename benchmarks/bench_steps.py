@@ -72,12 +72,18 @@ def judge(record, effects, found):
     return wrong
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--records", type=int, default=100)
+def drawn_seeds(doc, records):
+    """The seeds of the records a drawing benchmark reads: ``--records N`` (default
+    ``records``) from 0, or ``--seeds`` listed; ``doc``'s first paragraph is the help."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--records", type=int, default=records)
     parser.add_argument("--seeds", type=int, nargs="+", help="only these records (seeds)")
     args = parser.parse_args()
-    seeds = args.seeds if args.seeds else range(args.records)
+    return args.seeds if args.seeds else range(args.records)
+
+
+def main():
+    seeds = drawn_seeds(__doc__, 100)
     _, sensor, _ = hard()
     counts = {"invented": 0, "invented step": 0, "missed": 0, "steps found": 0, "steps": 0}
     cpu, failing = 0.0, 0

@@ -14,10 +14,9 @@ impact's delay (0.2 ms bins). Prints the failing records and the CPU time.
 Run: ``.venv/bin/python benchmarks/bench_weak_impacts.py [--records 200] [--seeds 3 17 ...]``
 """
 
-import argparse
 import time
 
-from bench_steps import hard, judge
+from bench_steps import drawn_seeds, hard, judge
 
 from dem_check.campaign import find_impacts
 from dem_check.campaign.drawn_records import weak_in_ringing
@@ -27,11 +26,7 @@ BIN = 0.2e-3
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--records", type=int, default=200)
-    parser.add_argument("--seeds", type=int, nargs="+", help="only these records (seeds)")
-    args = parser.parse_args()
-    seeds = args.seeds if args.seeds else range(args.records)
+    seeds = drawn_seeds(__doc__, 200)
     setup = hard()
     bins, alone_wrong, cpu = {}, {}, 0.0
     for seed in seeds:
