@@ -81,3 +81,16 @@ def test_a_fit_on_noise_alone_finds_no_contact(hard_setup):
     with pytest.raises(NoContact, match="no contact fitted"):
         fit_lobe(t, y, sensor, guess, noise, "linear", 0.0)
     assert issubclass(NoContact, lobe_onset.ParameterError)  # callers catching it still do
+
+
+def test_a_no_contact_row_is_listed_in_the_campaign_and_not_counted(tmp_path, hard_setup):
+    from contactlab.traces import write_trace
+    from dem_check.campaign import run_campaign
+
+    record, _ = weak_in_ringing(109, *hard_setup)
+    write_trace(tmp_path / "bump.csv", record.trace, "generic")
+    result = run_campaign(tmp_path / "bump.csv", hard_setup[1], hard_setup[0], gallery=0)
+    assert result.impacts["status"].tolist() == ["ok", "ok", NO_CONTACT]
+    assert "no contact fitted" in result.impacts.iloc[2]["reason"]
+    (row,) = result.files.to_dict("records")
+    assert row["impacts"] == 2 and row["impacts_ok"] == 2  # the bump is no impact
