@@ -23,7 +23,7 @@ import numpy as np
 from contactlab.metrics import first_lobe
 from dem_check.campaign.detection import ONSET_SIGMAS
 
-__all__ = ["NoLobe", "segment_lobe"]
+__all__ = ["NoLobe", "main_lobe_start", "segment_lobe"]
 
 MIN_AFTER = 16
 """Fewest quiet samples after the impact's decayed ringing for the line's second side
