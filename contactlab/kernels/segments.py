@@ -130,14 +130,15 @@ class Trajectory:
         heads = np.exp(np.multiply.outer(starts, self.rates))
         cells = np.exp(np.multiply.outer(step * np.arange(block), self.rates))
         left = np.concatenate([heads.real, -heads.imag], axis=1)  # Re(a g) = ar gr - ai gi
-        for d in range(out.shape[1]):
-            g = cells * (self.weights[0::2, d] - 1j * self.weights[1::2, d])
-            right = np.concatenate([g.real.T, g.imag.T], axis=0)
-            column = out[:split, d]
-            if column.flags.c_contiguous:
-                np.matmul(left, right, out=column.reshape(rows, block))
-            else:
-                column[...] = (left @ right).ravel()
+        # every component's table at once (dim, block, modes), and one stacked matrix
+        # product: the same products and sums as one component at a time, in fewer calls
+        g = cells * (self.weights[0::2].T - 1j * self.weights[1::2].T)[:, None, :]
+        right = np.concatenate([g.real.transpose(0, 2, 1), g.imag.transpose(0, 2, 1)], axis=1)
+        dim = out.shape[1]
+        if out.strides[0] == out.itemsize:  # contiguous columns: each a (rows, block) view
+            np.matmul(left, right, out=out[:split].T.reshape(dim, rows, block))
+        else:
+            out[:split] = (left @ right).reshape(dim, split).T
         if split < n:
             out[split:] = self(tau0 + step * np.arange(split, n))
         if tau0 == 0.0:

@@ -70,6 +70,12 @@ class LinearFlow:
             self.eigvals = eigvals
             self._vecs = eigvecs / scale[:, None]
             self._inv = np.linalg.inv(eigvecs) * scale
+            # one mode of each conjugate pair (weight 2) and the real ones (weight 1):
+            # the same for every start state, so read once here, not in each trajectory
+            self._keep = eigvals.imag >= 0.0
+            self._rates = eigvals[self._keep].astype(complex)
+            self._weight = np.where(self._rates.imag > 0.0, 2.0, 1.0)
+            self._rates.flags.writeable = False  # shared by every trajectory of the flow
         self.fastest_rate = float(np.max(np.abs(eigvals))) if eigvals.size else 0.0
         """Largest ``|lambda|`` [1/s]: sets the scan step for events."""
 
@@ -91,10 +97,8 @@ class LinearFlow:
         z0 = np.asarray(z0, dtype=float)
         if not self.modal:
             return Trajectory(z0, self.matrix)
-        keep = self.eigvals.imag >= 0.0
-        rates = self.eigvals[keep].astype(complex)
-        weight = np.where(rates.imag > 0.0, 2.0, 1.0)
-        u = (self._vecs * (self._inv @ z0.astype(complex)))[:, keep] * weight
+        rates = self._rates
+        u = (self._vecs * (self._inv @ z0.astype(complex)))[:, self._keep] * self._weight
         weights = np.empty((2 * rates.size, z0.size))
         weights[0::2] = u.real.T
         weights[1::2] = -u.imag.T
