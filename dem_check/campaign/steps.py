@@ -33,7 +33,10 @@ explicitly:
 5. **Where.** Between the two windows, the sample where the level changes: the
    least-absolute-deviation split between the two levels of the record averaged over one
    sensor period (samples far from both levels, an impact's main lobe, count for
-   neither).
+   neither). A step placed within a period of a window's end (not the record's) is
+   none: the window's samples hold one level and the medians' change came from beyond
+   it (:func:`_inside`). Its height, read again across an impact, must still reach
+   :data:`LEAST_HEIGHT`.
 
 A step found across an impact is placed with the sensor's free ringing fitted
 (:mod:`dem_check.campaign.step_ringing`). Runs of the first pass that are steps are
