@@ -61,7 +61,7 @@ def errors(record, sensor, rate):
     found = find_impacts(record.trace, sensor, fit_onsets=False)
     analysed = [w for w in found.impacts if w.status in ANALYSED]
     noise = record_noise(found, sensor)
-    fitted, notes, family, damping, spreads = record_onsets(found, analysed, sensor, noise)
+    fitted, notes, family, damping, spreads, _ = record_onsets(found, analysed, sensor, noise)
     truth, rows = record.truth, []
     for window, onset, note, spread in zip(analysed, fitted, notes, spreads, strict=True):
         gap = np.abs(truth["onset [s]"] - window.onset)

@@ -241,7 +241,7 @@ def split(seeds, gaps, family):
                 found = find_impacts(record.trace, sensor)
                 window = found.impacts[0]
                 noise = record_noise(found, sensor)
-                onsets, _, name, damping, _ = record_onsets(found, [window], sensor, noise)
+                onsets, _, name, damping, _, _ = record_onsets(found, [window], sensor, noise)
                 read = family or (name, damping)
                 t = np.asarray(found.record.t)
                 y = np.asarray(found.record.values, dtype=float)

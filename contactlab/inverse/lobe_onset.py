@@ -42,6 +42,7 @@ __all__ = [
     "FAMILIES",
     "FirstTouch",
     "LobeFit",
+    "NoContact",
     "fit_lobe",
     "force_shape",
     "lobe_family",
@@ -64,6 +65,12 @@ damping fitted to the noise, 0.002-0.005 on undamped contacts, moved Hertz onset
 PEAK_SIGMAS = 3.0
 """A fitted force whose peak is below this many noise sigmas is no contact [-] (the
 detector finds impacts from five)."""
+
+
+class NoContact(ParameterError):
+    """The lobe fit found no contact: a duration not positive or a force whose peak is
+    below :data:`PEAK_SIGMAS` noise sigmas (the samples hold no lobe the sensor makes)."""
+
 
 BEFORE_PERIODS = 1.0
 """Sensor periods of record fitted before the earliest onset sought [-] (the line)."""
@@ -201,8 +208,8 @@ def fit_lobe(
     ------
     ParameterError
         A rigid sensor, a guess outside the record, fewer than 16 samples in the lobe,
-        a fit that found no contact (duration not positive, peak below
-        :data:`PEAK_SIGMAS` noise sigmas), or an onset
+        a fit that found no contact (:class:`NoContact`: duration not positive, peak
+        below :data:`PEAK_SIGMAS` noise sigmas), or an onset
         more than a search span before it or after the crossing.
     """
     if not isinstance(sensor, Sensor) or sensor.is_rigid:
@@ -241,7 +248,7 @@ def fit_lobe(
     coefficients, rss = model.solve(t0, tau)
     sigma = noise if noise_model is None or noise_model.order == 0 else noise_model.innovation
     if not (tau > 0.0 and coefficients[2] > PEAK_SIGMAS * noise):
-        raise ParameterError(
+        raise NoContact(
             f"no contact fitted at {rough:.6g} s (duration {tau:.3g} s, peak "
             f"{coefficients[2]:.3g} N, noise {noise:.3g} N)"
         )

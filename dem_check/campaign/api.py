@@ -139,7 +139,7 @@ def _impact_table(rows):
 def _file_row(path, status, reason, trace=None, floor=None, found=()):
     row = dict.fromkeys(_FILE_COLUMNS)
     row.update(file=path, status=status, reason=reason, impacts=len(found))
-    row["impacts"] = sum(r["status"] not in ("offset step", "structure ringing") for r in found)
+    row["impacts"] = sum(r["status"] not in detection.NOT_IMPACTS for r in found)
     row["impacts_ok"] = sum(r["status"] in detection.ANALYSED for r in found)
     if trace is not None:
         dt = float(trace.t[1] - trace.t[0]) if len(trace) > 1 else float("nan")
@@ -224,13 +224,13 @@ def _analyse_file(path, options, timings, progress):
         if traces is not None:
             gallery[(path, k)] = traces
         rows.append({"file": path, "impact": k, **row})
-    listed = (*found.steps, *found.swings)  # offset steps, the plate's ringing: not analysed
+    listed = (*found.steps, *found.swings, *found.unconfirmed)  # not impacts, not analysed
     for k, step in enumerate(listed, start=len(found.impacts)):
         rows.append(
             {"file": path, "impact": k, **window_row(step), "significance [-]": step.significance}
         )
     timings["analyse"] += time.perf_counter() - started
-    if any(r["status"] not in ("offset step", "structure ringing") for r in rows):
+    if any(r["status"] not in detection.NOT_IMPACTS for r in rows):
         status, reason = "ok", ""
     else:
         status = "no impact"

@@ -74,11 +74,12 @@ from dem_check.campaign.noise import (
     candidate_runs,
     noise_floor,
 )
-from dem_check.campaign.onsets import first_touches
+from dem_check.campaign.onsets import NO_CONTACT, first_touches
 from dem_check.campaign.plate_swings import STATUS as SWING
 from dem_check.campaign.plate_swings import negative_swing
+from dem_check.campaign.step_ringing import difference_sigma
 from dem_check.campaign.step_runs import search_steps
-from dem_check.campaign.steps import PASSES, merge_steps, remove_steps
+from dem_check.campaign.steps import LEAST_HEIGHT, PASSES, remove_steps, settle_steps
 
 __all__ = [
     "ANALYSED",
@@ -87,6 +88,7 @@ __all__ = [
     "FALSE_ALARMS",
     "FLOOR_SIGMAS",
     "GROWTH_FACTOR",
+    "NOT_IMPACTS",
     "ONSET_SIGMAS",
     "Detection",
     "ImpactWindow",
@@ -99,6 +101,10 @@ __all__ = [
 ANALYSED = ("ok", "short pre-trigger", "overlap, neighbour held out", "overlap, ringing subtracted")
 """Impact statuses that are analysed (signal numbers, reconstruction, fit); the last two
 are impacts flagged ``"overlap"`` here and read apart by :mod:`dem_check.campaign.overlaps`."""
+
+NOT_IMPACTS = ("offset step", SWING, NO_CONTACT)
+"""Statuses of the rows that are listed with why but are no impact: :attr:`Detection.steps`,
+:attr:`Detection.swings` and :attr:`Detection.unconfirmed`."""
 
 TAIL_PERIODS = 16.0
 """Quiet sensor periods kept after an impact's ringing has decayed (up to the next
@@ -141,8 +147,9 @@ class ImpactWindow:
     status: str
     """``"ok"``, ``"short pre-trigger"``, ``"overlap"``, ``"truncated"``, ``"no baseline"``,
     ``"negative"``, ``"overrange"``, ``"clipped"``, ``"below min_force"``, ``"too close"`` or
-    ``"offset step"`` (a row of :attr:`Detection.steps`) or ``"structure ringing"`` (a row
-    of :attr:`Detection.swings`): those of :data:`ANALYSED` are analysed."""
+    ``"offset step"`` (a row of :attr:`Detection.steps`), ``"structure ringing"`` (a row
+    of :attr:`Detection.swings`) or ``"no contact"`` (of :attr:`Detection.unconfirmed`):
+    those of :data:`ANALYSED` are analysed."""
     reason: str = ""
     """Why the status is not ``"ok"`` (empty when it is), and for an analysed impact
     whose onset could not be fitted, that it is the crossing and why."""
@@ -184,6 +191,10 @@ class Detection:
     """:class:`ImpactWindow` rows of ``negative`` candidates the plate's ringing after an
     impact explains (status ``"structure ringing"``, :mod:`dem_check.campaign.plate_swings`),
     in time order: listed, not impacts."""
+    unconfirmed: list = ()
+    """:class:`ImpactWindow` rows of weak candidates whose lobe fit found no contact
+    (status ``"no contact"``, :data:`dem_check.campaign.onsets.CONFIRM_SIGMAS`): listed,
+    not impacts."""
 
 
 def _samples(periods, sensor, dt, minimum):
@@ -241,19 +252,22 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
     period = stage["scales"]["period"]
     steps, given = [], trace
     ring = (sensor, float(trace.t[1] - trace.t[0]))  # a step across an impact: its ringing
+    least = LEAST_HEIGHT * difference_sigma(stage["finite"])  # smallest step [N]
     for _ in range(PASSES if period >= RESOLVED_PERIOD_SAMPLES else 0):
         # a period's mean averages its ringing out; a step taken off can leave the
         # next pass a run that shows another (one near the record's start)
         more = search_steps(stage["finite"], stage["runs"], period, stage["scales"]["hold"], ring)
         if not more:
             break
-        steps = merge_steps(steps + more, max(1, period // 8))
+        steps, taken_back = settle_steps(steps + more, period, least)
         removed = {
             "step": "offset_steps_removed",
             "steps": [(float(given.t[s.index]), s.height) for s in steps],
         }
         trace = given.derive(removed, values=remove_steps(given.values, steps))
         stage = _candidates(trace, sensor)
+        if taken_back:  # a pass took back a step an earlier one read: a next would redo it
+            break
     floor, smoothed, ratio, runs = (stage[k] for k in ("floor", "smoothed", "ratio", "runs"))
     t = smoothed.t
     windows, swings, previous_end = [], [], 0
@@ -322,20 +336,6 @@ def _candidates(trace, sensor):
 def _step_row(step, t):
     """The candidates-table row of an offset step (status ``"offset step"``)."""
     at = float(t[step.index])
-    reason = (
-        f"the level changed by {step.height:.4g} N at {at:.6g} s and stayed "
-        f"({step.significance:.3g} sigma of a level change): a DC offset step, not an "
-        "impact (an impact's signal returns to its level after the contact and the "
-        "sensor's ringing); the record after it was shifted back before impacts were "
-        f"looked for{step.note}"
-    )
-    if step.lobe is not None:
-        reason += (
-            f"; it lies somewhere inside the impact's main lobe from "
-            f"{float(t[step.lobe[0]]):.6g} to {float(t[step.lobe[1] - 1]):.6g} s and cannot "
-            "be told from the impact there: placed at the lobe's middle, the impact's "
-            "samples between it and the true step read its height off"
-        )
     return ImpactWindow(
         at,
         (np.nan, np.nan),
@@ -343,7 +343,7 @@ def _step_row(step, t):
         step.window[1],
         at,
         "offset step",
-        reason,
+        step.reason(t),
         significance=step.significance,
         peak=step.height,
     )

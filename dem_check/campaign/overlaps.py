@@ -173,7 +173,9 @@ def _window(detection, window, first, stop, base, sensor, noise):
         significance=float(smooth[top] / detection.local_noise[top]),
     )
     family = detection.contact_family
-    onsets, notes, name, damping, spreads = record_onsets(detection, [alone], sensor, noise, family)
+    onsets, notes, name, damping, spreads, _ = record_onsets(
+        detection, [alone], sensor, noise, family
+    )
     family = family or (None if name is None else (name, damping))
     end = min(base[1], onsets[0] - ONSET_MARGIN * sensor.period)
     quiet = int(np.count_nonzero((t >= base[0]) & (t < end)))

@@ -45,7 +45,9 @@ STATUS_LEGEND = (
     "<em>truncated</em>, "
     "<em>no baseline</em>, <em>negative</em>, <em>overrange</em>, <em>clipped</em>, "
     "<em>below min_force</em>, <em>too close</em>, <em>offset step</em>, <em>structure "
-    "ringing</em> (a negative swing after an impact that the plate's free ringing explains); "
+    "ringing</em> (a negative swing after an impact that the plate's free ringing explains), "
+    "<em>no contact</em> (a candidate under 10 sigma where no contact lobe fits: not an "
+    "impact); "
     "and the analysis's <em>reconstruction failed</em>, <em>fit failed</em>, <em>implausible</em> "
     "(docs/campaign.md, Per impact).</p>"
 )

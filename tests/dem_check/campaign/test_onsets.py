@@ -153,7 +153,7 @@ def test_a_crossing_that_leads_the_touch_still_finds_the_family_and_the_touch(ha
     )
     found = find_impacts(record.trace, sensor, fit_onsets=False)
     analysed = [w for w in found.impacts if w.status in ANALYSED]
-    fitted, notes, family, damping, _ = onsets.record_onsets(found, analysed, sensor)
+    fitted, notes, family, damping, _, _ = onsets.record_onsets(found, analysed, sensor)
     truth = record.truth["onset [s]"].to_numpy()
     true = np.array([truth[np.abs(truth - w.onset).argmin()] for w in analysed])
     crossing = (np.array([w.onset for w in analysed]) - true) * 5e6
