@@ -33,7 +33,8 @@ explicitly:
 5. **Where.** Between the two windows, the sample where the level changes: the
    least-absolute-deviation split between the two levels of the record averaged over one
    sensor period (samples far from both levels, an impact's main lobe, count for
-   neither).
+   neither). One within a period of a window's end (not the record's) is none
+   (:func:`dem_check.campaign.step_windows.placed_inside`).
 
 A step found across an impact is placed with the sensor's free ringing fitted
 (:mod:`dem_check.campaign.step_ringing`). Runs of the first pass that are steps are
@@ -50,6 +51,7 @@ from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
 from dem_check.campaign.step_ringing import difference_sigma, read_across
+from dem_check.campaign.step_windows import placed_inside
 
 __all__ = [
     "STEP_SIGMAS",
@@ -332,7 +334,9 @@ def _one_pass(values, period, masked, ring):
                 ):
                     found += pair
                 continue
-        # the height read again across an impact must still be a step's
+        inside = placed_inside(index, window, values.size, period)
+        if not (masked[window[0] : window[1]].any() or inside):
+            continue  # no impact in the window, its samples at one level
         if significance[k] >= STEP_SIGMAS and abs(height) >= LEAST_HEIGHT * noise[1]:
             found.append(OffsetStep(index, height, float(significance[k]), window, lobe))
     return found
