@@ -20,8 +20,11 @@ import bench_realistic  # beside this script: its speed record
 import numpy as np
 
 from contactlab import signals
-from contactlab._block_levels import BlockLevels
+from contactlab._block_levels import BlockLevels, block_levels
 from dem_check.campaign import noise
+
+_SHARED = noise.block_levels, signals.levels_baseline, signals.levels_quiet_window
+"""What ``noise_floor`` calls; the reference patches them and puts them back."""
 
 
 def _unshared(y, width):
@@ -30,22 +33,23 @@ def _unshared(y, width):
 
 
 def _each_time(levels, exclude=None, head=0):
-    return signals.running_baseline(levels.y, levels.width, exclude, head)
+    """``running_baseline(y, width, exclude, head)``: the levels computed from ``y``."""
+    return _SHARED[1](block_levels(levels.y, levels.width), exclude, head)
 
 
 def _quiet_each_time(t, levels):
-    return signals.quiet_window(t, levels.y, levels.width)
+    """``quiet_window(t, y, width)``: the levels computed from ``y``."""
+    return _SHARED[2](t, block_levels(levels.y, levels.width))
 
 
 def _reference(trace, sensor):
     """``noise_floor`` with every running baseline computed from its samples."""
-    shared = noise.block_levels, signals.levels_baseline, signals.levels_quiet_window
     noise.block_levels, signals.levels_baseline = _unshared, _each_time
     signals.levels_quiet_window = _quiet_each_time
     try:
         return noise.noise_floor(trace, sensor)
     finally:
-        noise.block_levels, signals.levels_baseline, signals.levels_quiet_window = shared
+        noise.block_levels, signals.levels_baseline, signals.levels_quiet_window = _SHARED
 
 
 def _same(a, b):
