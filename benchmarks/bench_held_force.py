@@ -1,13 +1,15 @@
-"""Benchmark: the compiled unit signal of the lobe model (``contactlab.kernels.held_force``)
-in the contact family read of a record's first touches (issue 22).
+"""Benchmark: the compiled unit signal of the lobe model and its sampling at the window's
+times (``contactlab.kernels.held_force``) in the contact family read of a record's first
+touches (issue 22).
 
 On ``bench_realistic.py --speed``'s record (1.5 million samples at 5 MHz, every effect),
 :func:`contactlab.inverse.lobe_onset.lobe_family` on the record's 4 most significant
-impacts, as ``dem_check.campaign.onsets`` calls it: with the compiled unit signal, and
-with the reference of the same run, ``numpy.interp`` and ``scipy.signal.lfilter`` as
-before (``tests/support/held_reference.py``). Prints the family and damping each read
-(the same: the kernel is equal to the reference to the last bit), their CPU times and
-the ratio.
+impacts, as ``dem_check.campaign.onsets`` calls it, three ways in the same run: both
+kernels compiled; the sampling (``LobeModel.response``) through its numpy reference,
+``numpy.interp``; and both through the references, ``numpy.interp`` and
+``scipy.signal.lfilter`` as before (``tests/support/held_reference.py``). Prints the
+family and damping each read (the same: the kernels equal the references to the last
+bit), their CPU times and the ratios.
 
 Run: ``.venv/bin/python benchmarks/bench_held_force.py``
 """
@@ -22,7 +24,7 @@ import bench_family_read  # beside this script: the speed record's strongest lob
 from contactlab.inverse import lobe_model, lobe_onset
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "support"))
-from held_reference import numpy_unit
+from held_reference import numpy_response, numpy_unit
 
 
 def _reference_unit(model, tau, shape=None):
@@ -32,20 +34,32 @@ def _reference_unit(model, tau, shape=None):
     return numpy_unit(model.dt / model.fine, count, tau, u, h, *model.filter)
 
 
+def _reference_response(model, t0, tau, unit=None):
+    """``LobeModel.response`` through the numpy reference."""
+    s, r = model.unit(tau) if unit is None else unit
+    return numpy_response(model.t, t0, s, r)
+
+
 def main():
     sensor, lobes = bench_family_read.strongest_lobes()
-    compiled_unit = lobe_model.LobeModel.unit
-    lobe_onset.lobe_family(lobes[:1], sensor)  # the kernel loaded once, not timed
+    compiled = lobe_model.LobeModel.unit, lobe_model.LobeModel.response
+    lobe_onset.lobe_family(lobes[:1], sensor)  # the kernels loaded once, not timed
     print(f"load average before: {os.getloadavg()[0]:.1f} (1 min)")
+    ways = {
+        "compiled": compiled,
+        "numpy.interp sampling": (compiled[0], _reference_response),
+        "numpy and scipy": (_reference_unit, _reference_response),
+    }
     times = {}
-    for name, unit in (("compiled", compiled_unit), ("numpy and scipy", _reference_unit)):
-        lobe_model.LobeModel.unit = unit
+    for name, (unit, response) in ways.items():
+        lobe_model.LobeModel.unit, lobe_model.LobeModel.response = unit, response
         cpu = time.process_time()
         family, damping = lobe_onset.lobe_family(lobes, sensor)
         times[name] = time.process_time() - cpu
-        lobe_model.LobeModel.unit = compiled_unit
+        lobe_model.LobeModel.unit, lobe_model.LobeModel.response = compiled
         print(f"{name}: {family} {damping!r} in {times[name]:.2f} s of CPU")
-    print(f"ratio (reference over compiled): {times['numpy and scipy'] / times['compiled']:.2f}")
+    for name in list(ways)[1:]:
+        print(f"ratio ({name} over compiled): {times[name] / times['compiled']:.2f}")
     print(f"load average after: {os.getloadavg()[0]:.1f} (1 min)")
 
 

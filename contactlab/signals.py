@@ -20,6 +20,7 @@ from typing import NamedTuple
 import numpy as np
 from scipy import signal
 
+from contactlab._block_levels import MAD_TO_SIGMA, block_levels
 from contactlab._head_level import head_level
 from contactlab.errors import ParameterError
 from contactlab.validation import check_count, check_interval, check_number, check_samples
@@ -37,11 +38,6 @@ __all__ = [
     "robust_noise",
     "running_baseline",
 ]
-
-MAD_TO_SIGMA = 1.482602218505602
-"""Standard deviation of Gaussian noise per median absolute deviation, ``1 / Phi^-1(3/4)``
-[-]: ``robust_noise`` reads the noise as this many MADs, which a pulse covering less
-than half of the samples cannot move far (breakdown point 50 %)."""
 
 
 class RunningBaseline(NamedTuple):
@@ -290,36 +286,6 @@ def robust_noise(y):
     return MAD_TO_SIGMA * float(np.median(np.abs(y - np.median(y))))
 
 
-def _block_medians(y, width):
-    """Median and MAD-noise of consecutive blocks of ``width`` samples (the last block
-    takes the remainder, or joins the one before it when shorter than half a block)."""
-    count = max(1, round(y.size / width))
-    edges = np.linspace(0, y.size, count + 1).round().astype(int)
-    medians = np.empty(count)
-    for k in range(count):
-        medians[k] = np.median(y[edges[k] : edges[k + 1]])
-    return edges, medians
-
-
-def _side_means(y, span):
-    """Per sample, the mean of the ``span`` samples before it or of the ``span`` after it,
-    whichever is nearer to the sample (one side of an offset step holds one level)."""
-    total = np.concatenate([[0.0], np.cumsum(y)])
-    n = y.size
-    # sums over [max(i - span, 0), i) and (i, min(i + 1 + span, n)) as shifted slices of
-    # the cumulative sum (the gathers by index arrays took most of the time)
-    before = np.empty(n)
-    after = np.empty(n)
-    head = min(span, n)
-    before[:head] = total[:head] / np.maximum(np.arange(head), 1)
-    before[head:] = (total[head:n] - total[: n - head]) / span
-    tail = max(n - span - 1, 0)
-    after[:tail] = (total[span + 1 : span + 1 + tail] - total[1 : 1 + tail]) / span
-    after[tail:] = (total[n] - total[tail + 1 : n + 1]) / np.maximum(n - 1 - np.arange(tail, n), 1)
-    before[0], after[-1] = after[0], before[-1]  # no samples on that side
-    return np.where(np.abs(y - before) <= np.abs(y - after), before, after)
-
-
 def _mask(name, value, size):
     """``value`` as a 1-D bool array of ``size`` samples, or a ParameterError naming it."""
     try:
@@ -346,43 +312,6 @@ def _block_spread(distance, edges, exclude):
         raise ParameterError("running_baseline: every block is excluded; no noise to read")
     return np.interp(np.arange(spread.size), valid, spread[valid])
 
-
-def _edge_levels(y, span, medians):
-    """Levels the first block has before it and the last block after it: the median of
-    the record's first (last) ``span`` samples when they are quiet, else the outer
-    block's median.
-
-    A DC offset step in the first block leaves the samples before it with no block level
-    of their own (the block's median is the level after the step), and one in the last
-    block those after it. The record's first ``span`` samples give their level, if they
-    hold no pulse: their robust noise must be at most :data:`EDGE_QUIET` times the
-    white noise of the outer block (read on its first differences, which a step, drift
-    or a pulse barely moves), else a record that starts at an impact would offer the
-    impact's own level as a baseline."""
-    levels = []
-    block = span * LOCAL_MEAN_FRACTION
-    for part, outer, edge in (
-        (y[:span], medians[0], y[:block]),
-        (y[-span:], medians[-1], y[-block:]),
-    ):
-        differences = np.diff(edge)
-        white = MAD_TO_SIGMA * float(np.median(np.abs(differences - np.median(differences))))
-        level = float(np.median(part))
-        spread = MAD_TO_SIGMA * float(np.median(np.abs(part - level)))
-        levels.append(level if spread <= EDGE_QUIET * white / np.sqrt(2.0) else outer)
-    return levels
-
-
-EDGE_QUIET = 3.0
-"""Largest robust noise of a record's first or last eighth of a block, in white-noise
-sigmas, for it to give the level before a step in the first block (after one in the
-last) [-]: 1/f noise and hum add a little to the white noise over so short a stretch; a
-pulse of 6 sigmas or more with its ringing adds more."""
-
-LOCAL_MEAN_FRACTION = 8
-"""The level of a sample is chosen by the mean of the samples on one side of it over
-this fraction of a block [-]: long enough to average the noise out (so the choice does
-not follow the noise and shrink the residual)."""
 
 SPREAD_MIN_SAMPLES = 16
 """Fewest samples left in a block after the exclusions to read its noise [-]."""
@@ -432,42 +361,45 @@ def running_baseline(y, width, exclude=None, head=0):
     ParameterError
         Bad ``width`` or ``head``, non-finite samples, too few blocks or quiet samples.
     """
-    width = check_count("width", width, low=8)
-    pulse = check_count("head", head, low=0)  # ``head`` is reused below
-    y = check_samples("y", y)
+    check_count("width", width, low=8)  # in the order the parameters are checked before
+    check_count("head", head, low=0)
+    return levels_baseline(block_levels(y, width), exclude, head)
+
+
+def levels_baseline(levels, exclude=None, head=0):
+    """:func:`running_baseline` from the record's levels computed once
+    (:func:`contactlab._block_levels.block_levels`): the same arrays, to the last bit.
+
+    Parameters
+    ----------
+    levels : BlockLevels
+        The record's levels; not changed (a ``head`` fit changes copies).
+    exclude, head
+        As for :func:`running_baseline`.
+
+    Returns
+    -------
+    RunningBaseline
+
+    Raises
+    ------
+    ParameterError
+        Bad ``head`` or ``exclude``, every block excluded, or too few quiet samples.
+    """
+    pulse = check_count("head", head, low=0)
+    y, level, residual = levels.y, levels.level, levels.residual
     if exclude is not None:
         exclude = _mask("exclude", exclude, y.size)
-    if y.size < 2 * width:
-        raise ParameterError(
-            f"running_baseline needs at least two blocks of {width} samples in y; got {y.size}"
-        )
-    edges, medians = _block_medians(y, width)
-    index = np.arange(y.size)
-    centres = 0.5 * (edges[:-1] + edges[1:] - 1)
-    level = np.interp(index, centres, medians)
-    if medians.size > 1:  # beyond the outer centres, the outer slopes go on (drift)
-        head, tail = index < centres[0], index > centres[-1]
-        slope = np.diff(medians) / np.diff(centres)
-        level[head] = medians[0] + slope[0] * (index[head] - centres[0])
-        level[tail] = medians[-1] + slope[-1] * (index[tail] - centres[-1])
-    block = np.repeat(np.arange(medians.size), np.diff(edges))
-    span = max(2, width // LOCAL_MEAN_FRACTION)
-    head, tail = _edge_levels(y, span, medians)
-    before = np.r_[head, medians][block]
-    after = np.r_[medians, tail][block + 1]
-    local_mean = _side_means(y, span)
-    chosen, distance = level, np.abs(local_mean - level)
-    for candidate in (medians[block], before, after):  # the first nearest, as argmin
-        gap = np.abs(local_mean - candidate)
-        nearer = gap < distance
-        chosen, distance = np.where(nearer, candidate, chosen), np.minimum(gap, distance)
-    residual = y - chosen
-    error = head_level(y, pulse, width, exclude, level, residual) if pulse else 0.0
-    spread = _block_spread(np.abs(residual), edges, exclude)
+    error = 0.0
+    if pulse:  # head_level changes the level and residual in place
+        level, residual = level.copy(), residual.copy()
+        error = head_level(y, pulse, levels.width, exclude, level, residual)
+    spread = _block_spread(np.abs(residual), levels.edges, exclude)
     widened = np.maximum(
         spread, np.maximum(np.r_[spread[:1], spread[:-1]], np.r_[spread[1:], spread[-1:]])
     )
-    return RunningBaseline(level, residual, np.hypot(MAD_TO_SIGMA * widened[block], error))
+    noise = np.hypot(MAD_TO_SIGMA * widened[levels.block], error)
+    return RunningBaseline(level, residual, noise)
 
 
 def quiet_window(t, y, width=None):
@@ -492,9 +424,28 @@ def quiet_window(t, y, width=None):
     t, y = _trace(t, y)
     if width is None:
         width = max(16, y.size // 16)
-    found = running_baseline(y, width)
-    edges, _ = _block_medians(y, width)
-    noise = [robust_noise(found.residual[a:b]) for a, b in itertools.pairwise(edges)]
+    return levels_quiet_window(t, block_levels(y, width))
+
+
+def levels_quiet_window(t, levels):
+    """:func:`quiet_window` from the record's levels computed once
+    (:func:`contactlab._block_levels.block_levels`, its block length the window's).
+
+    Parameters
+    ----------
+    t : array_like
+        Sample times [s], one per sample of ``levels.y``.
+    levels : BlockLevels
+
+    Returns
+    -------
+    (float, float)
+    """
+    t = np.asarray(t, dtype=float)
+    if t.shape != levels.y.shape:
+        raise ParameterError(f"t must hold one time per sample ({levels.y.size}); got {t.shape}")
+    edges = levels.edges
+    noise = [robust_noise(levels.residual[a:b]) for a, b in itertools.pairwise(edges)]
     k = int(np.argmin(noise))
     end = float(t[edges[k + 1]]) if edges[k + 1] < t.size else float(np.nextafter(t[-1], np.inf))
     return float(t[edges[k]]), end

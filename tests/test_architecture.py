@@ -43,6 +43,7 @@ LAYERS = (
             "contactlab.metrics",
             "contactlab.signals",
             "contactlab._head_level",
+            "contactlab._block_levels",
             "contactlab.result",
             "contactlab.oblique_result",
             "contactlab.plotting",

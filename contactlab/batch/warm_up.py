@@ -93,7 +93,7 @@ def warm_up():
     from contactlab.batch.linear import linear_impacts
     from contactlab.batch.oblique import oblique_impacts
     from contactlab.bodies import Grain, Sensor
-    from contactlab.kernels.held_force import held_signal
+    from contactlab.kernels.held_force import held_signal, sampled_signal
     from contactlab.laws import HertzDamped, Mindlin
     from contactlab.solver import simulate_impact, simulate_oblique
 
@@ -119,5 +119,6 @@ def warm_up():
         oblique.assign(**{"radius [m]": 2.5e-3, "angle [rad]": 0.5, "spin [rad/s]": 0.0})
     )
     shape = np.linspace(0.0, 1.0, 5)  # a triangle through a one-pole filter
-    held_signal(1e-6, 10, 5e-6, shape, 1.0 - np.abs(2.0 * shape - 1.0), *_ONE_POLE)
+    times, values = held_signal(1e-6, 10, 5e-6, shape, 1.0 - np.abs(2.0 * shape - 1.0), *_ONE_POLE)
+    sampled_signal(np.arange(4) * 2e-6, 1e-6, times, values)
     return time.perf_counter() - start

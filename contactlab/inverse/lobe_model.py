@@ -18,7 +18,7 @@ import numpy as np
 from scipy import integrate, linalg, signal
 
 from contactlab.errors import ParameterError
-from contactlab.kernels.held_force import held_signal
+from contactlab.kernels.held_force import held_signal, sampled_signal
 
 __all__ = ["FAMILIES", "FINE_PERIODS", "SHAPE_POINTS", "LobeModel", "force_shape"]
 
@@ -157,7 +157,7 @@ class LobeModel:
         """The unit-peak signal on the window's samples [-] (``unit``: :meth:`unit` of
         ``tau``, when already computed)."""
         s, r = self.unit(tau) if unit is None else unit
-        return np.interp(self.t - t0, s, r, left=0.0)
+        return sampled_signal(self.t, float(t0), s, r)  # numpy.interp(t - t0, s, r, left=0)
 
     def solve(self, t0, tau, unit=None, coefficients=True):
         """Linear amplitudes (offset, slope over a sensor period, ``A``; only ``A``

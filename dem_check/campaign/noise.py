@@ -31,6 +31,7 @@ from scipy.ndimage import gaussian_filter1d
 from scipy.stats import norm
 
 from contactlab import signals
+from contactlab._block_levels import block_levels
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace, lowpass
 from contactlab.traces.checks import uniform_interval
@@ -127,18 +128,19 @@ def candidate_runs(ratio, hold, sigmas):
     return list(zip(above[firsts[keep]].tolist(), above[lasts[keep]].tolist(), strict=True))
 
 
-def _impact_mask(values, width, hold, sigmas):
-    """Samples of the impacts found on a first pass, with their ringing (to
+def _impact_mask(levels, hold, sigmas):
+    """Samples of the impacts found on a first pass (on a record's
+    :func:`~contactlab._block_levels.block_levels`), with their ringing (to
     :data:`QUIET_PERIODS` past their last sample above the floor): left out of the
     local noise on the second pass."""
-    first_pass = signals.running_baseline(values, width)
+    first_pass = signals.levels_baseline(levels)
     if np.median(first_pass.noise) == 0.0:
         raise ParameterError(
             "the record is exactly constant over most of its blocks: no noise to set a "
             "detection threshold from"
         )
     ratio = np.abs(first_pass.residual) / np.maximum(first_pass.noise, np.finfo(float).tiny)
-    mask = np.zeros(values.size, dtype=bool)
+    mask = np.zeros(levels.y.size, dtype=bool)
     for first, last in candidate_runs(ratio, hold, sigmas):
         mask[first : last + hold + 1] = True
     return mask
@@ -287,18 +289,19 @@ def noise_floor(trace, sensor):
     sigmas = max(MIN_SIGMAS, float(norm.isf(FALSE_ALARMS / (2.0 * len(trace)))))
     hold = max(QUIET_MIN_SAMPLES, round(QUIET_PERIODS * sensor.period / dt))
     head = 0
+    levels = block_levels(values, width)  # computed once for every pass (the same bits)
     for _ in range(HEAD_PASSES):  # detect, exclude the pulse at the start, re-fit
-        levelled = signals.running_baseline(values, width, head=head).residual
+        levelled = signals.levels_baseline(levels, head=head).residual
         step = {"step": "levelled", "head [samples]": head}
         smoothed_raw = _gaussian(finite.derive(step, values=levelled), kernel, dt)
-        smoothed_values = np.asarray(smoothed_raw.values, dtype=float)
-        mask = _impact_mask(smoothed_values, width, hold, sigmas)
+        smoothed_levels = block_levels(np.asarray(smoothed_raw.values, dtype=float), width)
+        mask = _impact_mask(smoothed_levels, hold, sigmas)
         found = _head(mask, values.size - width)
         if found == head:
             break
         head = found
-    smooth = signals.running_baseline(smoothed_values, width, exclude=mask)
-    raw = signals.running_baseline(values, width, exclude=mask, head=head)
+    smooth = signals.levels_baseline(smoothed_levels, exclude=mask)
+    raw = signals.levels_baseline(levels, exclude=mask, head=head)
     step = {"step": "running_baseline", "block [samples]": width, "head [samples]": head}
     signal = finite.derive(step, values=values - raw.level)
     typical = float(np.median(smooth.noise))
@@ -309,7 +312,7 @@ def noise_floor(trace, sensor):
         )
     smoothed = Trace(finite.t, smooth.residual, finite.unit, dict(smoothed_raw.metadata))
     floor = NoiseFloor(
-        window=signals.quiet_window(finite.t, values, width),
+        window=signals.levels_quiet_window(finite.t, levels),
         baseline=float(np.median(raw.level)),
         noise=float(np.median(raw.noise)),
         smoothed_noise=typical,

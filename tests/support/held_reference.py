@@ -1,12 +1,12 @@
-"""The lobe model's unit signal as it was written before it was compiled
-(:mod:`contactlab.kernels.held_force`): ``numpy.interp`` and ``scipy.signal.lfilter``.
-The test holds the kernel to it bit for bit; ``benchmarks/bench_held_force.py`` times
-the onset fits with it."""
+"""The lobe model's unit signal and its sampling at the window's times as they were
+written before they were compiled (:mod:`contactlab.kernels.held_force`): ``numpy.interp``
+and ``scipy.signal.lfilter``. The tests hold the kernels to them bit for bit;
+``benchmarks/bench_held_force.py`` times the onset fits with them."""
 
 import numpy as np
 from scipy import signal
 
-__all__ = ["numpy_unit"]
+__all__ = ["numpy_response", "numpy_unit"]
 
 
 def numpy_unit(step, count, tau, u, h, b, a):
@@ -15,3 +15,9 @@ def numpy_unit(step, count, tau, u, h, b, a):
     s = np.arange(-1, count) * step
     force = np.interp((s - 0.5 * step) / tau, u, h, left=0.0, right=0.0)
     return s - 0.5 * step, signal.lfilter(b, a, force)
+
+
+def numpy_response(t, t0, s, r):
+    """:func:`contactlab.kernels.held_force.sampled_signal` with numpy: the unit signal
+    ``r`` on its grid ``s`` [s] at the times ``t - t0`` [s], 0 before the grid."""
+    return np.interp(t - t0, s, r, left=0.0)
