@@ -19,6 +19,7 @@ from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
 from contactlab.inverse.pulse import describe_window, pulse_baseline
+from contactlab.inverse.sampling import HIT_PEAK_FRACTION
 from contactlab.traces.prepare import noise_level, remove_baseline
 from contactlab.traces.trace import Trace
 from contactlab.validation import check_choice, check_number, check_text
@@ -33,12 +34,6 @@ _SCALARS = (
     "restitution",
 )
 _SENSOR_SCALARS = {"peak_sensor_force": "peak", "sensor_response_time": "duration"}
-HIT_PEAK_FRACTION = 0.5
-"""Least peak of the lobe :func:`compare_trace` reads, as a fraction of the trace's largest
-value [-]. A sensor's first lobe under a contact is its largest excursion (the ringing
-after it decays), so the hit's lobe reaches it; an acquisition filter's pre-echo or a
-noise excursion before the hit (0.3-0.5 N before 69-89 N hits on the real hammer
-records, docs/campaign.md "Real records") stays far under half of it."""
 
 
 def _scalar(obj, name, threshold, hysteresis, least_peak):
@@ -214,9 +209,10 @@ def compare_trace(
     ``k`` times the trace's noise, so the measurement and the model are read alike. A
     lobe ends at its last crossing of that level before the signal is back at the
     baseline (hysteresis equal to the threshold), so noise on a slow rise or fall cannot
-    cut it short. The lobe read is the first whose peak reaches :data:`HIT_PEAK_FRACTION`
-    of the trace's largest value: smaller lobes before it (an acquisition filter's
-    pre-echo, a noise excursion) are passed over, and ``lobe note`` names them.
+    cut it short. The lobe read is the first whose peak reaches
+    :data:`~contactlab.inverse.sampling.HIT_PEAK_FRACTION` of the trace's largest value:
+    smaller lobes before it (an acquisition filter's pre-echo, a noise excursion) are
+    passed over, and ``lobe note`` names them.
     :attr:`Comparison.notes` says what was removed (``baseline``) and
     whether it can be trusted (``baseline status``: ``ok``, ``short pre-trigger``,
     ``drifting baseline``, ``not free ringing``; ``baseline note 1``, ... with the
