@@ -114,6 +114,9 @@ def compare(
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
     hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False, unit="N")
+    least_peak = check_number(
+        "least_peak", least_peak, low=0.0, low_open=False, high=1.0, high_open=True
+    )
     if labels is None:
         labels = (_label(a), _label(b))
     elif isinstance(labels, str) or not isinstance(labels, tuple | list) or len(labels) != 2:
