@@ -54,7 +54,7 @@ def _crossing_time(t, y, i, level):
     return t[i - 1] + (level - y0) * (t[i] - t[i - 1]) / (y1 - y0)
 
 
-def first_lobe(t, y, threshold=0.0, hysteresis=0.0):
+def first_lobe(t, y, threshold=0.0, hysteresis=0.0, least_peak=0.0):
     """Start and end of the first main lobe of a pulse: first rise above a threshold to the
     first return to it.
 
@@ -74,6 +74,11 @@ def first_lobe(t, y, threshold=0.0, hysteresis=0.0):
         signal falls to ``threshold - hysteresis``, and it ends at its last downward
         crossing of ``threshold`` before that (a Schmitt trigger read at one level).
         Noise that dips under the threshold on a slow rise then does not end the lobe.
+    least_peak : float, default 0.0
+        Fraction of the signal's largest value [-] in [0, 1): a lobe whose peak is under
+        it is passed over and the next lobe is read. A measured record's filter pre-echo
+        or a lone noise excursion before the hit (a few tenths of a newton before a hit of
+        tens) is then not read as the pulse. With 0 every lobe counts.
 
     Returns
     -------
@@ -85,18 +90,25 @@ def first_lobe(t, y, threshold=0.0, hysteresis=0.0):
     t, y = _as_signal(t, y)
     threshold = check_number("threshold", threshold)  # NaN would read as "never exceeded"
     hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False)
+    least_peak = check_number(
+        "least_peak", least_peak, low=0.0, low_open=False, high=1.0, high_open=True
+    )
     above = y > threshold
-    if not above.any():
-        return np.nan, np.nan
-    i_up = int(np.argmax(above))
-    start = t[0] if i_up == 0 else _crossing_time(t, y, i_up, threshold)
-    dropped = y[i_up:] <= threshold - hysteresis
-    if not dropped.any():
-        return start, np.nan
-    i_drop = i_up + int(np.argmax(dropped))
-    falls = np.flatnonzero(above[i_up:i_drop] & ~above[i_up + 1 : i_drop + 1])
-    i_down = i_up + 1 + int(falls[-1])
-    return start, _crossing_time(t, y, i_down, threshold)
+    floor = least_peak * float(np.max(y))
+    i = 0
+    while above[i:].any():
+        i_up = i + int(np.argmax(above[i:]))
+        start = t[0] if i_up == 0 else _crossing_time(t, y, i_up, threshold)
+        dropped = y[i_up:] <= threshold - hysteresis
+        if not dropped.any():
+            return start, np.nan
+        i_drop = i_up + int(np.argmax(dropped))
+        if np.max(y[i_up:i_drop]) >= floor:
+            falls = np.flatnonzero(above[i_up:i_drop] & ~above[i_up + 1 : i_drop + 1])
+            i_down = i_up + 1 + int(falls[-1])
+            return start, _crossing_time(t, y, i_down, threshold)
+        i = i_drop  # a lobe under least_peak of the largest value: read the next one
+    return np.nan, np.nan
 
 
 def peak(t, y, start=None, end=None):
@@ -196,7 +208,7 @@ class PulseMetrics:
         return {f"{k} [{units[k]}]": v for k, v in values.items()}
 
 
-def pulse_metrics(t, y, threshold=0.0, unit="N", hysteresis=0.0):
+def pulse_metrics(t, y, threshold=0.0, unit="N", hysteresis=0.0, least_peak=0.0):
     """All pulse metrics of the first lobe of a signal.
 
     Parameters
@@ -211,13 +223,15 @@ def pulse_metrics(t, y, threshold=0.0, unit="N", hysteresis=0.0):
         Unit of ``y``, carried into :meth:`PulseMetrics.to_dict` keys.
     hysteresis : float, default 0.0
         See :func:`first_lobe`.
+    least_peak : float, default 0.0
+        See :func:`first_lobe`.
 
     Returns
     -------
     PulseMetrics
     """
     t, y = _as_signal(t, y)
-    start, end = first_lobe(t, y, threshold, hysteresis)
+    start, end = first_lobe(t, y, threshold, hysteresis, least_peak)
     if np.isnan(start):
         return PulseMetrics(*(np.nan,) * 7, unit=unit)
     stop = t[-1] if np.isnan(end) else end

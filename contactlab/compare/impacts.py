@@ -19,6 +19,7 @@ from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse._signal import BASELINE_MIN_SAMPLES
 from contactlab.inverse.pulse import describe_window, pulse_baseline
+from contactlab.inverse.sampling import HIT_PEAK_FRACTION
 from contactlab.traces.prepare import noise_level, remove_baseline
 from contactlab.traces.trace import Trace
 from contactlab.validation import check_choice, check_number, check_text
@@ -35,14 +36,16 @@ _SCALARS = (
 _SENSOR_SCALARS = {"peak_sensor_force": "peak", "sensor_response_time": "duration"}
 
 
-def _scalar(obj, name, threshold, hysteresis):
+def _scalar(obj, name, threshold, hysteresis, least_peak):
     """Value of a scalar quantity, or None when the object does not have it."""
     if name not in _SENSOR_SCALARS:
         return getattr(obj, name, None)  # a trace has no contact force or grain velocity
     if isinstance(obj, Trace):
-        pulse = obj.metrics(threshold or 0.0, hysteresis)
+        pulse = obj.metrics(threshold or 0.0, hysteresis, least_peak)
     elif threshold is not None:
-        pulse = metrics.pulse_metrics(obj.t, obj.sensor_force, threshold, hysteresis=hysteresis)
+        pulse = metrics.pulse_metrics(
+            obj.t, obj.sensor_force, threshold, hysteresis=hysteresis, least_peak=least_peak
+        )
     else:
         return getattr(obj, name)
     return getattr(pulse, _SENSOR_SCALARS[name])
@@ -54,7 +57,16 @@ def _label(obj):
     return str(getattr(obj, "method", type(obj).__name__))
 
 
-def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, hysteresis=0.0):
+def compare(
+    a,
+    b,
+    tolerances=None,
+    align="onset",
+    threshold=None,
+    labels=None,
+    hysteresis=0.0,
+    least_peak=0.0,
+):
     """Compare two impacts quantity by quantity.
 
     Parameters
@@ -79,6 +91,10 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     hysteresis : float, default 0
         With ``threshold``: how far below it a signal must fall to end its lobe [N] (see
         :func:`contactlab.metrics.first_lobe`).
+    least_peak : float, default 0
+        A trace's (and, with ``threshold``, a result's) lobes whose peak is under this
+        fraction of the signal's largest value are passed over [-] (see
+        :func:`contactlab.metrics.first_lobe`).
 
     Returns
     -------
@@ -98,6 +114,9 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     if threshold is not None:
         threshold = check_number("threshold", threshold, low=0.0, low_open=False, unit="N")
     hysteresis = check_number("hysteresis", hysteresis, low=0.0, low_open=False, unit="N")
+    least_peak = check_number(
+        "least_peak", least_peak, low=0.0, low_open=False, high=1.0, high_open=True
+    )
     if labels is None:
         labels = (_label(a), _label(b))
     elif isinstance(labels, str) or not isinstance(labels, tuple | list) or len(labels) != 2:
@@ -107,8 +126,8 @@ def compare(a, b, tolerances=None, align="onset", threshold=None, labels=None, h
     sig_b = sensor_signal(b, f"b ({labels[1]})")
     rows = []
     for name in _SCALARS:
-        va = _scalar(a, name, threshold, hysteresis)
-        vb = _scalar(b, name, threshold, hysteresis)
+        va = _scalar(a, name, threshold, hysteresis, least_peak)
+        vb = _scalar(b, name, threshold, hysteresis, least_peak)
         missing = [lab for lab, v in zip(labels, (va, vb), strict=True) if v is None]
         note = f"not available: {' and '.join(missing)} has no {name}" if missing else ""
         rows.append(quantity_row(name, va, vb, tolerances[name], note))
@@ -160,6 +179,24 @@ def _without_baseline(trace, sensor, k, crosstalk):
     return remove_baseline(trace, window), noise, {"baseline": text, "baseline status": status}
 
 
+def _passed_over(trace, threshold):
+    """A note naming the lobes before the hit that the comparison passed over (none when
+    the first lobe above the threshold is the hit's)."""
+    t, y = np.asarray(trace.t), np.asarray(trace.values)
+    first = metrics.first_lobe(t, y, threshold, threshold)[0]
+    hit = metrics.first_lobe(t, y, threshold, threshold, HIT_PEAK_FRACTION)[0]
+    if np.isnan(first) or first == hit:
+        return {}
+    before = t < hit
+    return {
+        "lobe note": (
+            f"passed over lobes from {first:.6g} s to the hit at {hit:.6g} s: they peak at "
+            f"{float(np.max(y[before])):.3g} N, under {HIT_PEAK_FRACTION:g} of the trace's "
+            f"largest value {float(np.max(y)):.4g} N (a filter's pre-echo or noise, not the hit)"
+        )
+    }
+
+
 @with_one_blas_thread
 def compare_trace(
     trace, config, tolerances=None, align="onset", k=5.0, threshold=None, *, crosstalk=True
@@ -175,7 +212,11 @@ def compare_trace(
     ``k`` times the trace's noise, so the measurement and the model are read alike. A
     lobe ends at its last crossing of that level before the signal is back at the
     baseline (hysteresis equal to the threshold), so noise on a slow rise or fall cannot
-    cut it short. :attr:`Comparison.notes` says what was removed (``baseline``) and
+    cut it short. The lobe read is the first whose peak reaches
+    :data:`~contactlab.inverse.sampling.HIT_PEAK_FRACTION` of the trace's largest value:
+    smaller lobes before it (an acquisition filter's pre-echo, a noise excursion) are
+    passed over, and ``lobe note`` names them.
+    :attr:`Comparison.notes` says what was removed (``baseline``) and
     whether it can be trusted (``baseline status``: ``ok``, ``short pre-trigger``,
     ``drifting baseline``, ``not free ringing``; ``baseline note 1``, ... with the
     numbers).
@@ -224,9 +265,18 @@ def compare_trace(
     model = config.simulate()
     tolerances = {**noise_tolerances(noise, model.peak_sensor_force), **given}
     result = compare(
-        trace, model, tolerances, align, threshold, ("measured", "model"), hysteresis=threshold
+        trace,
+        model,
+        tolerances,
+        align,
+        threshold,
+        ("measured", "model"),
+        hysteresis=threshold,
+        least_peak=HIT_PEAK_FRACTION,
     )
-    result.notes.update({**notes, "lobe threshold [N]": threshold})
+    notes["lobe threshold [N]"] = threshold
+    notes.update(_passed_over(trace, threshold))
+    result.notes.update(notes)
     velocity_change = metrics.impulse(trace.t, trace.values, 0.0) / config.grain.mass
     result.physics = physics_problems(config.grain, float(np.max(trace.values)), velocity_change)
     return result

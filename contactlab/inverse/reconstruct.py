@@ -52,6 +52,7 @@ from contactlab.inverse.reconstruct_family import family_reading
 from contactlab.inverse.reconstruct_inverse import band_limited_inverse
 from contactlab.inverse.reconstruction import ForceReconstruction
 from contactlab.inverse.regularization import CRITERIA, StandardForm
+from contactlab.inverse.sampling import check_samples_per_lobe
 from contactlab.validation import check_choice, check_count, check_number
 
 __all__ = ["CONTACT_EDGES", "CRITERIA", "METHODS", "ForceReconstruction", "reconstruct_force"]
@@ -355,8 +356,9 @@ def reconstruct_force(
     ParameterError
         Bad arguments, a baseline with fewer than 16 samples or without noise, no
         onset, a window the record does not extend past (or a record that ends inside
-        the pulse), or (discrepancy) a noise level
-        the model cannot match.
+        the pulse), a record too coarse to reconstruct (a first lobe under
+        :data:`~contactlab.inverse.sampling.MIN_SAMPLES_PER_CONTACT` samples, the
+        campaign's rule), or (discrepancy) a noise level the model cannot match.
 
     Notes
     -----
@@ -428,6 +430,7 @@ def reconstruct_force(
     if quiet.size < BASELINE_MIN_SAMPLES:  # a short pre-trigger: the noise after the contact
         quiet = ringing_residual(t, y, pulse.post, sensor)
     options["quiet"] = quiet
+    check_samples_per_lobe(t, y, ONSET_SIGMAS * noise)
     ta, tb = check_window("window", pulse.contact if window is None else window)
     if not float(t[0]) <= ta < float(t[-1]):
         raise ParameterError(

@@ -154,7 +154,7 @@ class Trace:
         fields = {"t": self.t, "values": self.values, "unit": self.unit, **changes}
         return Trace(metadata=metadata, **fields)
 
-    def metrics(self, threshold=0.0, hysteresis=0.0):
+    def metrics(self, threshold=0.0, hysteresis=0.0, least_peak=0.0):
         """Pulse metrics of the first lobe, read as for a simulation.
 
         Uses :func:`contactlab.metrics.pulse_metrics` on ``(t, values)``, so a measured
@@ -170,6 +170,9 @@ class Trace:
             How far below the threshold the signal must fall to end the lobe, in the
             trace's unit (see :func:`contactlab.metrics.first_lobe`); e.g. the threshold
             itself, so that only a return to the baseline ends it.
+        least_peak : float, default 0.0
+            Lobes whose peak is under this fraction of the trace's largest value are
+            passed over [-] (see :func:`contactlab.metrics.first_lobe`).
 
         Returns
         -------
@@ -186,4 +189,4 @@ class Trace:
                 f"the trace has {len(overrange)} overrange samples (first at index "
                 f"{overrange[0]}); their true values are unknown, so no pulse metrics"
             )
-        return pulse_metrics(self.t, self.values, threshold, self.unit, hysteresis)
+        return pulse_metrics(self.t, self.values, threshold, self.unit, hysteresis, least_peak)

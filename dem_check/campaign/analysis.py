@@ -52,6 +52,7 @@ import numpy as np
 from contactlab.errors import ParameterError
 from contactlab.inverse import fit_contact, reconstruct_force
 from contactlab.inverse.reconstruct import DEFAULT_MAX_UNKNOWNS
+from contactlab.inverse.sampling import MIN_SAMPLES_PER_CONTACT
 from contactlab.metrics import impulse
 from contactlab.quantities import column
 from dem_check.campaign.local import local_baseline, record_noise
@@ -68,11 +69,6 @@ __all__ = [
     "window_row",
 ]
 
-MIN_SAMPLES_PER_CONTACT = 20
-"""Fewest samples per contact time for a reconstruction [-]. Below it the Tikhonov
-reconstruction has fewer force values than a pulse's shape needs; the impact keeps its
-signal numbers (onset, peak signal, impulse) and its reason says the record is too
-coarse, instead of a reconstructed peak and contact time."""
 
 IMPULSE_EXCESS = 0.2
 """Largest excess of the segment's impulse over the reconstructed contact's [-]. One

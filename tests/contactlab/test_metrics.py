@@ -54,3 +54,22 @@ def test_bad_threshold_is_named_not_read_as_no_pulse(threshold):
         first_lobe(T, PULSE, threshold)
     with pytest.raises(ParameterError, match="threshold"):
         pulse_metrics(T, PULSE, threshold)
+
+
+def test_first_lobe_passes_over_lobes_under_least_peak_of_the_largest_value():
+    t = np.arange(40) * 1e-6
+    y = np.zeros(40)
+    y[5] = 0.4  # a pre-echo sample: 0.4 % of the hit
+    y[20:25] = [20.0, 80.0, 100.0, 80.0, 20.0]  # the hit
+    # every lobe counts by default: the pre-echo (crossings at 4.25 and 5.75 us) comes first
+    assert first_lobe(t, y, 0.1) == pytest.approx((4.25e-6, 5.75e-6), rel=1e-12)
+    # at half the largest value the pre-echo is passed over; the hit's crossings of 0.1 N
+    # are linear between samples 19-20 and 24-25 (exact up to round-off)
+    start, end = first_lobe(t, y, 0.1, least_peak=0.5)
+    assert (start, end) == pytest.approx((19.005e-6, 24.995e-6), rel=1e-12)
+    assert pulse_metrics(t, y, 0.1, least_peak=0.5).peak == 100.0
+
+
+def test_first_lobe_least_peak_must_be_a_fraction_below_one():
+    with pytest.raises(ParameterError, match="least_peak"):
+        first_lobe([0.0, 1.0], [0.0, 1.0], least_peak=1.0)
