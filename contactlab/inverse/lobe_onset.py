@@ -125,13 +125,13 @@ class LobeFit:
     covariance); None without one."""
 
 
-def _scan(model, lo, hi, length):
+def _scan(model, lo, hi, durations, also=()):
     """The best onset and duration on a grid: onsets from ``lo`` to ``hi`` [s] every
     :data:`SCAN_PERIODS` sensor period (the residual has a minimum every sensor period,
-    where the ringing realigns), durations :data:`SCAN_DURATIONS` times ``length`` [s]."""
-    best = (math.inf, lo, length)
-    onsets = np.arange(lo, hi, SCAN_PERIODS * model.period)
-    for tau in length * np.asarray(SCAN_DURATIONS):
+    where the ringing realigns) and the onsets ``also`` [s], each of ``durations`` [s]."""
+    best = (math.inf, lo, durations[0])
+    onsets = np.append(np.arange(lo, hi, SCAN_PERIODS * model.period), also)
+    for tau in durations:
         unit = model.white_unit(tau)
         for t0 in onsets:
             rss = model.solve(t0, tau, unit, coefficients=False)[1]
@@ -185,8 +185,13 @@ def fit_lobe(
         are the innovation's. None: white noise of ``noise``.
     start : (float, float), optional
         An onset [s] and a duration [s] near the fit's (another damping's fit on the
-        same lobe): the first scan is skipped and the simplex starts there, a sample and
-        :data:`START_DURATION` wide.
+        same lobe): the first scan is of that duration alone, its onsets and that one,
+        and the simplex starts at the one of smallest residual, :data:`START_DURATION`
+        wide in the duration and a sample (the scan's step where a scanned onset won)
+        in the onset. The onset is still scanned since another damping's optimum can
+        lie in a neighbouring valley of the residual, which has a minimum every sensor
+        period (undamped Hertz fitted to a record of Tsuji's damped Hertz lies a period
+        early).
     autocovariance : numpy.ndarray, optional
         The record's noise autocovariance at lags ``0, 1, ...`` samples [N**2] (e.g.
         :meth:`contactlab.inverse.noise_prediction.ColouredNoise.autocovariance`, at
@@ -226,10 +231,12 @@ def fit_lobe(
 
     dt = model.dt
     if start is None:
-        t0, tau = _scan(model, lo, rough, length)
+        t0, tau = _scan(model, lo, rough, length * np.asarray(SCAN_DURATIONS))
         step, widen = SCAN_PERIODS * period, SCAN_DURATIONS[1] - SCAN_DURATIONS[0]
-    else:
-        (t0, tau), step, widen = start, dt, START_DURATION
+    else:  # the start's onset or a better one of the scan's at its duration: the
+        # start may lie a sensor period off this damping's optimum
+        t0, tau = _scan(model, lo, rough, [float(start[1])], also=[float(start[0])])
+        step, widen = (dt if t0 == start[0] else SCAN_PERIODS * period), START_DURATION
     simplex = [[t0, tau], [t0 + step, tau], [t0, tau * (1.0 + widen)]]
     best = optimize.minimize(
         cost,
