@@ -60,13 +60,13 @@ their spread between records (docs/campaign.md, "Onsets"): white is kept, cheape
 FAMILY_NOISE_MODEL = "ar"
 """The noise model the contact family and damping are read under (whatever
 :data:`NOISE_MODEL` the onsets are then fitted with): ``"ar"``, each impact's baseline
-window's autoregressive model. The damping is kept where it lowers the summed
-chi-squared by :data:`contactlab.inverse.lobe_onset.UNDAMPED_CHI_SQUARED`, a
-likelihood-ratio test that holds where the residual is white: under white noise weights
-the 1/f noise and the plate's crosstalk ringing are not, and a chi-squared gain of 7.5-11
-read a damping (0.019-0.024) for undamped Hertz contacts under 2 % crosstalk, every onset
-of those records 6-14 samples late; whitened, the same gains are 2.3-2.8
-(docs/campaign.md, "Accuracy on realistic records with a Hertz contact")."""
+window's autoregressive model. A damping is kept by its chi-squared gain
+(:func:`contactlab.inverse.lobe_onset.damping_resolved`), a likelihood argument that
+holds where the residual is white: under white-noise weights the 1/f noise and the
+plate's crosstalk ringing are not, and two undamped Hertz records under 2 % crosstalk
+gained 7.5 and 12.1 with a damping of 0.019 and 0.024 (every onset 6-14 samples late);
+whitened, 2.3 and 3.7 (docs/campaign.md, "Accuracy on realistic records with a Hertz
+contact")."""
 
 SMOOTHING_REACH = 4.0
 """The touch is sought up to this many standard deviations of the detector's Gaussian
