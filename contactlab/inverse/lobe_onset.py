@@ -70,7 +70,7 @@ def damping_resolved(gain, samples):
     onsets 6-14 samples late at 2-5 MHz. Schwarz's criterion chooses the undamped model
     with a probability that goes to 1 with the samples; on the benchmark's records
     (about 2 000 samples over four impacts at 2 MHz: a gain of 7.6) it kept every
-    damped contact (gains of 10**3-10**4) and dropped the gains of 2.3-5.1 read on
+    damped contact (gains of about 2e4 on the two traced) and dropped the gains of 2.3-5.1 read on
     undamped Hertz (docs/campaign.md, "Accuracy on realistic records with a Hertz
     contact"). Before the fixed level, a damping of 0.002-0.005 fitted to the noise of
     undamped Hertz impacts had moved their onsets by 1-2 samples at 5 MHz.
