@@ -22,12 +22,13 @@ from dem_check.campaign.detection import ANALYSED
 
 def strongest_lobes():
     """The speed record's sensor and the first lobes of its ``onsets.FAMILY_IMPACTS`` most
-    significant analysed impacts, as ``dem_check.campaign.onsets`` reads the family on."""
+    significant analysed impacts, as ``dem_check.campaign.onsets`` reads the family on
+    (with ``onsets.FAMILY_NOISE_MODEL``'s noise model)."""
     _, sensor, _ = bench_realistic.hard()
     found = find_impacts(bench_realistic.speed_record().trace, sensor, fit_onsets=False)
     windows = [w for w in found.impacts if w.status in ANALYSED]
     strongest = sorted(windows, key=lambda w: -w.significance)[: onsets.FAMILY_IMPACTS]
-    return sensor, [onsets._lobe(found, w, sensor) for w in strongest]
+    return sensor, [onsets._lobe(found, w, sensor, onsets.FAMILY_NOISE_MODEL) for w in strongest]
 
 
 def main():

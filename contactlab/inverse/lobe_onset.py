@@ -43,6 +43,7 @@ __all__ = [
     "FirstTouch",
     "LobeFit",
     "NoContact",
+    "damping_resolved",
     "fit_lobe",
     "force_shape",
     "lobe_family",
@@ -56,11 +57,27 @@ DAMPING_TOLERANCE = 0.005
 """The shared damping ratio is refined to this [-] (a linear contact's bias in the onset:
 about 0.2 us at the grid's step of 0.05, measured on the 40 kHz sensor)."""
 
-UNDAMPED_CHI_SQUARED = 4.0
-"""A family's damping is kept only where it lowers the summed chi-squared by more than
-this against none [-] (a likelihood-ratio test of one parameter at about 2 sigma): a
-damping fitted to the noise, 0.002-0.005 on undamped contacts, moved Hertz onsets by
-1-2 samples at 5 MHz (the force ``2 zeta d**0.25 d'`` starts as ``s**0.25``)."""
+
+def damping_resolved(gain, samples):
+    """Whether a damping's fit is kept against none: Schwarz's criterion (BIC) for one
+    parameter more, its chi-squared gain [-] over ``ln(samples)`` (the samples fitted,
+    summed over the impacts) [-].
+
+    A likelihood-ratio test at a fixed level (a gain of 4, about 2 sigma, until session
+    16) reads a damping for a few undamped records in a hundred even where the residual
+    is white (half a chi-squared of one degree at the bound ``zeta = 0``: 2.3 %; more,
+    since the damping's profile has several minima), and a damping misread moves every
+    onset of the record: Tsuji's term starts as ``s**0.25``, so 0.02 put undamped Hertz
+    onsets 6-14 samples late at 2-5 MHz. Schwarz's criterion chooses the undamped model
+    with a probability that goes to 1 with the samples; on the benchmark's records
+    (about 2 000 samples over four impacts at 2 MHz: a gain of 7.6) it kept every
+    damped contact (gains of about 2e4 on the two traced) and dropped the gains of 2.3-5.1 read on
+    undamped Hertz (docs/campaign.md, "Accuracy on realistic records with a Hertz
+    contact"). Before the fixed level, a damping of 0.002-0.005 fitted to the noise of
+    undamped Hertz impacts had moved their onsets by 1-2 samples at 5 MHz.
+    """
+    return gain > math.log(samples)
+
 
 PEAK_SIGMAS = 3.0
 """A fitted force whose peak is below this many noise sigmas is no contact [-] (the
@@ -132,13 +149,13 @@ class LobeFit:
     covariance); None without one."""
 
 
-def _scan(model, lo, hi, length):
+def _scan(model, lo, hi, durations, also=()):
     """The best onset and duration on a grid: onsets from ``lo`` to ``hi`` [s] every
     :data:`SCAN_PERIODS` sensor period (the residual has a minimum every sensor period,
-    where the ringing realigns), durations :data:`SCAN_DURATIONS` times ``length`` [s]."""
-    best = (math.inf, lo, length)
-    onsets = np.arange(lo, hi, SCAN_PERIODS * model.period)
-    for tau in length * np.asarray(SCAN_DURATIONS):
+    where the ringing realigns) and the onsets ``also`` [s], each of ``durations`` [s]."""
+    best = (math.inf, lo, durations[0])
+    onsets = np.append(np.arange(lo, hi, SCAN_PERIODS * model.period), also)
+    for tau in durations:
         unit = model.white_unit(tau)
         for t0 in onsets:
             rss = model.solve(t0, tau, unit, coefficients=False)[1]
@@ -192,8 +209,13 @@ def fit_lobe(
         are the innovation's. None: white noise of ``noise``.
     start : (float, float), optional
         An onset [s] and a duration [s] near the fit's (another damping's fit on the
-        same lobe): the first scan is skipped and the simplex starts there, a sample and
-        :data:`START_DURATION` wide.
+        same lobe): the first scan is of that duration alone, its onsets and that one,
+        and the simplex starts at the one of smallest residual, :data:`START_DURATION`
+        wide in the duration and a sample (the scan's step where a scanned onset won)
+        in the onset. The onset is still scanned since another damping's optimum can
+        lie in a neighbouring valley of the residual, which has a minimum every sensor
+        period (undamped Hertz fitted to a record of Tsuji's damped Hertz lies a period
+        early).
     autocovariance : numpy.ndarray, optional
         The record's noise autocovariance at lags ``0, 1, ...`` samples [N**2] (e.g.
         :meth:`contactlab.inverse.noise_prediction.ColouredNoise.autocovariance`, at
@@ -233,10 +255,13 @@ def fit_lobe(
 
     dt = model.dt
     if start is None:
-        t0, tau = _scan(model, lo, rough, length)
+        t0, tau = _scan(model, lo, rough, length * np.asarray(SCAN_DURATIONS))
         step, widen = SCAN_PERIODS * period, SCAN_DURATIONS[1] - SCAN_DURATIONS[0]
-    else:
-        (t0, tau), step, widen = start, dt, START_DURATION
+    else:  # the start's onset or a better one of the scan's at its duration: the
+        # start may lie a sensor period off this damping's optimum
+        durations = [float(start[1]), length]
+        t0, tau = _scan(model, lo, rough, durations, also=[float(start[0])])
+        step, widen = (dt if t0 == start[0] else SCAN_PERIODS * period), START_DURATION
     simplex = [[t0, tau], [t0 + step, tau], [t0, tau * (1.0 + widen)]]
     best = optimize.minimize(
         cost,
@@ -278,8 +303,8 @@ def fit_lobe(
 def lobe_family(lobes, sensor):
     """The contact family and damping shared by impacts: for each of :data:`FAMILIES`
     the damping of :data:`DAMPINGS` with the smallest summed chi-squared, refined between
-    the grid's neighbours (bounded Brent, to :data:`DAMPING_TOLERANCE`); then the family
-    with the smaller.
+    the grid's neighbours (bounded Brent, to :data:`DAMPING_TOLERANCE`) and kept where
+    :func:`damping_resolved` against none; then the family with the smaller.
 
     Parameters
     ----------
@@ -332,6 +357,10 @@ def lobe_family(lobes, sensor):
                 totals[(f, z)] = totals.get((f, z), 0.0) + chi(found)
     if not fitted:
         raise ParameterError("no impact with a lobe that can be fitted")
+    samples = sum(  # every fit of a lobe has the same window
+        next(found.samples for f in FAMILIES for found in fits[f].values() if found)
+        for _, fits in fitted
+    )
 
     def total(family, z):  # finite where a lobe fails (Brent's parabola takes differences)
         sum_ = 0.0
@@ -355,7 +384,7 @@ def lobe_family(lobes, sensor):
         )
         grid = (totals[(family, DAMPINGS[k])], DAMPINGS[k])
         best[family] = (refined.fun, round(float(refined.x), 4)) if refined.fun < grid[0] else grid
-        if totals[(family, 0.0)] - best[family][0] < UNDAMPED_CHI_SQUARED:
+        if not damping_resolved(totals[(family, 0.0)] - best[family][0], samples):
             best[family] = (totals[(family, 0.0)], 0.0)  # damping not resolved: none
     family = min(best, key=lambda f: best[f][0])
     return family, best[family][1]

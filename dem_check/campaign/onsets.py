@@ -27,6 +27,7 @@ from dem_check.campaign.local import record_noise
 __all__ = [
     "CONFIRM_SIGMAS",
     "FAMILY_IMPACTS",
+    "FAMILY_NOISE_MODEL",
     "LOBE_LEVEL",
     "LOBE_SPAN",
     "NOISE_MODEL",
@@ -70,6 +71,17 @@ bound under the coloured noise. Measured on ``bench_onsets.py``'s records (1/f n
 large as the white noise) whitening changed the largest errors by -15 % to +9 %, within
 their spread between records (docs/campaign.md, "Onsets"): white is kept, cheaper."""
 
+FAMILY_NOISE_MODEL = "ar"
+"""The noise model the contact family and damping are read under (whatever
+:data:`NOISE_MODEL` the onsets are then fitted with): ``"ar"``, each impact's baseline
+window's autoregressive model. A damping is kept by its chi-squared gain
+(:func:`contactlab.inverse.lobe_onset.damping_resolved`), a likelihood argument that
+holds where the residual is white: under white-noise weights the 1/f noise and the
+plate's crosstalk ringing are not, and two undamped Hertz records under 2 % crosstalk
+gained 7.5 and 12.1 with a damping of 0.019 and 0.024 (every onset 6-14 samples late);
+whitened, 2.3 and 3.7 (docs/campaign.md, "Accuracy on realistic records with a Hertz
+contact")."""
+
 SMOOTHING_REACH = 4.0
 """The touch is sought up to this many standard deviations of the detector's Gaussian
 kernel after the crossing [-]: the smoothed signal of a sharp rise leads it. The
@@ -81,11 +93,12 @@ with a linear contact's force step the crossing led the touch by up to 3.3 sampl
 60-110 sigma, and a search that ended at it had the fit of the right family fail."""
 
 
-def _lobe(detection, window, sensor):
+def _lobe(detection, window, sensor, noise_model=NOISE_MODEL):
     """One impact as :func:`contactlab.inverse.lobe_onset.fit_lobe` takes it:
     ``(t, y, (latest touch, duration guess), noise, noise model)``, the latest touch the
-    crossing plus :data:`SMOOTHING_REACH` kernel sigmas, the noise model of
-    :data:`NOISE_MODEL` on the baseline window (None: white)."""
+    crossing plus :data:`SMOOTHING_REACH` kernel sigmas, the noise model
+    ``noise_model`` (a name of :data:`contactlab.inverse.noise_colour.NOISE_MODELS`) on
+    the baseline window (None: white)."""
     part = slice(window.first, window.stop)
     t = np.asarray(detection.record.t[part])
     y = np.asarray(detection.record.values[part], dtype=float)
@@ -94,12 +107,12 @@ def _lobe(detection, window, sensor):
     in_base = (t >= base[0]) & (t < base[1])
     raw = np.asarray(detection.signal.values[part])
     noise = float(np.std(raw[in_base], ddof=1))
-    noise_model = None
-    if NOISE_MODEL == "ar":
+    model = None
+    if noise_model == "ar":
         try:
-            noise_model = fit_ar_noise(raw[in_base])
+            model = fit_ar_noise(raw[in_base])
         except ParameterError:  # too few quiet samples: white noise assumed
-            noise_model = None
+            model = None
     above = np.flatnonzero((t >= window.onset) & (smooth >= LOBE_LEVEL * window.peak))
     if above.size < 2:
         raise ParameterError(f"the impact at {window.onset:.6g} s does not rise to its peak")
@@ -110,7 +123,7 @@ def _lobe(detection, window, sensor):
     run = above[: gaps[0] + 1] if gaps.size else above
     length = float(t[run[-1]] - t[run[0]]) / LOBE_SPAN
     latest = window.onset + SMOOTHING_REACH * detection.floor.kernel
-    return t, y, (latest, length), noise, noise_model
+    return t, y, (latest, length), noise, model
 
 
 def record_onsets(detection, windows, sensor, noise=None, family=None):
@@ -163,7 +176,8 @@ def record_onsets(detection, windows, sensor, noise=None, family=None):
         if family is not None:
             (family, damping), strongest = family, []
         else:
-            family, damping = lobe_family([lobes[k] for k in strongest], sensor)
+            coloured = [_lobe(detection, windows[k], sensor, FAMILY_NOISE_MODEL) for k in strongest]
+            family, damping = lobe_family(coloured, sensor)
     except ParameterError as error:  # no lobe could be fitted: every impact keeps its crossing
         note = f"onset: the 5-sigma crossing (no lobe of the record could be fitted: {error})"
         count = len(windows)
