@@ -380,6 +380,7 @@ def levels_baseline(levels, exclude=None, head=0):
     Returns
     -------
     RunningBaseline
+        The arrays :func:`running_baseline` gives on the same samples, to the last bit.
 
     Raises
     ------
