@@ -267,22 +267,21 @@ def first_touches(detection, sensor, statuses):
             "samples in the record to estimate its 1/f noise)"
         )
         notes = [note or white for note in notes]
-    impacts, unconfirmed = list(detection.impacts), []
+    impacts, unconfirmed = list(detection.impacts), {}  # index: its "no contact" row
     rows = zip(chosen, onsets, notes, uncertainties, no_contact, strict=True)
-    for k, onset, note, spread, none in rows:
+    for k, onset, note, spread, no_lobe in rows:
         reason = "; ".join(r for r in (impacts[k].reason, note) if r)
         impacts[k] = dataclasses.replace(
             impacts[k], onset=onset, reason=reason, onset_uncertainty=spread
         )
-        if none and impacts[k].significance < CONFIRM_SIGMAS:
+        if no_lobe and impacts[k].significance < CONFIRM_SIGMAS:
             why = (
                 f"not an impact: {impacts[k].significance:.3g} sigma, under "
                 f"{CONFIRM_SIGMAS:g}, and no contact lobe fits it ({reason})"
             )
-            unconfirmed.append((k, dataclasses.replace(impacts[k], status=NO_CONTACT, reason=why)))
-    dropped = {k for k, _ in unconfirmed}
+            unconfirmed[k] = dataclasses.replace(impacts[k], status=NO_CONTACT, reason=why)
     return {
-        "impacts": [w for k, w in enumerate(impacts) if k not in dropped],
-        "unconfirmed": [w for _, w in unconfirmed],
+        "impacts": [w for k, w in enumerate(impacts) if k not in unconfirmed],
+        "unconfirmed": list(unconfirmed.values()),
         "contact_family": None if family is None else (family, damping),
     }
