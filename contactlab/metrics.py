@@ -94,7 +94,7 @@ def first_lobe(t, y, threshold=0.0, hysteresis=0.0, least_peak=0.0):
         "least_peak", least_peak, low=0.0, low_open=False, high=1.0, high_open=True
     )
     above = y > threshold
-    floor = least_peak * float(np.max(y))
+    floor = least_peak * float(np.max(y)) if least_peak else None  # None: every lobe
     i = 0
     while above[i:].any():
         i_up = i + int(np.argmax(above[i:]))
@@ -103,7 +103,7 @@ def first_lobe(t, y, threshold=0.0, hysteresis=0.0, least_peak=0.0):
         if not dropped.any():
             return start, np.nan
         i_drop = i_up + int(np.argmax(dropped))
-        if np.max(y[i_up:i_drop]) >= floor:
+        if floor is None or np.max(y[i_up:i_drop]) >= floor:
             falls = np.flatnonzero(above[i_up:i_drop] & ~above[i_up + 1 : i_drop + 1])
             i_down = i_up + 1 + int(falls[-1])
             return start, _crossing_time(t, y, i_down, threshold)
