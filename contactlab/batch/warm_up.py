@@ -34,6 +34,7 @@ COMPILED_MODULES = (
     "contactlab.kernels.oblique_kernel",
     "contactlab.kernels.gauss",
     "contactlab.kernels.held_force",
+    "contactlab.kernels.lobe_cost",
     "contactlab.kernels.oblique_sample",
     "contactlab.batch.oblique_kernel",
 )
@@ -94,6 +95,7 @@ def warm_up():
     from contactlab.batch.oblique import oblique_impacts
     from contactlab.bodies import Grain, Sensor
     from contactlab.kernels.held_force import held_signal, sampled_signal
+    from contactlab.kernels.lobe_cost import fitted_rss, scanned_rss, white_signal
     from contactlab.laws import HertzDamped, Mindlin
     from contactlab.solver import simulate_impact, simulate_oblique
 
@@ -120,5 +122,10 @@ def warm_up():
     )
     shape = np.linspace(0.0, 1.0, 5)  # a triangle through a one-pole filter
     times, values = held_signal(1e-6, 10, 5e-6, shape, 1.0 - np.abs(2.0 * shape - 1.0), *_ONE_POLE)
-    sampled_signal(np.arange(4) * 2e-6, 1e-6, times, values)
+    window = np.arange(4) * 2e-6
+    sampled_signal(window, 1e-6, times, values)
+    ar, basis = np.array([0.5]), np.linalg.qr(np.column_stack([np.ones(3), np.arange(3.0)]))[0]
+    fitted = (np.ascontiguousarray(basis), np.zeros(3), 1.0)  # a lobe fit's line and record
+    scanned_rss(window, window, times, white_signal(values, ar, 2), 1, *fitted)
+    fitted_rss(1e-6, 5e-6, window, 1e-6, 10, shape, shape, *_ONE_POLE, ar, 2, *fitted)
     return time.perf_counter() - start

@@ -19,6 +19,7 @@ from scipy import integrate, linalg, signal
 
 from contactlab.errors import ParameterError
 from contactlab.kernels.held_force import held_signal, sampled_signal
+from contactlab.kernels.lobe_cost import fitted_rss, scanned_rss, white_signal
 
 __all__ = ["FAMILIES", "FINE_PERIODS", "SHAPE_POINTS", "LobeModel", "force_shape"]
 
@@ -132,6 +133,9 @@ class LobeModel:
         self.basis = np.linalg.qr(self.line_w)[0]
         self.y_off = self.y_w - self.basis @ (self.basis.T @ self.y_w)
         self.y_rss = float(self.y_off @ self.y_off)
+        self._fitted = (np.ascontiguousarray(self.basis), self.y_off, self.y_rss)
+        grid = (self.dt / self.fine, self.fine * (t.size + 2))  # as unit() builds it
+        self._problem = (t, *grid, self.u, self.h, *self.filter, self.ar, self.fine, *self._fitted)
 
     def unit(self, tau, shape=None):
         """The unit-peak signal against the time since the force's start: time [s] and
@@ -148,10 +152,7 @@ class LobeModel:
         by ``t0``, so that the whitened column at any onset is this one sampled (its
         first ``p`` samples, which the filter needs before the window, dropped)."""
         s, r = self.unit(tau)
-        white = r.copy()
-        for k, a in enumerate(self.ar, start=1):  # r is zero before the force's start
-            white[k * self.fine :] -= a * r[: r.size - k * self.fine]
-        return s, white
+        return s, white_signal(r, self.ar, self.fine)
 
     def response(self, t0, tau, unit=None):
         """The unit-peak signal on the window's samples [-] (``unit``: :meth:`unit` of
@@ -178,6 +179,20 @@ class LobeModel:
             return amplitude, rss
         line = np.linalg.lstsq(self.line_w, self.y_w - amplitude * r, rcond=None)[0]
         return np.array([*line, amplitude]), rss
+
+    def rss(self, t0, tau):
+        """The residual sum of squares of :meth:`solve` [N**2] in one compiled call
+        (:func:`contactlab.kernels.lobe_cost.fitted_rss`): the fits' objective.
+        ``inf`` where ``tau`` is not positive or no force lies inside the window."""
+        if not tau > 0.0:
+            return math.inf
+        return fitted_rss(float(t0), float(tau), *self._problem)[1]
+
+    def scan(self, onsets, tau):
+        """The residual sum of squares at each of ``onsets`` [s] for one duration
+        ``tau`` [s] > 0 [N**2] (:func:`contactlab.kernels.lobe_cost.scanned_rss`)."""
+        s, r = self.white_unit(tau)
+        return scanned_rss(self.t, np.asarray(onsets, float), s, r, self.ar.size, *self._fitted)
 
     def _jacobian(self, t0, tau, damping_free):
         """Derivatives of the model at the fit (unwhitened): ``t0`` per sample, ``tau``

@@ -156,11 +156,10 @@ def _scan(model, lo, hi, durations, also=()):
     best = (math.inf, lo, durations[0])
     onsets = np.append(np.arange(lo, hi, SCAN_PERIODS * model.period), also)
     for tau in durations:
-        unit = model.white_unit(tau)
-        for t0 in onsets:
-            rss = model.solve(t0, tau, unit, coefficients=False)[1]
-            if rss < best[0]:
-                best = (rss, t0, tau)
+        rss = model.scan(onsets, tau)
+        k = int(np.argmin(rss))  # the first of equal residuals, as a loop keeps it
+        if rss[k] < best[0]:
+            best = (float(rss[k]), float(onsets[k]), tau)
     return best[1], best[2]
 
 
@@ -251,7 +250,7 @@ def fit_lobe(
     model = LobeModel(t[inside], y[inside], sensor, family, damping, noise_model)
 
     def cost(x):
-        return model.solve(x[0], x[1], coefficients=False)[1]
+        return model.rss(x[0], x[1])
 
     dt = model.dt
     if start is None:
