@@ -153,12 +153,56 @@ def refine_unheld(windows, poles, damping=(MIN_DAMPING, 0.06)):
     return poles
 
 
+PAD_RATIO = 1.25
+"""Windows are stacked with others at most this many times their length [-] (the zero
+rows a stack pads them with cost work; the stacks' count costs numpy calls)."""
+
+
+def _stack(windows):
+    """``(tau, y, inside)`` of windows padded with zero rows to the longest: times [s]
+    and values, ``(windows, samples)``, and which entries are samples."""
+    longest = max(y.size for _, y in windows)
+    tau, y = np.zeros((len(windows), longest)), np.zeros((len(windows), longest))
+    inside = np.zeros((len(windows), longest), dtype=bool)
+    for k, (times, values) in enumerate(windows):
+        tau[k, : values.size], y[k, : values.size], inside[k, : values.size] = times, values, True
+    return tau, y, inside
+
+
+def _coefficients(q, r, y):
+    """``numpy.linalg.lstsq(r, q' y)`` of each stacked window: a triangular solve where
+    every window's ``r`` has a diagonal above ``eps * columns`` of its largest (full
+    rank), lstsq one window after the other otherwise."""
+    qty = np.einsum("knm,kn->km", q, y)
+    diagonal = np.abs(np.diagonal(r, axis1=1, axis2=2))
+    if np.all(diagonal > np.finfo(float).eps * r.shape[-1] * diagonal.max(axis=1, keepdims=True)):
+        return np.linalg.solve(r, qty[..., None])[..., 0]
+    return np.stack([np.linalg.lstsq(rk, qk, rcond=None)[0] for rk, qk in zip(r, qty, strict=True)])
+
+
 class _Projection:
     """The projected residual of :func:`refine_poles` and its Jacobian at ``x`` (damping
-    ratio and frequency over its start for each pole), computed once per ``x``."""
+    ratio and frequency over its start for each pole), computed once per ``x``.
+
+    Windows of similar lengths are stacked (:data:`PAD_RATIO`), each padded with zero
+    rows to the longest of its stack: a zero row of the model and the data changes
+    neither a window's QR factor nor its projection, and its residual and Jacobian rows
+    are dropped. One batched QR and product then serve a stack: a record's windows are
+    40 and more, of 30-150 samples each, and a loop over them spent most of its time in
+    numpy's call overheads (``benchmarks/bench_joint_poles.py``). The rows come stack
+    after stack, not window after window: least squares does not depend on their order.
+    """
 
     def __init__(self, windows, scale):
-        self.windows, self.scale, self.x, self.parts = windows, scale, None, None
+        self.scale, self.x, self.parts = scale, None, None
+        groups = []
+        for k in sorted(range(len(windows)), key=lambda k: windows[k][1].size):
+            size = windows[k][1].size
+            if groups and size <= PAD_RATIO * windows[groups[-1][0]][1].size:
+                groups[-1].append(k)
+            else:
+                groups.append([k])
+        self.stacks = [_stack([windows[k] for k in group]) for group in groups]
 
     def poles(self, x):
         zeta, b = x[0::2], x[1::2] * self.scale
@@ -174,22 +218,24 @@ class _Projection:
         # d sigma / d zeta, d sigma / d ratio, d b / d ratio
         dsigma = np.stack([-b / root**3, -self.scale * zeta / root], axis=1)
         residuals, jacobians = [], []
-        for tau, y in self.windows:
-            decay = np.exp(np.outer(tau, sigma))
-            cos, sin = decay * np.cos(np.outer(tau, b)), decay * np.sin(np.outer(tau, b))
-            design = np.column_stack([np.ones(tau.size), tau, cos, sin])
+        for times, y, inside in self.stacks:
+            tau, rows = times[:, :, None], inside[:, :, None]
+            decay = np.where(rows, np.exp(tau * sigma), 0.0)  # zero on the padding rows
+            cos, sin = decay * np.cos(tau * b), decay * np.sin(tau * b)
+            design = np.concatenate([rows.astype(float), tau, cos, sin], axis=2)
             q, r = np.linalg.qr(design)
-            coefficients = np.linalg.lstsq(r, q.T @ y, rcond=None)[0]
-            residual = y - design @ coefficients
-            c, d = coefficients[2 : 2 + b.size], coefficients[2 + b.size :]
+            coefficients = _coefficients(q, r, y)
+            residual = y - np.einsum("knm,km->kn", design, coefficients)
+            c, d = coefficients[:, None, 2 : 2 + b.size], coefficients[:, None, 2 + b.size :]
             model = cos * c + sin * d  # each pole's part of the model, one column each
             turned = cos * d - sin * c  # its derivative along b over tau
-            derivative = np.empty((tau.size, x.size))
-            derivative[:, 0::2] = tau[:, None] * model * dsigma[:, 0]
-            derivative[:, 1::2] = tau[:, None] * (model * dsigma[:, 1] + turned * self.scale)
+            derivative = np.empty((*times.shape, x.size))
+            derivative[..., 0::2] = tau * model * dsigma[:, 0]
+            derivative[..., 1::2] = tau * (model * dsigma[:, 1] + turned * self.scale)
             # Kaufman: the residual's Jacobian less the term of the amplitudes' change
-            jacobians.append(-(derivative - q @ (q.T @ derivative)))
-            residuals.append(residual)
+            jacobian = -(derivative - q @ (np.swapaxes(q, 1, 2) @ derivative))
+            residuals.append(residual[inside])
+            jacobians.append(jacobian[inside])
         self.x, self.parts = x.copy(), (np.concatenate(residuals), np.concatenate(jacobians))
 
     def residual(self, x):

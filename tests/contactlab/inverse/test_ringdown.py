@@ -5,11 +5,14 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from projection_reference import LoopProjection
 
 import contactlab as cl
 from contactlab.errors import ParameterError
 from contactlab.inverse.noise_colour import ringing_residual
-from contactlab.inverse.ringdown import free_ringing_residual, refine_poles
+from contactlab.inverse.ringdown import _Projection, free_ringing_residual, refine_poles
 
 SENSOR = cl.Sensor.from_resonance(40e3, 0.01, damping_ratio=0.02)
 
@@ -97,3 +100,54 @@ def test_free_ringing_residual_takes_out_the_ringing_and_the_polynomial(degree):
     if degree == 1:  # the noise floor of a record that starts at its pulse is the same
         same = ringing_residual(t, ringing + polynomial + slow, (t[0], t[-1]), SENSOR)
         np.testing.assert_allclose(same, rest, atol=1e-12)  # one function: rounding only
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    lengths=st.lists(st.integers(8, 200), min_size=1, max_size=12),
+    frequencies=st.lists(st.floats(300.0, 5e3), min_size=1, max_size=4),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_stacked_windows_give_the_loops_projection(lengths, frequencies, seed):
+    """The stacked, padded windows (``ringdown._Projection``) against the loop over the
+    windows it replaced (``tests/support/projection_reference.py``): the same residual
+    sum of squares and normal equations (rows come in another order, which least
+    squares does not see), over window counts, lengths and poles."""
+    rng = np.random.default_rng(seed)
+    rate = 20e3
+    windows = []
+    for size in lengths:  # refine_poles uses windows of more samples than columns
+        tau = np.arange(size + 2 + 2 * len(frequencies)) / rate
+        y = rng.normal(size=tau.size) + np.cos(2 * np.pi * frequencies[0] * tau)
+        windows.append((tau - tau.mean(), y))
+    scale = 2 * np.pi * np.asarray(frequencies)
+    x = np.ravel([(rng.uniform(1e-4, 0.06), rng.uniform(0.8, 1.25)) for _ in frequencies])
+    stacked, loop = _Projection(windows, scale), LoopProjection(windows, scale)
+    r, j = stacked.residual(x), stacked.jacobian(x)
+    r0, j0 = loop.residual(x), loop.jacobian(x)
+    assert r.shape == r0.shape and j.shape == j0.shape
+    # QR and sums taken on other shapes: rounding of the data's scale (1e-16 a term,
+    # 2 400 terms at most, a margin of 40)
+    scale_r = float(r0 @ r0) + 1.0
+    assert abs(float(r @ r) - float(r0 @ r0)) <= 1e-10 * scale_r
+    normal = np.abs(j0).T @ np.abs(j0) + 1.0
+    assert np.all(np.abs(j.T @ j - j0.T @ j0) <= 1e-9 * normal)
+    gradient = np.abs(j0).T @ np.abs(r0) + 1.0
+    assert np.all(np.abs(j.T @ r - j0.T @ r0) <= 1e-9 * gradient)
+
+
+def test_stacked_windows_with_a_repeated_pole_solve_as_lstsq_does():
+    """Two equal poles make every window's design rank-deficient: the triangular solve
+    is skipped and each window's amplitudes are numpy.linalg.lstsq's (the minimum-norm
+    ones), as in the loop."""
+    rng = np.random.default_rng(3)
+    windows = []
+    for size in (40, 44, 150):
+        tau = np.arange(size) / 20e3
+        windows.append((tau - tau.mean(), rng.normal(size=size)))
+    scale = 2 * np.pi * np.array([1e3, 1e3])
+    x = np.array([0.01, 1.0, 0.01, 1.0])
+    stacked, loop = _Projection(windows, scale), LoopProjection(windows, scale)
+    r, r0 = stacked.residual(x), loop.residual(x)
+    # the same projection, another order of operations and rows: rounding of |y|**2
+    assert abs(float(r @ r) - float(r0 @ r0)) <= 1e-10 * float(r0 @ r0)
