@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 from plate_windows import SENSOR, damped
 from scipy import linalg, signal
 
-from contactlab.inverse.crosstalk import _toeplitz_times, fit_crosstalk
+from contactlab.inverse.crosstalk import _toeplitz_quadratic, fit_crosstalk
 from contactlab.inverse.local_baseline import local_baseline
 from contactlab.inverse.noise_prediction import ColouredNoise
 from dem_check.campaign.structure import removed_from_impulse
@@ -162,13 +162,17 @@ def test_the_removal_rule_compares_the_squared_share_with_twice_its_variance(sha
         assert removed_from_impulse(-k * share, k * error) == removed
 
 
-def test_the_fast_toeplitz_product_is_scipy_s():
-    # against scipy.linalg.matmul_toeplitz (FFT at 2 n - 1) at a slow and a fast length
+def test_the_fast_toeplitz_quadratic_form_is_scipy_s():
+    # against x' scipy.linalg.matmul_toeplitz(lags, x) (FFT at 2 n - 1, inverse FFTs) at
+    # a slow, an odd and a fast length, and the dense Toeplitz product at a small one
     rng = np.random.default_rng(2)
-    for n in (5003, 4096):
+    for n in (5003, 4097, 4096):
         lags = 0.9 ** np.arange(n) + rng.normal(0.0, 1e-3, n)
         x = rng.normal(size=(n, 3))
-        expected = linalg.matmul_toeplitz(lags, x)
-        # two FFT products of the same data: equal to rounding (1e-10 of the largest)
+        expected = x.T @ linalg.matmul_toeplitz(lags, x)
+        # FFT sums of the same data in another order: rounding (1e-10 of the largest)
         scale = float(np.abs(expected).max())
-        assert np.allclose(_toeplitz_times(lags, x), expected, rtol=0.0, atol=1e-10 * scale)
+        assert np.allclose(_toeplitz_quadratic(lags, x), expected, rtol=0.0, atol=1e-10 * scale)
+    lags, x = 0.5 ** np.arange(7), rng.normal(size=(7, 2))
+    dense = x.T @ linalg.toeplitz(lags) @ x
+    assert np.allclose(_toeplitz_quadratic(lags, x), dense, rtol=1e-12, atol=0.0)
