@@ -36,6 +36,7 @@ and the ringing, larger than the step, counts for both levels at random. So:
 """
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 from scipy.ndimage import label, maximum_filter1d, uniform_filter1d
 
 from contactlab.inverse.local_baseline import _ringing
@@ -120,14 +121,19 @@ def rise(x, start, band, period):
     def within(values):
         return values.min() >= band[0] - reach and values.max() <= band[1] + reach
 
-    i = start + quiet
-    while i < x.size:
-        if not within(x[i : i + 1]) or abs(x[i] - np.median(x[i - quiet : i])) > 2.0 * reach:
+    first = start + quiet
+    if first < x.size:  # every sample's test at once: the medians of the quarter periods
+        before = np.median(sliding_window_view(x[start : x.size - 1], quiet), axis=1)
+        tail = x[first:]
+        leaves = ~((tail >= band[0] - reach) & (tail <= band[1] + reach))  # NaN leaves
+        leaves |= np.abs(tail - before) > 2.0 * reach
+        for i in first + np.flatnonzero(leaves):
+            if i < first:  # inside a step's settled stretch, passed over
+                continue
             ahead = x[i + 1 : i + 1 + quiet]
             if ahead.size < quiet or np.ptp(ahead) > 2.0 * reach or not within(ahead):
                 return max(start, i - quiet // 2)
-            i += quiet  # a step: the level it settles at is the one to follow
-        i += 1
+            first = i + quiet + 1  # a step: the level it settles at is the one to follow
     return max(start, x.size - quiet // 2)
 
 

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from rise_reference import loop_rise
 
 from contactlab.inverse.local_baseline import _ringing
 from dem_check.campaign.step_ringing import (
@@ -203,3 +204,31 @@ def test_a_plate_modes_slow_ringing_is_no_step_and_a_step_beside_it_is():
     # medians of 16 period means, each of 25 samples: 0.03 / sqrt(400) = 1.5 mN
     # standard error per median, 2.1 mN on the difference; 5 % is 3.6 of those
     assert step.height == pytest.approx(0.15, rel=0.05)
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    size=st.integers(4, 400),
+    period=st.integers(2, 60),
+    seed=st.integers(0, 2**32 - 1),
+    steps=st.lists(st.tuples(st.floats(0.0, 1.0), st.floats(-3.0, 3.0)), max_size=4),
+    lobe=st.floats(0.0, 1.0),
+    start=st.floats(0.0, 1.0),
+    band=st.tuples(st.floats(-1.0, 1.0), st.floats(0.0, 2.0)),
+)
+def test_the_rise_taken_at_once_is_the_loops(size, period, seed, steps, lobe, start, band):
+    """``step_ringing.rise`` (every sample's test at once) against the loop over the
+    samples it replaced (``tests/support/rise_reference.py``): the same index on noise
+    with level steps, a lobe and bands anywhere, NaN samples included."""
+    rng = np.random.default_rng(seed)
+    x = rng.normal(0.0, 0.1, size)
+    for where, height in steps:
+        x[int(where * size) :] += height
+    x += 5.0 * np.exp(-(((np.arange(size) - lobe * size) / max(period, 2)) ** 2))
+    if seed % 7 == 0:
+        x[rng.integers(0, size)] = np.nan
+    low, width = band
+    first = int(start * (size - 1))
+    assert rise(x, first, (low, low + width), period) == loop_rise(
+        x, first, (low, low + width), period
+    )
