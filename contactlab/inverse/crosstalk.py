@@ -43,12 +43,13 @@ Process. 38, 814-824. DOI 10.1109/29.56027
 import math
 
 import numpy as np
-from scipy import fft, signal
+from scipy import signal
 
 from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.inverse.crosstalk_result import Crosstalk, StructureMode
 from contactlab.inverse.identify import matrix_pencil
+from contactlab.inverse.least_squares_covariance import coloured_covariance, linear_least_squares
 from contactlab.inverse.local_baseline import _ringing
 from contactlab.inverse.ringdown import MIN_DAMPING, free_ringing_residual, refine_unheld
 from contactlab.signals import lowpass
@@ -62,7 +63,6 @@ __all__ = [
     "StructureMode",
     "fit_crosstalk",
     "joint_structure_modes",
-    "linear_least_squares",
     "structure_band",
     "structure_modes",
 ]
@@ -132,7 +132,8 @@ def structure_modes(t, y, sensor, *, max_modes=MAX_MODES, noise=None, refine=Fal
         ``(t [s], y)`` of a stretch of the same record without contact or ringing (a
         pre-trigger), at the window's interval: each candidate's standard error is then
         also computed under the noise this stretch shows in the band (its
-        autocovariance, the Fourier transform of its spectrum; :func:`_coloured`), and
+        autocovariance, the Fourier transform of its spectrum;
+        :func:`~contactlab.inverse.least_squares_covariance.coloured_covariance`), and
         the larger of that and the white-noise one is used. 1/f noise puts more power
         near a low-frequency pole than the window's residual shows, and the pencil can
         fit it as a mode.
@@ -326,35 +327,6 @@ def _autocovariance(noise, sensor, lags):
     return np.concatenate([full, np.zeros(max(lags - full.size, 0))])[:lags]
 
 
-def _coloured(design, autocovariance):
-    """Covariance of least-squares coefficients under stationary noise of the given
-    autocovariance: ``(X'X)^-1 X' R X (X'X)^-1`` (``R`` Toeplitz)."""
-    inverse = np.linalg.pinv(design.T @ design)
-    return inverse @ _toeplitz_quadratic(autocovariance, design) @ inverse
-
-
-def _toeplitz_quadratic(autocovariance, x):
-    """``x' R x`` for the symmetric Toeplitz ``R`` of ``autocovariance`` (its first
-    ``len(x)`` lags): ``R`` embedded in a circulant of a fast FFT length, whose product
-    with the zero-padded columns, taken against them, is Parseval's sum over their
-    spectra (forward FFTs only). ``scipy.linalg.matmul_toeplitz`` takes its FFT at
-    ``2 n - 1``, for the campaign's stretches of 5-20 thousand samples often a slow
-    length (80 ms a stretch at 5 MHz, a sixth of the campaign's analysis), and returns
-    ``R x``, whose product with ``x'`` needs inverse FFTs too."""
-    n = x.shape[0]
-    size = fft.next_fast_len(2 * n - 1, real=True)
-    lags = np.asarray(autocovariance, dtype=float)[:n]
-    column = np.concatenate([lags, np.zeros(size - 2 * n + 1), lags[:0:-1]])
-    spectrum = fft.rfft(column).real  # a symmetric sequence: a real spectrum
-    columns = fft.rfft(x, size, axis=0)
-    weights = np.full(spectrum.size, 2.0)  # the half spectrum's bins stand for two
-    weights[0] = 1.0
-    if size % 2 == 0:
-        weights[-1] = 1.0  # Nyquist
-    product = (columns.conj().T * (weights * spectrum)) @ columns
-    return product.real / size
-
-
 def _significant(tau, y, candidates, degree, autocovariance=None):
     """Whether each candidate's amplitude, fitted with the others and a polynomial of
     ``degree`` on the decimated window, is :data:`SIGNIFICANCE` standard errors above
@@ -368,36 +340,13 @@ def _significant(tau, y, candidates, degree, autocovariance=None):
     design = np.concatenate(columns, axis=1)
     coefficients, covariance = linear_least_squares(design, y)
     if autocovariance is not None:
-        coloured = _coloured(design, autocovariance)
+        coloured = coloured_covariance(design, autocovariance)
         return [
             _pair(coefficients, covariance, degree + 1 + 2 * k)[1]
             and _pair(coefficients, coloured, degree + 1 + 2 * k)[1]
             for k in range(len(candidates))
         ]
     return [_pair(coefficients, covariance, degree + 1 + 2 * k)[1] for k in range(len(candidates))]
-
-
-def linear_least_squares(design, y):
-    """Least-squares coefficients of ``design @ c = y`` and their covariance under white
-    noise (the residual's variance over the degrees of freedom).
-
-    Parameters
-    ----------
-    design : numpy.ndarray
-        ``(samples, columns)`` design matrix.
-    y : numpy.ndarray
-        ``(samples,)`` values fitted (any unit; the coefficients carry it over the
-        columns').
-
-    Returns
-    -------
-    tuple of numpy.ndarray
-        ``(coefficients, covariance)``: ``(columns,)`` and ``(columns, columns)``.
-    """
-    coefficients, *_ = np.linalg.lstsq(design, y, rcond=None)
-    residual = y - design @ coefficients
-    dof = max(design.shape[0] - design.shape[1], 1)
-    return coefficients, np.linalg.pinv(design.T @ design) * float(residual @ residual) / dof
 
 
 def _pair(coefficients, covariance, index):
@@ -496,7 +445,7 @@ def fit_crosstalk(
         if all(significant) or not drop:
             if autocovariance is not None:
                 rows = np.where(fitted[:, None], design, 0.0)
-                covariance = _coloured(rows, np.asarray(autocovariance, float)[: t.size])
+                covariance = coloured_covariance(rows, np.asarray(autocovariance, float)[: t.size])
             own = slice(base.shape[1], None)
             columns = design[:, own]
             values = columns @ coefficients[own]

@@ -27,7 +27,8 @@ import math
 import numpy as np
 
 from contactlab.errors import ParameterError
-from contactlab.inverse.crosstalk import SIGNIFICANCE, linear_least_squares, structure_band
+from contactlab.inverse.crosstalk import SIGNIFICANCE, structure_band
+from contactlab.inverse.least_squares_covariance import linear_least_squares
 from contactlab.validation import check_samples
 
 __all__ = ["driven_significance"]

@@ -52,6 +52,7 @@ from scipy.ndimage import maximum_filter1d, median_filter, uniform_filter1d
 from contactlab.signals import MAD_TO_SIGMA, robust_noise
 from dem_check.campaign.step_ringing import difference_sigma, read_across
 from dem_check.campaign.step_windows import placed_inside
+from dem_check.campaign.window_medians import running_nanmedian, window_medians
 
 __all__ = [
     "STEP_SIGMAS",
@@ -139,30 +140,6 @@ class OffsetStep:
         return reason
 
 
-def _window_medians(levels, size):
-    """Median of the ``size`` levels before each boundary and of those after it
-    (boundary ``j`` lies between levels ``j - 1`` and ``j``, ``j = 1 .. n - 1``),
-    fewer at the ends, and how many each holds."""
-    pad = np.full(size, np.nan)
-    windows = np.lib.stride_tricks.sliding_window_view(np.r_[pad, levels, pad], size)
-    j = np.arange(1, levels.size)
-    before, after = windows[j], windows[j + size]
-    counts = (np.sum(~np.isnan(before), axis=1), np.sum(~np.isnan(after), axis=1))
-    return np.nanmedian(before, axis=1), np.nanmedian(after, axis=1), counts
-
-
-def _running_nanmedian(values, half):
-    """Median of the finite values within ``half`` places either side of each (0 where
-    there is none): rates read on windows cut short at the record's edges, whose short
-    span inflates a step's rate, are left out as nan."""
-    pad = np.full(half, np.nan)
-    windows = np.lib.stride_tricks.sliding_window_view(np.r_[pad, values, pad], 2 * half + 1)
-    finite = np.isfinite(windows).any(axis=1)
-    out = np.zeros(values.size)
-    out[finite] = np.nanmedian(windows[finite], axis=1)
-    return out
-
-
 def _local_spread(changes, half):
     """Spread [N] of the level ``changes`` within ``half`` boundaries either side of
     each (1.4826 times their median absolute deviation from their running median)."""
@@ -218,7 +195,7 @@ def _level_changes(levels, firsts, stops):
     """Drift-corrected level change at each boundary, its significance, the drift's
     slope [N per sample] and the level just before the boundary (module steps 2-4)."""
     size = WINDOW_PERIODS
-    before, after, (n_before, n_after) = _window_medians(levels, size)
+    before, after, (n_before, n_after) = window_medians(levels, size)
     centres = 0.5 * (firsts + stops - 1).astype(float)
     mean_centre = uniform_filter1d(centres, size, mode="nearest")
     # the centres of the windows before and after boundary j (the mean of their
@@ -231,7 +208,7 @@ def _level_changes(levels, firsts, stops):
     # the median rate of change over DRIFT_WINDOWS windows either side: a step raises
     # the rate at fewer than a window of boundaries, the drift at all of them
     full = (n_before == size) & (n_after == size)
-    slope = _running_nanmedian(np.where(full, change / span, np.nan), DRIFT_WINDOWS * size)
+    slope = running_nanmedian(np.where(full, change / span, np.nan), DRIFT_WINDOWS * size)
     corrected = change - slope * span
     scale = np.sqrt((1.0 / n_before + 1.0 / n_after) * size / 2.0)
     reference = corrected[full] if full.sum() >= 4 * size else corrected

@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 from plate_windows import SENSOR, damped
 from scipy import linalg, signal
 
-from contactlab.inverse.crosstalk import _toeplitz_quadratic, fit_crosstalk
+from contactlab.inverse.crosstalk import fit_crosstalk
+from contactlab.inverse.least_squares_covariance import toeplitz_quadratic
 from contactlab.inverse.local_baseline import local_baseline
 from contactlab.inverse.noise_prediction import ColouredNoise
 from dem_check.campaign.structure import removed_from_impulse
@@ -172,7 +173,7 @@ def test_the_fast_toeplitz_quadratic_form_is_scipy_s():
         expected = x.T @ linalg.matmul_toeplitz(lags, x)
         # FFT sums of the same data in another order: rounding (1e-10 of the largest)
         scale = float(np.abs(expected).max())
-        assert np.allclose(_toeplitz_quadratic(lags, x), expected, rtol=0.0, atol=1e-10 * scale)
+        assert np.allclose(toeplitz_quadratic(lags, x), expected, rtol=0.0, atol=1e-10 * scale)
     lags, x = 0.5 ** np.arange(7), rng.normal(size=(7, 2))
     dense = x.T @ linalg.toeplitz(lags) @ x
-    assert np.allclose(_toeplitz_quadratic(lags, x), dense, rtol=1e-12, atol=0.0)
+    assert np.allclose(toeplitz_quadratic(lags, x), dense, rtol=1e-12, atol=0.0)

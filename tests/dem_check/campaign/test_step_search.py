@@ -4,6 +4,8 @@ squares and against the truth of an exact model, and runs of the first pass that
 steps (:mod:`dem_check.campaign.step_runs`) on white noise.
 """
 
+import warnings
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -19,6 +21,7 @@ from dem_check.campaign.step_ringing import (
 )
 from dem_check.campaign.step_runs import run_steps
 from dem_check.campaign.steps import find_steps, remove_steps, split
+from dem_check.campaign.window_medians import nan_medians
 
 DT = 0.5e-6
 """Sampling interval [s] (2 MHz)."""
@@ -232,3 +235,24 @@ def test_the_rise_taken_at_once_is_the_loops(size, period, seed, steps, lobe, st
     assert rise(x, first, (low, low + width), period) == loop_rise(
         x, first, (low, low + width), period
     )
+
+
+@settings(max_examples=80, deadline=None)
+@given(
+    rows=st.integers(1, 60),
+    width=st.integers(1, 40),
+    nan_share=st.floats(0.0, 1.0),
+    scale=st.floats(-3.0, 3.0),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_row_medians_are_nanmedians_to_the_last_bit(rows, width, nan_share, scale, seed):
+    """``window_medians.nan_medians`` (one sort of the rows) against
+    ``numpy.nanmedian(..., axis=1)``, which it replaced: rows of any width, NaN anywhere,
+    whole rows of NaN (nan, as numpy gives with its warning)."""
+    rng = np.random.default_rng(seed)
+    values = rng.normal(size=(rows, width)) * 10.0**scale
+    values[rng.random(values.shape) < nan_share] = np.nan
+    with warnings.catch_warnings():  # numpy warns of an all-NaN row; nan_medians does not
+        warnings.simplefilter("ignore", RuntimeWarning)
+        expected = np.nanmedian(values, axis=1)
+    assert np.array_equal(nan_medians(values), expected, equal_nan=True)
