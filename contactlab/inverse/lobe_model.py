@@ -19,7 +19,7 @@ from scipy import integrate, linalg, signal
 
 from contactlab.errors import ParameterError
 from contactlab.kernels.held_force import held_signal, sampled_signal
-from contactlab.kernels.lobe_cost import fitted_rss, scanned_rss, white_signal
+from contactlab.kernels.lobe_cost import fitted_rss, scanned_rss, simplex_fit, white_signal
 
 __all__ = ["FAMILIES", "FINE_PERIODS", "SHAPE_POINTS", "LobeModel", "force_shape"]
 
@@ -187,6 +187,16 @@ class LobeModel:
         if not tau > 0.0:
             return math.inf
         return fitted_rss(float(t0), float(tau), *self._problem)[1]
+
+    def fit(self, simplex, xatol, fatol):
+        """The onset and duration of least residual, Nelder-Mead from ``simplex``
+        (``(3, 2)``: ``(t0 [s], tau [s])`` vertices) to the vertices' spread ``xatol``
+        [s] and the residuals' ``fatol`` [N**2]: scipy's ``minimize(method="Nelder-Mead")``
+        of :meth:`rss` compiled (:func:`contactlab.kernels.lobe_cost.simplex_fit`, equal to
+        it to the last bit). Returns ``(t0, tau)`` [s]."""
+        simplex = np.asarray(simplex, dtype=float)
+        best, _ = simplex_fit(simplex, float(xatol), float(fatol), 200 * 2, self._problem)
+        return float(best[0]), float(best[1])
 
     def scan(self, onsets, tau):
         """The residual sum of squares at each of ``onsets`` [s] for one duration

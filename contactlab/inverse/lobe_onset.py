@@ -249,9 +249,6 @@ def fit_lobe(
         )
     model = LobeModel(t[inside], y[inside], sensor, family, damping, noise_model)
 
-    def cost(x):
-        return model.rss(x[0], x[1])
-
     dt = model.dt
     if start is None:
         t0, tau = _scan(model, lo, rough, length * np.asarray(SCAN_DURATIONS))
@@ -262,13 +259,7 @@ def fit_lobe(
         t0, tau = _scan(model, lo, rough, durations, also=[float(start[0])])
         step, widen = (dt if t0 == start[0] else SCAN_PERIODS * period), START_DURATION
     simplex = [[t0, tau], [t0 + step, tau], [t0, tau * (1.0 + widen)]]
-    best = optimize.minimize(
-        cost,
-        simplex[0],
-        method="Nelder-Mead",
-        options={"initial_simplex": simplex, "xatol": 1e-3 * dt, "fatol": 1e-9},
-    )
-    t0, tau = (float(v) for v in best.x)
+    t0, tau = model.fit(simplex, xatol=1e-3 * dt, fatol=1e-9)  # scipy's Nelder-Mead
     coefficients, rss = model.solve(t0, tau)
     sigma = noise if noise_model is None or noise_model.order == 0 else noise_model.innovation
     if not (tau > 0.0 and coefficients[2] > PEAK_SIGMAS * noise):

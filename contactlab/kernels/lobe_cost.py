@@ -122,3 +122,144 @@ def fitted_rss(t0, tau, t, step, count, u, h, b, a, ar, fine, basis, y_off, y_rs
     s, r = held_signal(step, count, tau, u, h, b, a)
     white = white_signal(r, ar, fine)
     return _projected(sampled_signal(t, t0, s, white), ar.size, basis, y_off, y_rss)
+
+
+@njit(cache=True, error_model="numpy")
+def _rss_at(x0, x1, t, step, count, u, h, b, a, ar, fine, basis, y_off, y_rss):
+    """:meth:`~contactlab.inverse.lobe_model.LobeModel.rss`: ``inf`` where the duration
+    ``x1`` is not positive."""
+    if not x1 > 0.0:
+        return np.inf
+    return fitted_rss(x0, x1, t, step, count, u, h, b, a, ar, fine, basis, y_off, y_rss)[1]
+
+
+@njit(cache=True)
+def _sorted(sim, fsim):
+    """The simplex and its values sorted by value, as ``numpy.argsort`` (introsort: an
+    insertion sort on three, stable; NaN last) and ``numpy.take`` order them."""
+    order = np.arange(fsim.size)
+    for i in range(1, fsim.size):
+        k = order[i]
+        j = i - 1
+        while j >= 0 and (
+            fsim[k] < fsim[order[j]] or (fsim[order[j]] != fsim[order[j]] and fsim[k] == fsim[k])
+        ):
+            order[j + 1] = order[j]
+            j -= 1
+        order[j + 1] = k
+    return sim[order].copy(), fsim[order].copy()
+
+
+@njit(cache=True)
+def _spread(values):
+    """``numpy.max(numpy.abs(values))``, NaN if any is NaN."""
+    largest = 0.0
+    for v in values.ravel():
+        if v != v:
+            return np.nan
+        largest = max(largest, abs(v))
+    return largest
+
+
+@njit(cache=True, error_model="numpy")
+def simplex_fit(simplex, xatol, fatol, maxfun, problem):
+    """``scipy.optimize.minimize(rss, simplex[0], method="Nelder-Mead",
+    options={"initial_simplex": simplex, "xatol": xatol, "fatol": fatol})`` of the lobe
+    fit's residual (:func:`fitted_rss`) over the onset and duration, in one compiled
+    call: scipy's algorithm (reflection 1, expansion 2, contraction 0.5, shrink 0.5, its
+    stopping tests and its ``maxfun = maxiter`` of 200 per variable, its order of
+    operations and of the sorted vertices), so that its result is scipy's to the last
+    bit (``tests/contactlab/inverse/test_lobe_cost.py``).
+
+    Parameters
+    ----------
+    simplex : numpy.ndarray
+        ``(3, 2)`` starting vertices ``(t0 [s], tau [s])``.
+    xatol : float
+        Largest spread of the vertices at convergence [s].
+    fatol : float
+        Largest spread of their residuals at convergence [N**2].
+    maxfun : int
+        Most residuals evaluated (and iterations) [-].
+    problem : tuple
+        The arguments of :func:`fitted_rss` after ``(t0, tau)``.
+
+    Returns
+    -------
+    x : numpy.ndarray
+        The best vertex ``(t0, tau)``.
+    fun : float
+        Its residual sum of squares [N**2].
+    """
+    sim = simplex.copy()
+    fsim = np.full(3, np.inf)
+    calls = 0
+    for k in range(3):
+        if calls >= maxfun:
+            break
+        calls += 1
+        fsim[k] = _rss_at(sim[k, 0], sim[k, 1], *problem)
+    sim, fsim = _sorted(sim, fsim)
+    sim, fsim = _sorted(sim, fsim)
+    iterations = 1
+    while calls < maxfun and iterations < maxfun:
+        if _spread(sim[1:] - sim[0]) <= xatol and _spread(fsim[0] - fsim[1:]) <= fatol:
+            break
+        out = False  # scipy's _MaxFuncCallError: the iteration stops where it is
+        xbar = (sim[0] + sim[1]) / 2
+        worst = sim[2].copy()
+        xr = 2 * xbar - worst
+        if calls >= maxfun:
+            out = True
+        else:
+            calls += 1
+            fxr = _rss_at(xr[0], xr[1], *problem)
+            if fxr < fsim[0]:
+                xe = 3 * xbar - 2 * worst
+                if calls >= maxfun:
+                    out = True
+                else:
+                    calls += 1
+                    fxe = _rss_at(xe[0], xe[1], *problem)
+                    if fxe < fxr:
+                        sim[2], fsim[2] = xe, fxe
+                    else:
+                        sim[2], fsim[2] = xr, fxr
+            elif fxr < fsim[1]:
+                sim[2], fsim[2] = xr, fxr
+            else:
+                shrink = False
+                if fxr < fsim[2]:  # outside contraction
+                    xc = 1.5 * xbar - 0.5 * worst
+                    if calls >= maxfun:
+                        out = True
+                    else:
+                        calls += 1
+                        fxc = _rss_at(xc[0], xc[1], *problem)
+                        if fxc <= fxr:
+                            sim[2], fsim[2] = xc, fxc
+                        else:
+                            shrink = True
+                else:  # inside contraction
+                    xcc = 0.5 * xbar + 0.5 * worst
+                    if calls >= maxfun:
+                        out = True
+                    else:
+                        calls += 1
+                        fxcc = _rss_at(xcc[0], xcc[1], *problem)
+                        if fxcc < fsim[2]:
+                            sim[2], fsim[2] = xcc, fxcc
+                        else:
+                            shrink = True
+                if shrink:
+                    for j in range(1, 3):
+                        sim[j] = sim[0] + 0.5 * (sim[j] - sim[0])
+                        if calls >= maxfun:
+                            out = True
+                            break
+                        calls += 1
+                        fsim[j] = _rss_at(sim[j, 0], sim[j, 1], *problem)
+        if not out:
+            iterations += 1
+        sim, fsim = _sorted(sim, fsim)
+    return sim[0].copy(), np.min(fsim)

@@ -8,6 +8,7 @@ import math
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from scipy import optimize
 
 from contactlab import Sensor
 from contactlab.inverse.lobe_model import FAMILIES, LobeModel
@@ -76,3 +77,35 @@ def test_a_duration_not_positive_has_no_fit():
     model, t = _model("linear", 0.0, 2e6, 3, 0, 200)
     assert model.rss(t[50], 0.0) == math.inf
     assert model.rss(t[50], -1e-6) == math.inf
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    family=st.sampled_from(sorted(FAMILIES)),
+    damping=st.sampled_from([0.0, 0.1, 0.3]),
+    rate=st.sampled_from([1e6, 2e6, 5e6]),
+    order=st.integers(0, 6),
+    seed=st.integers(0, 2**32 - 1),
+    samples=st.integers(60, 500),
+    where=st.floats(0.1, 0.6),
+    tau=st.floats(20e-6, 200e-6),
+    no_contact=st.booleans(),
+)
+def test_the_compiled_simplex_is_scipys_nelder_mead(
+    family, damping, rate, order, seed, samples, where, tau, no_contact
+):
+    """``LobeModel.fit`` (Nelder-Mead compiled) against scipy.optimize.minimize's
+    Nelder-Mead of ``LobeModel.rss`` from the same simplex, as fit_lobe called it: the
+    same vertex to the last bit, a vertex without contact (an infinite residual) too."""
+    model, t = _model(family, damping, rate, order, seed, samples)
+    dt = float(t[1] - t[0])
+    t0 = t[0] + where * (t[-1] - t[0])
+    second = -tau if no_contact else tau
+    simplex = [[t0, tau], [t0 + 3.0 * dt, second], [t0, 1.05 * tau]]
+    reference = optimize.minimize(
+        lambda x: model.rss(x[0], x[1]),
+        simplex[0],
+        method="Nelder-Mead",
+        options={"initial_simplex": simplex, "xatol": 1e-3 * dt, "fatol": 1e-9},
+    )
+    assert model.fit(simplex, 1e-3 * dt, 1e-9) == (reference.x[0], reference.x[1])
