@@ -115,7 +115,7 @@ def speed_record():
     )
 
 
-def speed():
+def speed(workers=1):
     grain, sensor, _ = hard()
     record = speed_record()
     with tempfile.TemporaryDirectory() as folder:
@@ -125,12 +125,13 @@ def speed():
         read_trace(path)
         read = time.perf_counter() - started
         started, cpu = time.perf_counter(), time.process_time()
-        result = run_campaign([path], sensor, grain)
+        result = run_campaign([path], sensor, grain, workers=workers)
         total, cpu = time.perf_counter() - started, time.process_time() - cpu
         load = os.getloadavg()[0]
     print(f"load average before the run: {os.getloadavg()[0]:.1f} (1 min)")
     print(f"{len(record.trace)} samples, {len(record.truth)} true impacts (with bounces)")
     print(f"run_campaign: {total:.2f} s ({total / read:.0f} x reading the file, {read:.3f} s)")
+    print(f"workers: {workers} (processes reading the impacts)")
     print(f"run_campaign CPU time of this process: {cpu:.2f} s (wall time on a loaded machine")
     print("  is larger; run_campaign keeps BLAS to one thread itself)")
     print(f"load average after the run: {load:.1f} (1 min)")
@@ -258,6 +259,9 @@ def accuracy(
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--speed", action="store_true")
+    parser.add_argument(
+        "--workers", type=int, default=1, help="run_campaign's processes for --speed (1)"
+    )
     parser.add_argument("--accuracy", action="store_true")
     parser.add_argument("--configuration", action="append", choices=list(CONFIGURATIONS))
     parser.add_argument(
@@ -324,7 +328,7 @@ def main():
     reconstruct_module.DEFAULT_CONTACT_EDGES = args.contact_edges
     print(f"noise model {args.noise_model}, contact edges {args.contact_edges}")
     if args.speed or not args.accuracy:
-        speed()
+        speed(args.workers)
     if args.accuracy or not args.speed:
         names = args.configuration
         if args.crosstalk_only:

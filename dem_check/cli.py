@@ -120,7 +120,7 @@ def _campaign(args):
         progress=not args.no_progress,
         crosstalk=not args.no_crosstalk,
         **same_named(args, "sensitivity", "channel", "metadata"),  # reading the records
-        **same_named(args, "fit", "min_force", "min_separation"),  # analysing them
+        **same_named(args, "fit", "min_force", "min_separation", "workers"),  # analysing them
         **same_named(args, "out", "gallery"),  # the report
     )
     print(dump(result.summary()) if args.json else result)
@@ -162,6 +162,9 @@ def _add_campaign_parser(sub):
         "--min-separation", type=float, metavar="S", help="shortest time between onsets [s]"
     )
     add_crosstalk_flag(p)
+    p.add_argument(
+        "--workers", type=int, default=1, help="processes reading a record's impacts (1)"
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     add_outputs(p, _campaign, json="print the summary as JSON")
 

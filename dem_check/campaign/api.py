@@ -14,7 +14,8 @@ from contactlab.inverse import FIT_MODELS, lobe_onset
 from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise, onsets
-from dem_check.campaign.analysis import analyse_impact, window_row
+from dem_check.campaign.analysis import window_row
+from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.local import record_noise
 from dem_check.campaign.overlaps import separate_overlaps
@@ -26,6 +27,7 @@ from dem_check.campaign.statistics import (
     regressions,
 )
 from dem_check.campaign.structure import record_modes
+from dem_check.campaign.workers import analysed_impacts
 
 __all__ = ["ENVELOPE_BINS", "IMPACT_COLUMNS", "run_campaign"]
 
@@ -211,14 +213,15 @@ def _analyse_file(path, options, timings, progress):
     modes = record_modes(found, sensor, noise=levels) if options["crosstalk"] else []
     crosstalk = options["crosstalk"]
     separated = separate_overlaps(found, sensor, grain, fit, crosstalk, modes, levels)
+    read = [k for k, w in enumerate(found.impacts) if k not in separated and w.status in ANALYSED]
+    settings = (sensor, grain, fit, crosstalk, modes, levels)
+    analysed = analysed_impacts(found, read, settings, options["workers"])
     for k, window in enumerate(found.impacts):
         progress.impact(path, k, len(found.impacts))
         if k in separated:  # an overlapping impact, read apart or flagged with why not
             row, traces = separated[k]
-        elif window.status in detection.ANALYSED:
-            row, traces = analyse_impact(
-                found, window, sensor, grain, fit, crosstalk, modes, levels
-            )
+        elif k in analysed:
+            row, traces = analysed[k]
         else:
             row, traces = {**window_row(window), "significance [-]": window.significance}, None
         if traces is not None:
@@ -292,6 +295,7 @@ def run_campaign(
     min_force=None,
     min_separation=None,
     crosstalk=True,
+    workers=1,
 ):
     """Analyse every impact in a set of long records, as a laboratory does after a
     measurement day.
@@ -343,6 +347,11 @@ def run_campaign(
         record: :mod:`dem_check.campaign.structure`) before each impact is measured; the
         columns ``crosstalk [N]`` and ``crosstalk_modes`` say what was removed. On
         records without crosstalk it finds no mode (measured, ``docs/campaign.md``).
+    workers : int, default 1
+        Processes that read a record's impacts (their signal numbers, crosstalk and
+        reconstructed force), forked from this one where the platform can
+        (:mod:`dem_check.campaign.workers`); the rows are the same as with one. Detection
+        and the record's structure modes stay on this process.
 
     Returns
     -------
@@ -360,6 +369,7 @@ def run_campaign(
         if not isinstance(flag, bool):
             raise ParameterError(f"{name} must be True or False; got {flag!r}")
     options = {
+        "workers": check_count("workers", workers),
         "crosstalk": crosstalk,
         "sensor": sensor,
         "grain": grain,
