@@ -385,10 +385,11 @@ def _local_baseline(ratio, candidate, scales):
 def _onset(t, z, base, first, detected):
     """The onset [s]: the last crossing of :data:`ONSET_SIGMAS` baseline sigmas before
     the sample where the impact reached the detection threshold (interpolated), searched
-    back from it, so that slow noise or wander that crosses the level earlier in the
-    segment is not taken for the impact's start; the segment's first sample when the
-    impact is already above the level there."""
-    mean, noise, _ = signals.baseline(t, z, base, name="baseline_window")
+    back from it (slow noise or wander crossing earlier is not the impact's start); the
+    segment's first sample when the impact is already above the level there."""
+    lo, hi = np.sort(np.searchsorted(t, base))  # the window's samples and one either side:
+    near = slice(max(int(lo) - 1, 0), int(hi) + 1)  # the baseline checks those, not all
+    mean, noise, _ = signals.baseline(t[near], z[near], base, name="baseline_window")
     if noise == 0.0:
         raise ParameterError("the local baseline is exactly constant")
     level = ONSET_SIGMAS * noise
