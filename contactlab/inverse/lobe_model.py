@@ -135,7 +135,9 @@ class LobeModel:
         self.y_rss = float(self.y_off @ self.y_off)
         self._fitted = (np.ascontiguousarray(self.basis), self.y_off, self.y_rss)
         grid = (self.dt / self.fine, self.fine * (t.size + 2))  # as unit() builds it
-        self._problem = (t, *grid, self.u, self.h, *self.filter, self.ar, self.fine, *self._fitted)
+        compiled = [np.ascontiguousarray(a, dtype=float) for a in (t, self.ar)]  # one type
+        self._problem = (compiled[0], *grid, self.u, self.h, *self.filter, compiled[1], self.fine)
+        self._problem += self._fitted
 
     def unit(self, tau, shape=None):
         """The unit-peak signal against the time since the force's start: time [s] and
@@ -194,8 +196,9 @@ class LobeModel:
         [s] and the residuals' ``fatol`` [N**2]: scipy's ``minimize(method="Nelder-Mead")``
         of :meth:`rss` compiled (:func:`contactlab.kernels.lobe_cost.simplex_fit`, equal to
         it to the last bit). Returns ``(t0, tau)`` [s]."""
-        simplex = np.asarray(simplex, dtype=float)
-        best, _ = simplex_fit(simplex, float(xatol), float(fatol), 200 * 2, self._problem)
+        simplex = np.ascontiguousarray(simplex, dtype=float)
+        most = 200 * simplex.shape[1]  # scipy's evaluations and iterations by default
+        best, _ = simplex_fit(simplex, float(xatol), float(fatol), most, self._problem)
         return float(best[0]), float(best[1])
 
     def scan(self, onsets, tau):
