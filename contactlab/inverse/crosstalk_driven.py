@@ -75,7 +75,7 @@ def driven_significance(windows, onsets, drives, candidates, sensor, autocovaria
         ``ColouredNoise.autocovariance``): the couplings' standard errors are then the
         larger of the white residual's and those of least squares under this noise,
         whose block means are correlated within and across the windows (1/f noise near
-        a low-frequency candidate: :func:`_block_covariance`).
+        a low-frequency candidate: :func:`_coloured_sandwich`).
 
     Returns
     -------
@@ -111,8 +111,7 @@ def driven_significance(windows, onsets, drives, candidates, sensor, autocovaria
         return none
     coefficients, covariance = linear_least_squares(design, values)
     if autocovariance is not None:
-        blocked = _block_covariance(np.concatenate(starts), size, autocovariance)
-        coloured = _sandwich(design, blocked)
+        coloured = _coloured_sandwich(design, np.concatenate(starts), size, autocovariance)
     coupling, z = np.zeros(len(candidates)), np.zeros(len(candidates))
     for k in range(len(candidates)):
         at = slice(2 * count + 2 * k, 2 * count + 2 * k + 2)
@@ -127,12 +126,17 @@ def driven_significance(windows, onsets, drives, candidates, sensor, autocovaria
     return coupling, z, z > SIGNIFICANCE
 
 
-def _block_covariance(starts, size, autocovariance):
-    """Covariance of the means of blocks of ``size`` samples that start at the sample
-    indices ``starts``, under stationary noise of the given autocovariance (lags ``0,
-    1, ...`` samples): ``(1 / size**2) sum_d (size - |d|) r(|lag + d|)`` for blocks
-    ``lag`` samples apart."""
-    span = int(starts.max() - starts.min())
+CHUNK_ENTRIES = 2**22
+"""Entries of the block covariance held at once [-] (32 MB): the covariance of every
+window's block means with every other's grows as the square of a record's impacts (115
+MB for the 40 windows of the 1.5 M-sample speed record; 3 GB for 200), so the sandwich
+is summed over chunks of its rows."""
+
+
+def _lag_covariance(span, size, autocovariance):
+    """Covariance of the means of two blocks of ``size`` samples that start ``0, 1,
+    ..., span + 1`` samples apart, under stationary noise of the given autocovariance
+    (lags ``0, 1, ...`` samples): ``(1 / size**2) sum_d (size - |d|) r(|lag + d|)``."""
     r = np.asarray(autocovariance, dtype=float)
     if r.size < span + size + 1:
         raise ParameterError(
@@ -141,12 +145,25 @@ def _block_covariance(starts, size, autocovariance):
         )
     symmetric = np.concatenate([r[size - 1 : 0 : -1], r[: span + size + 1]])
     triangle = (size - np.abs(np.arange(1 - size, size))) / size**2
-    means = np.convolve(symmetric, triangle, mode="valid")  # lags 0 .. span + 1
-    return means[np.abs(starts[:, None] - starts[None, :])]
+    return np.convolve(symmetric, triangle, mode="valid")
 
 
-def _sandwich(design, covariance):
-    """Covariance of least-squares coefficients under noise of the given covariance:
-    ``(X'X)^-1 X' R X (X'X)^-1``."""
+def _block_covariance(starts, others, lags):
+    """Covariance of the block means starting at the sample indices ``starts`` with those
+    starting at ``others`` (``lags``: :func:`_lag_covariance`)."""
+    return lags[np.abs(starts[:, None] - others[None, :])]
+
+
+def _coloured_sandwich(design, starts, size, autocovariance):
+    """Covariance of least-squares coefficients of block means (rows of ``design``,
+    starting at the sample indices ``starts``, ``size`` samples each) under stationary
+    noise of the given autocovariance: ``(X'X)^-1 X' R X (X'X)^-1``, ``X' R X`` summed
+    over chunks of :data:`CHUNK_ENTRIES` entries of ``R``."""
+    lags = _lag_covariance(int(starts.max() - starts.min()), size, autocovariance)
+    middle = np.zeros((design.shape[1], design.shape[1]))
+    step = max(1, CHUNK_ENTRIES // starts.size)
+    for first in range(0, starts.size, step):
+        rows = slice(first, first + step)
+        middle += design[rows].T @ (_block_covariance(starts[rows], starts, lags) @ design)
     inverse = np.linalg.pinv(design.T @ design)
-    return inverse @ (design.T @ covariance @ design) @ inverse
+    return inverse @ middle @ inverse

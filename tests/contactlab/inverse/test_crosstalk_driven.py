@@ -10,8 +10,14 @@ import pytest
 from plate_windows import SENSOR, damped, flicker
 
 from contactlab.errors import ParameterError
+from contactlab.inverse import crosstalk_driven
 from contactlab.inverse.crosstalk import _significant, structure_band
-from contactlab.inverse.crosstalk_driven import _block_covariance, driven_significance
+from contactlab.inverse.crosstalk_driven import (
+    _block_covariance,
+    _coloured_sandwich,
+    _lag_covariance,
+    driven_significance,
+)
 
 RATE = 2e6
 MODE = (4100.0, 0.015)  # the record model's plate mode that the impulse feels most
@@ -97,12 +103,13 @@ def test_block_means_covariance_is_the_double_sum_of_the_sample_covariance():
             for a in starts
         ]
     )
-    assert _block_covariance(starts, size, r) == pytest.approx(expected, rel=1e-12)
+    lags = _lag_covariance(int(np.ptp(starts)), size, r)
+    assert _block_covariance(starts, starts, lags) == pytest.approx(expected, rel=1e-12)
     # white noise of variance 4: 4 / size on the diagonal, nothing between blocks that
     # do not overlap (0 and 5 overlap by 2 samples: 2 * 4 / 49)
     white = np.zeros(400)
     white[0] = 4.0
-    blocked = _block_covariance(starts, size, white)
+    blocked = _block_covariance(starts, starts, _lag_covariance(int(np.ptp(starts)), size, white))
     assert np.diag(blocked) == pytest.approx(4.0 / size)
     assert blocked[0, 1] == pytest.approx(2 * 4.0 / size**2)
     assert blocked[0, 4] == 0.0
@@ -110,4 +117,20 @@ def test_block_means_covariance_is_the_double_sum_of_the_sample_covariance():
 
 def test_too_short_an_autocovariance_is_refused():
     with pytest.raises(ParameterError, match="autocovariance"):
-        _block_covariance(np.array([0, 100]), 10, np.ones(50))
+        _lag_covariance(100, 10, np.ones(50))
+
+
+def test_the_sandwich_summed_in_chunks_is_the_dense_one(monkeypatch):
+    # X' R X over chunks of 7 rows (and of 3 entries: one row a chunk) against the dense
+    # covariance's sandwich: the same sums in another order, rounding (1e-12 relative)
+    rng = np.random.default_rng(4)
+    starts, size = np.sort(rng.choice(3000, 40, replace=False)), 9
+    design = rng.normal(size=(40, 5))
+    r = 0.97 ** np.arange(3100) + 0.1 * 0.5 ** np.arange(3100)
+    dense = _block_covariance(starts, starts, _lag_covariance(int(np.ptp(starts)), size, r))
+    inverse = np.linalg.pinv(design.T @ design)
+    expected = inverse @ (design.T @ dense @ design) @ inverse
+    for entries in (7 * 40, 3):
+        monkeypatch.setattr(crosstalk_driven, "CHUNK_ENTRIES", entries)
+        chunked = _coloured_sandwich(design, starts, size, r)
+        assert chunked == pytest.approx(expected, rel=1e-12, abs=1e-12 * np.abs(expected).max())
