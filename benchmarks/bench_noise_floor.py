@@ -6,22 +6,30 @@ On ``bench_realistic.py --speed``'s record (1.5 million samples at 5 MHz, every 
 its smoothed record computed once each, :mod:`contactlab._block_levels`) against the
 reference of the same run: each of its five running baselines computed from the samples
 (:func:`contactlab.signals.running_baseline`, :func:`contactlab.signals.quiet_window`),
-as before. Prints that their results are the same to the last bit, their CPU times
-(best of ``--repeats``, alternated) and the ratio.
+as before; and the levels once with the residual's numpy code
+(``tests/support/levels_reference.py``) in place of its compiled loop
+(``contactlab/kernels/levels.py``, session 17). Prints that their results are the same to
+the last bit, their CPU times (best of ``--repeats``, alternated) and the ratios.
 
 Run: ``.venv/bin/python benchmarks/bench_noise_floor.py [--repeats 3]``
 """
 
 import argparse
 import os
+import sys
 import time
+from pathlib import Path
 
 import bench_realistic  # beside this script: its speed record
 import numpy as np
 
+import contactlab._block_levels as block_levels_module
 from contactlab import signals
 from contactlab._block_levels import BlockLevels, block_levels
 from dem_check.campaign import noise
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "support"))
+from levels_reference import numpy_residual  # the residual's numpy code, the test's
 
 _SHARED = noise.block_levels, signals.levels_baseline, signals.levels_quiet_window
 """What ``noise_floor`` calls; the reference patches them and puts them back."""
@@ -52,6 +60,16 @@ def _reference(trace, sensor):
         noise.block_levels, signals.levels_baseline, signals.levels_quiet_window = _SHARED
 
 
+def _numpy_residual(trace, sensor):
+    """``noise_floor`` with the residual's numpy code instead of its compiled loop."""
+    compiled = block_levels_module.nearest_residual
+    block_levels_module.nearest_residual = numpy_residual
+    try:
+        return noise.noise_floor(trace, sensor)
+    finally:
+        block_levels_module.nearest_residual = compiled
+
+
 def _same(a, b):
     """Whether two ``noise_floor`` results are equal to the last bit."""
     floor_a, *traces_a, noise_a = a
@@ -68,21 +86,27 @@ def main():
     _, sensor, _ = bench_realistic.hard()
     trace = bench_realistic.speed_record().trace
     print(f"load average before: {os.getloadavg()[0]:.1f} (1 min)")
-    ways = {"levels once": noise.noise_floor, "each baseline from its samples": _reference}
+    ways = {
+        "levels once": noise.noise_floor,
+        "each baseline from its samples": _reference,
+        "levels once, the residual in numpy": _numpy_residual,
+    }
     times, results = {name: [] for name in ways}, {}
     for _ in range(repeats):
         for name, way in ways.items():
             cpu = time.process_time()
             results[name] = way(trace, sensor)
             times[name].append(time.process_time() - cpu)
-    print(f"same results to the last bit: {_same(*results.values())}")
+    first, *others = results.values()
+    print(f"same results to the last bit: {all(_same(first, other) for other in others)}")
     for name, spent in times.items():
         print(
             f"{name}: {min(spent):.3f} s of CPU (best of {repeats}; all: "
             f"{', '.join(f'{s:.3f}' for s in spent)})"
         )
-    best = [min(spent) for spent in times.values()]
-    print(f"ratio (reference over levels once): {best[1] / best[0]:.2f}")
+    best = {name: min(spent) for name, spent in times.items()}
+    for name in list(ways)[1:]:
+        print(f"ratio ({name} over levels once): {best[name] / best['levels once']:.2f}")
     print(f"load average after: {os.getloadavg()[0]:.1f} (1 min)")
 
 

@@ -35,6 +35,7 @@ COMPILED_MODULES = (
     "contactlab.kernels.gauss",
     "contactlab.kernels.held_force",
     "contactlab.kernels.lobe_cost",
+    "contactlab.kernels.levels",
     "contactlab.kernels.oblique_sample",
     "contactlab.batch.oblique_kernel",
 )
@@ -95,6 +96,7 @@ def warm_up():
     from contactlab.batch.oblique import oblique_impacts
     from contactlab.bodies import Grain, Sensor
     from contactlab.kernels.held_force import held_signal, sampled_signal
+    from contactlab.kernels.levels import nearest_residual
     from contactlab.kernels.lobe_cost import fitted_rss, scanned_rss, simplex_fit, white_signal
     from contactlab.laws import HertzDamped, Mindlin
     from contactlab.solver import simulate_impact, simulate_oblique
@@ -127,6 +129,7 @@ def warm_up():
     ar, basis = np.array([0.5]), np.linalg.qr(np.column_stack([np.ones(3), np.arange(3.0)]))[0]
     fitted = (np.ascontiguousarray(basis), np.zeros(3), 1.0)  # a lobe fit's line and record
     scanned_rss(window, window, times, white_signal(values, ar, 2), 1, *fitted)
+    nearest_residual(shape, shape, np.array([0, 0, 1, 1, 1]), np.zeros(2), 0.0, 0.0, 2)
     problem = (window, 1e-6, 10, shape, shape, *_ONE_POLE, ar, 2, *fitted)
     fitted_rss(1e-6, 5e-6, *problem)
     simplex_fit(np.array([[1e-6, 5e-6], [2e-6, 5e-6], [1e-6, 6e-6]]), 1e-9, 1e-9, 400, problem)

@@ -4,9 +4,17 @@ the baseline computed from the samples each time: the same arrays to the last bi
 the shared levels left unchanged by a fit under a pulse at the record's start."""
 
 import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from levels_reference import numpy_residual
 
 from contactlab import signals
-from contactlab._block_levels import block_levels
+from contactlab._block_levels import (
+    LOCAL_MEAN_FRACTION,
+    _block_medians,
+    _edge_levels,
+    block_levels,
+)
 
 
 def _record(seed):
@@ -35,3 +43,28 @@ def test_levels_once_give_the_baseline_of_every_call_to_the_last_bit():
     assert np.array_equal(levels.level, before[0])
     assert np.array_equal(levels.residual, before[1])
     assert signals.levels_quiet_window(t, levels) == signals.quiet_window(t, y, width)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    blocks=st.integers(2, 12),
+    width=st.integers(8, 64),
+    extra=st.integers(0, 40),
+    steps=st.lists(st.tuples(st.floats(0.0, 1.0), st.floats(-2.0, 2.0)), max_size=3),
+    seed=st.integers(0, 2**32 - 1),
+)
+def test_the_compiled_residual_is_numpys_to_the_last_bit(blocks, width, extra, steps, seed):
+    """``kernels.levels.nearest_residual`` against the numpy code it replaced
+    (``tests/support/levels_reference.py``) on noise with level steps and a pulse, of
+    any length and block width (the side means' short heads and tails included)."""
+    rng = np.random.default_rng(seed)
+    n = blocks * width + extra
+    y = rng.normal(0.0, 0.05, n) + 3.0 * np.exp(-(((np.arange(n) - rng.uniform(0, n)) / 5) ** 2))
+    for where, height in steps:
+        y[int(where * n) :] += height
+    levels = block_levels(y, width)
+    span = max(2, width // LOCAL_MEAN_FRACTION)
+    head, tail = _edge_levels(y, span, _block_medians(y, width)[1])
+    medians = _block_medians(y, width)[1]
+    reference = numpy_residual(y, levels.level, levels.block, medians, head, tail, span)
+    assert np.array_equal(levels.residual, reference)  # same operations, same order: bitwise
