@@ -78,17 +78,18 @@ def test_the_2_mhz_crosstalk_hertz_impact_without_a_lobe_is_read(hard_setup):
 
 
 def test_a_contact_that_reaches_its_window_s_end_has_no_contact_time(hard_setup):
-    """The same configuration, seed 3: the record's structure modes are not found (the
-    crosstalk is left in), and the 16.5 sigma impact at 18.12 ms read a contact time of
-    485 us for 216 us (+124 %): the regularised force, ringing left in, stayed above its
-    threshold past the window it is reconstructed on, and the family's fit failed. No
-    contact end is read there: the row says so instead of a contact time."""
+    """The same configuration, seed 3, without the record's structure modes (as
+    ``record_modes`` read it until session 17, the crosstalk left in): the 16.5 sigma
+    impact at 18.12 ms read a contact time of 485 us for 216 us (+124 %): the regularised
+    force, ringing left in, stayed above its threshold past the window it is
+    reconstructed on, and the family's fit failed. No contact end is read there: the row
+    says so instead of a contact time (the modes found now:
+    ``test_weak_crosstalk_modes.py``)."""
     grain, sensor, _ = hard_setup
     record = accuracy_record(3, grain, sensor, cl.laws.Hertz(k_hertz=1.5e6), RATE, crosstalk=0.02)
     found = find_impacts(record.trace, sensor)
     noise = record_noise(found, sensor)
-    modes = record_modes(found, sensor, noise=noise)
     (window,) = [w for w in found.impacts if abs(w.onset - 18.12e-3) < 60e-6]
-    row, _, _ = read_impact(found, window, sensor, grain, modes=modes, noise=noise)
+    row, _, _ = read_impact(found, window, sensor, grain, modes=[], noise=noise)
     assert row["status"] == "reconstruction failed"
     assert "no contact end to read" in row["reason"], row["reason"]
