@@ -50,6 +50,7 @@ in newtons:
 """
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -77,6 +78,7 @@ from dem_check.campaign.noise import (
 from dem_check.campaign.onsets import NO_CONTACT, first_touches
 from dem_check.campaign.plate_swings import STATUS as SWING
 from dem_check.campaign.plate_swings import negative_swing
+from dem_check.campaign.ringing_lobes import lobe_under_ringing
 from dem_check.campaign.step_ringing import difference_sigma
 from dem_check.campaign.step_runs import search_steps
 from dem_check.campaign.steps import LEAST_HEIGHT, PASSES, remove_steps, settle_steps
@@ -275,7 +277,8 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         following = runs[k + 1][0] if k + 1 < len(runs) else t.size
         stop = min(last + stage["scales"]["hold"] + stage["scales"]["tail"], following, t.size)
         candidate = (previous_end, first, last, stop)
-        found = _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
+        look = functools.partial(lobe_under_ringing, trace, stage, sensor, run=(first, last))
+        found = _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"], look)
         previous_end = last + 1
         if found[0].status == "negative" and period >= RESOLVED_PERIOD_SAMPLES:
             why = negative_swing(trace, stage, (first, last), windows, following, sensor)
@@ -401,7 +404,7 @@ def _onset(t, z, base, first, detected):
     return float(t[j] + (level - d0) * (t[j + 1] - t[j]) / (d1 - d0))
 
 
-def _classify(smoothed, ratio, candidate, scales, floor, flagged):
+def _classify(smoothed, ratio, candidate, scales, floor, flagged, look):
     """The :class:`ImpactWindow` (one, or several for an overlap) of one run."""
     previous_end, first, last, stop = candidate
     t, z = smoothed.t, np.asarray(smoothed.values)
@@ -463,6 +466,8 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
     growths = resolved and lobe_end > detected
     levels = (FLOOR_SIGMAS * floor.smoothed_noise, floor.sigmas)  # [N], [local sigmas]
     later = later_impacts(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
+    if growths and not later:  # a lobe under the ringing: the ringing fitted and taken off
+        later = look((onset, lobe_end), following=stop)
     for kind, what in (
         ("overrange", "the instrument's range was exceeded, the true signal is unknown"),
         ("clipped", "held at the record's rail: the peak is a lower bound"),
