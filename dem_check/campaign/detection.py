@@ -41,9 +41,12 @@ in newtons:
    (largest value per sensor period) grows by more than :data:`GROWTH_FACTOR` (plus the
    noise floor) to the detection threshold, and the growth is a force's (the ringing
    about its running mean grows so too, or that mean stands at the threshold), a second
-   impact started in the first one's ringing (:mod:`dem_check.campaign.growths`). Both are
-   flagged ``"overlap"``, never merged. Not with fewer than
-   :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period (ringing not resolved).
+   impact started in the first one's ringing (:mod:`dem_check.campaign.growths`); where it
+   does not, a lobe that stands over the threshold once the sensor's free ringing is
+   fitted and taken off, and that the plate's ringing does not explain, is one too
+   (:mod:`dem_check.campaign.ringing_lobes`). Both are flagged ``"overlap"``, never
+   merged. Not with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period
+   (ringing not resolved).
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
    inside an impact flag it ``"clipped"``: its peak is a lower bound; impacts its
    ringing holds (step 5) are listed ``"overlap"``, not analysed.
@@ -61,9 +64,9 @@ from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
 from contactlab.traces.prepare import check_trace
-from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
 from dem_check.campaign.growths import GROWTH_FACTOR, later_impacts
+from dem_check.campaign.limits import apply_limits, check_limits
 from dem_check.campaign.noise import (
     CUTOFF_FACTOR,
     FALSE_ALARMS,
@@ -204,16 +207,6 @@ def _samples(periods, sensor, dt, minimum):
     return max(minimum, round(periods * sensor.period / dt))
 
 
-def check_limits(min_force, min_separation):
-    if min_force is not None:
-        min_force = check_number("min_force", min_force, low=0.0, low_open=False, unit="N")
-    if min_separation is not None:
-        min_separation = check_number(
-            "min_separation", min_separation, low=0.0, low_open=False, unit="s"
-        )
-    return min_force, min_separation
-
-
 def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onsets=True):
     """Every impact in a record, with its onset, local baseline, significance and status.
 
@@ -278,7 +271,9 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         stop = min(last + stage["scales"]["hold"] + stage["scales"]["tail"], following, t.size)
         candidate = (previous_end, first, last, stop)
         look = functools.partial(lobe_under_ringing, trace, stage, sensor, run=(first, last))
-        found = _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"], look)
+        found = _classify(
+            smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"], look
+        )
         previous_end = last + 1
         if found[0].status == "negative" and period >= RESOLVED_PERIOD_SAMPLES:
             why = negative_swing(trace, stage, (first, last), windows, following, sensor)
@@ -286,7 +281,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
                 swings.append(dataclasses.replace(found[0], status=SWING, reason=why))
                 continue
         windows += found
-    windows = _apply_limits(windows, min_force, min_separation)
+    windows = apply_limits(windows, min_force, min_separation)
     found = Detection(
         floor,
         windows,
@@ -350,26 +345,6 @@ def _step_row(step, t):
         significance=step.significance,
         peak=step.height,
     )
-
-
-def _apply_limits(windows, min_force, min_separation):
-    """The user's limits: weaker or closer candidates keep a row with the reason."""
-    out, previous = [], None
-    for w in windows:
-        if min_force is not None and not abs(w.peak) >= min_force:
-            reason = f"peak {w.peak:.4g} N below min_force = {min_force:.4g} N"
-            w = dataclasses.replace(w, status="below min_force", reason=reason)
-        elif min_separation is not None and previous is not None:
-            if w.onset - previous < min_separation:
-                reason = (
-                    f"onset {w.onset - previous:.4g} s after the impact at {previous:.6g} s, "
-                    f"closer than min_separation = {min_separation:.4g} s"
-                )
-                w = dataclasses.replace(w, status="too close", reason=reason)
-        if w.status not in ("below min_force", "too close"):
-            previous = w.onset
-        out.append(w)
-    return out
 
 
 def _local_baseline(ratio, candidate, scales):

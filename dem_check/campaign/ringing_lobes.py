@@ -32,7 +32,7 @@ from contactlab.inverse.local_baseline import free_ringing
 from dem_check.campaign.noise import FLOOR_SIGMAS
 from dem_check.campaign.plate_swings import explained
 
-__all__ = ["FIT_PERIODS", "LOBE_PERIODS", "lobe_under_ringing"]
+__all__ = ["FIT_PERIODS", "LOBE_PERIODS", "excess_levels", "lobe_under_ringing"]
 
 FIT_PERIODS = 3
 """Sensor periods the free ringing is fitted on before each period it predicts [-]: the
@@ -44,10 +44,13 @@ LOBE_PERIODS = 4
 contact (the hard grain's) spans four periods of the 40 kHz sensor."""
 
 
-def _excess(z, local, start, windows, period, t, sensor):
+def excess_levels(z, local, start, windows, period, t, sensor):
     """The residual of each period's prediction (module step 1) [N], one row a period
     from period :data:`FIT_PERIODS` on, and its mean over the local noise [-]."""
-    unit = [free_ringing(t[start : start + windows * period], t[start], u, sensor) for u in ((1, 0), (0, 1))]
+    unit = [
+        free_ringing(t[start : start + windows * period], t[start], u, sensor)
+        for u in ((1, 0), (0, 1))
+    ]
     design = np.column_stack([*unit, np.ones(windows * period)])
     residuals, excess = [], []
     span = FIT_PERIODS * period
@@ -90,7 +93,7 @@ def lobe_under_ringing(record, stage, sensor, first_lobe, run, following):
     windows = (run[1] + 1 - start) // period
     if windows <= FIT_PERIODS:
         return []
-    residuals, excess = _excess(z, local, start, windows, period, t, sensor)
+    residuals, excess = excess_levels(z, local, start, windows, period, t, sensor)
     over = np.flatnonzero(excess >= floor.sigmas)
     if not over.size:
         return []
@@ -103,4 +106,3 @@ def lobe_under_ringing(record, stage, sensor, first_lobe, run, following):
     if explained(record, arrays, floor.sigmas, (at, end), first_lobe, after, sensor):
         return []  # the plate's ringing and the sensor's bring it under the threshold
     return [at]
-

@@ -14,10 +14,12 @@ impact: nothing may then be found in the strong one's ringing.
 
 import numpy as np
 import pytest
+from scipy import signal
 
 from dem_check.campaign import find_impacts, growths
 from dem_check.campaign.drawn_records import weak_in_ringing
 from dem_check.campaign.growths import GROWTH_FACTOR, later_impacts
+from dem_check.campaign.ringing_lobes import FIT_PERIODS, excess_levels
 
 MATCH = 60e-6
 """Largest distance of a detected onset from the true one [s], as the realistic sweep
@@ -51,22 +53,59 @@ def test_a_weak_impact_in_a_strong_ones_ringing_is_found(hard_setup, seed, statu
     assert abs(only.onset - truth[0]) <= MATCH
 
 
-REMAINING = (
-    "known limit (issue 22): the strong impact's (3.69 N) sensor ringing is still 0.19 N "
-    "0.39 ms later, and the weak lobe (0.39 N, 13 noise sigmas) on it raises the "
-    "envelope to 0.30 N, under 1.5 times 0.19 N plus the floor (0.31 N); its level (0.19 "
-    "N, 23 local sigmas) would show it, but a level alone is also what a plate mode's "
-    "swing and a block level of the running baseline move (module growths)"
-)
-
-
-@pytest.mark.xfail(strict=True, reason=REMAINING)
 def test_a_weak_lobe_under_half_the_ringing(hard_setup):
+    # the strong impact's (3.69 N) sensor ringing is still 0.19 N 0.39 ms later, and the
+    # weak lobe (0.39 N, 13 noise sigmas) on it raises the envelope to 0.30 N, under 1.5
+    # times 0.19 N plus the floor (0.31 N): the growth rule misses it; with the sensor's
+    # free ringing fitted and taken off its level stands at 25 local sigmas (module
+    # ringing_lobes), and the plate's ringing does not explain it
     record, _ = weak_in_ringing(98, *hard_setup)  # 2 MHz, 0.387 ms after a 2.46 m/s impact
     found = find_impacts(record.trace, hard_setup[1])
     truth = record.truth["onset [s]"].to_numpy()
-    assert len(found.impacts) == 2
+    assert [w.status for w in found.impacts] == ["overlap", "overlap"]
     assert np.abs(_onsets(found) - truth).max() <= MATCH
+    alone, _ = weak_in_ringing(98, *hard_setup, alone=True)
+    (only,) = find_impacts(alone.trace, hard_setup[1]).impacts  # nothing in its ringing
+    assert abs(only.onset - truth[0]) <= MATCH
+
+
+def _sensor_ringing(sensor, dt, count):
+    """The sensor's free response to an impulse (scipy's, not the toolkit's columns), 1 N
+    at its largest, at ``count`` samples ``dt`` [s] apart."""
+    system = signal.lti([1.0], [sensor.mass, sensor.damping, sensor.stiffness])
+    _, response = signal.impulse(system, T=np.arange(count) * dt)
+    return response / np.abs(response).max()
+
+
+def test_the_free_ringing_taken_off_leaves_a_lobe_under_half_of_it(hard_setup):
+    # the 40 kHz sensor (zeta 0.02) at 2 MHz (50 samples a period): free ringing, and a
+    # raised-cosine lobe of 0.4 times the ringing's envelope where it lands over four
+    # periods from period 14 (it rises over two): 0.078 N; a local noise of 0.005 N
+    sensor, dt, period = hard_setup[1], 0.5e-6, 50
+    ringing = _sensor_ringing(sensor, dt, 40 * period)
+    n = np.arange(ringing.size)
+    t = n * dt
+    local = np.full(n.size, 0.005)
+    windows = 39
+    _, free = excess_levels(ringing, local, period, windows, period, t, sensor)
+    # free ringing is the model: nothing left but rounding and scipy's integration
+    # (under 1e-6 local sigmas)
+    assert np.abs(free).max() < 1e-6
+    at, width = 14 * period, 4 * period
+    envelope = np.abs(ringing[at - period : at]).max()
+    inside = (n >= at) & (n < at + width)
+    lobe = np.zeros(n.size)
+    lobe[inside] = 0.4 * envelope * 0.5 * (1.0 - np.cos(2.0 * np.pi * (n[inside] - at) / width))
+    z = ringing + lobe
+    # the growth rule cannot see it (the envelope never grows by the factor)
+    assert later_impacts(z, np.abs(z) / local, period // 2, z.size - 1, period, (0.03, 7.0)) == []
+    _, excess = excess_levels(z, local, period, windows, period, t, sensor)
+    # before the lobe, nothing; at its rise the level over the ringing's prediction
+    # stands over the 7-sigma threshold (11.8 local sigmas, 0.059 N: the fit on the
+    # three periods before already holds the lobe's first period)
+    first = at // period - 1 - FIT_PERIODS  # the row of period 14, counted from period 1
+    assert np.abs(excess[:first]).max() < 1e-6
+    assert excess[first : first + 2].max() >= 7.0
 
 
 def _ringing_and_lobe(lobe_height):
