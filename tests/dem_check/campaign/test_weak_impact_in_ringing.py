@@ -14,6 +14,8 @@ impact: nothing may then be found in the strong one's ringing.
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy import signal
 
 from dem_check.campaign import find_impacts, growths
@@ -144,3 +146,29 @@ def test_a_lobe_that_rises_over_two_periods_is_a_later_impact(monkeypatch):
 def test_free_ringing_alone_is_no_later_impact():
     z, ratio, period = _ringing_and_lobe(0.0)
     assert later_impacts(z, ratio, period // 2, z.size - 1, period, (0.03, 7.0)) == []
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    amplitude=st.floats(0.05, 2.0),
+    phase=st.floats(0.0, 2.0 * np.pi),
+    at=st.floats(1.0, 35.0),
+    jump=st.floats(-1.0, 0.9),
+)
+def test_no_excess_level_from_a_level_that_moves_under_free_ringing(
+    hard_setup, amplitude, phase, at, jump
+):
+    # the sensor's free ringing (scipy's, any amplitude [N] and phase) at 2 MHz on a level
+    # that jumps at any place ``at`` [periods] and stays: down by up to the ringing's
+    # amplitude (no force makes a level fall), or up by up to 0.9 of the 7-sigma threshold
+    # (a level is a force's when it stands at the threshold). The fit is linear and
+    # leaves free ringing nothing, so a jump's excess is at most its height: none is a
+    # candidate (the plate's fit is not needed for these)
+    sensor, dt, period, local = hard_setup[1], 0.5e-6, 50, 0.02
+    ringing = _sensor_ringing(sensor, dt, 41 * period)
+    n = np.arange(40 * period)
+    shift = round(phase / (2.0 * np.pi) * period)  # the phase as a delay [samples]
+    z = amplitude * ringing[shift : shift + n.size]
+    z[n >= at * period] += jump * (amplitude if jump < 0 else 7.0 * local)
+    _, excess = excess_levels(z, np.full(n.size, local), 0, 40, period, n * dt, sensor)
+    assert excess.max() < 7.0
