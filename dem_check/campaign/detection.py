@@ -41,15 +41,19 @@ in newtons:
    (largest value per sensor period) grows by more than :data:`GROWTH_FACTOR` (plus the
    noise floor) to the detection threshold, and the growth is a force's (the ringing
    about its running mean grows so too, or that mean stands at the threshold), a second
-   impact started in the first one's ringing (:mod:`dem_check.campaign.growths`). Both are
-   flagged ``"overlap"``, never merged. Not with fewer than
-   :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period (ringing not resolved).
+   impact started in the first one's ringing (:mod:`dem_check.campaign.growths`); where it
+   does not, a lobe that stands over the threshold once the sensor's free ringing is
+   fitted and taken off, and that the plate's ringing does not explain, is one too
+   (:mod:`dem_check.campaign.ringing_lobes`). Both are flagged ``"overlap"``, never
+   merged. Not with fewer than :data:`RESOLVED_PERIOD_SAMPLES` samples per sensor period
+   (ringing not resolved).
 6. **Clipping.** Samples held at the record's rail (:mod:`dem_check.campaign.clipping`)
    inside an impact flag it ``"clipped"``: its peak is a lower bound; impacts its
    ringing holds (step 5) are listed ``"overlap"``, not analysed.
 """
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -60,9 +64,9 @@ from contactlab.entry_checks import check_flag
 from contactlab.errors import ParameterError
 from contactlab.traces import Trace
 from contactlab.traces.prepare import check_trace
-from contactlab.validation import check_number
 from dem_check.campaign.clipping import clipped_samples
 from dem_check.campaign.growths import GROWTH_FACTOR, later_impacts
+from dem_check.campaign.limits import apply_limits, check_limits
 from dem_check.campaign.noise import (
     CUTOFF_FACTOR,
     FALSE_ALARMS,
@@ -77,6 +81,7 @@ from dem_check.campaign.noise import (
 from dem_check.campaign.onsets import NO_CONTACT, first_touches
 from dem_check.campaign.plate_swings import STATUS as SWING
 from dem_check.campaign.plate_swings import negative_swing
+from dem_check.campaign.ringing_lobes import lobe_under_ringing
 from dem_check.campaign.step_ringing import difference_sigma
 from dem_check.campaign.step_runs import search_steps
 from dem_check.campaign.steps import LEAST_HEIGHT, PASSES, remove_steps, settle_steps
@@ -202,16 +207,6 @@ def _samples(periods, sensor, dt, minimum):
     return max(minimum, round(periods * sensor.period / dt))
 
 
-def check_limits(min_force, min_separation):
-    if min_force is not None:
-        min_force = check_number("min_force", min_force, low=0.0, low_open=False, unit="N")
-    if min_separation is not None:
-        min_separation = check_number(
-            "min_separation", min_separation, low=0.0, low_open=False, unit="s"
-        )
-    return min_force, min_separation
-
-
 def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onsets=True):
     """Every impact in a record, with its onset, local baseline, significance and status.
 
@@ -275,7 +270,10 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
         following = runs[k + 1][0] if k + 1 < len(runs) else t.size
         stop = min(last + stage["scales"]["hold"] + stage["scales"]["tail"], following, t.size)
         candidate = (previous_end, first, last, stop)
-        found = _classify(smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"])
+        look = functools.partial(lobe_under_ringing, trace, stage, sensor, run=(first, last))
+        found = _classify(
+            smoothed, ratio, candidate, stage["scales"], floor, stage["flagged"], look
+        )
         previous_end = last + 1
         if found[0].status == "negative" and period >= RESOLVED_PERIOD_SAMPLES:
             why = negative_swing(trace, stage, (first, last), windows, following, sensor)
@@ -283,7 +281,7 @@ def find_impacts(trace, sensor, *, min_force=None, min_separation=None, fit_onse
                 swings.append(dataclasses.replace(found[0], status=SWING, reason=why))
                 continue
         windows += found
-    windows = _apply_limits(windows, min_force, min_separation)
+    windows = apply_limits(windows, min_force, min_separation)
     found = Detection(
         floor,
         windows,
@@ -349,26 +347,6 @@ def _step_row(step, t):
     )
 
 
-def _apply_limits(windows, min_force, min_separation):
-    """The user's limits: weaker or closer candidates keep a row with the reason."""
-    out, previous = [], None
-    for w in windows:
-        if min_force is not None and not abs(w.peak) >= min_force:
-            reason = f"peak {w.peak:.4g} N below min_force = {min_force:.4g} N"
-            w = dataclasses.replace(w, status="below min_force", reason=reason)
-        elif min_separation is not None and previous is not None:
-            if w.onset - previous < min_separation:
-                reason = (
-                    f"onset {w.onset - previous:.4g} s after the impact at {previous:.6g} s, "
-                    f"closer than min_separation = {min_separation:.4g} s"
-                )
-                w = dataclasses.replace(w, status="too close", reason=reason)
-        if w.status not in ("below min_force", "too close"):
-            previous = w.onset
-        out.append(w)
-    return out
-
-
 def _local_baseline(ratio, candidate, scales):
     """``(start, end)`` indices of the quiet samples just before the impact, or after its
     ringing (short pre-trigger), and whether it is after."""
@@ -402,7 +380,7 @@ def _onset(t, z, base, first, detected):
     return float(t[j] + (level - d0) * (t[j + 1] - t[j]) / (d1 - d0))
 
 
-def _classify(smoothed, ratio, candidate, scales, floor, flagged):
+def _classify(smoothed, ratio, candidate, scales, floor, flagged, look):
     """The :class:`ImpactWindow` (one, or several for an overlap) of one run."""
     previous_end, first, last, stop = candidate
     t, z = smoothed.t, np.asarray(smoothed.values)
@@ -464,6 +442,8 @@ def _classify(smoothed, ratio, candidate, scales, floor, flagged):
     growths = resolved and lobe_end > detected
     levels = (FLOOR_SIGMAS * floor.smoothed_noise, floor.sigmas)  # [N], [local sigmas]
     later = later_impacts(z, ratio, lobe_end, last, scales["period"], levels) if growths else []
+    if growths and not later:  # a lobe under the ringing: the ringing fitted and taken off
+        later = look((onset, lobe_end), following=stop)
     for kind, what in (
         ("overrange", "the instrument's range was exceeded, the true signal is unknown"),
         ("clipped", "held at the record's rail: the peak is a lower bound"),

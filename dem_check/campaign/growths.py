@@ -16,7 +16,9 @@ fills the period it starts in only in part: the growth is counted against the le
 the :data:`RISE_PERIODS` periods before, and the level may reach the threshold in the
 growth's period or the next (``benchmarks/bench_weak_impacts.py``: 10-15 sigma impacts
 0.3-1.5 ms after a strong one: 24 of 400 missed before, 2 of them in a clipped impact's
-ringing, which was not checked then; 1 after).
+ringing, which was not checked then; 1 after). A lobe under about half the ringing
+cannot grow the envelope by the factor: :mod:`dem_check.campaign.ringing_lobes` takes
+the sensor's free ringing off and looks at the level left (seed 98).
 """
 
 import numpy as np
