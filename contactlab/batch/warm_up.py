@@ -6,7 +6,9 @@ first use (20-50 s on a free 2-core machine, 156 s measured on a busy one, and t
 kernels about 50 s of CPU time more) and cached as ``*.nbi``/``*.nbc`` files in the ``__pycache__``
 folders beside their sources; a new process then loads them in about 0.1 s. ``make demo``
 and ``make test`` pay the compile through :func:`warm_up` (``contactlab warm-up``), so no
-timed command hides it.
+timed command hides it. On an empty cache it compiles in two processes, one per group of
+solvers (the cache files are locked, :mod:`contactlab.compiled`), then loads them all in
+its own process, which checks that nothing was lost (:func:`cache_misses`).
 """
 
 import importlib
