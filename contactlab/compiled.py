@@ -13,8 +13,18 @@ that cannot be read is then reported once per cache folder with a
 :class:`~contactlab.errors.CompiledCacheWarning` naming the folder and the cure
 (``make clean-numba``), its index is emptied (numba's ``FunctionCache.flush``) and the
 function is compiled again, which rewrites the entry.
+
+Processes that compile at the same time (the parallel warm-up, pytest's workers) share
+these files, and numba updates an index by reading it, adding an entry and writing it back
+(``IndexDataCacheFile.save``): two processes saving two signatures of one function both
+read the same index, both name their data ``<function>.1.nbc``, and whichever writes last
+wins the index while the other's data may sit under its key. Every index is therefore read
+under a shared ``flock`` on its cache folder and written under an exclusive one (POSIX;
+without ``fcntl``, on Windows, the warm-up compiles in one process).
 """
 
+import contextlib
+import os
 import warnings
 
 import numba
@@ -22,7 +32,15 @@ from numba.core.caching import FunctionCache
 
 from contactlab.errors import CompiledCacheWarning
 
-__all__ = ["njit"]
+try:
+    import fcntl
+except ImportError:  # Windows: no flock
+    fcntl = None
+
+__all__ = ["CAN_LOCK", "njit"]
+
+CAN_LOCK = fcntl is not None
+"""Whether the cache files are locked, so that several processes may compile at once."""
 
 _REPORTED = set()
 """Cache folders already reported in this process."""
@@ -35,9 +53,14 @@ class _RebuildingCache(FunctionCache):
         super().__init__(py_func)
         self.function_name = f"{py_func.__module__}.{py_func.__qualname__}"
 
+    def save_overload(self, sig, data):
+        with _folder_lock(self.cache_path, exclusive=True):
+            super().save_overload(sig, data)
+
     def load_overload(self, sig, target_context):
         try:
-            return super().load_overload(sig, target_context)
+            with _folder_lock(self.cache_path, exclusive=False):
+                return super().load_overload(sig, target_context)
         except Exception as exc:  # anything failing while reading a cache entry is damage
             if self.cache_path not in _REPORTED:
                 _REPORTED.add(self.cache_path)
@@ -49,8 +72,32 @@ class _RebuildingCache(FunctionCache):
                     CompiledCacheWarning,
                     stacklevel=2,
                 )
-            self.flush()  # an empty index: the save after compiling writes a readable one
+            with _folder_lock(self.cache_path, exclusive=True):
+                self.flush()  # an empty index: the save after compiling writes a readable one
             return None
+
+
+@contextlib.contextmanager
+def _folder_lock(folder, exclusive):
+    """Hold numba's cache ``folder`` locked (``flock`` on the folder itself, no lock file).
+
+    Parameters
+    ----------
+    folder : str
+        The cache folder; created if missing (numba creates it on its first save).
+    exclusive : bool
+        True to write an index (one writer, no reader), False to read one.
+    """
+    if fcntl is None:
+        yield
+        return
+    os.makedirs(folder, exist_ok=True)
+    descriptor = os.open(folder, os.O_RDONLY)
+    try:
+        fcntl.flock(descriptor, fcntl.LOCK_EX if exclusive else fcntl.LOCK_SH)
+        yield
+    finally:
+        os.close(descriptor)  # releases the lock
 
 
 def njit(*args, borrowed=False, **options):

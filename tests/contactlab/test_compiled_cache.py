@@ -111,3 +111,77 @@ def test_every_module_the_warm_check_reads_caches_a_function_of_its_own(name):
     tree = ast.parse(source.read_text(encoding="utf-8"))
     functions = [n for n in ast.walk(tree) if isinstance(n, ast.FunctionDef)]
     assert any(_compiles_on_its_own(d) for f in functions for d in f.decorator_list), name
+
+
+LOCK_SCRIPT = (
+    """
+import fcntl, os
+import numba.core.caching as caching
+
+def held(folder):
+    '''How another open file description finds the folder: "exclusive", "shared" or "free".'''
+    descriptor = os.open(folder, os.O_RDONLY)
+    try:
+        for mode, name in ((fcntl.LOCK_EX, "free"), (fcntl.LOCK_SH, "shared")):
+            try:
+                fcntl.flock(descriptor, mode | fcntl.LOCK_NB)
+                return name
+            except BlockingIOError:
+                pass
+        return "exclusive"
+    finally:
+        os.close(descriptor)
+
+def spy(method, label):
+    def spied(self, *args):
+        print(label, held(os.path.dirname(self._index_path)))
+        return method(self, *args)
+    return spied
+
+caching.IndexDataCacheFile.save = spy(caching.IndexDataCacheFile.save, "save")
+caching.IndexDataCacheFile.load = spy(caching.IndexDataCacheFile.load, "load")
+"""
+    + SCRIPT
+    + """
+from contactlab.batch.warm_up import cache_misses
+print("compiled", *cache_misses())
+"""
+)
+
+
+def test_the_cache_index_is_written_under_an_exclusive_lock_and_read_under_a_shared_one(
+    tmp_path,
+):
+    """numba updates an index by read-modify-write: two processes compiling two signatures
+    of one function (the parallel warm-up, pytest's workers) could pair one's index entry
+    with the other's data file. A compile (loads that miss, then saves) and a load."""
+    environment = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    runs = [
+        subprocess.run(
+            [sys.executable, "-c", LOCK_SCRIPT], env=environment, capture_output=True,
+            text=True, timeout=300, check=True,
+        ).stdout.splitlines()
+        for _ in range(2)
+    ]  # fmt: skip
+    compiled, loaded = ([line for line in run if line.startswith(("save", "load"))] for run in runs)
+    # every function compiled (brent_start, brent_next, a callee) is looked up, then saved
+    saves = compiled.count("save exclusive")
+    assert saves >= 2 and sorted(compiled) == ["load shared"] * saves + ["save exclusive"] * saves
+    assert loaded == ["load shared"] * 2, loaded  # the callee is in its callers' code
+    first = runs[0][-1].split()  # cache_misses names what the first run compiled
+    assert first[0] == "compiled" and {"brent.brent_next", "brent.brent_start"} <= {
+        name.removeprefix("contactlab.kernels.") for name in first[1:]
+    }, first
+    assert runs[1][-1] == "compiled"  # cache_misses: nothing compiled in the second run
+
+
+def test_after_the_warm_up_a_new_process_loads_every_solver_from_the_cache():
+    """The parallel warm-up's processes saved every entry its calls need, none lost: a new
+    process making the same calls compiles nothing (run after ``contactlab warm-up``, as
+    ``make test`` does)."""
+    script = "from contactlab.batch import warm_up as w\n[g() for g in w._GROUPS]\n"
+    script += "print(*w.cache_misses())"
+    run = subprocess.run(
+        [sys.executable, "-c", script], capture_output=True, text=True, timeout=600, check=True
+    )
+    assert run.stdout.split() == [], f"compiled instead of loaded: {run.stdout}"
