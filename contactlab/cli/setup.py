@@ -17,7 +17,7 @@ TEMPLATE = Path(__file__).resolve().parent.parent / "data" / "template.toml"
 """The commented case ``contactlab init`` writes."""
 
 COMPILE_NOTICE = (
-    "compiling solvers once, about 30 s (cached afterwards; 'contactlab warm-up' does it ahead)"
+    "compiling solvers once, 1-2 minutes (cached afterwards; 'contactlab warm-up' does it ahead)"
 )
 
 
@@ -78,6 +78,6 @@ def add_setup_parsers(sub):
 
     p = sub.add_parser(
         "warm-up",
-        help="compile the numba solvers once (about 30 s; make demo and make test do it)",
+        help="compile the numba solvers once (1-2 min; make demo and make test do it)",
     )
     p.set_defaults(func=_warm_up, compiles=False)

@@ -214,15 +214,18 @@ class _Projection:
         zeta, b = x[0::2], x[1::2] * self.scale
         return b * (-zeta / np.sqrt(1.0 - zeta**2) + 1j)
 
-    def _update(self, x):
-        if self.x is not None and np.array_equal(x, self.x):
-            return
+    def rates(self, x):
+        """Each pole's frequency ``b`` and decay rate ``sigma`` [1/s] at ``x``, and the
+        derivatives of ``sigma`` by the damping ratio and by the frequency ratio."""
         zeta, ratio = x[0::2], x[1::2]
         root = np.sqrt(1.0 - zeta**2)
         b = ratio * self.scale
-        sigma = -b * zeta / root
-        # d sigma / d zeta, d sigma / d ratio, d b / d ratio
-        dsigma = np.stack([-b / root**3, -self.scale * zeta / root], axis=1)
+        return b, -b * zeta / root, np.stack([-b / root**3, -self.scale * zeta / root], axis=1)
+
+    def _update(self, x):
+        if self.x is not None and np.array_equal(x, self.x):
+            return
+        b, sigma, dsigma = self.rates(x)
         residuals, jacobians = [], []
         for times, y, inside in self.stacks:
             tau, rows = times[:, :, None], inside[:, :, None]

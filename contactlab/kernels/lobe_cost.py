@@ -229,28 +229,18 @@ def simplex_fit(simplex, xatol, fatol, maxfun, problem):
                 sim[2], fsim[2] = xr, fxr
             else:
                 shrink = False
-                if fxr < fsim[2]:  # outside contraction
-                    xc = 1.5 * xbar - 0.5 * worst
-                    if calls >= maxfun:
-                        out = True
+                outside = fxr < fsim[2]  # the contraction: outside, else inside
+                xc = 1.5 * xbar - 0.5 * worst if outside else 0.5 * xbar + 0.5 * worst
+                if calls >= maxfun:
+                    out = True
+                else:
+                    calls += 1
+                    fxc = _rss_at(xc[0], xc[1], *problem)
+                    accepted = fxc <= fxr if outside else fxc < fsim[2]  # scipy's tests
+                    if accepted:
+                        sim[2], fsim[2] = xc, fxc
                     else:
-                        calls += 1
-                        fxc = _rss_at(xc[0], xc[1], *problem)
-                        if fxc <= fxr:
-                            sim[2], fsim[2] = xc, fxc
-                        else:
-                            shrink = True
-                else:  # inside contraction
-                    xcc = 0.5 * xbar + 0.5 * worst
-                    if calls >= maxfun:
-                        out = True
-                    else:
-                        calls += 1
-                        fxcc = _rss_at(xcc[0], xcc[1], *problem)
-                        if fxcc < fsim[2]:
-                            sim[2], fsim[2] = xcc, fxcc
-                        else:
-                            shrink = True
+                        shrink = True
                 if shrink:
                     for j in range(1, 3):
                         sim[j] = sim[0] + 0.5 * (sim[j] - sim[0])

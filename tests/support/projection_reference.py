@@ -6,27 +6,22 @@ that ``benchmarks/bench_refine_poles.py`` times it against (imported by name:
 
 import numpy as np
 
+from contactlab.inverse.ringdown import _Projection
 
-class LoopProjection:
+
+class LoopProjection(_Projection):
     """The projected residual of ``refine_poles`` and its Jacobian at ``x`` (damping
-    ratio and frequency over its start for each pole), one window after the other."""
+    ratio and frequency over its start for each pole), one window after the other (the
+    poles and their rates as the stacked one reads them; its residual and Jacobian are
+    this class's own)."""
 
     def __init__(self, windows, scale):
         self.windows, self.scale, self.x, self.parts = windows, scale, None, None
 
-    def poles(self, x):
-        zeta, b = x[0::2], x[1::2] * self.scale
-        return b * (-zeta / np.sqrt(1.0 - zeta**2) + 1j)
-
     def _update(self, x):
         if self.x is not None and np.array_equal(x, self.x):
             return
-        zeta, ratio = x[0::2], x[1::2]
-        root = np.sqrt(1.0 - zeta**2)
-        b = ratio * self.scale
-        sigma = -b * zeta / root
-        # d sigma / d zeta, d sigma / d ratio, d b / d ratio
-        dsigma = np.stack([-b / root**3, -self.scale * zeta / root], axis=1)
+        b, sigma, dsigma = self.rates(x)
         residuals, jacobians = [], []
         for tau, y in self.windows:
             decay = np.exp(np.outer(tau, sigma))
@@ -45,11 +40,3 @@ class LoopProjection:
             jacobians.append(-(derivative - q @ (q.T @ derivative)))
             residuals.append(residual)
         self.x, self.parts = x.copy(), (np.concatenate(residuals), np.concatenate(jacobians))
-
-    def residual(self, x):
-        self._update(x)
-        return self.parts[0]
-
-    def jacobian(self, x):
-        self._update(x)
-        return self.parts[1]
