@@ -106,11 +106,15 @@ def _compile_impacts():
 
 def _compile_readers():
     """The record readers' loops: the held force, the lobe fits' residual and
-    Nelder-Mead, the running baseline's residual."""
+    Nelder-Mead, the running baseline's residual; and the Gauss-Legendre rule as
+    :mod:`contactlab.quadrature` calls it (a compiled caller loaded from the cache does not
+    compile it: without this call its cache stayed empty after a parallel warm-up)."""
     from contactlab.kernels.held_force import held_signal, sampled_signal
     from contactlab.kernels.levels import nearest_residual
     from contactlab.kernels.lobe_cost import fitted_rss, scanned_rss, simplex_fit, white_signal
+    from contactlab.quadrature import gauss_rule
 
+    gauss_rule(0.0, 1.0e-4, 2.5e-5, graded=True, graded_end=True)
     shape = np.linspace(0.0, 1.0, 5)  # a triangle through a one-pole filter
     times, values = held_signal(1e-6, 10, 5e-6, shape, 1.0 - np.abs(2.0 * shape - 1.0), *_ONE_POLE)
     window = np.arange(4) * 2e-6
