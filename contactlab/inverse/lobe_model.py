@@ -205,7 +205,8 @@ class LobeModel:
         """The residual sum of squares at each of ``onsets`` [s] for one duration
         ``tau`` [s] > 0 [N**2] (:func:`contactlab.kernels.lobe_cost.scanned_rss`)."""
         s, r = self.white_unit(tau)
-        return scanned_rss(self.t, np.asarray(onsets, float), s, r, self.ar.size, *self._fitted)
+        times = self._problem[0]  # the window's times as the compiled calls take them
+        return scanned_rss(times, np.asarray(onsets, float), s, r, self.ar.size, *self._fitted)
 
     def _jacobian(self, t0, tau, damping_free):
         """Derivatives of the model at the fit (unwhitened): ``t0`` per sample, ``tau``

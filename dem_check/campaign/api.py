@@ -15,7 +15,6 @@ from contactlab.quantities import columns
 from contactlab.validation import check_choice, check_count, check_number, check_path
 from dem_check.campaign import detection, noise, onsets
 from dem_check.campaign.analysis import window_row
-from dem_check.campaign.detection import ANALYSED
 from dem_check.campaign.inputs import check_out_folder, expand_paths, for_file, read_record
 from dem_check.campaign.local import record_noise
 from dem_check.campaign.overlaps import separate_overlaps
@@ -213,7 +212,8 @@ def _analyse_file(path, options, timings, progress):
     modes = record_modes(found, sensor, noise=levels) if options["crosstalk"] else []
     crosstalk = options["crosstalk"]
     separated = separate_overlaps(found, sensor, grain, fit, crosstalk, modes, levels)
-    read = [k for k, w in enumerate(found.impacts) if k not in separated and w.status in ANALYSED]
+    analysable = detection.ANALYSED
+    read = [k for k, w in enumerate(found.impacts) if k not in separated and w.status in analysable]
     settings = (sensor, grain, fit, crosstalk, modes, levels)
     analysed = analysed_impacts(found, read, settings, options["workers"])
     for k, window in enumerate(found.impacts):

@@ -374,7 +374,7 @@ def find_steps(values, period, masked, ring=None):
         after the steps found are taken off, the record is searched again (up to
         :data:`PASSES` times).
     """
-    found, rest = [], np.asarray(values, dtype=float)
+    found, settled, rest = [], [], np.asarray(values, dtype=float)
     least = LEAST_HEIGHT * difference_sigma(rest)
     for _ in range(PASSES):
         more = _one_pass(rest, period, masked, ring)
@@ -382,9 +382,10 @@ def find_steps(values, period, masked, ring=None):
             break
         found += more
         rest = remove_steps(rest, more)
-        if settle_steps(found, period, least)[1]:
+        settled, taken_back = settle_steps(found, period, least)
+        if taken_back:
             break
-    return settle_steps(found, period, least)[0]
+    return settled
 
 
 def drift_slopes(values, period, masked):

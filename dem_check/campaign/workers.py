@@ -20,7 +20,8 @@ from dem_check.campaign.analysis import analyse_impact
 __all__ = ["analysed_impacts"]
 
 _SHARED = None
-"""The record's detection and analysis settings, set before the processes are forked."""
+"""The record's detection and analysis settings while its impacts are read (set before
+the processes are forked, so that they inherit it)."""
 
 
 def _analysed(k):
@@ -50,10 +51,10 @@ def analysed_impacts(found, indices, settings, workers):
     """
     global _SHARED
     forking = "fork" in multiprocessing.get_all_start_methods()
-    if workers == 1 or len(indices) < 2 or not forking:
-        return {k: analyse_impact(found, found.impacts[k], *settings) for k in indices}
     _SHARED = (found, settings)
     try:
+        if workers == 1 or len(indices) < 2 or not forking:
+            return {k: _analysed(k) for k in indices}
         context = multiprocessing.get_context("fork")
         with ProcessPoolExecutor(min(workers, len(indices)), mp_context=context) as pool:
             return dict(zip(indices, pool.map(_analysed, indices), strict=True))
